@@ -474,6 +474,9 @@ fn cli_runs_shared_example() {
     );
 }
 
+/// An edit applied to the example's JSON.
+type Edit = Box<dyn Fn(&mut serde_json::Value)>;
+
 fn example_json() -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(EXAMPLE).unwrap()).unwrap()
 }
@@ -483,7 +486,7 @@ fn example_json() -> serde_json::Value {
 fn cli_rejects_bad_input_with_key() {
     let dir = std::env::temp_dir().join(format!("lqt-bad-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let cases: Vec<(&str, Box<dyn Fn(&mut serde_json::Value)>, &str)> = vec![
+    let cases: Vec<(&str, Edit, &str)> = vec![
         (
             "missing",
             Box::new(|v| {
