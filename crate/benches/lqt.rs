@@ -3,7 +3,8 @@
 //! new object pose, and the classic DMP.
 #![allow(missing_docs)]
 
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::measurement::{Measurement, ValueFormatter};
+use criterion::{criterion_group, criterion_main, Criterion, SamplingMode, Throughput};
 use logic_lfd::lqt::task::{build_reference, Target, TargetRole, Tracking};
 use logic_lfd::lqt::{
     full_pipeline, Basis, Dmp, DmpParams, LqtConfig, LqtCp, MotionSkill, Skill, SkillParams,
@@ -49,6 +50,102 @@ fn dmp_mode_problem(basis: Basis, goal: [f64; 3]) -> (LqtConfig, DMatrix<f64>, D
     }];
     let (mu, q) = build_reference(&config, &targets, Some(&tracking)).unwrap();
     (config, mu, q)
+}
+
+/// CPU time of the benchmarking thread (`/proc/thread-self/schedstat`, ns): on a shared machine
+/// the wall clock also counts the time other processes hold the cores.
+struct ThreadCpu;
+
+fn thread_cpu_ns() -> u64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse().ok())
+        .unwrap_or(0)
+}
+
+struct CpuFormatter;
+
+impl ValueFormatter for CpuFormatter {
+    fn scale_values(&self, typical: f64, values: &mut [f64]) -> &'static str {
+        let (div, unit) = if typical < 1e3 {
+            (1.0, "ns (cpu)")
+        } else if typical < 1e6 {
+            (1e3, "µs (cpu)")
+        } else {
+            (1e6, "ms (cpu)")
+        };
+        values.iter_mut().for_each(|v| *v /= div);
+        unit
+    }
+
+    fn scale_throughputs(&self, _: f64, _: &Throughput, _: &mut [f64]) -> &'static str {
+        "ns (cpu)"
+    }
+
+    fn scale_for_machines(&self, _: &mut [f64]) -> &'static str {
+        "ns"
+    }
+}
+
+impl Measurement for ThreadCpu {
+    type Intermediate = u64;
+    type Value = u64;
+
+    fn start(&self) -> u64 {
+        thread_cpu_ns()
+    }
+
+    fn end(&self, i: u64) -> u64 {
+        thread_cpu_ns().saturating_sub(i)
+    }
+
+    fn add(&self, a: &u64, b: &u64) -> u64 {
+        a + b
+    }
+
+    fn zero(&self) -> u64 {
+        0
+    }
+
+    fn to_f64(&self, v: &u64) -> f64 {
+        *v as f64
+    }
+
+    fn formatter(&self) -> &dyn ValueFormatter {
+        &CpuFormatter
+    }
+}
+
+/// The target pipeline, on the CPU-time clock. The kernel updates the thread's CPU time at
+/// scheduler ticks, so samples are long (flat sampling, 20 samples of ~0.2 s each).
+fn cpu_benches(c: &mut Criterion<ThreadCpu>) {
+    let mut g = c.benchmark_group("cpu");
+    g.sampling_mode(SamplingMode::Flat)
+        .sample_size(20)
+        .measurement_time(std::time::Duration::from_secs(4));
+    let x0 = vec![-0.3, 0.0, 0.3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let (config, mu, q) = dmp_mode_problem(Basis::rbf_uniform(10, 100.0), [0.0, 0.0, 0.02]);
+    g.bench_function("lqt full pipeline T100 D3 jerk K10 rbf", |b| {
+        b.iter(|| full_pipeline(black_box(&config), black_box(&mu), &q, &x0).unwrap())
+    });
+    g.bench_function("lqt factor only (LqtCp::new) rbf", |b| {
+        b.iter(|| LqtCp::new(black_box(config.clone()), black_box(&q)).unwrap())
+    });
+    let lqt = LqtCp::new(config.clone(), &q).unwrap();
+    let (_, mu2, _) = dmp_mode_problem(config.basis.clone(), [0.1, -0.05, 0.04]);
+    g.bench_function("lqt new goal (cached) gains + rollout rbf", |b| {
+        b.iter(|| {
+            let fb = lqt.feedback(black_box(&mu2)).unwrap();
+            fb.rollout(&x0, None).unwrap()
+        })
+    });
+    let d = demo(100);
+    let dmp = Dmp::learn(&d, 0.01, DmpParams::default()).unwrap();
+    let pose = Isometry3::translation(0.1, 0.0, 0.0);
+    g.bench_function("dmp plan T100 K30", |b| {
+        b.iter(|| dmp.plan(black_box(&d[0]), black_box(&pose), &[]).unwrap())
+    });
+    g.finish();
 }
 
 fn benches(c: &mut Criterion) {
@@ -110,4 +207,9 @@ criterion_group! {
         .measurement_time(std::time::Duration::from_secs(2));
     targets = benches
 }
-criterion_main!(lqt);
+criterion_group! {
+    name = lqt_cpu;
+    config = Criterion::default().with_measurement(ThreadCpu);
+    targets = cpu_benches
+}
+criterion_main!(lqt, lqt_cpu);
