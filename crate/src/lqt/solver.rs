@@ -10,7 +10,7 @@
 //! K̃_0 = F_0, P_0 = I,  P_t = P_{t-1} (Ã - B̃ K̃_{t-1})⁻¹,  K̃_t = F_t P_t
 //! ```
 //!
-//! Structure exploited (the dense transcription of the formulas is [`super::reference`]):
+//! Structure exploited (the dense transcription of the formulas is [`super::reference`](mod@super::reference)):
 //!
 //! * `A = A1 ⊗ I_D`, `B = B1 ⊗ I_D`, Q diagonal: the D coordinates are independent. Each one is
 //!   a 1-D problem with K unknowns and a K×K matrix `H_d`; coordinates whose weights `q` are equal
