@@ -136,7 +136,6 @@ pub(crate) fn read_one(src: &Source) -> Result<SExpr, PddlError> {
 }
 
 /// Reads a sequence of top-level lists (a plan file: one `(action arg …)` per line).
-#[allow(dead_code)]
 pub(crate) fn read_many(src: &Source) -> Result<Vec<SExpr>, PddlError> {
     let text = src.text.as_str();
     let bytes = text.as_bytes();

@@ -4,6 +4,10 @@
 
 mod ground;
 mod task;
+mod validate;
 
 pub use ground::{ground, GroundError};
-pub use task::{Condition, FactId, Goal, Operator, State, Task};
+pub use task::{Condition, FactId, Goal, Operator, State, Task, UnknownFact};
+pub use validate::{
+    parse_plan, validate, validate_names, Outcome, PlanStep, PlanToken, ValidationReport,
+};
