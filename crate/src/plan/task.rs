@@ -226,7 +226,7 @@ impl Task {
             let norm = normalize_fact_name(n);
             if let Some(f) = self.fact_id(&norm) {
                 s.insert(f);
-            } else if !self.static_facts.iter().any(|x| *x == norm) {
+            } else if !self.static_facts.contains(&norm) {
                 return Err(UnknownFact(n.clone()));
             }
         }
