@@ -1,3 +1,4 @@
 //! Integration tests (one binary, one sub-module per area).
 
 mod ground;
+mod pddl;

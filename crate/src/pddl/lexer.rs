@@ -63,7 +63,11 @@ pub(crate) fn read_one(src: &Source) -> Result<SExpr, PddlError> {
                     start: i,
                     end: i + 1,
                 },
-                "unexpected text after the end of `(define …)`",
+                if b == b')' {
+                    "unmatched `)` after the end of `(define …)`"
+                } else {
+                    "unexpected text after the end of `(define …)`"
+                },
             ));
         } else if b == b'(' {
             if stack.len() >= MAX_DEPTH {
