@@ -158,10 +158,10 @@ pub(crate) fn read_many(src: &Source) -> Result<Vec<SExpr>, PddlError> {
             let mut items = Vec::new();
             i += 1;
             loop {
-                while i < bytes.len() && bytes[i].is_ascii_whitespace() {
+                while i < bytes.len() && bytes[i].is_ascii_whitespace() && bytes[i] != b'\n' {
                     i += 1;
                 }
-                if i >= bytes.len() || bytes[i] == b';' {
+                if i >= bytes.len() || bytes[i] == b';' || bytes[i] == b'\n' {
                     return Err(src.error(
                         Span {
                             start,
