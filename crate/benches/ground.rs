@@ -1,4 +1,5 @@
 //! Parse + ground the largest IPC problems of each family (`cargo bench --bench ground`).
+#![allow(missing_docs)] // criterion_group! generates undocumented items
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use logic_lfd::pddl::{parse_domain, parse_problem};
@@ -23,7 +24,11 @@ fn bench(c: &mut Criterion) {
         let d = parse_domain(&dt, "domain.pddl").unwrap();
         let p = parse_problem(&pt, file, &d).unwrap();
         let t = ground(&d, &p).unwrap();
-        eprintln!("{dir}/{file}: {} facts, {} operators", t.facts.len(), t.operators.len());
+        eprintln!(
+            "{dir}/{file}: {} facts, {} operators",
+            t.facts.len(),
+            t.operators.len()
+        );
         g.bench_function(format!("{dir}/{file}"), |b| {
             b.iter(|| {
                 let d = parse_domain(&dt, "domain.pddl").unwrap();
