@@ -189,6 +189,9 @@ fn dnf(objs: &Objects, f: &Formula, neg: bool) -> Option<Vec<Vec<Literal>>> {
                 let mut acc: Vec<Vec<Literal>> = vec![Vec::new()];
                 for p in parts {
                     let d = dnf(objs, p, neg)?;
+                    if acc.len().saturating_mul(d.len()) > MAX_DISJUNCTS {
+                        return None;
+                    }
                     let mut next = Vec::with_capacity(acc.len() * d.len());
                     for a in &acc {
                         for b in &d {
@@ -380,6 +383,9 @@ impl Grounder<'_> {
 
     /// Enumerates parameters not bound by atoms, by type.
     fn free_vars(&self, s: usize, from: usize, b: &mut Vec<Obj>, out: &mut Vec<Vec<Obj>>) {
+        if out.len() > MAX_OPERATORS {
+            return; // the caller reports the task as too large
+        }
         let Some(v) = (from..b.len()).find(|&v| b[v] == UNBOUND) else {
             if self.constraints_ok(&self.schemas[s], b, true) {
                 out.push(b.clone());

@@ -281,3 +281,30 @@ fn state_from_names_accepts_fluents_and_statics_only() {
     assert!(e.to_string().contains("(at r3)"), "{e}");
     assert_eq!(t.state_from_names(&t.state_names(&t.init)).unwrap(), t.init);
 }
+
+/// A precondition whose DNF explodes is refused with a typed error, not an out-of-memory.
+#[test]
+fn exploding_dnf_is_a_typed_error() {
+    let ors = "(or (p) (q)) ".repeat(13); // 2^13 disjuncts
+    let d = parse_domain(
+        &format!("(define (domain d) (:predicates (p) (q)) (:action a :precondition (and {ors}) :effect (not (p))))"),
+        "d.pddl",
+    )
+    .unwrap();
+    let p = parse_problem(
+        "(define (problem x) (:domain d) (:init (p)) (:goal (q)))",
+        "x.pddl",
+        &d,
+    )
+    .unwrap();
+    let e = ground(&d, &p).unwrap_err();
+    assert!(
+        matches!(e, logic_lfd::plan::GroundError::TooLarge(..)),
+        "{e}"
+    );
+    assert!(
+        e.to_string()
+            .contains("precondition of `a` has more than 4096 disjuncts"),
+        "{e}"
+    );
+}
