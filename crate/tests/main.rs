@@ -1,1 +1,4 @@
 //! Integration tests (one binary, one sub-module per area).
+
+mod multigoal;
+mod search;
