@@ -3,3 +3,5 @@
 mod ground;
 mod multigoal;
 mod search;
+mod pddl;
+mod validate;

@@ -4,6 +4,7 @@
 //! Errors go to stderr as `file:line:col: message`; `--json` output goes to stdout.
 
 mod cmd_lqt;
+mod cmd_validate;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -33,6 +34,8 @@ struct Cli {
 enum Command {
     /// Solve an LQT-CP case (shared/lqt-cp-io.md) and print the output object as JSON.
     Lqt(cmd_lqt::Args),
+    /// Replay a plan on a PDDL domain and problem; report the first failing step and why.
+    Validate(cmd_validate::Args),
 }
 
 fn main() -> ExitCode {
@@ -50,5 +53,6 @@ fn main() -> ExitCode {
     };
     match cli.command {
         Command::Lqt(args) => cmd_lqt::run(args),
+        Command::Validate(a) => cmd_validate::run(a),
     }
 }
