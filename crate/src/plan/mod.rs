@@ -17,5 +17,5 @@ pub use clock::{Clock, NoClock};
 pub use heuristic::{HeuristicEvaluator, HeuristicKind, UnknownName};
 pub use multigoal::{search_multi_goal, MultiGoalMode, MultiGoalResult};
 pub use search::{
-    search, Algorithm, Budget, Outcome, Plan, SearchConfig, SearchResult, SearchStats,
+    search, Algorithm, Budget, Plan, SearchConfig, SearchOutcome, SearchResult, SearchStats,
 };
