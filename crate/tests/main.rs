@@ -2,6 +2,6 @@
 
 mod ground;
 mod multigoal;
-mod search;
 mod pddl;
+mod search;
 mod validate;

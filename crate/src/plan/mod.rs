@@ -21,5 +21,5 @@ pub use clock::{Clock, NoClock};
 pub use heuristic::{HeuristicEvaluator, HeuristicKind, UnknownName};
 pub use multigoal::{search_multi_goal, MultiGoalMode, MultiGoalResult};
 pub use search::{
-    search, Algorithm, Budget, Outcome as SearchOutcomePlaceholder, Plan, SearchConfig, SearchResult, SearchStats,
+    search, Algorithm, Budget, Plan, SearchConfig, SearchOutcome, SearchResult, SearchStats,
 };

@@ -253,7 +253,10 @@ fn grounding_and_lifted_validation_agree_on_random_walks() {
         // And a lifted-applicable step the grounding dropped must not exist: every action the
         // validator accepts from init is a grounded operator applicable in init.
         for o in t.operators.iter().filter(|o| o.applicable(&t.init)) {
-            assert_eq!(validate_names(&d, &p, std::slice::from_ref(&o.name)).steps_applied, 1);
+            assert_eq!(
+                validate_names(&d, &p, std::slice::from_ref(&o.name)).steps_applied,
+                1
+            );
         }
     }
 }
