@@ -5,3 +5,4 @@ mod multigoal;
 mod pddl;
 mod search;
 mod validate;
+mod lqt;
