@@ -1,1 +1,2 @@
 //! Integration tests (one binary, one sub-module per area).
+mod sim;
