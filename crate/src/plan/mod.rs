@@ -11,3 +11,15 @@ pub use task::{Condition, FactId, Goal, Operator, State, Task, UnknownFact};
 pub use validate::{
     parse_plan, validate, validate_names, Outcome, PlanStep, PlanToken, ValidationReport,
 };
+
+mod clock;
+mod heuristic;
+mod multigoal;
+mod search;
+
+pub use clock::{Clock, NoClock};
+pub use heuristic::{HeuristicEvaluator, HeuristicKind, UnknownName};
+pub use multigoal::{search_multi_goal, MultiGoalMode, MultiGoalResult};
+pub use search::{
+    search, Algorithm, Budget, Plan, SearchConfig, SearchOutcome, SearchResult, SearchStats,
+};
