@@ -302,6 +302,19 @@ impl MotionSkill for Dmp {
         &self,
         start: &Point3<f64>,
         object_pose: &Isometry3<f64>,
+        via_points: &[ViaPoint],
+    ) -> Result<Trajectory, LqtError> {
+        Dmp::plan(self, start, object_pose, via_points)
+    }
+}
+
+impl Dmp {
+    /// Plan from `start` (world, at rest) to the demo's goal in the frame of `object_pose`.
+    /// Via-points are ignored: a classic DMP cannot encode them (the paper's comparison).
+    pub fn plan(
+        &self,
+        start: &Point3<f64>,
+        object_pose: &Isometry3<f64>,
         _via_points: &[ViaPoint],
     ) -> Result<Trajectory, LqtError> {
         if !start.coords.iter().all(|v| v.is_finite()) {

@@ -470,8 +470,10 @@ impl Skill {
     }
 }
 
-impl MotionSkill for Skill {
-    fn plan(
+impl Skill {
+    /// Plan from `start` (world, at rest) for an object at `object_pose`, through `via_points`
+    /// (object frame). The same as [`MotionSkill::plan`], without importing the trait.
+    pub fn plan(
         &self,
         start: &Point3<f64>,
         object_pose: &Isometry3<f64>,
@@ -480,6 +482,17 @@ impl MotionSkill for Skill {
         let mut x = vec![0.0; 3 * self.params.order];
         x[..3].copy_from_slice(start.coords.as_slice());
         self.plan_from_state(&x, object_pose, via_points, None)
+    }
+}
+
+impl MotionSkill for Skill {
+    fn plan(
+        &self,
+        start: &Point3<f64>,
+        object_pose: &Isometry3<f64>,
+        via_points: &[ViaPoint],
+    ) -> Result<Trajectory, LqtError> {
+        Skill::plan(self, start, object_pose, via_points)
     }
 }
 
