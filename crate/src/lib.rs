@@ -22,3 +22,4 @@
 pub mod lqt;
 pub mod pddl;
 pub mod plan;
+pub mod sim;

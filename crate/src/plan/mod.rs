@@ -4,9 +4,13 @@
 
 mod ground;
 mod task;
+mod validate;
 
 pub use ground::{ground, GroundError};
-pub use task::{Condition, FactId, Goal, Operator, State, Task};
+pub use task::{Condition, FactId, Goal, Operator, State, Task, UnknownFact};
+pub use validate::{
+    parse_plan, validate, validate_names, Outcome, PlanStep, PlanToken, ValidationReport,
+};
 
 mod clock;
 mod heuristic;
