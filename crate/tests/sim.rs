@@ -487,3 +487,105 @@ fn the_hook_pushes_a_block_its_blade_sweeps_into() {
     assert!((after.y - before.y).abs() < 0.05 && (after.z - before.z).abs() < 1e-9);
     assert!(facts(&w).contains(&"(inreach panda b)".to_string()));
 }
+
+mod pddl_models {
+    //! The benchmark PDDL, the demos and the scene graph agree.
+    use super::*;
+    use logic_lfd::plan::{self, NoClock, SearchConfig, SearchOutcome, State, Task};
+
+    fn task(b: Benchmark) -> Task {
+        let dom = logic_lfd::pddl::parse_domain(b.domain_pddl(), "domain.pddl")
+            .unwrap_or_else(|e| panic!("{b:?} domain: {e}"));
+        let prob = logic_lfd::pddl::parse_problem(b.problem_pddl(), "problem.pddl", &dom)
+            .unwrap_or_else(|e| panic!("{b:?} problem: {e}"));
+        plan::ground(&dom, &prob).unwrap_or_else(|e| panic!("{b:?} ground: {e}"))
+    }
+
+    fn state_of(t: &Task, w: &World) -> State {
+        t.state_from_names(&SceneGraph::from_world(w).to_strings())
+            .expect("scene-graph facts are facts of the task")
+    }
+
+    #[test]
+    fn each_benchmark_parses_grounds_and_its_scene_facts_equal_the_init_fluents() {
+        for b in Benchmark::ALL {
+            let t = task(b);
+            let w = b.scene();
+            let sg = SceneGraph::from_world(&w).to_strings();
+            // Fluents: equal as sets.
+            assert_eq!(
+                t.state_names(&state_of(&t, &w)),
+                t.state_names(&t.init),
+                "{b:?}"
+            );
+            // Statics: the benchmark's extra static facts plus the ones the scene graph reports
+            // (B2's `(inreach panda hook)`: nothing changes it) are exactly the task's.
+            let mut statics: Vec<String> = b.static_facts().iter().map(|f| f.to_string()).collect();
+            statics.extend(sg.iter().filter(|f| t.fact_id(f).is_none()).cloned());
+            statics.sort();
+            let mut ts = t.static_facts.clone();
+            ts.sort();
+            assert_eq!(statics, ts, "{b:?} static facts");
+            // The goal facts are the problem's goal.
+            let mut g = t.empty_state();
+            for f in b.goal() {
+                g.insert(t.fact_id(&f.to_string()).unwrap());
+            }
+            assert!(t.goal.holds(&g), "{b:?}");
+        }
+    }
+
+    #[test]
+    fn each_demo_is_a_valid_plan_and_the_simulated_facts_follow_the_pddl_states() {
+        for b in Benchmark::ALL {
+            let t = task(b);
+            let d = demo::committed(b).unwrap();
+            // PDDL replay with Operator::apply.
+            let mut s = t.init.clone();
+            let mut states = vec![s.clone()];
+            for a in &d.actions {
+                let op = t
+                    .operators
+                    .iter()
+                    .find(|o| o.name == a.action)
+                    .unwrap_or_else(|| panic!("{b:?}: no operator {}", a.action));
+                assert!(op.applicable(&s), "{b:?}: {} not applicable", a.action);
+                s = op.apply(&s);
+                states.push(s.clone());
+            }
+            assert!(t.goal.holds(&s), "{b:?}: demo does not reach the goal");
+            // Simulated replay: after each action the scene graph equals the PDDL state.
+            let mut w = b.scene();
+            assert_eq!(state_of(&t, &w), states[0]);
+            let mut k = 0;
+            demo::replay(&mut w, &d, |w, a, step| {
+                if step + 1 == a.samples.len() {
+                    k += 1;
+                    let got = state_of(&t, w);
+                    assert_eq!(
+                        t.state_names(&got),
+                        t.state_names(&states[k]),
+                        "{b:?}: after {}",
+                        a.action
+                    );
+                }
+                Ok(())
+            })
+            .unwrap();
+            assert_eq!(k, d.actions.len());
+        }
+    }
+
+    #[test]
+    fn the_planner_solves_each_template_task_in_the_demo_length() {
+        for b in Benchmark::ALL {
+            let t = task(b);
+            let r = plan::search(&t, &SearchConfig::default(), &NoClock);
+            let SearchOutcome::Plan(p) = r.outcome else {
+                panic!("{b:?}: {:?}", r.outcome)
+            };
+            let d = demo::committed(b).unwrap();
+            assert_eq!(p.operators.len(), d.actions.len(), "{b:?}");
+        }
+    }
+}
