@@ -589,3 +589,71 @@ mod pddl_models {
         }
     }
 }
+
+mod disturbances {
+    //! Every injector delivers its promise.
+    use super::*;
+    use logic_lfd::sim::disturb::{self, Level};
+    use std::collections::BTreeSet;
+
+    fn fset(w: &World) -> BTreeSet<String> {
+        SceneGraph::from_world(w).to_strings().into_iter().collect()
+    }
+
+    #[test]
+    fn every_level_keeps_its_promise_on_every_benchmark() {
+        for b in Benchmark::ALL {
+            let states = demo::demo_states(b).unwrap();
+            assert_eq!(states.len(), demo::committed(b).unwrap().actions.len() + 1);
+            for seed in 0..4 {
+                for level in Level::ALL {
+                    let mut w = b.scene();
+                    let before = fset(&w);
+                    let nblocks = w.block_names().len();
+                    let d = disturb::inject(&mut w, b, level, &states, seed)
+                        .unwrap_or_else(|e| panic!("{b:?} {level:?} seed {seed}: {e}"));
+                    w.check_invariants()
+                        .unwrap_or_else(|v| panic!("{b:?} {level:?}: {v:?}"));
+                    let after = fset(&w);
+                    assert_eq!(d.facts_after, after.iter().cloned().collect::<Vec<_>>());
+                    assert_eq!(d.facts_before, before.iter().cloned().collect::<Vec<_>>());
+                    assert!(!d.description.is_empty());
+                    match level {
+                        Level::L1 => {
+                            assert_eq!(after, before, "{b:?} L1 seed {seed}");
+                            assert!(!d.moves.is_empty());
+                        }
+                        Level::L2 => {
+                            assert_ne!(after, before, "{b:?} L2 seed {seed}");
+                            assert!(states.contains(&after), "{b:?} L2 seed {seed}: {after:?}");
+                        }
+                        Level::L3 => {
+                            assert!(!states.contains(&after), "{b:?} L3 seed {seed}: {after:?}");
+                        }
+                        Level::L4 => {
+                            assert_eq!(w.block_names().len(), nblocks + 1);
+                            assert_eq!(d.added.len(), 1);
+                            let e = &d.added[0];
+                            assert!(
+                                after.iter().any(|f| f.contains(&format!(" {e}"))),
+                                "{after:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn injection_is_deterministic_in_its_seed() {
+        let states = demo::demo_states(Benchmark::B3).unwrap();
+        let run = |seed| {
+            let mut w = Benchmark::B3.scene();
+            disturb::inject(&mut w, Benchmark::B3, Level::L3, &states, seed).unwrap();
+            w.snapshot()
+        };
+        assert_eq!(run(5), run(5));
+        assert_ne!(run(5), run(6));
+    }
+}

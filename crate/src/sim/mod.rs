@@ -41,6 +41,7 @@
 
 pub mod benchmark;
 pub mod demo;
+pub mod disturb;
 pub mod geometry;
 pub mod panda;
 pub mod scene_graph;
