@@ -657,3 +657,55 @@ mod disturbances {
         assert_ne!(run(5), run(6));
     }
 }
+
+mod task_generator {
+    //! Table I tasks: the promised level, valid worlds, solvable PDDL problems.
+    use super::*;
+    use logic_lfd::plan::{self, NoClock, SearchConfig, SearchOutcome};
+    use logic_lfd::sim::disturb::Level;
+    use logic_lfd::sim::tasks;
+
+    #[test]
+    fn generated_tasks_load_and_their_problems_parse_and_are_solvable() {
+        for b in Benchmark::ALL {
+            let ts = tasks::generate_table1(b, 12, 3).unwrap_or_else(|e| panic!("{b:?}: {e}"));
+            assert_eq!(ts.len(), 12);
+            let dom = logic_lfd::pddl::parse_domain(b.domain_pddl(), "domain.pddl").unwrap();
+            for t in &ts {
+                assert_eq!(t.level, Level::ALL[t.index % 4]);
+                let w = World::from_snapshot(&t.scene)
+                    .unwrap_or_else(|e| panic!("{}: {e}", t.description));
+                w.check_invariants().unwrap();
+                let blocks = w.block_names().len();
+                let want = b.blocks().len() + usize::from(t.level == Level::L4);
+                assert_eq!(blocks, want, "{b:?} {:?}", t.level);
+                let prob = logic_lfd::pddl::parse_problem(&t.problem_pddl, "task.pddl", &dom)
+                    .unwrap_or_else(|e| panic!("{}\n{e}", t.problem_pddl));
+                let task = plan::ground(&dom, &prob).unwrap();
+                // The problem's init is the scene graph of the world.
+                assert_eq!(
+                    task.state_names(&task.state_from_names(&t.facts).unwrap()),
+                    task.state_names(&task.init)
+                );
+                let r = plan::search(&task, &SearchConfig::default(), &NoClock);
+                assert!(
+                    matches!(r.outcome, SearchOutcome::Plan(_)),
+                    "{b:?} {}: {:?}",
+                    t.description,
+                    r.outcome
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn task_generation_is_deterministic() {
+        let a = tasks::generate(Benchmark::B1, Level::L3, 3, 9).unwrap();
+        let b = tasks::generate(Benchmark::B1, Level::L3, 3, 9).unwrap();
+        assert_eq!(a, b);
+        assert_ne!(
+            a[0].facts,
+            tasks::generate(Benchmark::B1, Level::L3, 1, 10).unwrap()[0].facts
+        );
+    }
+}

@@ -46,6 +46,7 @@ pub mod geometry;
 pub mod panda;
 pub mod scene_graph;
 pub mod snapshot;
+pub mod tasks;
 mod world;
 
 pub use scene_graph::{Fact, SceneGraph};
