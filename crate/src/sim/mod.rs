@@ -40,10 +40,13 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod benchmark;
+pub mod demo;
+pub mod disturb;
 pub mod geometry;
 pub mod panda;
 pub mod scene_graph;
 pub mod snapshot;
+pub mod tasks;
 mod world;
 
 pub use scene_graph::{Fact, SceneGraph};

@@ -1483,11 +1483,42 @@ impl World {
         })
     }
 
-    /// Puts a body at an exact pose without any rule (for builders and disturbance injectors; the
-    /// caller checks the invariants).
-    #[allow(dead_code)]
-    pub(crate) fn set_body_pose(&mut self, bi: usize, pose: Isometry3<f64>) {
-        self.bodies[bi].pose = pose;
+    /// Adds a new 6 cm block called `name` (colour `#rrggbb`) and drops it at `position` with yaw
+    /// `yaw` as [`World::move_block`] does. Refused (world unchanged) for a bad or taken name, a
+    /// bad colour, or a place where it cannot rest.
+    pub fn add_block(
+        &mut self,
+        name: &str,
+        color: &str,
+        position: Vector3<f64>,
+        yaw: f64,
+    ) -> Result<MoveOutcome, Refused> {
+        let refuse = |reason: String| Refused {
+            body: name.to_string(),
+            reason,
+        };
+        check_name(name, "block").map_err(|e| refuse(e.message))?;
+        check_color(color, "block").map_err(|e| refuse(e.message))?;
+        if self.body_index(name).is_some()
+            || self.arm_index(name).is_some()
+            || self.regions.iter().any(|r| r.name == name)
+        {
+            return Err(refuse("the name is taken".into()));
+        }
+        let h = 0.5 * super::benchmark::BLOCK_SIZE;
+        let mut trial = self.clone();
+        trial.bodies.push(Body {
+            name: name.to_string(),
+            kind: BodyKind::Block,
+            parts: vec![(Isometry3::identity(), Cuboid::new(Vector3::repeat(h)))],
+            // Far above everything until it is moved into place.
+            pose: Isometry3::translation(0.0, 0.0, 100.0),
+            color: color.to_string(),
+            lost: false,
+        });
+        let out = trial.move_block_to(name, position, yaw)?;
+        *self = trial;
+        Ok(out)
     }
 
     // ----------------------------------------------------------------- invariants

@@ -857,7 +857,7 @@ fn cli_plan_exit_codes_and_output() {
         .collect();
     let cost = ops.len() as u64;
     assert_valid(
-        &task,
+        task,
         &Plan {
             operators: ops,
             cost,
