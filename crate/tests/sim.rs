@@ -709,3 +709,42 @@ mod task_generator {
         );
     }
 }
+
+#[test]
+fn cli_scene_facts_and_check() {
+    let exe = env!("CARGO_BIN_EXE_logic-lfd");
+    let scene = format!(
+        "{}/../domains/b1-tower/scene.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let out = std::process::Command::new(exe)
+        .args(["scene", "facts", &scene])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(text.lines().count(), 9, "{text}");
+    assert!(text.contains("(ontable a)"));
+    // A block in the air: exit 2, the message names the file, the body and the field.
+    let mut s: WorldSnapshot =
+        serde_json::from_str(&std::fs::read_to_string(&scene).unwrap()).unwrap();
+    s.bodies[2].pose.position[2] = 0.5;
+    let dir = std::env::temp_dir().join(format!("logic-lfd-sim-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.json");
+    std::fs::write(&bad, serde_json::to_string(&s).unwrap()).unwrap();
+    let out = std::process::Command::new(exe)
+        .args(["scene", "check", bad.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("bad.json: bodies[2]")
+            && err.contains(".pose: ")
+            && err.contains("in the air"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

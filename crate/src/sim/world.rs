@@ -585,9 +585,11 @@ impl World {
     /// Parses and validates a JSON scene (see [`World::from_snapshot`]).
     pub fn from_json(text: &str) -> Result<World, SceneError> {
         let snap: WorldSnapshot = serde_json::from_str(text).map_err(|e| {
+            let msg = e.to_string();
+            let suffix = format!(" at line {} column {}", e.line(), e.column());
             scene_err(
                 format!("line {} column {}", e.line(), e.column()),
-                e.to_string(),
+                msg.strip_suffix(&suffix).unwrap_or(&msg),
             )
         })?;
         World::from_snapshot(&snap)

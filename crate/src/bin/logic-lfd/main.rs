@@ -6,6 +6,7 @@
 mod cmd_bench;
 mod cmd_lqt;
 mod cmd_plan;
+mod cmd_scene;
 mod cmd_validate;
 
 use clap::{Parser, Subcommand};
@@ -42,6 +43,8 @@ enum Command {
     Plan(cmd_plan::Args),
     /// Benchmarks: `bench planner` runs planner configurations over IPC folders.
     Bench(cmd_bench::Args),
+    /// Inspect and perturb simulator scenes: facts, check, template, problem, disturb.
+    Scene(cmd_scene::Args),
 }
 
 /// A closed stdout (`logic-lfd plan … | head`) ends the process quietly, as Unix tools do,
@@ -81,5 +84,6 @@ fn main() -> ExitCode {
         Command::Validate(a) => cmd_validate::run(a),
         Command::Plan(args) => cmd_plan::run(args),
         Command::Bench(args) => cmd_bench::run(args),
+        Command::Scene(args) => cmd_scene::run(args),
     }
 }
