@@ -748,3 +748,48 @@ fn cli_scene_facts_and_check() {
     assert!(!err.contains("panicked"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_block_released_over_nothing_is_lost_and_the_invariants_say_so() {
+    let mut w = Benchmark::B1.scene();
+    // Closing on nothing grasps nothing.
+    let home = w.tcp_pose(0).unwrap();
+    w.command_arm(0, home, GripperCommand::Close).unwrap();
+    let ev = w.step();
+    assert!(
+        ev.iter()
+            .any(|e| e.to_string().contains("closed on nothing")),
+        "{ev:?}"
+    );
+    assert_eq!(w.held_by(0), None);
+    // Grasp a, carry it beyond the table's edge (y < -0.6), release.
+    w.command_arm(0, home, GripperCommand::Open).unwrap();
+    for _ in 0..30 {
+        w.step();
+    }
+    let g = geometry::grasp_pose(&w, 0, "a").unwrap();
+    w.set_joints(0, w.reachable(0, &g).unwrap().joints).unwrap();
+    w.command_arm(0, g, GripperCommand::Close).unwrap();
+    w.step();
+    assert_eq!(w.held_by(0), Some("a"));
+    let out = Isometry3::from_parts(Translation3::new(0.3, -0.68, 0.15), g.rotation);
+    w.set_joints(0, w.reachable(0, &out).unwrap().joints)
+        .unwrap();
+    w.check_invariants().unwrap();
+    w.command_arm(0, out, GripperCommand::Open).unwrap();
+    let ev = w.step();
+    assert!(
+        ev.iter()
+            .any(|e| matches!(e, logic_lfd::sim::WorldEvent::Lost { body, .. } if body == "a")),
+        "{ev:?}"
+    );
+    assert!(w.is_lost("a"));
+    let v = w.check_invariants().unwrap_err();
+    assert!(v
+        .iter()
+        .any(|x| matches!(x, logic_lfd::sim::Violation::Lost { body } if body == "a")));
+    assert!(
+        !facts(&w).iter().any(|f| f.contains(" a")),
+        "a lost has no facts"
+    );
+}

@@ -169,6 +169,8 @@ pub(crate) struct Arm {
     pub reach: ReachSnapshot,
     pub target: Option<Isometry3<f64>>,
     pub gripper: GripperCommand,
+    /// The gripper command of the previous step (to see it change).
+    pub last_gripper: GripperCommand,
 }
 
 impl Arm {
@@ -765,6 +767,7 @@ impl World {
                 reach: a.reach.clone(),
                 target: None,
                 gripper: GripperCommand::Open,
+                last_gripper: GripperCommand::Open,
             };
             if let Some(h) = &a.holding {
                 let Some(bi) = bodies.iter().position(|b: &Body| &b.name == h) else {
@@ -798,6 +801,7 @@ impl World {
                 }
                 arm.holding = Some((bi, tcp.inverse() * b.pose));
                 arm.gripper = GripperCommand::Close;
+                arm.last_gripper = GripperCommand::Close;
             }
             arms.push(arm);
         }
@@ -1011,6 +1015,7 @@ impl World {
         let mut events = Vec::new();
         for ai in 0..self.arms.len() {
             self.step_gripper(ai, &mut events);
+            self.arms[ai].last_gripper = self.arms[ai].gripper;
             self.step_arm(ai, &mut events);
         }
         self.time += self.dt;
@@ -1034,15 +1039,17 @@ impl World {
                             .any(|a| a.holding.is_some_and(|(j, _)| j == i))
                         && b.contains_point(&pt, self.params.grasp_tolerance)
                 });
-                let was_open = self.arms[ai].gripper_opening >= panda::GRIPPER_MAX_OPENING - 1e-9;
-                if let Some(bi) = found.filter(|_| was_open) {
-                    let grasp = tcp.inverse() * self.bodies[bi].pose;
+                // Grasp when the fingers are still wider than the body across them.
+                let opening = self.arms[ai].gripper_opening;
+                let grasp = found.map(|bi| (bi, tcp.inverse() * self.bodies[bi].pose));
+                let fits = grasp.filter(|(bi, g)| self.finger_width(*bi, g) < opening);
+                if let Some((bi, grasp)) = fits {
                     self.arms[ai].holding = Some((bi, grasp));
                     events.push(WorldEvent::Grasped {
                         arm: self.arms[ai].name.clone(),
                         body: self.bodies[bi].name.clone(),
                     });
-                } else if was_open {
+                } else if self.arms[ai].last_gripper == GripperCommand::Open {
                     events.push(WorldEvent::GraspedNothing {
                         arm: self.arms[ai].name.clone(),
                     });
