@@ -19,6 +19,8 @@
 //! choice takes a seed. The same code runs natively and in WebAssembly (feature `wasm`).
 #![warn(missing_docs)]
 
+pub mod lfd;
 pub mod lqt;
 pub mod pddl;
 pub mod plan;
+pub mod tamp;
