@@ -1,1 +1,3 @@
 //! Integration tests (one binary, one sub-module per area).
+
+mod ground;
