@@ -23,4 +23,5 @@ pub mod lfd;
 pub mod lqt;
 pub mod pddl;
 pub mod plan;
+pub mod sim;
 pub mod tamp;
