@@ -7,3 +7,15 @@ mod task;
 
 pub use ground::{ground, GroundError};
 pub use task::{Condition, FactId, Goal, Operator, State, Task};
+
+mod clock;
+mod heuristic;
+mod multigoal;
+mod search;
+
+pub use clock::{Clock, NoClock};
+pub use heuristic::{HeuristicEvaluator, HeuristicKind, UnknownName};
+pub use multigoal::{search_multi_goal, MultiGoalMode, MultiGoalResult};
+pub use search::{
+    search, Algorithm, Budget, Outcome, Plan, SearchConfig, SearchResult, SearchStats,
+};
