@@ -245,6 +245,11 @@ impl Controller {
         &self.plan_names
     }
 
+    /// The current plan as operator indices of [`Controller::task`].
+    pub fn plan_ops(&self) -> &[usize] {
+        &self.plan
+    }
+
     /// Index of the next action to execute in the plan.
     pub fn cursor(&self) -> usize {
         self.cursor

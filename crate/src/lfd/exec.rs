@@ -120,11 +120,8 @@ pub(crate) fn fact_args(fact: &str) -> (&str, Vec<&str>) {
 /// Classifies a grounded operator (see the module documentation). `None` for an action without
 /// a physical effect the executor knows.
 pub fn classify(task: &Task, op: &Operator, world: &World) -> Option<ActionKind> {
-    let names = |v: &[u32]| -> Vec<String> {
-        v.iter()
-            .map(|&f| task.facts[f as usize].clone())
-            .collect()
-    };
+    let names =
+        |v: &[u32]| -> Vec<String> { v.iter().map(|&f| task.facts[f as usize].clone()).collect() };
     let add = names(&op.add);
     let del = names(&op.del);
     let pre = names(&op.pre);
@@ -257,9 +254,7 @@ impl ActionExec {
                     Phase::Move(Via::Up { dz: p.lift_height }),
                 ],
             ),
-            ActionKind::Release {
-                arm, placement, ..
-            } => {
+            ActionKind::Release { arm, placement, .. } => {
                 let placement = placement.clone().unwrap_or(Placement::At {
                     x: 0.0,
                     y: 0.0,
@@ -336,12 +331,7 @@ impl ActionExec {
     }
 
     /// Commands the arm for this tick, steps the world once, and reports.
-    pub fn tick(
-        &mut self,
-        world: &mut World,
-        skills: &SkillLibrary,
-        p: &ExecParams,
-    ) -> ExecStatus {
+    pub fn tick(&mut self, world: &mut World, skills: &SkillLibrary, p: &ExecParams) -> ExecStatus {
         let dt = world.dt();
         let Some(phase) = self.phases.get(self.phase).cloned() else {
             return ExecStatus::Done;
@@ -380,9 +370,9 @@ impl ActionExec {
                 let replan = match &self.segment {
                     None => true,
                     Some(r) => r.anchor.as_ref().is_some_and(|(name, at)| {
-                        world
-                            .body_pose(name)
-                            .is_some_and(|q| (q.translation.vector - at).norm() > p.reanchor_tolerance)
+                        world.body_pose(name).is_some_and(|q| {
+                            (q.translation.vector - at).norm() > p.reanchor_tolerance
+                        })
                     }),
                 };
                 if replan {
@@ -578,7 +568,6 @@ fn pull_via(world: &World, arm: usize, body: &str, stage: u8) -> Result<Isometry
     let mut d = Vector3::new(b.x - base.x, b.y - base.y, 0.0);
     let r = d.norm().max(1e-6);
     d /= r;
-    let tcp = world.tcp_pose(arm).ok_or("no such arm")?;
     // Keep the hook's grasp: the TCP is offset from the blade; we move the TCP so the hook's
     // blade (the far end) sits behind the block. The hook frame's +x runs from the handle grip
     // to the blade.

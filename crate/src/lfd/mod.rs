@@ -7,7 +7,10 @@
 
 pub mod control;
 pub mod demo;
+pub mod exec;
 pub mod logic;
+pub mod model;
+pub mod skill;
 #[cfg(test)]
 pub(crate) mod testing;
 
@@ -41,6 +44,9 @@ pub enum LfdError {
     /// The search found no plan (unsolvable or out of budget).
     #[error("no plan: {0}")]
     NoPlan(String),
+    /// The benchmark's PDDL, scene or demonstration could not be read.
+    #[error("{0}")]
+    Model(String),
     /// The prefix found to L_k could not be merged with the demo suffix.
     #[error("the plan to demonstration state L_{k} does not merge with the demo suffix")]
     MergeFailed {

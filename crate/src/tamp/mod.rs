@@ -13,6 +13,8 @@
 //! This is what Logic-LfD uses to bind the actions it adds, and the "plan from scratch" baseline
 //! of the paper's Table I (the PDDLStream column). Streams live in [`streams`].
 
+pub mod streams;
+
 use crate::lfd::control::{forbid, Binder};
 use crate::plan::{search, Clock, Outcome, SearchConfig, State, Task};
 

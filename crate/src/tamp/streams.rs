@@ -154,7 +154,8 @@ impl<'w> StreamBinder<'w> {
                 let cur = self.world.body_pose(name).unwrap_or(*p);
                 let iso = p * cur.inverse() * off;
                 let other = Cuboid::new(
-                    c.half_extents - Vector3::repeat(self.params.contact_slack).inf(&(c.half_extents * 0.5)),
+                    c.half_extents
+                        - Vector3::repeat(self.params.contact_slack).inf(&(c.half_extents * 0.5)),
                 );
                 let test_shape = if self.world.body_kind(name) == Some(BodyKind::Block) {
                     &grown
@@ -347,8 +348,11 @@ impl Binder for StreamBinder<'_> {
                     out.push(Some(Placement::OnBlock(y)));
                 }
                 ActionKind::Release { arm, body, .. } => {
-                    let adds: Vec<String> =
-                        op.add.iter().map(|&f| task.facts[f as usize].clone()).collect();
+                    let adds: Vec<String> = op
+                        .add
+                        .iter()
+                        .map(|&f| task.facts[f as usize].clone())
+                        .collect();
                     let surfaces = self.surfaces(&adds, &body);
                     geo.held.remove(&arm);
                     let Some((placement, pose)) =
@@ -374,10 +378,13 @@ impl Binder for StreamBinder<'_> {
                     d /= r;
                     let pulled = p - d * 0.25;
                     if certify {
-                        let g = self.top_grasp(arm, &Isometry3::from_parts(
-                            Translation3::from(pulled),
-                            UnitQuaternion::identity(),
-                        ));
+                        let g = self.top_grasp(
+                            arm,
+                            &Isometry3::from_parts(
+                                Translation3::from(pulled),
+                                UnitQuaternion::identity(),
+                            ),
+                        );
                         if !self.reachable(arm, &g) {
                             return Err(i);
                         }
