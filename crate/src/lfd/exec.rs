@@ -427,6 +427,9 @@ impl ActionExec {
     }
 
     fn next_phase(&mut self) {
+        if std::env::var("LFD_TRACE").is_ok() {
+            eprintln!("  [{}] phase {} done", self.action, self.phase);
+        }
         self.phase += 1;
         self.segment = None;
         self.wait = 0;
@@ -456,6 +459,15 @@ impl ActionExec {
             .tcp_pose(self.arm)
             .ok_or_else(|| "no such arm".to_string())?;
         let (goal, anchor) = self.via_pose(world, via, &start)?;
+        if std::env::var("LFD_TRACE").is_ok() {
+            eprintln!(
+                "  [{}] segment {:?}: from {:?} to {:?}",
+                self.action,
+                via,
+                start.translation.vector.as_slice(),
+                goal.translation.vector.as_slice()
+            );
+        }
         let dist = (goal.translation.vector - start.translation.vector).norm();
         let duration = (dist / p.speed).max(p.min_segment);
         let steps = ((duration / world.dt()).round() as usize).max(2);

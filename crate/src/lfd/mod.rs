@@ -10,6 +10,7 @@ pub mod demo;
 pub mod exec;
 pub mod logic;
 pub mod model;
+pub mod session;
 pub mod skill;
 #[cfg(test)]
 pub(crate) mod testing;

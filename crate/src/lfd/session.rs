@@ -64,48 +64,21 @@ impl BenchmarkId {
     pub fn parse(s: &str) -> Option<Self> {
         BenchmarkId::ALL.into_iter().find(|b| b.as_str() == s)
     }
-
-    /// The benchmark's files.
-    pub fn files(self) -> BenchmarkFiles {
-        match self {
-            BenchmarkId::B1 => BenchmarkFiles {
-                dir: "b1-tower",
-                domain: include_str!("../../../domains/b1-tower/domain.pddl"),
-                problem: include_str!("../../../domains/b1-tower/problem.pddl"),
-                scene: include_str!("../../../domains/b1-tower/scene.json"),
-                demo: include_str!("../../../domains/b1-tower/demo.json"),
-            },
-            BenchmarkId::B2 => BenchmarkFiles {
-                dir: "b2-workspace-reach",
-                domain: include_str!("../../../domains/b2-workspace-reach/domain.pddl"),
-                problem: include_str!("../../../domains/b2-workspace-reach/problem.pddl"),
-                scene: include_str!("../../../domains/b2-workspace-reach/scene.json"),
-                demo: include_str!("../../../domains/b2-workspace-reach/demo.json"),
-            },
-            BenchmarkId::B3 => BenchmarkFiles {
-                dir: "b3-dual-arm",
-                domain: include_str!("../../../domains/b3-dual-arm/domain.pddl"),
-                problem: include_str!("../../../domains/b3-dual-arm/problem.pddl"),
-                scene: include_str!("../../../domains/b3-dual-arm/scene.json"),
-                demo: include_str!("../../../domains/b3-dual-arm/demo.json"),
-            },
-        }
-    }
 }
 
-/// The text of a benchmark's files (embedded in the library).
-#[derive(Clone, Copy, Debug)]
-pub struct BenchmarkFiles {
-    /// Directory name under `domains/`.
-    pub dir: &'static str,
+/// The text of a benchmark's files.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BenchmarkSources {
+    /// Directory name under `domains/` (for error messages).
+    pub dir: String,
     /// `domain.pddl`.
-    pub domain: &'static str,
+    pub domain: String,
     /// `problem.pddl` (the template task).
-    pub problem: &'static str,
+    pub problem: String,
     /// `scene.json` (the template task's initial world).
-    pub scene: &'static str,
+    pub scene: String,
     /// `demo.json` (the demonstration).
-    pub demo: &'static str,
+    pub demo: String,
 }
 
 /// Which motion skill family executes the actions.
@@ -375,6 +348,7 @@ pub fn demo_actions(demo_json: &str) -> Result<Vec<String>, SessionError> {
 /// A closed-loop episode stepped by the caller.
 pub struct Session {
     options: SessionOptions,
+    sources: BenchmarkSources,
     params: SessionParams,
     model: DomainModel,
     trace: DemoTrace,
@@ -420,36 +394,22 @@ pub(crate) fn mix(seed: u64, n: u64) -> u64 {
 }
 
 impl Session {
-    /// A session on the benchmark's template scene and demonstration.
-    pub fn new(options: SessionOptions) -> Result<Session, SessionError> {
-        let files = options.benchmark.files();
-        Session::from_scene(options, files.scene, None)
-    }
-
-    /// A session on a given scene (and optionally another demonstration).
-    pub fn from_scene(
+    /// A session on `files` (the benchmark), starting from `scene_json` (the template scene if
+    /// `None`) with the demonstration `demo_json` (the benchmark's if `None`).
+    pub fn with_sources(
         options: SessionOptions,
-        scene_json: &str,
-        demo_json: Option<&str>,
-    ) -> Result<Session, SessionError> {
-        Session::with_params(options, scene_json, demo_json, SessionParams::default())
-    }
-
-    /// Like [`Session::from_scene`] with explicit tunables.
-    pub fn with_params(
-        options: SessionOptions,
-        scene_json: &str,
+        files: &BenchmarkSources,
+        scene_json: Option<&str>,
         demo_json: Option<&str>,
         params: SessionParams,
     ) -> Result<Session, SessionError> {
-        let files = options.benchmark.files();
-        let world = World::from_json(scene_json)?;
-        let template = World::from_json(files.scene)?;
+        let world = World::from_json(scene_json.unwrap_or(&files.scene))?;
+        let template = World::from_json(&files.scene)?;
         let predicates = template.snapshot().predicates;
         let model = DomainModel::new(
-            files.domain,
+            &files.domain,
             &format!("domains/{}/domain.pddl", files.dir),
-            files.problem,
+            &files.problem,
             &format!("domains/{}/problem.pddl", files.dir),
             &predicates,
         )?;
@@ -459,7 +419,7 @@ impl Session {
             use super::control::TaskBuilder;
             model.build(&objects_of(&template), &facts_of(&template))?
         };
-        let actions = demo_actions(demo_json.unwrap_or(files.demo))?;
+        let actions = demo_actions(demo_json.unwrap_or(&files.demo))?;
         let trace = DemoTrace::derive(&template_task, &actions)?;
         let objects = objects_of(&world);
         let task = {
@@ -476,6 +436,7 @@ impl Session {
         );
         let prev_facts = facts_of(&world);
         Ok(Session {
+            sources: files.clone(),
             initial: world.snapshot(),
             demo_json: demo_json.map(str::to_string),
             options,
@@ -764,9 +725,13 @@ impl Session {
         let mut options = self.options.clone();
         options.seed = seed;
         let scene = serde_json::to_string(&self.initial).unwrap_or_default();
-        if let Ok(s) =
-            Session::with_params(options, &scene, self.demo_json.as_deref(), self.params)
-        {
+        if let Ok(s) = Session::with_sources(
+            options,
+            &self.sources,
+            Some(&scene),
+            self.demo_json.as_deref(),
+            self.params,
+        ) {
             *self = s;
         }
     }
@@ -802,12 +767,21 @@ impl Session {
     }
 
     /// Re-runs a logged episode tick by tick, applying its events at their ticks.
-    pub fn replay(episode_json: &str) -> Result<Session, SessionError> {
+    pub fn replay_with_sources(
+        files: &BenchmarkSources,
+        episode_json: &str,
+    ) -> Result<Session, SessionError> {
         let log: EpisodeLog = serde_json::from_str(episode_json)
             .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
         let scene = serde_json::to_string(&log.scene)
             .map_err(|e| SessionError::Json(format!("episode: scene: {e}")))?;
-        let mut s = Session::from_scene(log.options.clone(), &scene, log.demo_json.as_deref())?;
+        let mut s = Session::with_sources(
+            log.options.clone(),
+            files,
+            Some(&scene),
+            log.demo_json.as_deref(),
+            SessionParams::default(),
+        )?;
         let mut events = log.events.iter().peekable();
         let clock = NoClock;
         loop {
@@ -824,9 +798,7 @@ impl Session {
                     EpisodeEvent::Perturb { body, position, .. } => {
                         let _ = s.perturb(body, *position);
                     }
-                    EpisodeEvent::Inject { level, .. } => {
-                        let _ = s.inject(level);
-                    }
+                    EpisodeEvent::Inject { .. } => {}
                     EpisodeEvent::Cancel { .. } => s.cancel(),
                 }
                 events.next();
@@ -928,23 +900,47 @@ impl Session {
             None => st("planning", "planning".into(), None, None),
         }
     }
+}
 
-    /// Injects a disturbance of level `l1`..`l4` now (seeded by the session's seed).
-    pub fn inject(&mut self, level: &str) -> Result<Injection, SessionError> {
-        let n = self.injections;
-        self.injections += 1;
-        let inj = super::disturb::inject(
-            &mut self.world,
-            level,
-            &self.trace,
-            mix(self.options.seed, 1_000_003 + n),
-        )
-        .map_err(SessionError::Json)?;
-        self.events.push(EpisodeEvent::Inject {
-            tick: self.tick,
-            level: level.to_string(),
-            description: inj.description.clone(),
-        });
-        Ok(inj)
+#[cfg(test)]
+mod devtests {
+    use super::*;
+
+    #[test]
+    fn dev_b1_episode() {
+        let Ok(dir) = std::env::var("LFD_DEV_DIR") else {
+            return;
+        };
+        let rd = |f: &str| std::fs::read_to_string(format!("{dir}/{f}")).unwrap();
+        let src = BenchmarkSources {
+            dir: "b1-tower".into(),
+            domain: rd("domain.pddl"),
+            problem: rd("problem.pddl"),
+            scene: rd("scene.json"),
+            demo: rd("demo.json"),
+        };
+        for method in [Method::LogicLfd, Method::Linear, Method::Rlds, Method::Tamp] {
+            let opts = SessionOptions {
+                benchmark: BenchmarkId::B1,
+                method,
+                mode: Mode::Paper,
+                seed: 1,
+                skill: SkillKind::Lqt,
+            };
+            let mut s =
+                Session::with_sources(opts, &src, None, None, SessionParams::default()).unwrap();
+            s.run_to_end(30_000, &NoClock);
+            let log = s.log();
+            eprintln!("{method:?}: {:?}", log.result);
+            for a in &log.actions {
+                eprintln!("  {} {}..{:?} {}", a.action, a.start_tick, a.end_tick, a.outcome);
+            }
+            for r in &log.replans {
+                eprintln!("  replan {} k={:?} {:?}", r.reason, r.k, r.plan);
+            }
+            if let Err(v) = s.world().check_invariants() {
+                eprintln!("  invariants: {v:?}");
+            }
+        }
     }
 }
