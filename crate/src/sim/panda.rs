@@ -203,7 +203,7 @@ impl Default for IkParams {
         IkParams {
             max_iterations: 40,
             restarts: 6,
-            damping: 0.02,
+            damping: 0.005,
             position_tolerance: 2e-4,
             orientation_tolerance: 2e-3,
             null_space_gain: 0.05,
