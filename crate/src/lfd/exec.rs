@@ -342,6 +342,18 @@ impl ActionExec {
                     return ExecStatus::Failed("no such arm".into());
                 };
                 self.gripper = cmd;
+                if std::env::var("LFD_TRACE").is_ok() && self.wait == 0 {
+                    if let Some(h) = world.held_by(self.arm) {
+                        eprintln!(
+                            "  gripper {cmd:?}: {h} at {:?}, tcp {:?}",
+                            world.body_pose(h).map(|p| p.translation.vector),
+                            tcp.translation.vector
+                        );
+                    }
+                    for b in world.block_names() {
+                        eprintln!("    {b}: {:?}", world.body_pose(b).map(|p| p.translation.vector));
+                    }
+                }
                 let _ = world.command_arm(self.arm, tcp, cmd);
                 let ev = world.step();
                 self.events.extend(ev.iter().cloned());

@@ -912,11 +912,12 @@ mod devtests {
             return;
         };
         let rd = |f: &str| std::fs::read_to_string(format!("{dir}/{f}")).unwrap();
+        let b = crate::sim::benchmark::Benchmark::B1;
         let src = BenchmarkSources {
             dir: "b1-tower".into(),
-            domain: rd("domain.pddl"),
-            problem: rd("problem.pddl"),
-            scene: rd("scene.json"),
+            domain: b.domain_pddl().into(),
+            problem: b.problem_pddl().into(),
+            scene: serde_json::to_string(&b.scene_snapshot()).unwrap(),
             demo: rd("demo.json"),
         };
         for method in [Method::LogicLfd, Method::Linear, Method::Rlds, Method::Tamp] {
