@@ -20,7 +20,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::plan::{self, Clock, MultiGoalMode, Outcome, SearchConfig, State, Task};
+use crate::plan::{self, Clock, MultiGoalMode, SearchOutcome, SearchConfig, State, Task};
 
 use super::demo::MultiGoalSpec;
 use super::LfdError;
@@ -158,8 +158,8 @@ pub fn plan_logic_lfd(
     let found = plan::search_multi_goal(task, s, &spec.goals, search_mode, config, clock);
     let expanded = found.stats.expanded;
     let (prefix, k) = match (&found.outcome, found.goal_index) {
-        (Outcome::Plan(p), Some(k)) => (p.operators.clone(), k),
-        (Outcome::BudgetExhausted { which }, _) => {
+        (SearchOutcome::Plan(p), Some(k)) => (p.operators.clone(), k),
+        (SearchOutcome::BudgetExhausted { which }, _) => {
             return Err(LfdError::NoPlan(format!("{which} exhausted")))
         }
         _ => {

@@ -266,6 +266,18 @@ fn metric(src: &Source, domain: &Domain, items: &[SExpr], span: Span) -> Result<
     let ok = items.len() == 3
         && matches!(&items[2], SExpr::List(l, _) if l.len() == 1 && l[0].atom() == Some("total-cost"));
     if !ok {
+        if let Some(SExpr::List(l, _)) = items.get(2) {
+            if let Some(h) = l.first().and_then(|h| h.atom()) {
+                if h != "total-cost" {
+                    return Err(refuse(
+                        src,
+                        l[0].span(),
+                        h,
+                        "only `(:metric minimize (total-cost))` is supported",
+                    ));
+                }
+            }
+        }
         let at = items.get(2).map_or(span, |e| e.span());
         return Err(refuse(
             src,

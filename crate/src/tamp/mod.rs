@@ -16,7 +16,7 @@
 pub mod streams;
 
 use crate::lfd::control::{forbid, Binder};
-use crate::plan::{search, Clock, Outcome, SearchConfig, State, Task};
+use crate::plan::{search, Clock, SearchOutcome, SearchConfig, State, Task};
 
 /// Why TAMP found no plan.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -49,12 +49,12 @@ pub fn plan_from_scratch(
     for tried in 0..max_skeletons.max(1) {
         let r = search(&t, config, clock);
         let ops = match r.outcome {
-            Outcome::Plan(p) => p.operators,
-            Outcome::Unsolvable if tried == 0 => {
+            SearchOutcome::Plan(p) => p.operators,
+            SearchOutcome::Unsolvable if tried == 0 => {
                 return Err(TampError::NoSkeleton("the goal is unreachable".into()))
             }
-            Outcome::Unsolvable => break,
-            Outcome::BudgetExhausted { which } => {
+            SearchOutcome::Unsolvable => break,
+            SearchOutcome::BudgetExhausted { which } => {
                 return Err(TampError::NoSkeleton(format!("{which} exhausted")))
             }
         };

@@ -3,7 +3,10 @@
 //! Exit codes: 0 success, 2 bad input, 3 proved unsolvable, 4 budget exhausted, 5 invalid plan.
 //! Errors go to stderr as `file:line:col: message`; `--json` output goes to stdout.
 
+mod cmd_bench;
 mod cmd_lqt;
+mod cmd_plan;
+mod cmd_validate;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -33,6 +36,12 @@ struct Cli {
 enum Command {
     /// Solve an LQT-CP case (shared/lqt-cp-io.md) and print the output object as JSON.
     Lqt(cmd_lqt::Args),
+    /// Replay a plan on a PDDL domain and problem; report the first failing step and why.
+    Validate(cmd_validate::Args),
+    /// Ground a PDDL task and search for a plan (default: A* with LM-cut, optimal).
+    Plan(cmd_plan::Args),
+    /// Benchmarks: `bench planner` runs planner configurations over IPC folders.
+    Bench(cmd_bench::Args),
 }
 
 fn main() -> ExitCode {
@@ -50,5 +59,8 @@ fn main() -> ExitCode {
     };
     match cli.command {
         Command::Lqt(args) => cmd_lqt::run(args),
+        Command::Validate(a) => cmd_validate::run(a),
+        Command::Plan(args) => cmd_plan::run(args),
+        Command::Bench(args) => cmd_bench::run(args),
     }
 }
