@@ -119,14 +119,20 @@ pub fn run_episode(
     let n = s.controller().trace().len().max(3);
     let inject_after = 1 + (mix(spec.seed, 77) % (n as u64 - 2)) as usize;
     let mut injection = None;
+    let mut next_try = inject_after;
     let max_ticks = (params.max_time / s.world().dt()).ceil() as u64 + 10;
     for _ in 0..max_ticks {
         if s.outcome().is_some() {
             break;
         }
         if let Some(level) = spec.level {
-            if injection.is_none() && !s.is_executing() && s.actions_done() >= inject_after {
-                injection = Some(s.inject(level.as_str())?);
+            // At the first idle moment after action `inject_after`; if the level cannot be
+            // produced in this state, try again at the next action boundary.
+            if injection.is_none() && !s.is_executing() && s.actions_done() >= next_try {
+                match s.inject(level.as_str()) {
+                    Ok(i) => injection = Some(i),
+                    Err(_) => next_try = s.actions_done() + 1,
+                }
             }
         }
         s.tick_once(clock);

@@ -12,6 +12,7 @@
 
 pub mod episode;
 pub mod tables;
+pub mod tasks;
 
 pub use episode::{run_episode, EpisodeReport, EpisodeSpec, Level};
 pub use tables::{table1, table2, Table1, Table2};

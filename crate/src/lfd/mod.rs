@@ -7,6 +7,7 @@
 
 pub mod control;
 pub mod demo;
+pub mod disturb;
 pub mod exec;
 pub mod logic;
 pub mod model;
@@ -17,6 +18,7 @@ pub(crate) mod testing;
 
 use serde::{Deserialize, Serialize};
 
+pub use control::TaskBuilder;
 pub use demo::{DemoTrace, MultiGoalSpec};
 pub use logic::{logic_in, merge_suffix, plan_logic_lfd, LfdPlan, Mode, PlanSource};
 

@@ -60,9 +60,41 @@ impl BenchmarkId {
         }
     }
 
-    /// Parses `b1`..`b3`.
+    /// Parses `b1`..`b3` (or the directory names).
     pub fn parse(s: &str) -> Option<Self> {
-        BenchmarkId::ALL.into_iter().find(|b| b.as_str() == s)
+        crate::sim::benchmark::Benchmark::parse(s).map(|b| match b {
+            crate::sim::benchmark::Benchmark::B1 => BenchmarkId::B1,
+            crate::sim::benchmark::Benchmark::B2 => BenchmarkId::B2,
+            crate::sim::benchmark::Benchmark::B3 => BenchmarkId::B3,
+        })
+    }
+
+    /// The simulator's benchmark.
+    pub fn sim(self) -> crate::sim::benchmark::Benchmark {
+        match self {
+            BenchmarkId::B1 => crate::sim::benchmark::Benchmark::B1,
+            BenchmarkId::B2 => crate::sim::benchmark::Benchmark::B2,
+            BenchmarkId::B3 => crate::sim::benchmark::Benchmark::B3,
+        }
+    }
+
+    /// The benchmark's files (embedded in the library).
+    pub fn sources(self) -> Result<BenchmarkSources, SessionError> {
+        let b = self.sim();
+        let demo = match self {
+            BenchmarkId::B1 => include_str!("../../../domains/b1-tower/demo.json"),
+            BenchmarkId::B2 => include_str!("../../../domains/b2-workspace-reach/demo.json"),
+            BenchmarkId::B3 => include_str!("../../../domains/b3-dual-arm/demo.json"),
+        };
+        let scene = serde_json::to_string(&b.scene_snapshot())
+            .map_err(|e| SessionError::Json(format!("scene: {e}")))?;
+        Ok(BenchmarkSources {
+            dir: b.dir_name().to_string(),
+            domain: b.domain_pddl().to_string(),
+            problem: b.problem_pddl().to_string(),
+            scene,
+            demo: demo.to_string(),
+        })
     }
 }
 
@@ -394,6 +426,37 @@ pub(crate) fn mix(seed: u64, n: u64) -> u64 {
 }
 
 impl Session {
+    /// A session on the benchmark's template scene and demonstration.
+    pub fn new(options: SessionOptions) -> Result<Session, SessionError> {
+        let files = options.benchmark.sources()?;
+        Session::with_sources(options, &files, None, None, SessionParams::default())
+    }
+
+    /// A session on a given scene (a world snapshot JSON) and optionally another demonstration
+    /// (a `demo.json`: `actions` as strings or objects with an `action` field).
+    pub fn from_scene(
+        options: SessionOptions,
+        scene_json: &str,
+        demo_json: Option<&str>,
+    ) -> Result<Session, SessionError> {
+        let files = options.benchmark.sources()?;
+        Session::with_sources(
+            options,
+            &files,
+            Some(scene_json),
+            demo_json,
+            SessionParams::default(),
+        )
+    }
+
+    /// Re-runs a logged episode tick by tick (see [`Session::replay_with_sources`]).
+    pub fn replay(episode_json: &str) -> Result<Session, SessionError> {
+        let log: EpisodeLog = serde_json::from_str(episode_json)
+            .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
+        let files = log.options.benchmark.sources()?;
+        Session::replay_with_sources(&files, episode_json)
+    }
+
     /// A session on `files` (the benchmark), starting from `scene_json` (the template scene if
     /// `None`) with the demonstration `demo_json` (the benchmark's if `None`).
     pub fn with_sources(
@@ -798,7 +861,9 @@ impl Session {
                     EpisodeEvent::Perturb { body, position, .. } => {
                         let _ = s.perturb(body, *position);
                     }
-                    EpisodeEvent::Inject { .. } => {}
+                    EpisodeEvent::Inject { level, .. } => {
+                        let _ = s.inject(level);
+                    }
                     EpisodeEvent::Cancel { .. } => s.cancel(),
                 }
                 events.next();
@@ -899,6 +964,26 @@ impl Session {
             None if self.tick == 0 => st("idle", "ready".into(), None, None),
             None => st("planning", "planning".into(), None, None),
         }
+    }
+
+    /// Injects a disturbance of level `l1`..`l4` now (seeded by the session's seed and the
+    /// number of injections so far); what it did, in words and data.
+    pub fn inject(&mut self, level: &str) -> Result<Injection, SessionError> {
+        let n = self.injections;
+        let inj = super::disturb::inject(
+            &mut self.world,
+            level,
+            &self.trace,
+            mix(self.options.seed, 1_000_003 + n),
+        )
+        .map_err(SessionError::Json)?;
+        self.injections += 1;
+        self.events.push(EpisodeEvent::Inject {
+            tick: self.tick,
+            level: level.to_string(),
+            description: inj.description.clone(),
+        });
+        Ok(inj)
     }
 }
 
