@@ -26,7 +26,10 @@ use super::demo::DemoTrace;
 use super::session::Injection;
 
 fn facts(world: &World) -> BTreeSet<String> {
-    SceneGraph::from_world(world).to_strings().into_iter().collect()
+    SceneGraph::from_world(world)
+        .to_strings()
+        .into_iter()
+        .collect()
 }
 
 fn centre(world: &World, b: &str) -> Option<[f64; 3]> {
@@ -95,7 +98,6 @@ pub fn inject(
 ) -> Result<Injection, String> {
     let mut rng = Pcg64Mcg::seed_from_u64(seed);
     let before = facts(world);
-    let seen_equal = |f: &BTreeSet<String>| trace.states.iter().any(|l| l == f);
     let seen_subset = |f: &BTreeSet<String>| trace.states.iter().any(|l| l.is_subset(f));
     let level = level.to_ascii_lowercase();
     let blocks = free_blocks(world);
@@ -128,6 +130,8 @@ pub fn inject(
         }
         "l2" | "l3" => {
             let want_seen = level == "l2";
+            let n = trace.states.len().saturating_sub(1);
+            let cur = trace.states.iter().position(|l| *l == before);
             let mut moves: Vec<(String, Option<String>)> = vec![];
             for b in &blocks {
                 if !is_clear(&before, b) {
@@ -141,50 +145,59 @@ pub fn inject(
                 }
             }
             moves.shuffle(&mut rng);
-            for (b, onto) in moves {
-                let target = match &onto {
-                    Some(o) => {
-                        let Some(c) = centre(world, o) else { continue };
-                        Vector3::new(c[0], c[1], c[2] + 0.1)
+            // L2 prefers going back along the demonstration (work is undone), then any other
+            // demonstration state short of the goal.
+            let passes: &[u8] = if want_seen { &[0, 1] } else { &[1] };
+            for &pass in passes {
+                for (b, onto) in &moves {
+                    let target = match onto {
+                        Some(o) => {
+                            let Some(c) = centre(world, o) else { continue };
+                            Vector3::new(c[0], c[1], c[2] + 0.1)
+                        }
+                        None => {
+                            let Some([x, y]) = table_spot(world, &mut rng) else {
+                                continue;
+                            };
+                            Vector3::new(x, y, 0.1)
+                        }
+                    };
+                    let saved = world.clone();
+                    if world.move_block(b, target).is_ok() {
+                        let after = facts(world);
+                        let ok = after != before
+                            && if want_seen {
+                                trace.states.iter().enumerate().any(|(k, l)| {
+                                    *l == after
+                                        && k < n
+                                        && (pass == 1 || cur.is_some_and(|c| k < c))
+                                })
+                            } else {
+                                !seen_subset(&after)
+                            };
+                        if ok {
+                            let to = centre(world, b).unwrap_or([0.0; 3]);
+                            let place = onto
+                                .as_ref()
+                                .map(|o| format!("onto {o}"))
+                                .unwrap_or_else(|| "to the table".into());
+                            let what = if want_seen {
+                                "a state of the demonstration"
+                            } else {
+                                "a state the demonstration never visits"
+                            };
+                            return Ok(Injection {
+                                level: level.clone(),
+                                description: format!(
+                                    "{}: moved {b} {place}: {what}",
+                                    level.to_uppercase()
+                                ),
+                                moved: vec![(b.clone(), to)],
+                            });
+                        }
                     }
-                    None => {
-                        let Some([x, y]) = table_spot(world, &mut rng) else {
-                            continue;
-                        };
-                        Vector3::new(x, y, 0.1)
-                    }
-                };
-                let saved = world.clone();
-                if world.move_block(&b, target).is_ok() {
-                    let after = facts(world);
-                    let ok = after != before
-                        && if want_seen {
-                            seen_equal(&after)
-                        } else {
-                            !seen_subset(&after)
-                        };
-                    if ok {
-                        let to = centre(world, &b).unwrap_or([0.0; 3]);
-                        let place = onto
-                            .as_ref()
-                            .map(|o| format!("onto {o}"))
-                            .unwrap_or_else(|| "to the table".into());
-                        let what = if want_seen {
-                            "a state of the demonstration"
-                        } else {
-                            "a state the demonstration never visits"
-                        };
-                        return Ok(Injection {
-                            level: level.clone(),
-                            description: format!(
-                                "{}: moved {b} {place}: {what}",
-                                level.to_uppercase()
-                            ),
-                            moved: vec![(b, to)],
-                        });
-                    }
+                    *world = saved;
                 }
-                *world = saved;
             }
             Err(format!(
                 "{}: no single block move reaches such a state",
@@ -195,7 +208,10 @@ pub fn inject(
             let snap = world.snapshot();
             let name = ["e", "f", "g", "h", "x", "y", "z"]
                 .into_iter()
-                .find(|n| !snap.bodies.iter().any(|b| b.name == *n) && !snap.arms.iter().any(|a| a.name == *n))
+                .find(|n| {
+                    !snap.bodies.iter().any(|b| b.name == *n)
+                        && !snap.arms.iter().any(|a| a.name == *n)
+                })
                 .ok_or("L4: no free block name")?;
             let mut targets: Vec<String> = blocks
                 .iter()
@@ -203,6 +219,15 @@ pub fn inject(
                 .cloned()
                 .collect();
             targets.shuffle(&mut rng);
+            // Blocks that something must still be stacked on come first: the new block is in
+            // the way there.
+            let goal = trace.states.last().cloned().unwrap_or_default();
+            let needed = |t: &String| {
+                goal.iter().any(|f| {
+                    f.starts_with("(on ") && f.ends_with(&format!(" {t})")) && !before.contains(f)
+                })
+            };
+            targets.sort_by_key(|t| !needed(t));
             // A spot on the table for the new block first, then it is dropped on the target.
             let Some([x, y]) = table_spot(world, &mut rng) else {
                 return Err("L4: no room for a new block".into());

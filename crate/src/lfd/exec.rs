@@ -351,7 +351,10 @@ impl ActionExec {
                         );
                     }
                     for b in world.block_names() {
-                        eprintln!("    {b}: {:?}", world.body_pose(b).map(|p| p.translation.vector));
+                        eprintln!(
+                            "    {b}: {:?}",
+                            world.body_pose(b).map(|p| p.translation.vector)
+                        );
                     }
                 }
                 let _ = world.command_arm(self.arm, tcp, cmd);

@@ -646,7 +646,11 @@ impl Session {
                 }
             }
             ExecStatus::Failed(why) => {
-                let action = self.exec.as_ref().map(|e| e.action.clone()).unwrap_or_default();
+                let action = self
+                    .exec
+                    .as_ref()
+                    .map(|e| e.action.clone())
+                    .unwrap_or_default();
                 self.end_action(format!("failed: {why}"));
                 if linear {
                     self.outcome = Some(Err(FailReason::ActionFailed { action, why }));
@@ -694,14 +698,9 @@ impl Session {
             mix(self.options.seed, before as u64 + 1),
             self.params.streams,
         );
-        let decision = self.controller.decide(
-            &facts,
-            &objects,
-            &self.model,
-            &mut binder,
-            clock,
-            self.tick,
-        );
+        let decision =
+            self.controller
+                .decide(&facts, &objects, &self.model, &mut binder, clock, self.tick);
         let replanned = self.controller.replans().len() > before;
         if replanned {
             match self.options.method {
@@ -749,7 +748,12 @@ impl Session {
                         return false;
                     }
                 }
-                self.exec = Some(ActionExec::new(&action, kind, &self.world, &self.params.exec));
+                self.exec = Some(ActionExec::new(
+                    &action,
+                    kind,
+                    &self.world,
+                    &self.params.exec,
+                ));
                 self.actions.push(ActionRecord {
                     action,
                     start_tick: self.tick,
@@ -1019,7 +1023,10 @@ mod devtests {
             let log = s.log();
             eprintln!("{method:?}: {:?}", log.result);
             for a in &log.actions {
-                eprintln!("  {} {}..{:?} {}", a.action, a.start_tick, a.end_tick, a.outcome);
+                eprintln!(
+                    "  {} {}..{:?} {}",
+                    a.action, a.start_tick, a.end_tick, a.outcome
+                );
             }
             for r in &log.replans {
                 eprintln!("  replan {} k={:?} {:?}", r.reason, r.k, r.plan);
