@@ -281,3 +281,59 @@ fn state_from_names_accepts_fluents_and_statics_only() {
     assert!(e.to_string().contains("(at r3)"), "{e}");
     assert_eq!(t.state_from_names(&t.state_names(&t.init)).unwrap(), t.init);
 }
+
+/// A precondition whose DNF explodes is refused with a typed error, not an out-of-memory.
+#[test]
+fn exploding_dnf_is_a_typed_error() {
+    let ors = "(or (p) (q)) ".repeat(13); // 2^13 disjuncts
+    let d = parse_domain(
+        &format!("(define (domain d) (:predicates (p) (q)) (:action a :precondition (and {ors}) :effect (not (p))))"),
+        "d.pddl",
+    )
+    .unwrap();
+    let p = parse_problem(
+        "(define (problem x) (:domain d) (:init (p)) (:goal (q)))",
+        "x.pddl",
+        &d,
+    )
+    .unwrap();
+    let e = ground(&d, &p).unwrap_err();
+    assert!(
+        matches!(e, logic_lfd::plan::GroundError::TooLarge(..)),
+        "{e}"
+    );
+    assert!(
+        e.to_string()
+            .contains("precondition of `a` has more than 4096 disjuncts"),
+        "{e}"
+    );
+}
+
+/// Re-grounding from an observed state reaches facts the original init could not.
+#[test]
+fn regrounding_with_an_observed_init() {
+    let dir = data_dir().join("rooms");
+    let d = parse_domain(
+        &std::fs::read_to_string(dir.join("domain.pddl")).unwrap(),
+        "domain.pddl",
+    )
+    .unwrap();
+    let p = parse_problem(
+        &std::fs::read_to_string(dir.join("p-unreachable.pddl")).unwrap(),
+        "p.pddl",
+        &d,
+    )
+    .unwrap();
+    assert!(ground(&d, &p).unwrap().goal.alternatives.is_empty());
+    let observed: Vec<String> = ["(AT r3)", "(door hall r1)", "(door r1 r2)"]
+        .map(String::from)
+        .to_vec();
+    let q = p.with_init(&d, &observed).unwrap();
+    let t = ground(&d, &q).unwrap();
+    assert_eq!(t.goal.alternatives.len(), 1);
+    assert!(t.goal.holds(&t.init));
+    let e = p
+        .with_init(&d, &["(at r1)".into(), "(at k1)".into()])
+        .unwrap_err();
+    assert_eq!((e.file.as_str(), e.line, e.col), ("<init>", 2, 5), "{e}");
+}

@@ -361,4 +361,5 @@ fn cli_valid_invalid_and_bad_input() {
     );
     let no_args = bin().arg("validate").output().unwrap();
     assert_eq!(no_args.status.code(), Some(2));
+    let _ = std::fs::remove_dir_all(good.parent().unwrap());
 }
