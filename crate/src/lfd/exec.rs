@@ -185,12 +185,18 @@ enum Phase {
 /// when its anchor moves).
 #[derive(Clone, Debug, PartialEq)]
 enum Via {
-    /// Above the grasp pose of `body` by `dz`.
-    Grasp { body: String, dz: f64 },
-    /// The TCP pose that puts the held body at the placement, raised by `dz`.
-    Place { placement: Placement, dz: f64 },
-    /// Straight up from where the TCP is now, to `z`.
-    Up { dz: f64 },
+    /// Above the grasp pose of `body` by `dz` (`skill`: run the learned grasp-approach skill).
+    Grasp { body: String, dz: f64, skill: bool },
+    /// The TCP pose that puts the held body at the placement, raised by `dz` (`skill`: the
+    /// learned place-approach skill).
+    Place {
+        placement: Placement,
+        dz: f64,
+        skill: bool,
+    },
+    /// Straight up by `dz` from where the TCP is (`skill`: the learned retreat of the action,
+    /// in the frame recorded at the gripper event).
+    Up { dz: f64, skill: bool },
     /// A pull stroke: hook blade behind `body`, then dragged towards the base (`stage` 0 / 1).
     Pull { body: String, stage: u8 },
 }
@@ -212,6 +218,8 @@ pub struct ActionExec {
     gripper: GripperCommand,
     /// Events seen during the action.
     pub events: Vec<WorldEvent>,
+    /// The anchor frame at the gripper event (frame of the retreat skill).
+    event_frame: Option<Isometry3<f64>>,
 }
 
 #[derive(Clone, Debug)]
@@ -219,8 +227,19 @@ struct Running {
     traj: SkillSegment,
     t: usize,
     goal: Isometry3<f64>,
+    /// Body watched for re-anchoring, where it was, and the skill frame planned for.
     anchor: Option<(String, Vector3<f64>)>,
+    frame: Option<Isometry3<f64>>,
     lag: usize,
+}
+
+/// Centre + yaw of a pose (the demo's anchor-frame convention).
+fn anchor_frame(p: &Isometry3<f64>) -> Isometry3<f64> {
+    let (_, _, yaw) = p.rotation.euler_angles();
+    Isometry3::from_parts(
+        p.translation,
+        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+    )
 }
 
 /// How an action's execution stands after a tick.
@@ -236,8 +255,58 @@ pub enum ExecStatus {
 
 impl ActionExec {
     /// Prepares the execution of `kind` (placements must be bound).
-    pub fn new(action: &str, kind: ActionKind, world: &World, p: &ExecParams) -> Self {
+    pub fn new(
+        action: &str,
+        kind: ActionKind,
+        world: &World,
+        skills: &SkillLibrary,
+        p: &ExecParams,
+    ) -> Self {
         let (arm, phases) = match &kind {
+            ActionKind::Grasp { arm, body }
+                if skills.has("grasp-approach") && skills.has("grasp-retreat") =>
+            {
+                (
+                    *arm,
+                    vec![
+                        Phase::Gripper(GripperCommand::Open),
+                        Phase::Move(Via::Grasp {
+                            body: body.clone(),
+                            dz: 0.0,
+                            skill: true,
+                        }),
+                        Phase::Gripper(GripperCommand::Close),
+                        Phase::Move(Via::Up {
+                            dz: p.lift_height,
+                            skill: true,
+                        }),
+                    ],
+                )
+            }
+            ActionKind::Release { arm, placement, .. }
+                if skills.has("place-approach") && skills.has("place-retreat") =>
+            {
+                let placement = placement.clone().unwrap_or(Placement::At {
+                    x: 0.0,
+                    y: 0.0,
+                    yaw: 0.0,
+                });
+                (
+                    *arm,
+                    vec![
+                        Phase::Move(Via::Place {
+                            placement,
+                            dz: p.release_clearance,
+                            skill: true,
+                        }),
+                        Phase::Gripper(GripperCommand::Open),
+                        Phase::Move(Via::Up {
+                            dz: p.approach_height,
+                            skill: true,
+                        }),
+                    ],
+                )
+            }
             ActionKind::Grasp { arm, body } => (
                 *arm,
                 vec![
@@ -245,13 +314,18 @@ impl ActionExec {
                     Phase::Move(Via::Grasp {
                         body: body.clone(),
                         dz: p.approach_height,
+                        skill: false,
                     }),
                     Phase::Move(Via::Grasp {
                         body: body.clone(),
                         dz: 0.0,
+                        skill: false,
                     }),
                     Phase::Gripper(GripperCommand::Close),
-                    Phase::Move(Via::Up { dz: p.lift_height }),
+                    Phase::Move(Via::Up {
+                        dz: p.lift_height,
+                        skill: false,
+                    }),
                 ],
             ),
             ActionKind::Release { arm, placement, .. } => {
@@ -266,14 +340,17 @@ impl ActionExec {
                         Phase::Move(Via::Place {
                             placement: placement.clone(),
                             dz: p.approach_height,
+                            skill: false,
                         }),
                         Phase::Move(Via::Place {
                             placement,
                             dz: p.release_clearance,
+                            skill: false,
                         }),
                         Phase::Gripper(GripperCommand::Open),
                         Phase::Move(Via::Up {
                             dz: p.approach_height,
+                            skill: false,
                         }),
                     ],
                 )
@@ -310,6 +387,7 @@ impl ActionExec {
             wait: 0,
             gripper,
             events: vec![],
+            event_frame: None,
         }
     }
 
@@ -320,9 +398,7 @@ impl ActionExec {
 
     /// The current commanded target of the TCP, if moving.
     pub fn target(&self) -> Option<Vector3<f64>> {
-        self.segment
-            .as_ref()
-            .map(|s| s.traj.position(s.t.min(s.traj.len().saturating_sub(1))))
+        self.segment.as_ref().map(|s| s.traj.current(s.t))
     }
 
     /// Index of the phase being executed and the number of phases.
@@ -341,6 +417,14 @@ impl ActionExec {
                 let Some(tcp) = world.tcp_pose(self.arm) else {
                     return ExecStatus::Failed("no such arm".into());
                 };
+                if self.wait == 0 {
+                    // The retreat's frame: the grasped body where it was grasped; for a release
+                    // the body's resting pose (recorded once it has settled, below).
+                    self.event_frame = world
+                        .held_by(self.arm)
+                        .and_then(|h| world.body_pose(h))
+                        .map(|p| anchor_frame(&p));
+                }
                 self.gripper = cmd;
                 if std::env::var("LFD_TRACE").is_ok() && self.wait == 0 {
                     if let Some(h) = world.held_by(self.arm) {
@@ -376,13 +460,17 @@ impl ActionExec {
                     if let Some(s) = self.check_gripper(world, cmd) {
                         return ExecStatus::Failed(s);
                     }
+                    if let ActionKind::Release { body, .. } = &self.kind {
+                        self.event_frame = world.body_pose(body).map(|p| anchor_frame(&p));
+                    }
                     self.next_phase();
                 }
                 self.status()
             }
             Phase::Move(via) => {
-                // (Re)plan the segment when it starts or when its anchor object moved.
-                let replan = match &self.segment {
+                // Plan the segment when it starts; when its anchor object moved, re-target the
+                // skill's controller to the new object frame (or re-plan a profile).
+                let moved = match &self.segment {
                     None => true,
                     Some(r) => r.anchor.as_ref().is_some_and(|(name, at)| {
                         world.body_pose(name).is_some_and(|q| {
@@ -390,19 +478,43 @@ impl ActionExec {
                         })
                     }),
                 };
-                if replan {
-                    match self.plan_segment(world, &via, skills, p) {
-                        Ok(r) => self.segment = Some(r),
-                        Err(e) => return ExecStatus::Failed(e),
+                if moved {
+                    let start = world.tcp_pose(self.arm).unwrap_or_else(Isometry3::identity);
+                    let fresh = self.via_pose(world, &via, &start);
+                    let retargeted = match self.segment.as_mut() {
+                        Some(r) => match (fresh, r.frame) {
+                            (Ok((goal, Some(new_frame), anchor)), Some(old)) => {
+                                let ok = r.traj.retarget(&old, &new_frame);
+                                if ok {
+                                    r.goal = goal;
+                                    r.frame = Some(new_frame);
+                                    r.anchor = anchor;
+                                    r.lag = 0;
+                                }
+                                ok
+                            }
+                            _ => false,
+                        },
+                        None => false,
+                    };
+                    if !retargeted {
+                        match self.plan_segment(world, &via, skills, p) {
+                            Ok(r) => self.segment = Some(r),
+                            Err(e) => return ExecStatus::Failed(e),
+                        }
                     }
                 }
                 let Some(seg) = self.segment.as_mut() else {
                     return ExecStatus::Failed("no segment".into());
                 };
                 let i = seg.t.min(seg.traj.len() - 1);
-                let cmd_pos = seg.traj.position(i);
+                let measured = world
+                    .tcp_pose(self.arm)
+                    .map(|q| q.translation.vector)
+                    .unwrap_or_default();
+                let cmd_pos = seg.traj.command(seg.t, &measured);
                 let s = (i as f64 / (seg.traj.len().max(2) - 1) as f64).clamp(0.0, 1.0);
-                let rot = seg.traj.start_rotation.slerp(&seg.goal.rotation, s);
+                let rot = seg.traj.start_rotation().slerp(&seg.goal.rotation, s);
                 let target = Isometry3::from_parts(Translation3::from(cmd_pos), rot);
                 let _ = world.command_arm(self.arm, target, self.gripper);
                 let ev = world.step();
@@ -415,7 +527,7 @@ impl ActionExec {
                 seg.t += 1;
                 if seg.t >= seg.traj.len() {
                     let tcp = world.tcp_pose(self.arm).unwrap_or(seg.goal);
-                    let err = (tcp.translation.vector - seg.goal.translation.vector).norm();
+                    let err = (tcp.translation.vector - seg.traj.goal()).norm();
                     if err <= p.reach_tolerance {
                         self.next_phase();
                     } else {
@@ -473,7 +585,7 @@ impl ActionExec {
         let start = world
             .tcp_pose(self.arm)
             .ok_or_else(|| "no such arm".to_string())?;
-        let (goal, anchor) = self.via_pose(world, via, &start)?;
+        let (goal, frame, anchor) = self.via_pose(world, via, &start)?;
         if std::env::var("LFD_TRACE").is_ok() {
             eprintln!(
                 "  [{}] segment {:?}: from {:?} to {:?}",
@@ -486,39 +598,44 @@ impl ActionExec {
         let dist = (goal.translation.vector - start.translation.vector).norm();
         let duration = (dist / p.speed).max(p.min_segment);
         let steps = ((duration / world.dt()).round() as usize).max(2);
-        let traj = skills.segment(
-            self.skill_name(via),
-            &start,
-            &goal,
-            anchor.as_ref().map(|(_, at)| *at),
-            steps,
-            world.dt(),
-        );
+        let traj = skills.segment(self.skill_name(via), &start, &goal, frame.as_ref(), steps);
         Ok(Running {
             traj,
             t: 0,
             goal,
             anchor,
+            frame,
             lag: 0,
         })
     }
 
     fn skill_name(&self, via: &Via) -> &'static str {
+        let grasping = matches!(self.kind, ActionKind::Grasp { .. });
         match via {
-            Via::Grasp { .. } => "grasp",
-            Via::Place { .. } => "place",
-            Via::Up { .. } => "retreat",
-            Via::Pull { .. } => "pull",
+            Via::Grasp { skill: true, .. } => "grasp-approach",
+            Via::Place { skill: true, .. } => "place-approach",
+            Via::Up { skill: true, .. } if grasping => "grasp-retreat",
+            Via::Up { skill: true, .. } => "place-retreat",
+            _ => "profile",
         }
     }
 
-    /// The TCP goal of a via-point and the anchor object (name, position) it follows.
+    /// The TCP goal of a via-point, the skill's object frame (centre + yaw) and the body it
+    /// follows (name, position) for re-anchoring.
+    #[allow(clippy::type_complexity)]
     fn via_pose(
         &self,
         world: &World,
         via: &Via,
         start: &Isometry3<f64>,
-    ) -> Result<(Isometry3<f64>, Option<(String, Vector3<f64>)>), String> {
+    ) -> Result<
+        (
+            Isometry3<f64>,
+            Option<Isometry3<f64>>,
+            Option<(String, Vector3<f64>)>,
+        ),
+        String,
+    > {
         let up = |iso: Isometry3<f64>, dz: f64| {
             Isometry3::from_parts(
                 Translation3::from(iso.translation.vector + Vector3::z() * dz),
@@ -526,31 +643,37 @@ impl ActionExec {
             )
         };
         match via {
-            Via::Grasp { body, dz } => {
+            Via::Grasp { body, dz, .. } => {
                 let g = grasp_pose(world, self.arm, body)
                     .ok_or_else(|| format!("{body} cannot be grasped"))?;
-                let at = world.body_pose(body).map(|q| q.translation.vector);
-                Ok((up(g, *dz), at.map(|a| (body.clone(), a))))
+                let bp = world.body_pose(body);
+                let at = bp.map(|q| q.translation.vector);
+                Ok((
+                    up(g, *dz),
+                    bp.map(|q| anchor_frame(&q)),
+                    at.map(|a| (body.clone(), a)),
+                ))
             }
-            Via::Place { placement, dz } => {
+            Via::Place { placement, dz, .. } => {
                 let body = match &self.kind {
                     ActionKind::Release { body, .. } => body.clone(),
                     _ => return Err("not a release".into()),
                 };
                 let (pose, anchor) = placement_pose(world, &body, placement)?;
                 let tcp = tcp_for_body_pose(world, self.arm, &pose);
-                Ok((up(tcp, *dz), anchor))
+                Ok((up(tcp, *dz), Some(anchor_frame(&pose)), anchor))
             }
-            Via::Up { dz } => {
+            Via::Up { dz, .. } => {
                 let mut g = *start;
                 g.translation.vector.z += dz;
-                Ok((g, None))
+                Ok((g, self.event_frame, None))
             }
             Via::Pull { body, stage } => {
                 let g = pull_via(world, self.arm, body, *stage)?;
                 let at = world.body_pose(body).map(|q| q.translation.vector);
                 Ok((
                     g,
+                    None,
                     if *stage == 0 {
                         at.map(|a| (body.clone(), a))
                     } else {

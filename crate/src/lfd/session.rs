@@ -498,6 +498,7 @@ impl Session {
             objects,
         );
         let prev_facts = facts_of(&world);
+        let skills = SkillLibrary::learn(demo_json.unwrap_or(&files.demo), options.skill);
         Ok(Session {
             sources: files.clone(),
             initial: world.snapshot(),
@@ -506,7 +507,7 @@ impl Session {
             params,
             model,
             trace,
-            skills: SkillLibrary::default(),
+            skills,
             world,
             controller,
             exec: None,
@@ -752,6 +753,7 @@ impl Session {
                     &action,
                     kind,
                     &self.world,
+                    &self.skills,
                     &self.params.exec,
                 ));
                 self.actions.push(ActionRecord {
