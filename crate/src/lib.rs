@@ -22,3 +22,5 @@
 pub mod lqt;
 pub mod pddl;
 pub mod plan;
+#[cfg(feature = "wasm")]
+pub mod wasm;
