@@ -11,3 +11,82 @@ use wasm_bindgen::prelude::*;
 pub fn version() -> String {
     env!("CARGO_PKG_VERSION").to_string()
 }
+
+/// TypeScript declarations of the scene and frame shapes (`sim::snapshot`, the loop's `Frame`):
+/// those types live in the core, which stays free of wasm crates, so their `.d.ts` is written here.
+#[wasm_bindgen(typescript_custom_section)]
+const TS_SCENE: &'static str = r#"
+/** A rigid pose: position (m) and unit quaternion [x, y, z, w]. */
+export interface PoseSnapshot { position: [number, number, number]; quaternion: [number, number, number, number]; }
+/** One box of a compound shape, in the body frame. */
+export interface PartSnapshot { pose: PoseSnapshot; half_extents: [number, number, number]; }
+/** Geometry of a body in its own frame. */
+export type ShapeSnapshot =
+  | { type: "cuboid"; half_extents: [number, number, number] }
+  | { type: "compound"; parts: PartSnapshot[] };
+/** What a body is. */
+export type BodyKind = "block" | "hook" | "table" | "shelf";
+/** One body of the world. */
+export interface BodySnapshot { name: string; kind: BodyKind; shape: ShapeSnapshot; pose: PoseSnapshot; color: string; lost?: boolean; }
+/** A capsule (segment swept by a sphere), world frame. */
+export interface CapsuleSnapshot { a: [number, number, number]; b: [number, number, number]; radius: number; }
+/** A posed box, world frame. */
+export interface CuboidSnapshot { pose: PoseSnapshot; half_extents: [number, number, number]; }
+/** Horizontal workspace annulus of an arm (m). */
+export interface ReachSnapshot { min_radius: number; max_radius: number; }
+/** One 7-DoF arm with its gripper; `tcp`, `links` and `fingers` are derived, for drawing. */
+export interface ArmSnapshot {
+  name: string; base: PoseSnapshot; joints: number[]; gripper_opening: number; holding?: string | null;
+  reach: ReachSnapshot; tcp: PoseSnapshot; links: CapsuleSnapshot[]; fingers: CuboidSnapshot[];
+}
+/** A named table region (B3). */
+export interface RegionSnapshot { name: string; min: [number, number]; max: [number, number]; color: string; }
+/** The whole world, as `World::snapshot` writes it and `scene.json` files hold it. */
+export interface WorldSnapshot {
+  version: number; name: string; time: number; dt: number; floor_z: number; predicates: string[];
+  regions: RegionSnapshot[]; bodies: BodySnapshot[]; arms: ArmSnapshot[];
+}
+"#;
+
+/// TypeScript declarations of the closed-loop session's data (the loop's `SessionOptions`, `Frame`
+/// and friends, see `lfd::session`).
+#[wasm_bindgen(typescript_custom_section)]
+const TS_SESSION: &'static str = r#"
+/** Which benchmark, method and mode a session runs. */
+export interface SessionOptions {
+  benchmark: "b1" | "b2" | "b3";
+  method: "logic-lfd" | "linear" | "rlds" | "tamp";
+  mode: "paper" | "prioritised";
+  seed: number;
+  skill?: "lqt" | "dmp";
+}
+/** What the loop is doing. */
+export interface Status {
+  kind: "idle" | "planning" | "executing" | "replanning" | "done" | "failed";
+  message: string;
+  step?: number | null;
+  of?: number | null;
+}
+/** The last replan: why, how long it took (ms), which demo state it joined, the plan it made. */
+export interface Replan { reason: string; time_ms: number; k?: number | null; plan: string[]; tick: number; }
+/** One end-effector sample: where the arm's TCP is and where its controller aims. */
+export interface EePoint { arm: number; pos: [number, number, number]; target: [number, number, number]; }
+/** Everything the page draws after a step. */
+export interface Frame {
+  t: number;
+  tick: number;
+  world: WorldSnapshot;
+  status: Status;
+  plan: string[];
+  executing?: number | null;
+  demo: string[];
+  demo_states: string[][];
+  matched_k?: number | null;
+  facts: string[];
+  facts_added: string[];
+  facts_removed: string[];
+  last_replan?: Replan | null;
+  replans: number;
+  ee: EePoint[];
+}
+"#;
