@@ -1,1 +1,26 @@
 //! LQT-CP motion skills (paper §III-B, eqs. 1–4) and the classic DMP used for comparison.
+//!
+//! * [`LqtCp`]: linear quadratic tracking with control primitives — batch weights, the matrix F
+//!   and the time-varying feedback gains K̃_t, on the exact conventions of `shared/lqt-cp-io.md`
+//!   (fast structured path; [`reference`] is the dense transcription kept for tests);
+//! * [`task`]: builds the reference μ and weights Q from via-points, goals and a tracked demo;
+//! * [`case`]: the JSON contract of `logic-lfd lqt CASE.json`.
+
+// Index loops mirror the formulas (A1[i][j], Y_t[i][k]) in this numeric code.
+#![allow(clippy::needless_range_loop)]
+
+mod basis;
+pub mod case;
+mod dynamics;
+mod error;
+mod linalg;
+pub mod reference;
+mod riccati;
+mod solver;
+pub mod task;
+
+pub use basis::Basis;
+pub use error::LqtError;
+pub use solver::{
+    BatchSolution, FeedbackGains, LqtConfig, LqtCp, Perturbation, Rollout, MAX_ORDER,
+};

@@ -3,6 +3,8 @@
 //! Exit codes: 0 success, 2 bad input, 3 proved unsolvable, 4 budget exhausted, 5 invalid plan.
 //! Errors go to stderr as `file:line:col: message`; `--json` output goes to stdout.
 
+mod cmd_lqt;
+
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
@@ -28,7 +30,10 @@ struct Cli {
 }
 
 #[derive(Subcommand)]
-enum Command {}
+enum Command {
+    /// Solve an LQT-CP case (shared/lqt-cp-io.md) and print the output object as JSON.
+    Lqt(cmd_lqt::Args),
+}
 
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
@@ -43,5 +48,7 @@ fn main() -> ExitCode {
             return ExitCode::from(code);
         }
     };
-    match cli.command {}
+    match cli.command {
+        Command::Lqt(args) => cmd_lqt::run(args),
+    }
 }
