@@ -90,3 +90,60 @@ export interface Frame {
   ee: EePoint[];
 }
 "#;
+
+/// Converts any displayable error into a rejected value (a JS `Error` with the message).
+fn js_err(e: impl std::fmt::Display) -> JsError {
+    JsError::new(&e.to_string())
+}
+
+/// Serialises plain data for JS: objects (not `Map`s), numbers for `u64`.
+fn to_js<T: serde::Serialize>(v: &T) -> Result<JsValue, JsError> {
+    v.serialize(&serde_wasm_bindgen::Serializer::json_compatible())
+        .map_err(js_err)
+}
+
+/// Solves one LQT-CP case (the contract of `shared/lqt-cp-io.md`, as `logic-lfd lqt CASE.json`).
+///
+/// `case` is the case object or its JSON text; the result is the output object (`A`, `B`, `phi`,
+/// `w`, `u`, `x`, `pos`, `cost`, `target_errors`, `feedback`). A malformed case rejects with a
+/// message naming the key.
+#[wasm_bindgen(unchecked_return_type = "LqtOutput")]
+pub fn lqt(
+    #[wasm_bindgen(unchecked_param_type = "LqtCase | string")] case: JsValue,
+) -> Result<JsValue, JsError> {
+    use crate::lqt::case::{run_case, CaseInput};
+    let input = match case.as_string() {
+        Some(text) => CaseInput::from_json_str(&text),
+        None => {
+            let v: serde_json::Value = serde_wasm_bindgen::from_value(case).map_err(js_err)?;
+            CaseInput::from_value(&v)
+        }
+    }
+    .map_err(js_err)?;
+    let out = run_case(&input).map_err(js_err)?;
+    to_js(&out)
+}
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS_LQT: &'static str = r#"
+/** An LQT-CP case (shared/lqt-cp-io.md); unknown keys are ignored. */
+export interface LqtCase {
+  dim: number; order: number; dt: number; n_steps: number; r: number;
+  basis: { type: "rbf" | "bernstein" | "fourier" | "piecewise"; n_fct: number; centers?: number[]; lambda?: number };
+  x0: number[];
+  reference: { mu: number[][]; q_diag: number[][] };
+  targets?: { t: number; role: "via" | "goal"; pos: number[]; w_pos: number; vel?: number[]; w_vel?: number }[];
+  tracking?: { demo_pos: number[][]; weights_per_order: number[] } | null;
+  feedback?: { x_init: number[]; perturbation?: { after_step: number; delta: number[] } | null } | null;
+  [key: string]: unknown;
+}
+/** One feedback rollout. */
+export interface LqtRollout { x: number[][]; u: number[][]; pos: number[][]; final_goal_pos_dist: number | null; }
+/** The output object of an LQT-CP case. */
+export interface LqtOutput {
+  A: number[][]; B: number[][]; phi: number[][]; w: number[][]; u: number[][]; x: number[][]; pos: number[][];
+  cost: number;
+  target_errors: { t: number; role: "via" | "goal"; pos_dist: number; vel_dist?: number }[];
+  feedback?: { F: number[][]; gains: number[][][]; nominal: LqtRollout; perturbed?: LqtRollout };
+}
+"#;
