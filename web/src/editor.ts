@@ -120,8 +120,8 @@ export class EditorPanel {
       problem: new EditorView({ state: EditorState.create({ doc: '', extensions: ext('problem') }), parent: this.hosts.problem }),
     };
     this.tabs = {
-      domain: el('button', { class: 'tab active', role: 'tab', 'aria-selected': 'true', 'aria-label': 'Show the domain' }, 'domain.pddl'),
-      problem: el('button', { class: 'tab', role: 'tab', 'aria-selected': 'false', 'aria-label': 'Show the problem' }, 'problem.pddl'),
+      domain: el('button', { class: 'tab active', role: 'tab', 'aria-selected': 'true', 'aria-label': 'Show the domain' }, 'domain'),
+      problem: el('button', { class: 'tab', role: 'tab', 'aria-selected': 'false', 'aria-label': 'Show the problem' }, 'problem'),
     };
     this.tabs.domain.onclick = () => this.show('domain');
     this.tabs.problem.onclick = () => this.show('problem');
@@ -186,8 +186,12 @@ export class EditorPanel {
 
   /** Parses both texts (a cheap plan call with a zero budget is not needed: parse errors come first). */
   private async check(): Promise<void> {
-    const out = await this.opts.plan(this.text('domain'), this.text('problem'), { parse_only: true });
-    this.showDiagnostics(out.ok ? [] : out.diagnostics);
+    try {
+      const out = await this.opts.plan(this.text('domain'), this.text('problem'), { parse_only: true });
+      this.showDiagnostics(out.ok ? [] : out.diagnostics);
+    } catch (e) {
+      this.errorList.replaceChildren(el('li', { class: 'diagnostic' }, (e as Error).message));
+    }
   }
 
   private showDiagnostics(diags: Diagnostic[]): void {
@@ -248,6 +252,8 @@ export class EditorPanel {
         b.onclick = () => this.selectState(Number(b.dataset.index));
       });
       this.selectState(0);
+    } catch (e) {
+      this.output.replaceChildren(el('li', { class: 'muted' }, (e as Error).message));
     } finally {
       this.planButton.disabled = false;
       this.planButton.textContent = 'Plan';

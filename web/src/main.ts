@@ -14,15 +14,15 @@ type Method = SessionOptions['method'];
 type Mode = SessionOptions['mode'];
 
 const BENCHMARKS: [Benchmark, string][] = [
-  ['b1', 'B1 · tower of 4 blocks'],
-  ['b2', 'B2 · workspace reach (hook)'],
+  ['b1', 'B1 · tower'],
+  ['b2', 'B2 · reach (hook)'],
   ['b3', 'B3 · two arms'],
 ];
 const METHODS: [Method, string][] = [
   ['logic-lfd', 'Logic-LfD'],
   ['linear', 'Linear'],
   ['rlds', 'RLDS'],
-  ['tamp', 'TAMP (from scratch)'],
+  ['tamp', 'TAMP'],
 ];
 const MODES: [Mode, string][] = [
   ['paper', 'paper'],
@@ -74,7 +74,7 @@ const modeSel = select('mode', 'Multi-goal mode', MODES, options.mode);
 const seedIn = el('input', { id: 'seed', type: 'number', min: '0', step: '1', 'aria-label': 'Random seed', title: 'Random seed', value: String(options.seed) });
 const resetBtn = button('reset', 'Reset the episode with this seed (R)', '↺ Reset');
 const playBtn = button('play', 'Play (Space)', '▶ Play', 'primary');
-const stepBtn = button('step', 'Advance 0.1 s of simulated time (N)', '⏭ Step');
+const stepBtn = button('step', 'Advance 0.1 s of simulated time (N)', 'Step');
 const speedSel = select(
   'speed',
   'Playback speed',
@@ -89,7 +89,7 @@ const levelBtns = LEVELS.map(([lvl, text, what]) => {
 const saveBtn = button('save-scene', 'Save the current scene as JSON', 'Save');
 const loadBtn = button('load-scene', 'Load a scene JSON file', 'Load');
 const fileIn = el('input', { type: 'file', accept: 'application/json,.json', hidden: '', 'aria-label': 'Scene JSON file' });
-const linkBtn = button('permalink', 'Copy a link to this benchmark, method, mode and seed', '🔗 Link');
+const linkBtn = button('permalink', 'Copy a link to this benchmark, method, mode and seed', 'Link');
 const helpBtn = button('help', 'Keyboard shortcuts and help (?)', '?');
 
 const statusText = el('span', { id: 'status-text', class: 'status-text' }, 'Loading the planner…');

@@ -194,13 +194,16 @@ export class View {
   private frameCamera(s: WorldSnapshot): void {
     const box = new THREE.Box3();
     for (const b of s.bodies) if (b.kind !== 'table') box.expandByPoint(new THREE.Vector3(...b.pose.position));
-    for (const a of s.arms) box.expandByPoint(new THREE.Vector3(...a.base.position));
+    for (const a of s.arms) {
+      box.expandByPoint(new THREE.Vector3(...a.base.position));
+      for (const l of a.links) box.expandByPoint(new THREE.Vector3(...l.b));
+    }
     if (box.isEmpty()) return;
     const c = box.getCenter(new THREE.Vector3());
     const size = box.getSize(new THREE.Vector3()).length();
-    const d = Math.max(1.2, size * 1.35);
-    this.controls.target.set(c.x, c.y, Math.max(0.05, c.z));
-    this.camera.position.set(c.x + d * 0.62, c.y - d * 0.78, c.z + d * 0.62);
+    const d = Math.max(1.4, size * 1.7);
+    this.controls.target.set(c.x, c.y, Math.max(0.05, c.z * 0.6));
+    this.camera.position.set(c.x + d * 0.55, c.y - d * 0.8, c.z + d * 0.55);
     this.controls.update();
   }
 
