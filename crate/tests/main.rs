@@ -1,1 +1,5 @@
 //! Integration tests (one binary, one sub-module per area).
+
+mod ground;
+mod multigoal;
+mod search;

@@ -1,6 +1,21 @@
 //! Grounded planning: the [`Task`] (facts as packed bitsets, operators with precondition/add/delete
-//! lists), search algorithms, heuristics, the multi-goal search of Logic-LfD and the plan validator.
+//! lists), grounding from PDDL, search algorithms, heuristics, the multi-goal search of Logic-LfD
+//! and the plan validator.
 
+mod ground;
 mod task;
 
+pub use ground::{ground, GroundError};
 pub use task::{Condition, FactId, Goal, Operator, State, Task};
+
+mod clock;
+mod heuristic;
+mod multigoal;
+mod search;
+
+pub use clock::{Clock, NoClock};
+pub use heuristic::{HeuristicEvaluator, HeuristicKind, UnknownName};
+pub use multigoal::{search_multi_goal, MultiGoalMode, MultiGoalResult};
+pub use search::{
+    search, Algorithm, Budget, Outcome, Plan, SearchConfig, SearchResult, SearchStats,
+};

@@ -1,0 +1,284 @@
+//! `(define (problem …) (:domain …) …)`: objects, init (atoms and cost-function values), goal and
+//! the `(:metric minimize (total-cost))`, checked against the domain.
+
+use std::collections::HashMap;
+
+use super::ast::{Domain, FunctionValue, Problem, Span, TypedName};
+use super::common::{define, list, name, non_negative_integer, refuse, requirements, typed_list};
+use super::domain::{duplicate, resolve_type};
+use super::error::{PddlError, Source};
+use super::formula::Scope;
+use super::lexer::{read_one, SExpr};
+
+/// Parses a problem file against its domain. `file` is used in error locations only.
+pub fn parse_problem(text: &str, file: &str, domain: &Domain) -> Result<Problem, PddlError> {
+    let src = Source::new(text, file);
+    let top = read_one(&src)?;
+    let (pname, sections) = define(&src, &top, "problem")?;
+
+    let mut seen: HashMap<String, Span> = HashMap::new();
+    let mut dom = None;
+    let mut objects_e = None;
+    let mut init_e = None;
+    let mut goal_e = None;
+    let mut metric_e = None;
+    for s in sections {
+        let items = list(&src, s, "a problem section")?;
+        let Some(kw) = items.first().and_then(|h| h.atom()) else {
+            return Err(src.error(s.span(), "expected a section such as `(:init …)`"));
+        };
+        let kspan = items[0].span();
+        let slot = match kw {
+            ":domain" => &mut dom,
+            ":requirements" => {
+                requirements(&src, items)?;
+                &mut None
+            }
+            ":objects" => &mut objects_e,
+            ":init" => &mut init_e,
+            ":goal" => &mut goal_e,
+            ":metric" => &mut metric_e,
+            ":constraints" => {
+                return Err(refuse(
+                    &src,
+                    kspan,
+                    ":constraints",
+                    "PDDL3 constraints are not supported",
+                ))
+            }
+            ":length" => {
+                return Err(refuse(
+                    &src,
+                    kspan,
+                    ":length",
+                    "plan-length bounds are not supported",
+                ))
+            }
+            _ => return Err(src.error(kspan, format!("unknown problem section `{kw}`"))),
+        };
+        if let Some(prev) = seen.insert(kw.to_string(), kspan) {
+            let (l, c) = src.line_col(prev.start);
+            return Err(src.error(
+                kspan,
+                format!("duplicate section `{kw}` (first at {l}:{c})"),
+            ));
+        }
+        *slot = Some((items, s.span()));
+    }
+
+    let Some((ditems, dspan)) = dom else {
+        return Err(src.error(top.span(), "missing section `(:domain NAME)`"));
+    };
+    if ditems.len() != 2 {
+        return Err(src.error(dspan, "expected `(:domain NAME)`"));
+    }
+    let domain_name = name(&src, &ditems[1], "the domain name")?;
+    if domain_name.text != domain.name.text {
+        return Err(src.error(
+            domain_name.span,
+            format!(
+                "problem is for domain `{}`, but the domain is `{}`",
+                domain_name.text, domain.name.text
+            ),
+        ));
+    }
+
+    // Objects and constants share one namespace.
+    let mut objects = Vec::new();
+    let mut names: HashMap<String, usize> = HashMap::new();
+    let mut spans: HashMap<String, (Span, bool)> = HashMap::new();
+    for c in &domain.constants {
+        names.insert(c.name.text.clone(), c.ty);
+        spans.insert(c.name.text.clone(), (c.name.span, true));
+    }
+    if let Some((items, _)) = objects_e {
+        for (n, ty) in typed_list(&src, &items[1..], false)? {
+            let ty = resolve_type(&src, domain, ty.as_ref())?;
+            if let Some(&(prev, is_const)) = spans.get(&n.text) {
+                if is_const {
+                    return Err(src.error(
+                        n.span,
+                        format!("object `{}` is already a constant of the domain", n.text),
+                    ));
+                }
+                return Err(duplicate(&src, "object", &n, prev));
+            }
+            spans.insert(n.text.clone(), (n.span, false));
+            names.insert(n.text.clone(), ty);
+            objects.push(TypedName { name: n, ty });
+        }
+    }
+
+    let scope = Scope {
+        src: &src,
+        domain,
+        params: &[],
+        objects: &names,
+        context: "goal",
+    };
+
+    let Some((init_items, _)) = init_e else {
+        return Err(src.error(top.span(), "missing section `(:init …)`"));
+    };
+    let mut init = Vec::new();
+    let mut function_values: Vec<FunctionValue> = Vec::new();
+    for e in &init_items[1..] {
+        match e.head() {
+            Some("=") => {
+                if let Some(v) = function_value(&src, domain, &names, e)? {
+                    if let Some(prev) = function_values
+                        .iter()
+                        .find(|p| p.function == v.function && p.args == v.args)
+                    {
+                        let (l, c) = src.line_col(prev.span.start);
+                        return Err(src.error(
+                            v.span,
+                            format!("function value given twice (first at {l}:{c})"),
+                        ));
+                    }
+                    function_values.push(v);
+                }
+            }
+            Some("not") => {
+                return Err(src.error(
+                    e.span(),
+                    "`not` in `:init`: the initial state is closed-world, list only true atoms",
+                ))
+            }
+            Some("at") if domain.predicate_index("at").is_none() => {
+                return Err(refuse(
+                    &src,
+                    e.span(),
+                    "at",
+                    "timed initial literals are not supported",
+                ))
+            }
+            _ => init.push(scope.atom(e)?),
+        }
+    }
+
+    let Some((goal_items, gspan)) = goal_e else {
+        return Err(src.error(top.span(), "missing section `(:goal …)`"));
+    };
+    if goal_items.len() != 2 {
+        return Err(src.error(gspan, "expected `(:goal FORMULA)` with exactly one formula"));
+    }
+    let goal = scope.formula(&goal_items[1])?;
+
+    let minimize_total_cost = match metric_e {
+        None => false,
+        Some((items, mspan)) => {
+            metric(&src, domain, items, mspan)?;
+            true
+        }
+    };
+
+    Ok(Problem {
+        name: pname,
+        domain_name,
+        objects,
+        init,
+        function_values,
+        goal,
+        minimize_total_cost,
+        source: src,
+    })
+}
+
+/// `(= (f a …) N)`; `(= (total-cost) N)` is accepted and dropped (plan cost starts at 0).
+fn function_value(
+    src: &Source,
+    domain: &Domain,
+    names: &HashMap<String, usize>,
+    e: &SExpr,
+) -> Result<Option<FunctionValue>, PddlError> {
+    let items = list(src, e, "`(= (f …) N)`")?;
+    if items.len() != 3 {
+        return Err(src.error(e.span(), "expected `(= (function arg …) value)`"));
+    }
+    let f = list(src, &items[1], "a function term `(f arg …)`")?;
+    let Some(fname) = f.first().and_then(|x| x.atom()) else {
+        return Err(src.error(items[1].span(), "expected a function name"));
+    };
+    let Some(fi) = domain.functions.iter().position(|s| s.name.text == fname) else {
+        return Err(src.error(f[0].span(), format!("undeclared function `{fname}`")));
+    };
+    let sig = &domain.functions[fi];
+    if f.len() - 1 != sig.params.len() {
+        return Err(src.error(
+            items[1].span(),
+            format!(
+                "function `{fname}` takes {} argument(s), found {}",
+                sig.params.len(),
+                f.len() - 1
+            ),
+        ));
+    }
+    let value = non_negative_integer(src, &items[2])?;
+    let mut args = Vec::new();
+    for (a, p) in f[1..].iter().zip(&sig.params) {
+        let n = name(src, a, "an object")?;
+        let Some(&ty) = names.get(&n.text) else {
+            return Err(src.error(
+                n.span,
+                format!("undeclared object or constant `{}`", n.text),
+            ));
+        };
+        if !domain.is_subtype(ty, p.ty) {
+            return Err(src.error(
+                n.span,
+                format!(
+                    "argument `{}` of `{fname}` has type `{}`, expected `{}`",
+                    n.text, domain.types[ty].name.text, domain.types[p.ty].name.text
+                ),
+            ));
+        }
+        args.push(n);
+    }
+    if fname == "total-cost" {
+        return Ok(None);
+    }
+    Ok(Some(FunctionValue {
+        function: fi,
+        args,
+        value,
+        span: e.span(),
+    }))
+}
+
+/// `(:metric minimize (total-cost))`, the only metric supported.
+fn metric(src: &Source, domain: &Domain, items: &[SExpr], span: Span) -> Result<(), PddlError> {
+    let Some(dir) = items.get(1) else {
+        return Err(src.error(span, "expected `(:metric minimize (total-cost))`"));
+    };
+    match dir.atom() {
+        Some("minimize") => {}
+        Some("maximize") => {
+            return Err(refuse(
+                src,
+                dir.span(),
+                "maximize",
+                "only `minimize (total-cost)` is supported",
+            ))
+        }
+        _ => return Err(src.error(dir.span(), "expected `minimize`")),
+    }
+    let ok = items.len() == 3
+        && matches!(&items[2], SExpr::List(l, _) if l.len() == 1 && l[0].atom() == Some("total-cost"));
+    if !ok {
+        let at = items.get(2).map_or(span, |e| e.span());
+        return Err(refuse(
+            src,
+            at,
+            "metric",
+            "only `(:metric minimize (total-cost))` is supported",
+        ));
+    }
+    if !domain.functions.iter().any(|f| f.name.text == "total-cost") {
+        return Err(src.error(
+            items[2].span(),
+            "the domain does not declare the function `(total-cost)`",
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,29 @@
+//! Caller-supplied time source for search time budgets.
+//!
+//! The planning core never reads the system clock (`std::time::Instant` panics on wasm32). A
+//! caller that wants a time limit passes a [`Clock`]: the CLI one wraps `Instant`, the browser one
+//! wraps `performance.now()`. Only differences of [`Clock::now_secs`] are used.
+
+/// A monotonic time source in seconds (any origin).
+pub trait Clock {
+    /// Current time in seconds since an arbitrary, fixed origin.
+    fn now_secs(&self) -> f64;
+}
+
+/// A clock that never advances: time limits never trigger and reported times are 0.
+///
+/// For callers that only use node budgets (tests, deterministic replays).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoClock;
+
+impl Clock for NoClock {
+    fn now_secs(&self) -> f64 {
+        0.0
+    }
+}
+
+impl<C: Clock + ?Sized> Clock for &C {
+    fn now_secs(&self) -> f64 {
+        (**self).now_secs()
+    }
+}

@@ -1,0 +1,474 @@
+//! The search loops behind [`super::search`] and [`crate::plan::search_multi_goal`].
+//! See the module documentation of [`super`] for the algorithms and tie-breaking.
+
+use super::space::StateSpace;
+use super::succ::SuccessorGenerator;
+use super::{Algorithm, Budget, Outcome, Plan, SearchConfig, SearchStats};
+use crate::plan::clock::Clock;
+use crate::plan::heuristic::relaxed::has;
+use crate::plan::heuristic::HeuristicEvaluator;
+use crate::plan::{Condition, Goal, State, Task};
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, VecDeque};
+
+/// Result of one run: outcome, index of the goal reached, statistics.
+pub(crate) struct RunResult {
+    pub outcome: Outcome,
+    pub goal_index: Option<usize>,
+    pub stats: SearchStats,
+}
+
+const NONE: u32 = u32::MAX;
+const OPEN: u8 = 0;
+const CLOSED: u8 = 1;
+const DEAD: u8 = 2;
+
+/// An open-list entry: ordered by `(k1, k2, seq)`, smallest first.
+#[derive(PartialEq, Eq, PartialOrd, Ord, Clone, Copy, Debug)]
+struct Entry {
+    k1: u64,
+    k2: u64,
+    seq: u64,
+    node: u32,
+    g: u64,
+    /// Goal index of a terminal entry, `NONE` for an ordinary one.
+    goal: u32,
+}
+
+/// Keeps only what the task knows: facts `≥ n` never hold, so alternatives needing one are
+/// dropped and negative literals on them are vacuous.
+fn sanitize_goals(n: usize, goals: &[Goal]) -> Vec<Goal> {
+    goals
+        .iter()
+        .map(|g| Goal {
+            alternatives: g
+                .alternatives
+                .iter()
+                .filter(|c| c.pos.iter().all(|&f| (f as usize) < n))
+                .map(|c| Condition {
+                    pos: c.pos.clone(),
+                    neg: c
+                        .neg
+                        .iter()
+                        .copied()
+                        .filter(|&f| (f as usize) < n)
+                        .collect(),
+                })
+                .collect(),
+            terminal_cost: g.terminal_cost,
+        })
+        .collect()
+}
+
+/// Runs `config` from `start` until a state satisfying one of `goals` is reached.
+///
+/// With `prioritised`, plans minimise `cost + c_k` (optimal configurations) and the heuristic
+/// includes the terminal costs; otherwise all goals count as equal (`c_k` only breaks ties between
+/// goals holding in the same state) and `bfs` keeps its generation-time goal test. Prioritised
+/// `bfs` runs as `ucs` (breadth-first order ignores `c_k`).
+pub(crate) fn run(
+    task: &Task,
+    start: &State,
+    goals: &[Goal],
+    prioritised: bool,
+    config: &SearchConfig,
+    clock: &dyn Clock,
+) -> RunResult {
+    let n = task.facts.len();
+    let start = State::from_facts(n, start.facts().filter(|&f| (f as usize) < n));
+    let goals = sanitize_goals(n, goals);
+    let h_goals: Vec<Goal> = if prioritised {
+        goals.clone()
+    } else {
+        goals
+            .iter()
+            .map(|g| Goal {
+                alternatives: g.alternatives.clone(),
+                terminal_cost: 0,
+            })
+            .collect()
+    };
+    let heuristic = if config.algorithm.uses_heuristic() {
+        config.heuristic
+    } else {
+        crate::plan::HeuristicKind::Blind
+    };
+    let mut algorithm = config.algorithm;
+    if prioritised && algorithm == Algorithm::Bfs {
+        algorithm = Algorithm::Ucs;
+    }
+    let t0 = clock.now_secs();
+    let mut e = Engine {
+        task,
+        goals: &goals,
+        prioritised,
+        config,
+        clock,
+        t0,
+        space: StateSpace::new(start.words().len()),
+        parent: Vec::new(),
+        op: Vec::new(),
+        g: Vec::new(),
+        h: Vec::new(),
+        status: Vec::new(),
+        succ: SuccessorGenerator::new(task),
+        heur: HeuristicEvaluator::new(task, &h_goals, heuristic),
+        stats: SearchStats::default(),
+        ops_buf: Vec::new(),
+        words_buf: Vec::new(),
+        child_buf: Vec::new(),
+        goal_index: None,
+    };
+    let outcome = match algorithm {
+        Algorithm::Bfs => e.bfs(start.words()),
+        Algorithm::Ucs | Algorithm::Astar | Algorithm::Gbfs => {
+            e.best_first(start.words(), algorithm)
+        }
+        Algorithm::LazyGbfs => e.lazy_gbfs(start.words()),
+    };
+    e.stats.time_secs = (clock.now_secs() - t0).max(0.0);
+    e.stats.states = e.space.len() as u64;
+    if let Outcome::Plan(p) = &outcome {
+        e.stats.plan_cost = Some(p.cost);
+        e.stats.plan_length = Some(p.len());
+    }
+    RunResult {
+        outcome,
+        goal_index: e.goal_index,
+        stats: e.stats,
+    }
+}
+
+struct Engine<'a> {
+    task: &'a Task,
+    goals: &'a [Goal],
+    prioritised: bool,
+    config: &'a SearchConfig,
+    clock: &'a dyn Clock,
+    t0: f64,
+    space: StateSpace,
+    parent: Vec<u32>,
+    op: Vec<u32>,
+    g: Vec<u64>,
+    h: Vec<u64>,
+    status: Vec<u8>,
+    succ: SuccessorGenerator,
+    heur: HeuristicEvaluator,
+    stats: SearchStats,
+    ops_buf: Vec<u32>,
+    words_buf: Vec<u64>,
+    child_buf: Vec<u64>,
+    goal_index: Option<usize>,
+}
+
+impl Engine<'_> {
+    /// Registers a state (if new, with its parent link and `g`).
+    fn register(&mut self, words: &[u64], parent: u32, op: u32, g: u64) -> (u32, bool) {
+        let (id, new) = self.space.insert(words);
+        if new {
+            self.parent.push(parent);
+            self.op.push(op);
+            self.g.push(g);
+            self.h.push(0);
+            self.status.push(OPEN);
+        }
+        (id, new)
+    }
+
+    fn budget(&self) -> Option<Budget> {
+        if let Some(m) = self.config.max_nodes {
+            if self.stats.expanded >= m {
+                return Some(Budget::Nodes);
+            }
+        }
+        if let Some(t) = self.config.time_limit_secs {
+            if self.clock.now_secs() - self.t0 > t {
+                return Some(Budget::Time);
+            }
+        }
+        None
+    }
+
+    /// The goal holding in `words` with the smallest `(c_k, k)`, and the cost counted for it.
+    fn goal_at(&self, words: &[u64]) -> Option<(usize, u64)> {
+        let mut best: Option<(usize, u64)> = None;
+        for (k, goal) in self.goals.iter().enumerate() {
+            if best.is_some_and(|(_, c)| goal.terminal_cost >= c) {
+                continue;
+            }
+            let holds = goal.alternatives.iter().any(|c| {
+                c.pos.iter().all(|&f| has(words, f)) && !c.neg.iter().any(|&f| has(words, f))
+            });
+            if holds {
+                best = Some((k, goal.terminal_cost));
+            }
+        }
+        best.map(|(k, c)| (k, if self.prioritised { c } else { 0 }))
+    }
+
+    /// Writes the successor of `self.words_buf` by operator `o` into `self.child_buf`.
+    fn apply_into_child(&mut self, o: u32) {
+        let op = &self.task.operators[o as usize];
+        self.child_buf.clear();
+        self.child_buf.extend_from_slice(&self.words_buf);
+        for &f in &op.del {
+            self.child_buf[f as usize / 64] &= !(1u64 << (f % 64));
+        }
+        for &f in &op.add {
+            self.child_buf[f as usize / 64] |= 1u64 << (f % 64);
+        }
+    }
+
+    fn load(&mut self, id: u32) {
+        self.words_buf.clear();
+        self.words_buf.extend_from_slice(self.space.get(id));
+    }
+
+    fn plan_to(&mut self, id: u32, goal: usize) -> Outcome {
+        let mut ops = Vec::new();
+        let mut cur = id;
+        while self.parent[cur as usize] != NONE {
+            ops.push(self.op[cur as usize] as usize);
+            cur = self.parent[cur as usize];
+        }
+        ops.reverse();
+        let cost = ops
+            .iter()
+            .map(|&o| self.task.operators[o].cost as u64)
+            .sum();
+        self.goal_index = Some(goal);
+        Outcome::Plan(Plan {
+            operators: ops,
+            cost,
+        })
+    }
+
+    fn bfs(&mut self, start: &[u64]) -> Outcome {
+        let (s, _) = self.register(start, NONE, NONE, 0);
+        if let Some((k, _)) = self.goal_at(start) {
+            return self.plan_to(s, k);
+        }
+        let mut queue = VecDeque::from([s]);
+        let mut ops = std::mem::take(&mut self.ops_buf);
+        while let Some(id) = queue.pop_front() {
+            if let Some(b) = self.budget() {
+                return Outcome::BudgetExhausted { which: b };
+            }
+            self.stats.expanded += 1;
+            self.load(id);
+            self.succ.applicable_ops(&self.words_buf, &mut ops);
+            let g = self.g[id as usize];
+            for &o in &ops {
+                self.apply_into_child(o);
+                self.stats.generated += 1;
+                let cost = self.task.operators[o as usize].cost as u64;
+                let child = std::mem::take(&mut self.child_buf);
+                let (t, new) = self.register(&child, id, o, g + cost);
+                let goal = if new { self.goal_at(&child) } else { None };
+                self.child_buf = child;
+                if new {
+                    if let Some((k, _)) = goal {
+                        return self.plan_to(t, k);
+                    }
+                    queue.push_back(t);
+                }
+            }
+        }
+        Outcome::Unsolvable
+    }
+
+    fn best_first(&mut self, start: &[u64], alg: Algorithm) -> Outcome {
+        let key = |g: u64, h: u64| match alg {
+            Algorithm::Ucs => (g, 0),
+            Algorithm::Astar => (g.saturating_add(h), h),
+            _ => (h, 0),
+        };
+        let greedy = alg == Algorithm::Gbfs;
+        let (s, _) = self.register(start, NONE, NONE, 0);
+        self.stats.evaluated += 1;
+        let Some(h0) = self.heur.eval(start, None) else {
+            return Outcome::Unsolvable;
+        };
+        self.h[s as usize] = h0;
+        if greedy {
+            if let Some((k, _)) = self.goal_at(start) {
+                return self.plan_to(s, k);
+            }
+        }
+        let mut open = BinaryHeap::new();
+        let mut seq = 0u64;
+        let (k1, k2) = key(0, h0);
+        open.push(Reverse(Entry {
+            k1,
+            k2,
+            seq,
+            node: s,
+            g: 0,
+            goal: NONE,
+        }));
+        let mut ops = std::mem::take(&mut self.ops_buf);
+        while let Some(Reverse(e)) = open.pop() {
+            let id = e.node;
+            if e.goal != NONE {
+                return self.plan_to(id, e.goal as usize);
+            }
+            if self.status[id as usize] != OPEN || e.g != self.g[id as usize] {
+                continue;
+            }
+            if let Some(b) = self.budget() {
+                return Outcome::BudgetExhausted { which: b };
+            }
+            self.load(id);
+            let g = e.g;
+            if !greedy {
+                if let Some((k, c)) = self.goal_at(&self.words_buf) {
+                    let total = g.saturating_add(c);
+                    if c == 0 || total <= e.k1 {
+                        return self.plan_to(id, k);
+                    }
+                    seq += 1;
+                    open.push(Reverse(Entry {
+                        k1: total,
+                        k2: 0,
+                        seq,
+                        node: id,
+                        g,
+                        goal: k as u32,
+                    }));
+                }
+            }
+            self.status[id as usize] = CLOSED;
+            self.stats.expanded += 1;
+            self.succ.applicable_ops(&self.words_buf, &mut ops);
+            for &o in &ops {
+                self.apply_into_child(o);
+                self.stats.generated += 1;
+                let ng = g + self.task.operators[o as usize].cost as u64;
+                let child = std::mem::take(&mut self.child_buf);
+                let (t, new) = self.register(&child, id, o, ng);
+                let tu = t as usize;
+                let mut push = false;
+                if new {
+                    self.stats.evaluated += 1;
+                    match self.heur.eval(&child, None) {
+                        None => self.status[tu] = DEAD,
+                        Some(h) => {
+                            self.h[tu] = h;
+                            if greedy {
+                                if let Some((k, _)) = self.goal_at(&child) {
+                                    self.child_buf = child;
+                                    return self.plan_to(t, k);
+                                }
+                            }
+                            push = true;
+                        }
+                    }
+                } else if !greedy && self.status[tu] != DEAD && ng < self.g[tu] {
+                    self.g[tu] = ng;
+                    self.parent[tu] = id;
+                    self.op[tu] = o;
+                    if self.status[tu] == CLOSED {
+                        self.status[tu] = OPEN;
+                        self.stats.reopened += 1;
+                    }
+                    push = true;
+                }
+                self.child_buf = child;
+                if push {
+                    seq += 1;
+                    let (k1, k2) = key(self.g[tu], self.h[tu]);
+                    open.push(Reverse(Entry {
+                        k1,
+                        k2,
+                        seq,
+                        node: t,
+                        g: self.g[tu],
+                        goal: NONE,
+                    }));
+                }
+            }
+        }
+        Outcome::Unsolvable
+    }
+
+    fn lazy_gbfs(&mut self, start: &[u64]) -> Outcome {
+        // Entries: (parent's h, seq, parent, operator).
+        type Lazy = Reverse<(u64, u64, u32, u32)>;
+        const BOOST: i64 = 1000;
+        let use_pref = matches!(
+            self.heur.kind(),
+            crate::plan::HeuristicKind::HFf | crate::plan::HeuristicKind::HAdd
+        );
+        let mut queues: [BinaryHeap<Lazy>; 2] = [BinaryHeap::new(), BinaryHeap::new()];
+        let mut priority: [i64; 2] = [0, 0];
+        let mut seq = 0u64;
+        let mut best_h = u64::MAX;
+        let mut ops = std::mem::take(&mut self.ops_buf);
+        let mut pref: Vec<u32> = Vec::new();
+        let (s, _) = self.register(start, NONE, NONE, 0);
+        let mut current = Some(s);
+        loop {
+            if let Some(id) = current.take() {
+                // Evaluate and expand `id` (already registered, parent set).
+                self.load(id);
+                if let Some((k, _)) = self.goal_at(&self.words_buf) {
+                    return self.plan_to(id, k);
+                }
+                if let Some(b) = self.budget() {
+                    return Outcome::BudgetExhausted { which: b };
+                }
+                self.stats.evaluated += 1;
+                let h = self
+                    .heur
+                    .eval(&self.words_buf, use_pref.then_some(&mut pref));
+                match h {
+                    None => self.status[id as usize] = DEAD,
+                    Some(h) => {
+                        self.h[id as usize] = h;
+                        self.status[id as usize] = CLOSED;
+                        self.stats.expanded += 1;
+                        if h < best_h {
+                            best_h = h;
+                            if use_pref {
+                                priority[1] -= BOOST;
+                            }
+                        }
+                        self.succ.applicable_ops(&self.words_buf, &mut ops);
+                        if use_pref {
+                            pref.sort_unstable();
+                            pref.dedup();
+                        }
+                        for &o in &ops {
+                            seq += 1;
+                            queues[0].push(Reverse((h, seq, id, o)));
+                            if use_pref && pref.binary_search(&o).is_ok() {
+                                queues[1].push(Reverse((h, seq, id, o)));
+                            }
+                        }
+                    }
+                }
+            }
+            // Pick the next entry.
+            let q = match (queues[0].is_empty(), queues[1].is_empty()) {
+                (true, true) => return Outcome::Unsolvable,
+                (false, true) => 0,
+                (true, false) => 1,
+                (false, false) => usize::from(priority[1] < priority[0]),
+            };
+            priority[q] += 1;
+            let Some(Reverse((_, _, parent, o))) = queues[q].pop() else {
+                continue;
+            };
+            self.load(parent);
+            self.apply_into_child(o);
+            self.stats.generated += 1;
+            let ng = self.g[parent as usize] + self.task.operators[o as usize].cost as u64;
+            let child = std::mem::take(&mut self.child_buf);
+            let (t, new) = self.register(&child, parent, o, ng);
+            self.child_buf = child;
+            if new {
+                current = Some(t);
+            }
+        }
+    }
+}

@@ -1,0 +1,647 @@
+//! Search and heuristics: optimality against brute force, admissibility, plan validity, budgets.
+
+use logic_lfd::plan::{
+    search, Algorithm, Budget, Clock, Condition, Goal, HeuristicEvaluator, HeuristicKind, NoClock,
+    Operator, Outcome, Plan, SearchConfig, State, Task,
+};
+use proptest::prelude::*;
+use proptest::test_runner::{Config as PtConfig, RngAlgorithm, TestRng, TestRunner};
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+use std::cell::Cell;
+use std::collections::{BinaryHeap, HashMap};
+
+/// The optimal configurations that must agree on cost (bfs only on unit-cost tasks).
+pub const OPTIMAL: [(Algorithm, HeuristicKind); 5] = [
+    (Algorithm::Bfs, HeuristicKind::Blind),
+    (Algorithm::Ucs, HeuristicKind::Blind),
+    (Algorithm::Astar, HeuristicKind::Blind),
+    (Algorithm::Astar, HeuristicKind::HMax),
+    (Algorithm::Astar, HeuristicKind::LmCut),
+];
+
+/// Satisficing configurations.
+pub const SATISFICING: [(Algorithm, HeuristicKind); 6] = [
+    (Algorithm::Gbfs, HeuristicKind::HFf),
+    (Algorithm::Gbfs, HeuristicKind::HAdd),
+    (Algorithm::LazyGbfs, HeuristicKind::HFf),
+    (Algorithm::LazyGbfs, HeuristicKind::HAdd),
+    (Algorithm::Astar, HeuristicKind::HAdd),
+    (Algorithm::Astar, HeuristicKind::HFf),
+];
+
+/// A seeded proptest runner (deterministic, no persistence files).
+pub fn runner(cases: u32) -> TestRunner {
+    TestRunner::new_with_rng(
+        PtConfig {
+            cases,
+            failure_persistence: None,
+            ..PtConfig::default()
+        },
+        TestRng::deterministic_rng(RngAlgorithm::ChaCha),
+    )
+}
+
+/// Replays `plan` from `start` with `Operator::apply`; the final state, or a message.
+pub fn replay(task: &Task, start: &State, plan: &Plan) -> Result<State, String> {
+    let mut s = start.clone();
+    let mut cost = 0u64;
+    for (i, &o) in plan.operators.iter().enumerate() {
+        let op = &task.operators[o];
+        if !op.applicable(&s) {
+            return Err(format!("step {i}: {} not applicable", op.name));
+        }
+        cost += op.cost as u64;
+        s = op.apply(&s);
+    }
+    if cost != plan.cost {
+        return Err(format!(
+            "plan cost {} but operators sum to {cost}",
+            plan.cost
+        ));
+    }
+    Ok(s)
+}
+
+/// Asserts that `plan` is applicable from the initial state and reaches the task goal.
+pub fn assert_valid(task: &Task, plan: &Plan) {
+    let end = replay(task, &task.init, plan).unwrap_or_else(|e| panic!("invalid plan: {e}"));
+    assert!(task.goal.holds(&end), "plan does not reach the goal");
+}
+
+// ----------------------------------------------------------------------------------------------
+// Generators.
+
+fn cond(pos: Vec<u32>) -> Condition {
+    Condition { pos, neg: vec![] }
+}
+
+/// Grounded n-block blocksworld (4-operator IPC domain) from `init` towers to `goal` towers
+/// (each tower listed bottom to top, blocks `0..n`).
+pub fn blocksworld(n: usize, init: &[Vec<usize>], goal: &[Vec<usize>]) -> Task {
+    let mut facts = Vec::new();
+    let mut id = HashMap::new();
+    let mut fact = |name: String, facts: &mut Vec<String>| -> u32 {
+        *id.entry(name.clone()).or_insert_with(|| {
+            facts.push(name);
+            facts.len() as u32 - 1
+        })
+    };
+    let b = |i: usize| format!("b{i}");
+    let on: Vec<Vec<u32>> = (0..n)
+        .map(|x| {
+            (0..n)
+                .map(|y| fact(format!("(on {} {})", b(x), b(y)), &mut facts))
+                .collect()
+        })
+        .collect();
+    let ontable: Vec<u32> = (0..n)
+        .map(|x| fact(format!("(ontable {})", b(x)), &mut facts))
+        .collect();
+    let clear: Vec<u32> = (0..n)
+        .map(|x| fact(format!("(clear {})", b(x)), &mut facts))
+        .collect();
+    let holding: Vec<u32> = (0..n)
+        .map(|x| fact(format!("(holding {})", b(x)), &mut facts))
+        .collect();
+    let handempty = fact("(handempty)".into(), &mut facts);
+    let mut ops = Vec::new();
+    let op = |name: String, pre: Vec<u32>, add: Vec<u32>, del: Vec<u32>| Operator {
+        name,
+        pre,
+        pre_neg: vec![],
+        add,
+        del,
+        cost: 1,
+    };
+    for x in 0..n {
+        ops.push(op(
+            format!("(pick-up {})", b(x)),
+            vec![clear[x], ontable[x], handempty],
+            vec![holding[x]],
+            vec![clear[x], ontable[x], handempty],
+        ));
+        ops.push(op(
+            format!("(put-down {})", b(x)),
+            vec![holding[x]],
+            vec![clear[x], ontable[x], handempty],
+            vec![holding[x]],
+        ));
+        for y in 0..n {
+            if x == y {
+                continue;
+            }
+            ops.push(op(
+                format!("(stack {} {})", b(x), b(y)),
+                vec![holding[x], clear[y]],
+                vec![on[x][y], clear[x], handempty],
+                vec![holding[x], clear[y]],
+            ));
+            ops.push(op(
+                format!("(unstack {} {})", b(x), b(y)),
+                vec![on[x][y], clear[x], handempty],
+                vec![holding[x], clear[y]],
+                vec![on[x][y], clear[x], handempty],
+            ));
+        }
+    }
+    let tower_facts = |towers: &[Vec<usize>]| {
+        let mut f = Vec::new();
+        for t in towers {
+            f.push(ontable[t[0]]);
+            for w in t.windows(2) {
+                f.push(on[w[1]][w[0]]);
+            }
+            f.push(clear[*t.last().unwrap()]);
+        }
+        f
+    };
+    let mut init_facts = tower_facts(init);
+    init_facts.push(handempty);
+    let nf = facts.len();
+    let goal_pos: Vec<u32> = {
+        let mut f = Vec::new();
+        for t in goal {
+            for w in t.windows(2) {
+                f.push(on[w[1]][w[0]]);
+            }
+        }
+        f
+    };
+    Task::new(
+        facts,
+        ops,
+        State::from_facts(nf, init_facts),
+        Goal {
+            alternatives: vec![cond(goal_pos)],
+            terminal_cost: 0,
+        },
+        vec![],
+        false,
+    )
+}
+
+/// Random towers of blocks `0..n`.
+pub fn random_towers(n: usize, rng: &mut Pcg64Mcg) -> Vec<Vec<usize>> {
+    let mut blocks: Vec<usize> = (0..n).collect();
+    for i in (1..n).rev() {
+        blocks.swap(i, rng.random_range(0..=i));
+    }
+    let mut towers: Vec<Vec<usize>> = Vec::new();
+    for x in blocks {
+        match towers.last_mut() {
+            Some(t) if rng.random_bool(0.6) => t.push(x),
+            _ => towers.push(vec![x]),
+        }
+    }
+    towers
+}
+
+/// A random blocksworld problem with `n` blocks.
+pub fn random_blocksworld(n: usize, seed: u64) -> Task {
+    let mut rng = Pcg64Mcg::seed_from_u64(seed);
+    let init = random_towers(n, &mut rng);
+    let goal = random_towers(n, &mut rng);
+    blocksworld(n, &init, &goal)
+}
+
+fn random_condition(rng: &mut Pcg64Mcg, n: usize, neg: bool) -> Condition {
+    let mut c = Condition::default();
+    for f in 0..n as u32 {
+        let r: f64 = rng.random();
+        if r < 0.25 {
+            c.pos.push(f);
+        } else if neg && r < 0.33 {
+            c.neg.push(f);
+        }
+    }
+    c
+}
+
+/// A random task over `n ≤ 8` facts with negative preconditions and costs 0..=3.
+pub fn random_task(seed: u64, unit_cost: bool) -> Task {
+    let mut rng = Pcg64Mcg::seed_from_u64(seed);
+    let n = rng.random_range(3..=7usize);
+    let m = rng.random_range(2..=12usize);
+    let ops = (0..m)
+        .map(|i| {
+            let pre = random_condition(&mut rng, n, true);
+            let mut add = Vec::new();
+            let mut del = Vec::new();
+            for f in 0..n as u32 {
+                let r: f64 = rng.random();
+                if r < 0.3 {
+                    add.push(f);
+                } else if r < 0.55 {
+                    del.push(f);
+                }
+            }
+            Operator {
+                name: format!("(op{i})"),
+                pre: pre.pos,
+                pre_neg: pre.neg,
+                add,
+                del,
+                cost: if unit_cost {
+                    1
+                } else {
+                    rng.random_range(0..=3)
+                },
+            }
+        })
+        .collect();
+    let init = State::from_facts(n, (0..n as u32).filter(|_| rng.random_bool(0.4)));
+    let goal = random_goal(&mut rng, n, 0);
+    Task::new(
+        (0..n).map(|i| format!("(p{i})")).collect(),
+        ops,
+        init,
+        goal,
+        vec![],
+        false,
+    )
+}
+
+/// A random DNF goal with 1–2 alternatives.
+pub fn random_goal(rng: &mut Pcg64Mcg, n: usize, terminal_cost: u64) -> Goal {
+    let k = rng.random_range(1..=2);
+    Goal {
+        alternatives: (0..k).map(|_| random_condition(rng, n, true)).collect(),
+        terminal_cost,
+    }
+}
+
+// ----------------------------------------------------------------------------------------------
+// Brute force.
+
+/// All states reachable from `start` (breadth-first), and the successor lists.
+pub fn reachable(task: &Task, start: &State) -> (Vec<State>, Vec<Vec<(usize, u64)>>) {
+    let mut index: HashMap<State, usize> = HashMap::from([(start.clone(), 0)]);
+    let mut states = vec![start.clone()];
+    let mut succ = Vec::new();
+    let mut i = 0;
+    while i < states.len() {
+        let s = states[i].clone();
+        let mut out = Vec::new();
+        for op in &task.operators {
+            if op.applicable(&s) {
+                let t = op.apply(&s);
+                let j = *index.entry(t.clone()).or_insert_with(|| {
+                    states.push(t);
+                    states.len() - 1
+                });
+                out.push((j, op.cost as u64));
+            }
+        }
+        succ.push(out);
+        i += 1;
+    }
+    (states, succ)
+}
+
+/// `min_k (cost of a cheapest path from s to a G_k state + c_k)` by Dijkstra, `None` if no goal
+/// is reachable.
+pub fn brute_force_cost(task: &Task, start: &State, goals: &[Goal]) -> Option<u64> {
+    let (states, succ) = reachable(task, start);
+    let mut dist = vec![u64::MAX; states.len()];
+    let mut heap = BinaryHeap::from([std::cmp::Reverse((0u64, 0usize))]);
+    dist[0] = 0;
+    let mut best: Option<u64> = None;
+    while let Some(std::cmp::Reverse((d, i))) = heap.pop() {
+        if d > dist[i] {
+            continue;
+        }
+        for g in goals {
+            if g.holds(&states[i]) {
+                let v = d + g.terminal_cost;
+                best = Some(best.map_or(v, |b: u64| b.min(v)));
+            }
+        }
+        for &(j, c) in &succ[i] {
+            if d + c < dist[j] {
+                dist[j] = d + c;
+                heap.push(std::cmp::Reverse((d + c, j)));
+            }
+        }
+    }
+    best
+}
+
+/// Fewest steps from `start` to any goal state (breadth-first), `None` if unreachable.
+pub fn brute_force_length(task: &Task, start: &State, goals: &[Goal]) -> Option<u64> {
+    let unit: Vec<Operator> = task
+        .operators
+        .iter()
+        .map(|o| Operator {
+            cost: 1,
+            ..o.clone()
+        })
+        .collect();
+    let t = Task::new(
+        task.facts.clone(),
+        unit,
+        task.init.clone(),
+        task.goal.clone(),
+        vec![],
+        false,
+    );
+    let zero: Vec<Goal> = goals
+        .iter()
+        .map(|g| Goal {
+            alternatives: g.alternatives.clone(),
+            terminal_cost: 0,
+        })
+        .collect();
+    brute_force_cost(&t, start, &zero)
+}
+
+/// The (cost, length) a configuration achieved, checking plan validity.
+fn run_checked(task: &Task, alg: Algorithm, h: HeuristicKind) -> Option<(u64, usize)> {
+    let cfg = SearchConfig::new(alg, h);
+    let r = search(task, &cfg, &NoClock);
+    match &r.outcome {
+        Outcome::Plan(p) => {
+            assert_valid(task, p);
+            assert_eq!(r.stats.plan_cost, Some(p.cost));
+            assert_eq!(r.stats.plan_length, Some(p.len()));
+            Some((p.cost, p.len()))
+        }
+        Outcome::Unsolvable => None,
+        Outcome::BudgetExhausted { .. } => panic!("no budget was set"),
+    }
+}
+
+// ----------------------------------------------------------------------------------------------
+// Tests.
+
+#[test]
+fn names_parse_and_print() {
+    for a in Algorithm::ALL {
+        assert_eq!(a.name().parse::<Algorithm>().unwrap(), a);
+    }
+    for h in HeuristicKind::ALL {
+        assert_eq!(h.name().parse::<HeuristicKind>().unwrap(), h);
+    }
+    let e = "dfs".parse::<Algorithm>().unwrap_err();
+    assert!(e.to_string().contains("bfs|ucs|astar|gbfs|lazy-gbfs"));
+    assert!("ff".parse::<HeuristicKind>().is_err());
+}
+
+#[test]
+fn optimal_configs_match_brute_force_on_random_tasks() {
+    runner(150)
+        .run(&(any::<u64>(), any::<bool>()), |(seed, unit)| {
+            let task = random_task(seed, unit);
+            let goals = [task.goal.clone()];
+            let best = brute_force_cost(&task, &task.init, &goals);
+            let shortest = brute_force_length(&task, &task.init, &goals);
+            for (alg, h) in OPTIMAL {
+                let got = run_checked(&task, alg, h);
+                if alg == Algorithm::Bfs {
+                    prop_assert_eq!(got.map(|g| g.1 as u64), shortest, "bfs seed {}", seed);
+                } else {
+                    prop_assert_eq!(got.map(|g| g.0), best, "{} {} seed {}", alg, h, seed);
+                }
+            }
+            for (alg, h) in SATISFICING {
+                let got = run_checked(&task, alg, h);
+                prop_assert_eq!(got.is_some(), best.is_some(), "{} {} seed {}", alg, h, seed);
+            }
+            Ok(())
+        })
+        .unwrap();
+}
+
+#[test]
+fn heuristics_are_ordered_and_admissible_on_all_states() {
+    runner(60)
+        .run(&(any::<u64>(), any::<bool>()), |(seed, unit)| {
+            let task = random_task(seed, unit);
+            let mut rng = Pcg64Mcg::seed_from_u64(seed ^ 0x5eed);
+            // Two goals with terminal costs exercise the artificial goal operators.
+            let c = rng.random_range(0..4);
+            let goals = [
+                task.goal.clone(),
+                random_goal(&mut rng, task.facts.len(), c),
+            ];
+            let mut ev: Vec<HeuristicEvaluator> = HeuristicKind::ALL
+                .iter()
+                .map(|&k| HeuristicEvaluator::new(&task, &goals, k))
+                .collect();
+            let (states, _) = reachable(&task, &task.init);
+            for s in &states {
+                let hstar = brute_force_cost(&task, s, &goals);
+                let v: Vec<Option<u64>> = ev.iter_mut().map(|e| e.value(s)).collect();
+                let [blind, hmax, hadd, hff, lmcut] = [v[0], v[1], v[2], v[3], v[4]];
+                // Dead ends: every relaxation-based heuristic agrees, and only on true dead ends.
+                prop_assert_eq!(hmax.is_none(), hadd.is_none());
+                prop_assert_eq!(hmax.is_none(), hff.is_none());
+                prop_assert_eq!(hmax.is_none(), lmcut.is_none());
+                if hstar.is_some() {
+                    prop_assert!(
+                        hmax.is_some(),
+                        "hmax proved a solvable state dead, seed {}",
+                        seed
+                    );
+                }
+                let Some(hs) = hstar else { continue };
+                for (name, h) in [("blind", blind), ("hmax", hmax), ("lmcut", lmcut)] {
+                    prop_assert!(
+                        h.unwrap() <= hs,
+                        "{} = {:?} > h* = {} seed {}",
+                        name,
+                        h,
+                        hs,
+                        seed
+                    );
+                }
+                prop_assert!(
+                    hmax <= lmcut,
+                    "hmax {:?} > lmcut {:?} seed {}",
+                    hmax,
+                    lmcut,
+                    seed
+                );
+                prop_assert!(
+                    hmax <= hadd,
+                    "hmax {:?} > hadd {:?} seed {}",
+                    hmax,
+                    hadd,
+                    seed
+                );
+                prop_assert!(hmax <= hff && hff <= hadd, "hff {:?} seed {}", hff, seed);
+            }
+            Ok(())
+        })
+        .unwrap();
+}
+
+#[test]
+fn optimal_configs_agree_on_random_blocksworld() {
+    for seed in 0..12 {
+        let n = 4 + (seed as usize % 2);
+        let task = random_blocksworld(n, seed);
+        let best = brute_force_cost(&task, &task.init, std::slice::from_ref(&task.goal));
+        for (alg, h) in OPTIMAL {
+            let got = run_checked(&task, alg, h).map(|g| g.0);
+            assert_eq!(got, best, "{alg} {h} on {n} blocks, seed {seed}");
+        }
+    }
+}
+
+#[test]
+fn satisficing_plans_are_valid_on_larger_blocksworld() {
+    for seed in 0..6 {
+        let task = random_blocksworld(9, 100 + seed);
+        for (alg, h) in SATISFICING {
+            if alg == Algorithm::Astar {
+                continue;
+            }
+            assert!(
+                run_checked(&task, alg, h).is_some(),
+                "{alg} {h} failed, seed {seed}"
+            );
+        }
+    }
+}
+
+/// Two rooms, a one-way door: the goal room cannot be reached again once left.
+fn one_way_task() -> Task {
+    let facts = vec!["(in a)".into(), "(in b)".into(), "(in c)".into()];
+    let mv = |a: u32, b: u32| Operator {
+        name: format!("(move {a} {b})"),
+        pre: vec![a],
+        pre_neg: vec![],
+        add: vec![b],
+        del: vec![a],
+        cost: 1,
+    };
+    // a → b, b → a; c is unreachable (only c → a).
+    Task::new(
+        facts,
+        vec![mv(0, 1), mv(1, 0), mv(2, 0)],
+        State::from_facts(3, [0]),
+        Goal {
+            alternatives: vec![cond(vec![2])],
+            terminal_cost: 0,
+        },
+        vec![],
+        false,
+    )
+}
+
+/// A goal needing a negative literal the relaxation ignores: unsolvable, not a relaxed dead end.
+fn negative_goal_task() -> Task {
+    let ops = vec![Operator {
+        name: "(toggle)".into(),
+        pre: vec![0],
+        pre_neg: vec![],
+        add: vec![1],
+        del: vec![],
+        cost: 1,
+    }];
+    Task::new(
+        vec!["(a)".into(), "(b)".into()],
+        ops,
+        State::from_facts(2, [0]),
+        Goal {
+            alternatives: vec![Condition {
+                pos: vec![1],
+                neg: vec![0],
+            }],
+            terminal_cost: 0,
+        },
+        vec![],
+        false,
+    )
+}
+
+#[test]
+fn unsolvable_tasks_are_proved_unsolvable_by_every_config() {
+    for task in [one_way_task(), negative_goal_task()] {
+        for (alg, h) in OPTIMAL.into_iter().chain(SATISFICING) {
+            let r = search(&task, &SearchConfig::new(alg, h), &NoClock);
+            assert_eq!(r.outcome, Outcome::Unsolvable, "{alg} {h}");
+        }
+    }
+}
+
+#[test]
+fn goal_without_alternatives_is_unsolvable() {
+    let mut task = one_way_task();
+    task.goal = Goal::default();
+    for (alg, h) in OPTIMAL.into_iter().chain(SATISFICING) {
+        let r = search(&task, &SearchConfig::new(alg, h), &NoClock);
+        assert_eq!(r.outcome, Outcome::Unsolvable, "{alg} {h}");
+    }
+}
+
+/// A clock that advances one second each time it is read.
+struct SteppingClock(Cell<f64>);
+
+impl Clock for SteppingClock {
+    fn now_secs(&self) -> f64 {
+        let t = self.0.get();
+        self.0.set(t + 1.0);
+        t
+    }
+}
+
+#[test]
+fn budgets_stop_the_search() {
+    let task = random_blocksworld(8, 7);
+    for (alg, h) in OPTIMAL.into_iter().chain(SATISFICING) {
+        let cfg = SearchConfig {
+            max_nodes: Some(3),
+            ..SearchConfig::new(alg, h)
+        };
+        let r = search(&task, &cfg, &NoClock);
+        assert_eq!(
+            r.outcome,
+            Outcome::BudgetExhausted {
+                which: Budget::Nodes
+            },
+            "{alg} {h}"
+        );
+        assert!(r.stats.expanded <= 3);
+        let cfg = SearchConfig {
+            time_limit_secs: Some(5.0),
+            ..SearchConfig::new(alg, h)
+        };
+        let r = search(&task, &cfg, &SteppingClock(Cell::new(0.0)));
+        assert_eq!(
+            r.outcome,
+            Outcome::BudgetExhausted {
+                which: Budget::Time
+            },
+            "{alg} {h}"
+        );
+    }
+}
+
+#[test]
+fn start_state_satisfying_the_goal_gives_the_empty_plan() {
+    let mut task = random_blocksworld(4, 3);
+    task.init = {
+        // Build the goal towers as the initial state by solving and replaying.
+        let r = search(&task, &SearchConfig::default(), &NoClock);
+        replay(&task, &task.init, r.outcome.plan().unwrap()).unwrap()
+    };
+    for (alg, h) in OPTIMAL.into_iter().chain(SATISFICING) {
+        let r = search(&task, &SearchConfig::new(alg, h), &NoClock);
+        assert_eq!(r.outcome, Outcome::Plan(Plan::default()), "{alg} {h}");
+    }
+}
+
+#[test]
+fn out_of_range_goal_facts_never_hold() {
+    let mut task = one_way_task();
+    task.goal = Goal {
+        alternatives: vec![cond(vec![99]), cond(vec![1])],
+        terminal_cost: 0,
+    };
+    for (alg, h) in OPTIMAL.into_iter().chain(SATISFICING) {
+        let r = search(&task, &SearchConfig::new(alg, h), &NoClock);
+        assert_eq!(r.stats.plan_length, Some(1), "{alg} {h}");
+    }
+}
