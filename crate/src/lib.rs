@@ -22,5 +22,6 @@
 pub mod lqt;
 pub mod pddl;
 pub mod plan;
+pub mod sim;
 #[cfg(feature = "wasm")]
 pub mod wasm;

@@ -1,0 +1,170 @@
+//! Per-action geometry helpers: grasp poses, resting poses, the TCP pose that puts a held body at
+//! a pose, and the arm's drawing/collision capsules.
+//!
+//! Grasp convention: the gripper points straight down (TCP `z` = −world `z`), its tool centre
+//! point is at the block's centre (fingertips around the block's middle), its fingers close along
+//! one of the block's horizontal face normals — the one whose yaw is closest to the direction from
+//! the arm's base to the block (what joint 1 gives naturally). The hook is grasped on its handle
+//! at [`HOOK_GRASP_POINT`] (hook frame), fingers across the handle.
+
+use super::panda::{self, ArmFrames};
+use super::snapshot::BodyKind;
+use super::world::{yaw_of, Arm, World};
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Where the hook is grasped, in the hook's own frame (near the end of the handle) (m).
+pub const HOOK_GRASP_POINT: [f64; 3] = [-0.17, 0.0, 0.0];
+
+/// Link capsules `(a, b, radius)` and finger boxes `(pose, half extents)` in the world frame.
+pub(crate) type ArmDrawing = (
+    Vec<(Vector3<f64>, Vector3<f64>, f64)>,
+    Vec<(Isometry3<f64>, Vector3<f64>)>,
+);
+
+/// Capsules of the links (base to hand) and the two finger boxes of an arm, world frame.
+pub(crate) fn arm_drawing(a: &Arm) -> ArmDrawing {
+    let f: ArmFrames = panda::forward_frames(&a.base, &a.joints);
+    let o = |i: usize| f.frames[i].p;
+    let hand = &f.frames[9];
+    let hp = |y: f64, z: f64| hand.p + hand.r * Vector3::new(0.0, y, z);
+    let links = vec![
+        (o(0), o(1), 0.075),
+        (o(2), o(3), 0.065),
+        (o(3), o(4), 0.06),
+        (o(4), o(5), 0.06),
+        (o(5), o(7), 0.055),
+        (o(7), o(8), 0.05),
+        (hp(-0.08, 0.05), hp(0.08, 0.05), 0.035),
+    ];
+    let tcp = f.tcp.to_iso();
+    let half = Vector3::new(0.01, 0.006, 0.0225);
+    let fingers = [-1.0, 1.0]
+        .iter()
+        .map(|s| {
+            let off = Vector3::new(0.0, s * (0.5 * a.gripper_opening + half.y), -0.018);
+            (
+                tcp * Isometry3::from_parts(Translation3::from(off), UnitQuaternion::identity()),
+                half,
+            )
+        })
+        .collect();
+    (links, fingers)
+}
+
+/// Wraps an angle to (−π, π].
+pub(crate) fn wrap(a: f64) -> f64 {
+    let mut x = (a + PI).rem_euclid(2.0 * PI) - PI;
+    if x <= -PI {
+        x += 2.0 * PI;
+    }
+    x
+}
+
+/// Among `yaw + k·step` (k integer) the one closest to `preferred`.
+fn closest_yaw(yaw: f64, step: f64, preferred: f64) -> f64 {
+    let k = ((preferred - yaw) / step).round();
+    wrap(yaw + k * step)
+}
+
+/// Yaw of the direction from arm `arm`'s base to the point `p`, in the world.
+fn yaw_from_base(world: &World, arm: usize, p: &Vector3<f64>) -> f64 {
+    let base = world.arm_base(arm).unwrap_or_else(Isometry3::identity);
+    let d = p - base.translation.vector;
+    if d.x.hypot(d.y) < 1e-6 {
+        yaw_of(&base.rotation)
+    } else {
+        d.y.atan2(d.x)
+    }
+}
+
+/// The TCP pose with which arm `arm` grasps the block or hook called `body` from above (see the
+/// module docs), or `None` for an unknown body or a fixed one.
+pub fn grasp_pose(world: &World, arm: usize, body: &str) -> Option<Isometry3<f64>> {
+    let pose = world.body_pose(body)?;
+    match world.body_kind(body)? {
+        BodyKind::Block => {
+            let p = pose.translation.vector;
+            let yaw = closest_yaw(
+                yaw_of(&pose.rotation),
+                FRAC_PI_2,
+                yaw_from_base(world, arm, &p),
+            );
+            Some(Isometry3::from_parts(
+                Translation3::from(p),
+                panda::down_orientation(yaw),
+            ))
+        }
+        BodyKind::Hook => {
+            let p = (pose * Point3::from(Vector3::from(HOOK_GRASP_POINT))).coords;
+            let yaw = closest_yaw(yaw_of(&pose.rotation), PI, yaw_from_base(world, arm, &p));
+            Some(Isometry3::from_parts(
+                Translation3::from(p),
+                panda::down_orientation(yaw),
+            ))
+        }
+        BodyKind::Table | BodyKind::Shelf => None,
+    }
+}
+
+/// The pose at which body `body` (a block or the hook) rests with its centre above `(x, y)` and
+/// yaw `yaw`: on the highest top face under `(x, y)` among the other bodies that are not held (a
+/// table, the shelf or a block). `None` for an unknown body or when nothing is under `(x, y)`.
+pub fn rest_pose(world: &World, body: &str, x: f64, y: f64, yaw: f64) -> Option<Isometry3<f64>> {
+    let bi = world.body_index(body)?;
+    let b = &world.bodies[bi];
+    let rot = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw);
+    let probe = Isometry3::from_parts(Translation3::new(x, y, 0.0), rot);
+    let (lo, _) = b.aabb_at(&probe);
+    let held: Vec<usize> = (0..world.arms.len())
+        .filter_map(|a| world.arms[a].holding.map(|(i, _)| i))
+        .collect();
+    let top = world
+        .bodies
+        .iter()
+        .enumerate()
+        .filter(|(j, o)| *j != bi && !o.lost && !held.contains(j))
+        .filter_map(|(_, o)| o.top_under(x, y, 0.0))
+        .fold(None, |acc: Option<f64>, t| {
+            Some(acc.map_or(t, |a| a.max(t)))
+        })?;
+    Some(Isometry3::from_parts(
+        Translation3::new(x, y, top - lo.z),
+        rot,
+    ))
+}
+
+/// The pose at which `body` rests centred on top of `support` (a block, table or shelf), with
+/// the yaw of `support` for a block and `yaw` otherwise.
+pub fn rest_pose_on(world: &World, body: &str, support: &str, yaw: f64) -> Option<Isometry3<f64>> {
+    let sp = world.body_pose(support)?;
+    let yaw = if world.body_kind(support)? == BodyKind::Block {
+        yaw_of(&sp.rotation)
+    } else {
+        yaw
+    };
+    let (lo, hi) = world.body_aabb(support)?;
+    let c = if world.body_kind(support)? == BodyKind::Block {
+        sp.translation.vector
+    } else {
+        0.5 * (lo + hi)
+    };
+    rest_pose(world, body, c.x, c.y, yaw)
+}
+
+/// The TCP pose that puts the body held by arm `arm` at `body_pose` (using the actual grasp), or,
+/// when the arm holds nothing, the standard top grasp of a block at `body_pose`.
+pub fn tcp_for_body_pose(world: &World, arm: usize, body_pose: &Isometry3<f64>) -> Isometry3<f64> {
+    match world.grasp_transform(arm) {
+        Some(g) => body_pose * g.inverse(),
+        None => {
+            let p = body_pose.translation.vector;
+            let yaw = closest_yaw(
+                yaw_of(&body_pose.rotation),
+                FRAC_PI_2,
+                yaw_from_base(world, arm, &p),
+            );
+            Isometry3::from_parts(Translation3::from(p), panda::down_orientation(yaw))
+        }
+    }
+}

@@ -1,0 +1,52 @@
+//! A small deterministic kinematic world: tables, a shelf, 6 cm blocks, a hook and 7-DoF
+//! Panda-like arms (paper §IV, benchmarks B1–B3), its scene graph of PDDL facts, the
+//! disturbances L1–L4 and the benchmark task generator.
+//!
+//! # Model
+//!
+//! Bodies are unions of boxes (parry [`Cuboid`](parry3d_f64::shape::Cuboid)s) at nalgebra poses;
+//! arms are chains from the Panda's modified DH parameters ([`panda`]), with capsule links and a
+//! parallel gripper whose tool centre point (TCP) lies between the fingertips. Time advances in
+//! fixed steps `dt` (default 10 ms) by [`World::step`]; every arm follows its commanded TCP pose
+//! ([`World::command_arm`]) through damped-least-squares IK, each joint moving at most
+//! `q̇_max · dt` per step.
+//!
+//! # Contact rules (kinematic, not dynamic)
+//!
+//! 1. **Grasp.** When a gripper's command switches to *close* while its fingers are open, the
+//!    first free block or hook whose volume (grown by 5 mm) contains the TCP is grasped; from then
+//!    on it moves rigidly with the TCP (its pose in the TCP frame is frozen at the grasp).
+//! 2. **Release.** When the command switches to *open*, the held body is levelled (tilt removed,
+//!    yaw kept) and dropped straight down (a parry shape cast) onto the first body under it. It
+//!    comes to rest there if its centroid lies over a top face at that height (a block, a table, the
+//!    shelf). Otherwise it would tip over or it falls past every support: it is then *lost*, lies on
+//!    the floor and takes no further part in contacts or facts.
+//! 3. **Hook.** When the held hook moves by `d` during a step, each free block that the hook's
+//!    boxes hit while translating along `d` (parry shape cast, the swept volume) is pushed
+//!    horizontally by the part of `d` left after the impact, together with the blocks standing on
+//!    it. A block pushed off its support is lost.
+//! 4. **User moves** ([`World::move_block`]): a block goes to the requested position and settles
+//!    as in rule 2; blocks that stood on it settle onto what is below them. A move that would
+//!    interpenetrate a body or an arm link, or leave a block without support, is refused with the
+//!    reason and the world is left unchanged.
+//! 5. Nothing else moves: carried blocks are not pushed by other carried blocks, there is no
+//!    friction, no toppling of towers. [`World::check_invariants`] reports any interpenetration
+//!    deeper than 2 mm, any free body more than 5 mm above its support, lost bodies, and joints
+//!    outside their limits.
+//!
+//! Everything is deterministic: fixed steps, seeded randomness, `Vec`s in stable order.
+
+// Index loops mirror the maths (joint k, coordinate i) in this module.
+#![allow(clippy::needless_range_loop)]
+
+pub mod geometry;
+pub mod panda;
+pub mod scene_graph;
+pub mod snapshot;
+mod world;
+
+pub use scene_graph::{Fact, SceneGraph};
+pub use world::{
+    GripperCommand, MoveOutcome, Refused, SceneError, SimError, Violation, World, WorldEvent,
+    WorldParams, KNOWN_PREDICATES,
+};

@@ -1,0 +1,240 @@
+//! The scene graph: the PDDL fluent facts `S_C` of the current world (paper Algorithm 1,
+//! *SceneGraph*), derived from geometry.
+//!
+//! Definitions (names are the bodies', arms' and regions' lower-case names; a *free* body is a
+//! block or the hook that is neither held nor lost; `tol` = [`WorldParams::support_tolerance`]
+//! (5 mm); "rests on s" means the body's bottom is within `tol` of the top face of `s` and its
+//! centroid lies over that face — the same test the invariants use):
+//!
+//! | fact | holds when |
+//! |---|---|
+//! | `(on x y)` | free block x rests on block y |
+//! | `(ontable x)` | free block or hook x rests on a table |
+//! | `(onshelf x)` | free block x rests on a shelf |
+//! | `(clear x)` | block x is free and no free block rests on it |
+//! | `(holding r x)` | arm r holds x |
+//! | `(handempty r)` | arm r holds nothing |
+//! | `(inreach r x)` | x (block or hook) is held by r, or is free and the horizontal distance from r's base axis to its grasp point (block centre, hook [`HOOK_GRASP_POINT`]) is within r's reach annulus |
+//! | `(at x p)` | free block x rests on a table or a block with its centre inside region p |
+//!
+//! Only the predicates listed in the scene's `predicates` are reported (the benchmark domain's
+//! fluents), so the set equals what the PDDL problem's `:init` states for that world. Facts are
+//! sorted (predicate order of [`KNOWN_PREDICATES`](super::world::KNOWN_PREDICATES), then
+//! arguments), so the output is deterministic.
+//!
+//! [`WorldParams::support_tolerance`]: super::WorldParams::support_tolerance
+//! [`HOOK_GRASP_POINT`]: super::geometry::HOOK_GRASP_POINT
+
+use super::geometry::HOOK_GRASP_POINT;
+use super::snapshot::BodyKind;
+use super::world::{World, KNOWN_PREDICATES};
+use nalgebra::{Point3, Vector3};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// One ground fact, e.g. `(on a b)`.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub struct Fact {
+    /// Predicate name (lower case).
+    pub predicate: String,
+    /// Object names (lower case).
+    pub args: Vec<String>,
+}
+
+impl Fact {
+    /// A fact from a predicate and arguments.
+    pub fn new(predicate: &str, args: &[&str]) -> Fact {
+        Fact {
+            predicate: predicate.to_string(),
+            args: args.iter().map(|s| s.to_string()).collect(),
+        }
+    }
+}
+
+impl fmt::Display for Fact {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "({}", self.predicate)?;
+        for a in &self.args {
+            write!(f, " {a}")?;
+        }
+        write!(f, ")")
+    }
+}
+
+/// A PDDL object present in the scene and its type.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SceneObject {
+    /// Object name.
+    pub name: String,
+    /// PDDL type: `arm`, `block`, `hook` or `region`.
+    pub kind: String,
+}
+
+/// The facts of a world.
+#[derive(Clone, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub struct SceneGraph {
+    /// The facts, sorted.
+    pub facts: Vec<Fact>,
+}
+
+impl SceneGraph {
+    /// Derives the facts of `world` (see the module documentation for the definitions).
+    pub fn from_world(world: &World) -> SceneGraph {
+        let want = |p: &str| world.predicates.iter().any(|q| q == p);
+        let tol = world.params.support_tolerance;
+        let mut facts = Vec::new();
+        let held: Vec<Option<usize>> = world
+            .arms
+            .iter()
+            .map(|a| a.holding.map(|(i, _)| i))
+            .collect();
+        let is_held = |i: usize| held.contains(&Some(i));
+        let free = |i: usize| {
+            let b = &world.bodies[i];
+            b.is_movable() && !b.lost && !is_held(i)
+        };
+        // support[i] = the body free body i rests on.
+        let support: Vec<Option<usize>> = (0..world.bodies.len())
+            .map(|i| if free(i) { world.support_of(i) } else { None })
+            .collect();
+        let _ = tol;
+        for (i, b) in world.bodies.iter().enumerate() {
+            if !free(i) {
+                continue;
+            }
+            let Some(s) = support[i] else { continue };
+            let sk = world.bodies[s].kind;
+            match (b.kind, sk) {
+                (BodyKind::Block, BodyKind::Block) if want("on") => {
+                    facts.push(Fact::new("on", &[&b.name, &world.bodies[s].name]))
+                }
+                (BodyKind::Block | BodyKind::Hook, BodyKind::Table) if want("ontable") => {
+                    facts.push(Fact::new("ontable", &[&b.name]))
+                }
+                (BodyKind::Block, BodyKind::Shelf) if want("onshelf") => {
+                    facts.push(Fact::new("onshelf", &[&b.name]))
+                }
+                _ => {}
+            }
+            if b.kind == BodyKind::Block
+                && want("at")
+                && matches!(sk, BodyKind::Table | BodyKind::Block)
+            {
+                let c = b.pose.translation.vector;
+                for r in &world.regions {
+                    if r.contains(c.x, c.y) {
+                        facts.push(Fact::new("at", &[&b.name, &r.name]));
+                    }
+                }
+            }
+        }
+        if want("clear") {
+            for (i, b) in world.bodies.iter().enumerate() {
+                if b.kind == BodyKind::Block && free(i) && !support.contains(&Some(i)) {
+                    facts.push(Fact::new("clear", &[&b.name]));
+                }
+            }
+        }
+        for (ai, a) in world.arms.iter().enumerate() {
+            match held[ai] {
+                Some(i) if want("holding") => {
+                    facts.push(Fact::new("holding", &[&a.name, &world.bodies[i].name]))
+                }
+                None if want("handempty") => facts.push(Fact::new("handempty", &[&a.name])),
+                _ => {}
+            }
+            if want("inreach") {
+                let base = a.base.translation.vector;
+                for (i, b) in world.bodies.iter().enumerate() {
+                    let inreach = if held[ai] == Some(i) {
+                        true
+                    } else if free(i) {
+                        let p = match b.kind {
+                            BodyKind::Hook => {
+                                (b.pose * Point3::from(Vector3::from(HOOK_GRASP_POINT))).coords
+                            }
+                            _ => b.pose.translation.vector,
+                        };
+                        let r = (p.x - base.x).hypot(p.y - base.y);
+                        r >= a.reach.min_radius && r <= a.reach.max_radius
+                    } else {
+                        false
+                    };
+                    if inreach {
+                        facts.push(Fact::new("inreach", &[&a.name, &b.name]));
+                    }
+                }
+            }
+        }
+        let rank = |p: &str| {
+            KNOWN_PREDICATES
+                .iter()
+                .position(|q| *q == p)
+                .unwrap_or(usize::MAX)
+        };
+        facts.sort_by(|x, y| {
+            rank(&x.predicate)
+                .cmp(&rank(&y.predicate))
+                .then_with(|| x.args.cmp(&y.args))
+        });
+        facts.dedup();
+        SceneGraph { facts }
+    }
+
+    /// The facts as strings like `(on a b)`.
+    pub fn to_strings(&self) -> Vec<String> {
+        self.facts.iter().map(|f| f.to_string()).collect()
+    }
+
+    /// Whether the fact written as `(pred arg …)` holds (whitespace and case insensitive).
+    pub fn contains(&self, fact: &str) -> bool {
+        let norm = normalise(fact);
+        self.facts.iter().any(|f| f.to_string() == norm)
+    }
+
+    /// The PDDL objects of `world`: arms, blocks, the hook (if the domain uses it), regions.
+    pub fn objects(world: &World) -> Vec<SceneObject> {
+        let mut out: Vec<SceneObject> = world
+            .arms
+            .iter()
+            .map(|a| SceneObject {
+                name: a.name.clone(),
+                kind: "arm".into(),
+            })
+            .collect();
+        let mut blocks: Vec<&str> = world.block_names();
+        blocks.sort();
+        out.extend(blocks.iter().map(|b| SceneObject {
+            name: b.to_string(),
+            kind: "block".into(),
+        }));
+        out.extend(
+            world
+                .bodies
+                .iter()
+                .filter(|b| b.kind == BodyKind::Hook)
+                .map(|b| SceneObject {
+                    name: b.name.clone(),
+                    kind: "hook".into(),
+                }),
+        );
+        out.extend(world.regions.iter().map(|r| SceneObject {
+            name: r.name.clone(),
+            kind: "region".into(),
+        }));
+        out
+    }
+}
+
+/// `( On  A b )` → `(on a b)`.
+pub(crate) fn normalise(fact: &str) -> String {
+    let inner = fact.trim().trim_start_matches('(').trim_end_matches(')');
+    format!(
+        "({})",
+        inner
+            .split_whitespace()
+            .map(|s| s.to_ascii_lowercase())
+            .collect::<Vec<_>>()
+            .join(" ")
+    )
+}
