@@ -4,7 +4,27 @@
 //! `serde-wasm-bindgen`, TypeScript declarations from `tsify` or hand-written custom sections);
 //! every fallible call returns a rejected value carrying a message instead of panicking.
 
+use crate::pddl::{self, PddlError};
+use crate::plan::{self, Algorithm, Clock, HeuristicKind, Outcome, SearchConfig};
+use serde::{Deserialize, Serialize};
+use tsify::Tsify;
 use wasm_bindgen::prelude::*;
+
+#[wasm_bindgen]
+extern "C" {
+    /// `performance.now()` (ms): exists in windows, workers and node ≥ 16.
+    #[wasm_bindgen(js_namespace = performance, js_name = now)]
+    fn performance_now() -> f64;
+}
+
+/// The JS high-resolution clock, for search time limits and reported times.
+struct PerformanceClock;
+
+impl Clock for PerformanceClock {
+    fn now_secs(&self) -> f64 {
+        performance_now() / 1000.0
+    }
+}
 
 /// The crate version, e.g. `"0.1.0"`.
 #[wasm_bindgen]
@@ -147,3 +167,273 @@ export interface LqtOutput {
   feedback?: { F: number[][]; gains: number[][][]; nominal: LqtRollout; perturbed?: LqtRollout };
 }
 "#;
+
+/// Options of [`plan()`]; every field is optional.
+#[derive(Debug, Default, Deserialize, Tsify)]
+#[serde(default, deny_unknown_fields)]
+pub struct PlanOptions {
+    /// `bfs|ucs|astar|gbfs|lazy-gbfs` (default `astar`).
+    #[tsify(optional)]
+    pub search: Option<String>,
+    /// `blind|hmax|hadd|hff|lmcut` (default `lmcut` for `astar`, `hff` otherwise).
+    #[tsify(optional)]
+    pub heuristic: Option<String>,
+    /// Stop after this many expanded states (default: unbounded).
+    #[tsify(optional)]
+    pub max_expanded: Option<u64>,
+    /// Stop after this many milliseconds (default 30 000).
+    #[tsify(optional)]
+    pub time_limit_ms: Option<f64>,
+    /// File names used in diagnostics (default `domain.pddl`, `problem.pddl`).
+    #[tsify(optional)]
+    pub domain_file: Option<String>,
+    /// See `domain_file`.
+    #[tsify(optional)]
+    pub problem_file: Option<String>,
+}
+
+/// A located message about one of the inputs.
+#[derive(Debug, Clone, Serialize, Tsify)]
+pub struct Diagnostic {
+    /// Which input: `domain`, `problem` or `options`.
+    #[tsify(type = "\"domain\" | \"problem\" | \"options\"")]
+    pub source: &'static str,
+    /// The file name used in the message.
+    pub file: String,
+    /// 1-based line (0 when the message is not about a place in the text).
+    pub line: usize,
+    /// 1-based column in characters (0 when `line` is 0).
+    pub col: usize,
+    /// What is wrong.
+    pub message: String,
+}
+
+/// A plan found by [`plan()`].
+#[derive(Debug, Serialize, Tsify)]
+pub struct PlanFound {
+    /// Always `true`.
+    #[tsify(type = "true")]
+    pub ok: bool,
+    /// The actions, `(stack a b)`, in order.
+    pub plan: Vec<String>,
+    /// The plan's cost (its length without `:action-costs`).
+    pub cost: u64,
+    /// Whether the configuration guarantees an optimal plan.
+    pub optimal: bool,
+    /// States expanded.
+    pub expanded: u64,
+    /// States generated.
+    pub generated: u64,
+    /// Search time in milliseconds (grounding excluded).
+    pub time_ms: f64,
+    /// Grounding time in milliseconds.
+    pub ground_ms: f64,
+    /// The fluent facts of the initial state and after each action (`plan.length + 1` entries).
+    pub states: Vec<Vec<String>>,
+}
+
+/// Why [`plan()`] found no plan.
+#[derive(Debug, Serialize, Tsify)]
+pub struct PlanFailed {
+    /// Always `false`.
+    #[tsify(type = "false")]
+    pub ok: bool,
+    /// `parse` (or grounding) errors, `options`, `unsolvable` (proved), or `budget` (ran out).
+    #[tsify(type = "\"parse\" | \"options\" | \"unsolvable\" | \"budget\"")]
+    pub kind: &'static str,
+    /// One line for people.
+    pub message: String,
+    /// Located errors (empty for `unsolvable` and `budget`).
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// The result of [`plan()`]: test `ok` to tell them apart.
+#[derive(Debug, Serialize, Tsify)]
+#[serde(untagged)]
+pub enum PlanOutcome {
+    /// A plan was found.
+    Found(PlanFound),
+    /// No plan: why.
+    Failed(PlanFailed),
+}
+
+fn diagnostic(e: &PddlError, domain_file: &str) -> Diagnostic {
+    Diagnostic {
+        source: if e.file == domain_file {
+            "domain"
+        } else {
+            "problem"
+        },
+        file: e.file.clone(),
+        line: e.line,
+        col: e.col,
+        message: e.message.clone(),
+    }
+}
+
+fn failed(kind: &'static str, message: String, diagnostics: Vec<Diagnostic>) -> PlanOutcome {
+    PlanOutcome::Failed(PlanFailed {
+        ok: false,
+        kind,
+        message,
+        diagnostics,
+    })
+}
+
+/// Parses and grounds both texts; `Err` carries the failure to report.
+fn parse_and_ground(
+    domain_text: &str,
+    problem_text: &str,
+    domain_file: &str,
+    problem_file: &str,
+) -> Result<plan::Task, PlanOutcome> {
+    let parse_err =
+        |e: PddlError| failed("parse", e.to_string(), vec![diagnostic(&e, domain_file)]);
+    let domain = pddl::parse_domain(domain_text, domain_file).map_err(parse_err)?;
+    let problem = pddl::parse_problem(problem_text, problem_file, &domain).map_err(parse_err)?;
+    plan::ground(&domain, &problem).map_err(|e| match e {
+        plan::GroundError::Located(p) => parse_err(p),
+        other => failed(
+            "parse",
+            other.to_string(),
+            vec![Diagnostic {
+                source: "problem",
+                file: problem_file.to_string(),
+                line: 0,
+                col: 0,
+                message: other.to_string(),
+            }],
+        ),
+    })
+}
+
+fn options_error(message: String) -> PlanOutcome {
+    failed(
+        "options",
+        message.clone(),
+        vec![Diagnostic {
+            source: "options",
+            file: String::new(),
+            line: 0,
+            col: 0,
+            message,
+        }],
+    )
+}
+
+fn plan_impl(domain_text: &str, problem_text: &str, o: PlanOptions) -> PlanOutcome {
+    let domain_file = o.domain_file.as_deref().unwrap_or("domain.pddl");
+    let problem_file = o.problem_file.as_deref().unwrap_or("problem.pddl");
+    let algorithm = match o.search.as_deref().unwrap_or("astar").parse::<Algorithm>() {
+        Ok(a) => a,
+        Err(e) => return options_error(e.to_string()),
+    };
+    let default_h = if algorithm == Algorithm::Astar {
+        "lmcut"
+    } else {
+        "hff"
+    };
+    let heuristic = match o
+        .heuristic
+        .as_deref()
+        .unwrap_or(default_h)
+        .parse::<HeuristicKind>()
+    {
+        Ok(h) => h,
+        Err(e) => return options_error(e.to_string()),
+    };
+    let clock = PerformanceClock;
+    let t0 = clock.now_secs();
+    let task = match parse_and_ground(domain_text, problem_text, domain_file, problem_file) {
+        Ok(t) => t,
+        Err(out) => return out,
+    };
+    let ground_ms = (clock.now_secs() - t0) * 1e3;
+    let config = SearchConfig {
+        algorithm,
+        heuristic,
+        max_nodes: o.max_expanded,
+        time_limit_secs: Some(o.time_limit_ms.unwrap_or(30_000.0).max(0.0) / 1e3),
+    };
+    let r = plan::search(&task, &config, &clock);
+    match r.outcome {
+        Outcome::Plan(p) => {
+            let names = |s: &plan::State| -> Vec<String> {
+                s.facts().map(|f| task.facts[f as usize].clone()).collect()
+            };
+            let mut s = task.init.clone();
+            let mut states = vec![names(&s)];
+            for &op in &p.operators {
+                s = task.operators[op].apply(&s);
+                states.push(names(&s));
+            }
+            PlanOutcome::Found(PlanFound {
+                ok: true,
+                plan: p.names(&task).into_iter().map(str::to_string).collect(),
+                cost: p.cost,
+                optimal: config.is_optimal(),
+                expanded: r.stats.expanded,
+                generated: r.stats.generated,
+                time_ms: r.stats.time_secs * 1e3,
+                ground_ms,
+                states,
+            })
+        }
+        Outcome::Unsolvable => failed(
+            "unsolvable",
+            format!(
+                "the problem is unsolvable: no goal state among {} reachable states",
+                r.stats.states
+            ),
+            vec![],
+        ),
+        Outcome::BudgetExhausted { which } => failed(
+            "budget",
+            format!(
+                "no plan within the {which} ({} states expanded)",
+                r.stats.expanded
+            ),
+            vec![],
+        ),
+    }
+}
+
+/// Plans a PDDL problem: parses both texts (errors at `line:col`), grounds, and searches.
+///
+/// Never throws for bad PDDL or an unsolvable problem: the outcome says `ok: false` with the
+/// reason and the located diagnostics. It rejects only when `options` is not an options object.
+#[wasm_bindgen(unchecked_return_type = "PlanOutcome")]
+pub fn plan(
+    domain: &str,
+    problem: &str,
+    #[wasm_bindgen(unchecked_param_type = "PlanOptions | undefined")] options: JsValue,
+) -> Result<JsValue, JsError> {
+    let o: PlanOptions = if options.is_undefined() || options.is_null() {
+        PlanOptions::default()
+    } else {
+        // Through serde_json so that misspelt keys are refused (deny_unknown_fields).
+        let v: serde_json::Value =
+            serde_wasm_bindgen::from_value(options).map_err(|e| js_err(format!("options: {e}")))?;
+        serde_json::from_value(v).map_err(|e| js_err(format!("options: {e}")))?
+    };
+    to_js(&plan_impl(domain, problem, o))
+}
+
+/// Parses and grounds a domain and a problem without searching: the located errors, if any
+/// (what an editor shows as you type). File names as in [`PlanOptions`].
+#[wasm_bindgen(js_name = check, unchecked_return_type = "Diagnostic[]")]
+pub fn check(
+    domain: &str,
+    problem: &str,
+    domain_file: Option<String>,
+    problem_file: Option<String>,
+) -> Result<JsValue, JsError> {
+    let d = domain_file.as_deref().unwrap_or("domain.pddl");
+    let p = problem_file.as_deref().unwrap_or("problem.pddl");
+    let diags = match parse_and_ground(domain, problem, d, p) {
+        Ok(_) => vec![],
+        Err(PlanOutcome::Failed(f)) => f.diagnostics,
+        Err(PlanOutcome::Found(_)) => vec![],
+    };
+    to_js(&diags)
+}

@@ -70,3 +70,28 @@ export async function openPage(browser, url, { width = 1440, height = 900 } = {}
   await page.goto(url);
   return { page, errors };
 }
+
+/** Opens the page with URL parameters and waits until the worker is ready and the first frame drawn. */
+export async function openApp(browser, server, query = '') {
+  const r = await openPage(browser, `${server.url}${query}`);
+  await r.page.waitForSelector('#app[data-ready="true"]', { timeout: 30000 });
+  return r;
+}
+
+/** The page's current frame. */
+export async function currentFrame(page) {
+  return page.evaluate(() => window.lfd.frame());
+}
+
+/** Waits until the run is done or failed and returns the last frame. */
+export async function finish(page, timeout = 120000) {
+  await page.waitForFunction(
+    () => {
+      const f = window.lfd.frame();
+      return f && (f.status.kind === 'done' || f.status.kind === 'failed');
+    },
+    null,
+    { timeout, polling: 200 },
+  );
+  return currentFrame(page);
+}

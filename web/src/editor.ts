@@ -27,11 +27,11 @@ const pddl = StreamLanguage.define<{ depth: number }>({
       return 'paren';
     }
     if (ch === ':') {
-      stream.match(/^:[\w-]+/);
+      if (!stream.match(/^:[\w-]+/)) stream.next();
       return 'keyword';
     }
     if (ch === '?') {
-      stream.match(/^\?[\w-]+/);
+      if (!stream.match(/^\?[\w-]+/)) stream.next();
       return 'variableName';
     }
     if (ch === '-' && stream.match(/^-\s/, false)) {
@@ -40,7 +40,7 @@ const pddl = StreamLanguage.define<{ depth: number }>({
     }
     if (stream.match(/^-?\d+(\.\d+)?/)) return 'number';
     if (stream.match(/^(define|domain|problem|and|or|not|imply|forall|exists|when|either|increase)\b/i)) return 'keyword';
-    stream.match(/^[^\s();]+/);
+    if (!stream.match(/^[^\s();]+/)) stream.next();
     return 'atom';
   },
 });
@@ -73,6 +73,7 @@ export type Which = 'domain' | 'problem';
 
 export interface EditorPanelOptions {
   plan: (domain: string, problem: string, options: PlanOptions) => Promise<PlanOutcome>;
+  check: (domain: string, problem: string) => Promise<Diagnostic[]>;
 }
 
 function offsetOf(doc: EditorState['doc'], line: number, col: number): number {
@@ -91,7 +92,6 @@ export class EditorPanel {
   private readonly search: HTMLSelectElement;
   private readonly heuristic: HTMLSelectElement;
   private readonly planButton: HTMLButtonElement;
-  private current: Which = 'domain';
   private lastPlan: Extract<PlanOutcome, { ok: true }> | null = null;
   private selected = 0;
   private lintTimer = 0;
@@ -155,7 +155,6 @@ export class EditorPanel {
   }
 
   show(which: Which): void {
-    this.current = which;
     for (const w of ['domain', 'problem'] as Which[]) {
       this.hosts[w].hidden = w !== which;
       this.tabs[w].classList.toggle('active', w === which);
@@ -184,11 +183,10 @@ export class EditorPanel {
     this.lintTimer = window.setTimeout(() => void this.check(), 600);
   }
 
-  /** Parses both texts (a cheap plan call with a zero budget is not needed: parse errors come first). */
+  /** Parses and grounds both texts as the user types; shows the located errors. */
   private async check(): Promise<void> {
     try {
-      const out = await this.opts.plan(this.text('domain'), this.text('problem'), { parse_only: true });
-      this.showDiagnostics(out.ok ? [] : out.diagnostics);
+      this.showDiagnostics(await this.opts.check(this.text('domain'), this.text('problem')));
     } catch (e) {
       this.errorList.replaceChildren(el('li', { class: 'diagnostic' }, (e as Error).message));
     }
@@ -198,7 +196,7 @@ export class EditorPanel {
     for (const w of ['domain', 'problem'] as Which[]) {
       const v = this.views[w];
       const mine: CmDiagnostic[] = diags
-        .filter((d) => d.file === w && d.line > 0)
+        .filter((d) => d.source === w && d.line > 0)
         .map((d) => {
           const from = offsetOf(v.state.doc, d.line, d.col);
           return { from, to: Math.min(from + 1, v.state.doc.length), severity: 'error', message: d.message };
@@ -207,11 +205,12 @@ export class EditorPanel {
     }
     this.errorList.replaceChildren(
       ...diags.map((d) => {
-        const where = d.line > 0 ? `${d.file}.pddl:${d.line}:${d.col}` : d.file;
+        const where = d.line > 0 ? `${d.file}:${d.line}:${d.col}` : d.file || d.source;
         const li = el('li', { class: 'diagnostic' }, el('code', {}, where), ' ', d.message);
-        if (d.line > 0 && (d.file === 'domain' || d.file === 'problem')) {
+        if (d.line > 0 && d.source !== 'options') {
+          const src = d.source;
           li.tabIndex = 0;
-          li.onclick = () => this.reveal(d.file as Which, d.line, d.col);
+          li.onclick = () => this.reveal(src, d.line, d.col);
         }
         return li;
       }),

@@ -196,7 +196,10 @@ const view = new View(stage, {
 });
 let autoResume = false;
 const charts = new Charts(chartsPanel);
-const editor = new EditorPanel({ plan: (domain, problem, o) => client.call('plan', { domain, problem, options: o }) });
+const editor = new EditorPanel({
+  plan: (domain, problem, o) => client.call('plan', { domain, problem, options: o }),
+  check: (domain, problem) => client.call('check', { domain, problem }),
+});
 editorHost.append(editor.root);
 let editorBenchmark: Benchmark | null = null;
 
@@ -309,6 +312,13 @@ function renderPanels(f: Frame): void {
 }
 
 // ---------- actions ----------
+/** Runs an action; a rejected call (no session, a refused request) becomes a notice, not an error. */
+function guard(f: () => unknown): void {
+  Promise.resolve()
+    .then(f)
+    .catch((e: unknown) => showNotice(e instanceof Error ? e.message : String(e), 'error'));
+}
+
 function setPlaying(p: boolean): void {
   playing = p;
   playBtn.textContent = p ? '❚❚ Pause' : '▶ Play';
@@ -391,34 +401,37 @@ seedIn.onchange = () => {
   options.seed = Math.max(0, Math.floor(Number(seedIn.value)) || 0);
   seedIn.value = String(options.seed);
   updateUrl();
-  void reset();
+  guard(reset);
 };
-resetBtn.onclick = () => void reset();
-playBtn.onclick = () => void (playing ? pause() : play());
-stepBtn.onclick = async () => {
-  setPlaying(false);
-  render(await client.call('step', { dt: 0.1 }));
-};
+resetBtn.onclick = () => guard(reset);
+playBtn.onclick = () => guard(() => (playing ? pause() : play()));
+stepBtn.onclick = () =>
+  guard(async () => {
+    setPlaying(false);
+    render(await client.call('step', { dt: 0.1 }));
+  });
 speedSel.onchange = () => {
   speed = Number(speedSel.value);
   updateUrl();
-  void client.call('speed', { speed });
+  guard(() => client.call('speed', { speed }));
 };
 levelBtns.forEach((b) => (b.onclick = () => void inject(b.dataset.level as Level)));
-cancelBtn.onclick = async () => render(await client.call('cancel', {}));
-saveBtn.onclick = async () => {
+cancelBtn.onclick = () => guard(async () => render(await client.call('cancel', {})));
+saveBtn.onclick = () => guard(save);
+async function save(): Promise<void> {
   const json = await client.call('scene', {});
   const a = el('a', { href: URL.createObjectURL(new Blob([json], { type: 'application/json' })), download: `${options.benchmark}-scene.json` });
   a.click();
   URL.revokeObjectURL(a.href);
-};
+}
 loadBtn.onclick = () => fileIn.click();
-fileIn.onchange = async () => {
-  const file = fileIn.files?.[0];
-  if (!file) return;
-  await open(await file.text());
-  fileIn.value = '';
-};
+fileIn.onchange = () =>
+  guard(async () => {
+    const file = fileIn.files?.[0];
+    if (!file) return;
+    await open(await file.text());
+    fileIn.value = '';
+  });
 linkBtn.onclick = async () => {
   updateUrl();
   try {
@@ -450,9 +463,9 @@ document.addEventListener('keydown', (e) => {
   if (!help.hidden) return;
   const k = e.key.toLowerCase();
   const act: Record<string, () => void> = {
-    ' ': () => void (playing ? pause() : play()),
+    ' ': () => guard(() => (playing ? pause() : play())),
     n: () => stepBtn.click(),
-    r: () => void reset(),
+    r: () => guard(reset),
     c: () => cancelBtn.click(),
     '1': () => void inject('l1'),
     '2': () => void inject('l2'),
@@ -492,6 +505,7 @@ declare global {
       project: (p: [number, number, number]) => { x: number; y: number };
       stepTimes: () => number[];
       replans: () => [number, number][];
+      setPddl: (domain: string, problem: string) => void;
       loadedAt: number;
     };
   }
@@ -502,6 +516,11 @@ window.lfd = {
   project: (p) => view.project(p),
   stepTimes: () => [...stepTimes],
   replans: () => charts.replans(),
+  setPddl: (domain, problem) => {
+    editorBenchmark = options.benchmark;
+    selectTab('pddl');
+    editor.setTexts(domain, problem);
+  },
   loadedAt: 0,
 };
 

@@ -1,7 +1,7 @@
 // The one message protocol between the page (main thread) and the worker that owns the wasm
 // module and the Session. Requests carry an `id`; the worker answers each with exactly one `reply`
 // of the same id. While a session plays, the worker pushes `frame` messages on its own.
-import type { Frame, PlanOptions, PlanOutcome, SessionOptions } from 'logic-lfd';
+import type { Diagnostic, Frame, PlanOptions, PlanOutcome, SessionOptions } from 'logic-lfd';
 
 export type Level = 'l1' | 'l2' | 'l3' | 'l4';
 export type Vec3 = [number, number, number];
@@ -19,6 +19,7 @@ export interface InjectOutcome {
 export interface Api {
   version: { args: Record<string, never>; result: string };
   plan: { args: { domain: string; problem: string; options: PlanOptions }; result: PlanOutcome };
+  check: { args: { domain: string; problem: string }; result: Diagnostic[] };
   open: { args: { options: SessionOptions; scene?: string }; result: Frame };
   replay: { args: { episode: string }; result: Frame };
   play: { args: { speed: number }; result: null };
