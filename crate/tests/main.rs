@@ -3,3 +3,4 @@
 mod ground;
 mod multigoal;
 mod search;
+mod sim;

@@ -39,6 +39,7 @@
 // Index loops mirror the maths (joint k, coordinate i) in this module.
 #![allow(clippy::needless_range_loop)]
 
+pub mod benchmark;
 pub mod geometry;
 pub mod panda;
 pub mod scene_graph;

@@ -160,7 +160,11 @@ pub(crate) fn jacobian(f: &ArmFrames) -> SMatrix<f64, 6, DOF> {
 fn rotation_error(target: &Matrix3<f64>, current: &Matrix3<f64>) -> Vector3<f64> {
     let m = target * current.transpose();
     // log map: sin θ · axis = vee(M − Mᵀ)/2, cos θ = (tr M − 1)/2, θ = atan2(|v|, cos θ).
-    let v = Vector3::new(m[(2, 1)] - m[(1, 2)], m[(0, 2)] - m[(2, 0)], m[(1, 0)] - m[(0, 1)]) * 0.5;
+    let v = Vector3::new(
+        m[(2, 1)] - m[(1, 2)],
+        m[(0, 2)] - m[(2, 0)],
+        m[(1, 0)] - m[(0, 1)],
+    ) * 0.5;
     let s = v.norm();
     let c = 0.5 * (m.trace() - 1.0);
     if s < 1e-9 {
@@ -199,7 +203,7 @@ impl Default for IkParams {
         IkParams {
             max_iterations: 40,
             restarts: 6,
-            damping: 0.02,
+            damping: 0.005,
             position_tolerance: 2e-4,
             orientation_tolerance: 2e-3,
             null_space_gain: 0.05,

@@ -1,0 +1,319 @@
+//! The paper's three benchmarks (§IV-A): their template worlds, PDDL texts and goal facts.
+//!
+//! Layouts (world frame, metres, table tops at `z = 0`, arms facing `+x`):
+//! * **B1** `b1-tower`: one arm `panda` at the origin; blocks `a b c d` on one table; goal
+//!   `(on a b) (on b c) (on c d)`.
+//! * **B2** `b2-workspace-reach`: one arm `panda` at the origin (blocks count as in reach between
+//!   0.25 and 0.70 m from its base axis); block `a` in reach, block `b` at 0.95 m beyond reach, the
+//!   L-shaped `hook` in reach, a shelf at `(0.35, −0.50)` with its top at 0.10 m; goal
+//!   `(onshelf a) (onshelf b)`.
+//! * **B3** `b3-dual-arm`: arms `left` at `(0, 0.45)` and `right` at `(0, −0.45)` on two tables
+//!   that meet at `y = 0`; regions `left-table` (`y ≥ 0.35`, only the left arm reaches it),
+//!   `handover` (around `(0.38, 0)`, both reach it) and `right-table` (`y ≤ −0.35`, only the right
+//!   arm); blocks `a b` start on the left table; goal `(on a b) (at b right-table)`.
+
+use super::panda::{self, DOF};
+use super::scene_graph::Fact;
+use super::snapshot::*;
+use super::world::World;
+use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+
+/// Side of a block (m).
+pub const BLOCK_SIZE: f64 = 0.06;
+
+/// One of the paper's benchmarks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Benchmark {
+    /// Tower construction: one arm, four blocks.
+    B1,
+    /// Workspace reach: one arm, blocks partly beyond reach, a hook, a shelf.
+    B2,
+    /// Dual-arm block transportation: two arms, hand-over region.
+    B3,
+}
+
+/// The colours of blocks `a`, `b`, `c`, `d`, then extra blocks.
+pub const BLOCK_COLORS: [&str; 6] = [
+    "#d62728", "#2ca02c", "#1f77b4", "#ffbf00", "#9467bd", "#8c564b",
+];
+
+impl Benchmark {
+    /// All three, in order.
+    pub const ALL: [Benchmark; 3] = [Benchmark::B1, Benchmark::B2, Benchmark::B3];
+
+    /// Parses `b1`, `b2`, `b3` or the directory names (`b1-tower`, …).
+    pub fn parse(s: &str) -> Option<Benchmark> {
+        match s.to_ascii_lowercase().as_str() {
+            "b1" | "b1-tower" => Some(Benchmark::B1),
+            "b2" | "b2-workspace-reach" => Some(Benchmark::B2),
+            "b3" | "b3-dual-arm" => Some(Benchmark::B3),
+            _ => None,
+        }
+    }
+
+    /// Short id (`b1`, `b2`, `b3`).
+    pub fn id(self) -> &'static str {
+        match self {
+            Benchmark::B1 => "b1",
+            Benchmark::B2 => "b2",
+            Benchmark::B3 => "b3",
+        }
+    }
+
+    /// Directory name under `domains/` (also the PDDL domain name and the scene name).
+    pub fn dir_name(self) -> &'static str {
+        match self {
+            Benchmark::B1 => "b1-tower",
+            Benchmark::B2 => "b2-workspace-reach",
+            Benchmark::B3 => "b3-dual-arm",
+        }
+    }
+
+    /// The PDDL domain text (`domains/<dir>/domain.pddl`).
+    pub fn domain_pddl(self) -> &'static str {
+        match self {
+            Benchmark::B1 => include_str!("../../../domains/b1-tower/domain.pddl"),
+            Benchmark::B2 => include_str!("../../../domains/b2-workspace-reach/domain.pddl"),
+            Benchmark::B3 => include_str!("../../../domains/b3-dual-arm/domain.pddl"),
+        }
+    }
+
+    /// The PDDL template problem text (`domains/<dir>/problem.pddl`).
+    pub fn problem_pddl(self) -> &'static str {
+        match self {
+            Benchmark::B1 => include_str!("../../../domains/b1-tower/problem.pddl"),
+            Benchmark::B2 => include_str!("../../../domains/b2-workspace-reach/problem.pddl"),
+            Benchmark::B3 => include_str!("../../../domains/b3-dual-arm/problem.pddl"),
+        }
+    }
+
+    /// The goal facts (the same for every task of the benchmark).
+    pub fn goal(self) -> Vec<Fact> {
+        match self {
+            Benchmark::B1 => vec![
+                Fact::new("on", &["a", "b"]),
+                Fact::new("on", &["b", "c"]),
+                Fact::new("on", &["c", "d"]),
+            ],
+            Benchmark::B2 => vec![Fact::new("onshelf", &["a"]), Fact::new("onshelf", &["b"])],
+            Benchmark::B3 => vec![
+                Fact::new("on", &["a", "b"]),
+                Fact::new("at", &["b", "right-table"]),
+            ],
+        }
+    }
+
+    /// Static facts of the domain that the scene graph does not report (B3's `reaches`).
+    pub fn static_facts(self) -> Vec<Fact> {
+        match self {
+            Benchmark::B3 => vec![
+                Fact::new("reaches", &["left", "left-table"]),
+                Fact::new("reaches", &["left", "handover"]),
+                Fact::new("reaches", &["right", "handover"]),
+                Fact::new("reaches", &["right", "right-table"]),
+            ],
+            _ => Vec::new(),
+        }
+    }
+
+    /// The blocks of the template task.
+    pub fn blocks(self) -> &'static [&'static str] {
+        match self {
+            Benchmark::B1 => &["a", "b", "c", "d"],
+            Benchmark::B2 | Benchmark::B3 => &["a", "b"],
+        }
+    }
+
+    /// The template task's initial world (what `domains/<dir>/scene.json` holds).
+    pub fn scene(self) -> World {
+        let snap = self.scene_snapshot();
+        match World::from_snapshot(&snap) {
+            Ok(w) => w,
+            // The builders below are fixed data checked by the tests; a failure is a bug here.
+            Err(e) => panic!("benchmark scene {} is invalid: {e}", self.dir_name()),
+        }
+    }
+
+    /// The template world as a snapshot (derived drawing fields filled in).
+    pub fn scene_snapshot(self) -> WorldSnapshot {
+        let mut s = match self {
+            Benchmark::B1 => WorldSnapshot {
+                version: SNAPSHOT_VERSION,
+                name: self.dir_name().into(),
+                time: 0.0,
+                dt: 0.01,
+                floor_z: -0.75,
+                predicates: ["on", "ontable", "clear", "holding", "handempty"]
+                    .map(String::from)
+                    .to_vec(),
+                regions: vec![],
+                bodies: vec![
+                    table("table", [0.35, 0.0], [0.60, 0.60]),
+                    block("a", 0, 0.40, -0.25, 0.0),
+                    block("b", 1, 0.55, -0.08, 0.0),
+                    block("c", 2, 0.42, 0.10, 0.0),
+                    block("d", 3, 0.55, 0.26, 0.0),
+                ],
+                arms: vec![arm("panda", [0.0, 0.0], 0.25, 0.70)],
+            },
+            Benchmark::B2 => WorldSnapshot {
+                version: SNAPSHOT_VERSION,
+                name: self.dir_name().into(),
+                time: 0.0,
+                dt: 0.01,
+                floor_z: -0.75,
+                predicates: ["ontable", "onshelf", "holding", "handempty", "inreach"]
+                    .map(String::from)
+                    .to_vec(),
+                regions: vec![],
+                bodies: vec![
+                    table("table", [0.45, 0.0], [0.75, 0.70]),
+                    BodySnapshot {
+                        name: "shelf".into(),
+                        kind: BodyKind::Shelf,
+                        shape: ShapeSnapshot::Cuboid {
+                            half_extents: [0.12, 0.08, 0.05],
+                        },
+                        pose: pose([0.35, -0.50, 0.05], 0.0),
+                        color: "#8c6d46".into(),
+                        lost: false,
+                    },
+                    hook("hook", [0.50, -0.20], 0.0),
+                    block("a", 0, 0.45, 0.25, 0.0),
+                    block("b", 1, 0.95, 0.05, 0.0),
+                ],
+                arms: vec![arm("panda", [0.0, 0.0], 0.25, 0.70)],
+            },
+            Benchmark::B3 => WorldSnapshot {
+                version: SNAPSHOT_VERSION,
+                name: self.dir_name().into(),
+                time: 0.0,
+                dt: 0.01,
+                floor_z: -0.75,
+                predicates: ["on", "ontable", "clear", "holding", "handempty", "at"]
+                    .map(String::from)
+                    .to_vec(),
+                regions: vec![
+                    region("left-table", [0.20, 0.35], [0.75, 0.95], "#f4a6a6"),
+                    region("handover", [0.28, -0.10], [0.48, 0.10], "#f4e3a6"),
+                    region("right-table", [0.20, -0.95], [0.75, -0.35], "#a6c8f4"),
+                ],
+                bodies: vec![
+                    table("left-bench", [0.35, 0.50], [0.50, 0.50]),
+                    table("right-bench", [0.35, -0.50], [0.50, 0.50]),
+                    block("a", 0, 0.40, 0.58, 0.0),
+                    block("b", 1, 0.42, 0.74, 0.0),
+                ],
+                arms: vec![
+                    arm("left", [0.0, 0.45], 0.25, 0.70),
+                    arm("right", [0.0, -0.45], 0.25, 0.70),
+                ],
+            },
+        };
+        // Fill in the derived fields by a round trip through the world.
+        if let Ok(w) = World::from_snapshot(&s) {
+            s = w.snapshot();
+        }
+        s
+    }
+}
+
+/// A pose snapshot at `p` with yaw `yaw`.
+pub(crate) fn pose(p: [f64; 3], yaw: f64) -> PoseSnapshot {
+    let q = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw).coords;
+    PoseSnapshot {
+        position: p,
+        quaternion: [q.x, q.y, q.z, q.w],
+    }
+}
+
+fn table(name: &str, centre: [f64; 2], half: [f64; 2]) -> BodySnapshot {
+    BodySnapshot {
+        name: name.into(),
+        kind: BodyKind::Table,
+        shape: ShapeSnapshot::Cuboid {
+            half_extents: [half[0], half[1], 0.02],
+        },
+        pose: pose([centre[0], centre[1], -0.02], 0.0),
+        color: "#c8b38a".into(),
+        lost: false,
+    }
+}
+
+/// A 6 cm block resting on a table top at `z = 0`; `colour` indexes [`BLOCK_COLORS`].
+pub(crate) fn block(name: &str, colour: usize, x: f64, y: f64, yaw: f64) -> BodySnapshot {
+    let h = 0.5 * BLOCK_SIZE;
+    BodySnapshot {
+        name: name.into(),
+        kind: BodyKind::Block,
+        shape: ShapeSnapshot::Cuboid {
+            half_extents: [h; 3],
+        },
+        pose: pose([x, y, h], yaw),
+        color: BLOCK_COLORS[colour % BLOCK_COLORS.len()].into(),
+        lost: false,
+    }
+}
+
+/// The L-shaped hook lying on the table: a 40 cm handle along the hook's `x` axis and a 16 cm
+/// blade at its far end pointing to `+y`, both 2 cm square in section; origin at the handle centre.
+fn hook(name: &str, xy: [f64; 2], yaw: f64) -> BodySnapshot {
+    BodySnapshot {
+        name: name.into(),
+        kind: BodyKind::Hook,
+        shape: ShapeSnapshot::Compound {
+            parts: vec![
+                PartSnapshot {
+                    pose: pose([0.0, 0.0, 0.0], 0.0),
+                    half_extents: [0.20, 0.01, 0.01],
+                },
+                PartSnapshot {
+                    pose: pose([0.19, 0.08, 0.0], 0.0),
+                    half_extents: [0.01, 0.07, 0.01],
+                },
+            ],
+        },
+        pose: pose([xy[0], xy[1], 0.01], yaw),
+        color: "#555555".into(),
+        lost: false,
+    }
+}
+
+fn region(name: &str, min: [f64; 2], max: [f64; 2], color: &str) -> RegionSnapshot {
+    RegionSnapshot {
+        name: name.into(),
+        min,
+        max,
+        color: color.into(),
+    }
+}
+
+fn arm(name: &str, xy: [f64; 2], rmin: f64, rmax: f64) -> ArmSnapshot {
+    let base = pose([xy[0], xy[1], 0.0], 0.0);
+    let iso = Isometry3::translation(xy[0], xy[1], 0.0);
+    ArmSnapshot {
+        name: name.into(),
+        base,
+        joints: panda::READY.to_vec(),
+        gripper_opening: panda::GRIPPER_MAX_OPENING,
+        holding: None,
+        reach: ReachSnapshot {
+            min_radius: rmin,
+            max_radius: rmax,
+        },
+        tcp: {
+            let t = panda::forward_kinematics(&iso, &ready());
+            let q = t.rotation.coords;
+            PoseSnapshot {
+                position: t.translation.vector.into(),
+                quaternion: [q.x, q.y, q.z, q.w],
+            }
+        },
+        links: vec![],
+        fingers: vec![],
+    }
+}
+
+fn ready() -> [f64; DOF] {
+    panda::READY
+}
