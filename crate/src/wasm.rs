@@ -437,3 +437,35 @@ pub fn check(
     };
     to_js(&diags)
 }
+
+/// A benchmark's initial scene and PDDL files (see [`benchmark()`]).
+#[derive(Debug, Serialize, Tsify)]
+pub struct BenchmarkInfo {
+    /// `b1`, `b2` or `b3`.
+    pub id: &'static str,
+    /// The directory name, e.g. `b1-tower`.
+    pub name: &'static str,
+    /// The initial world, as the page draws it.
+    #[tsify(type = "WorldSnapshot")]
+    pub scene: crate::sim::snapshot::WorldSnapshot,
+    /// `domains/<name>/domain.pddl`.
+    pub domain: &'static str,
+    /// `domains/<name>/problem.pddl`.
+    pub problem: &'static str,
+}
+
+/// One of the paper's benchmarks (`b1` tower, `b2` workspace reach, `b3` two arms): its initial
+/// scene and its PDDL domain and problem. Rejects an unknown id.
+#[wasm_bindgen(unchecked_return_type = "BenchmarkInfo")]
+pub fn benchmark(id: &str) -> Result<JsValue, JsError> {
+    use crate::sim::benchmark::Benchmark;
+    let b = Benchmark::parse(id)
+        .ok_or_else(|| js_err(format!("unknown benchmark `{id}` (expected b1, b2 or b3)")))?;
+    to_js(&BenchmarkInfo {
+        id: b.id(),
+        name: b.dir_name(),
+        scene: b.scene_snapshot(),
+        domain: b.domain_pddl(),
+        problem: b.problem_pddl(),
+    })
+}

@@ -34,13 +34,6 @@ const LEVELS: [Level, string, string][] = [
   ['l3', 'L3', 'Facts change to a state the demonstration never saw'],
   ['l4', 'L4', 'A new block appears in the way'],
 ];
-const BENCH_DIR: Record<Benchmark, string> = { b1: 'b1-tower', b2: 'b2-workspace-reach', b3: 'b3-dual-arm' };
-
-// The benchmarks' PDDL files, bundled as text and loaded only when the editor needs them.
-const pddlFiles = import.meta.glob('../../domains/*/*.pddl', { query: '?raw', import: 'default' }) as Record<
-  string,
-  () => Promise<string>
->;
 
 // ---------- state ----------
 const params = new URLSearchParams(location.search);
@@ -219,13 +212,8 @@ selectTab('run');
 async function loadEditor(): Promise<void> {
   if (editorBenchmark === options.benchmark) return;
   editorBenchmark = options.benchmark;
-  const dir = BENCH_DIR[options.benchmark];
-  const get = async (f: string) => {
-    const key = Object.keys(pddlFiles).find((k) => k.endsWith(`/${dir}/${f}`));
-    return key ? pddlFiles[key]() : `; ${dir}/${f} is not bundled with this build\n`;
-  };
-  const [d, p] = await Promise.all([get('domain.pddl'), get('problem.pddl')]);
-  editor.setTexts(d, p);
+  const b = await client.call('benchmark', { id: options.benchmark });
+  editor.setTexts(b.domain, b.problem);
 }
 
 let noticeTimer = 0;
@@ -361,6 +349,12 @@ async function open(scene?: string): Promise<void> {
     if (editorBenchmark !== options.benchmark && !editorHost.hidden) void loadEditor();
     if (params.get('autoplay') !== '0') await play();
   } catch (e) {
+    // Still show the benchmark's scene, and say why nothing moves.
+    try {
+      view.update((await client.call('benchmark', { id: options.benchmark })).scene);
+    } catch {
+      /* the message below says enough */
+    }
     status.className = 'status failed';
     statusText.textContent = `Could not start the session: ${(e as Error).message}`;
   }

@@ -1,7 +1,7 @@
 // The one message protocol between the page (main thread) and the worker that owns the wasm
 // module and the Session. Requests carry an `id`; the worker answers each with exactly one `reply`
 // of the same id. While a session plays, the worker pushes `frame` messages on its own.
-import type { Diagnostic, Frame, PlanOptions, PlanOutcome, SessionOptions } from 'logic-lfd';
+import type { BenchmarkInfo, Diagnostic, Frame, PlanOptions, PlanOutcome, SessionOptions } from 'logic-lfd';
 
 export type Level = 'l1' | 'l2' | 'l3' | 'l4';
 export type Vec3 = [number, number, number];
@@ -20,6 +20,7 @@ export interface Api {
   version: { args: Record<string, never>; result: string };
   plan: { args: { domain: string; problem: string; options: PlanOptions }; result: PlanOutcome };
   check: { args: { domain: string; problem: string }; result: Diagnostic[] };
+  benchmark: { args: { id: SessionOptions['benchmark'] }; result: BenchmarkInfo };
   open: { args: { options: SessionOptions; scene?: string }; result: Frame };
   replay: { args: { episode: string }; result: Frame };
   play: { args: { speed: number }; result: null };

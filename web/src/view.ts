@@ -49,6 +49,21 @@ function labelTexture(text: string, color: string): THREE.CanvasTexture {
   return t;
 }
 
+function textTexture(text: string): THREE.CanvasTexture {
+  const c = document.createElement('canvas');
+  c.width = 256;
+  c.height = 64;
+  const g = c.getContext('2d')!;
+  g.font = '600 30px system-ui, sans-serif';
+  g.textAlign = 'center';
+  g.textBaseline = 'middle';
+  g.fillStyle = 'rgba(20, 23, 28, 0.75)';
+  g.fillText(text, 128, 32);
+  const t = new THREE.CanvasTexture(c);
+  t.colorSpace = THREE.SRGBColorSpace;
+  return t;
+}
+
 function luminance(hex: string): number {
   const c = new THREE.Color(hex);
   return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
@@ -193,7 +208,11 @@ export class View {
   /** Frames the camera on the scene's bodies (called when a new scene is loaded). */
   private frameCamera(s: WorldSnapshot): void {
     const box = new THREE.Box3();
-    for (const b of s.bodies) if (b.kind !== 'table') box.expandByPoint(new THREE.Vector3(...b.pose.position));
+    for (const b of s.bodies) {
+      const c = new THREE.Vector3(...b.pose.position);
+      const h = b.shape.type === 'cuboid' ? new THREE.Vector3(...b.shape.half_extents) : new THREE.Vector3();
+      box.expandByPoint(c.clone().sub(h)).expandByPoint(c.clone().add(h));
+    }
     for (const a of s.arms) {
       box.expandByPoint(new THREE.Vector3(...a.base.position));
       for (const l of a.links) box.expandByPoint(new THREE.Vector3(...l.b));
@@ -201,7 +220,7 @@ export class View {
     if (box.isEmpty()) return;
     const c = box.getCenter(new THREE.Vector3());
     const size = box.getSize(new THREE.Vector3()).length();
-    const d = Math.max(1.4, size * 1.7);
+    const d = Math.max(1.2, size * 1.2);
     this.controls.target.set(c.x, c.y, Math.max(0.05, c.z * 0.6));
     this.camera.position.set(c.x + d * 0.55, c.y - d * 0.8, c.z + d * 0.55);
     this.controls.update();
@@ -324,6 +343,12 @@ export class View {
       m.position.set((r.min[0] + r.max[0]) / 2, (r.min[1] + r.max[1]) / 2, 0.0015);
       m.name = `region:${r.name}`;
       this.regions.add(m);
+      const label = new THREE.Sprite(
+        new THREE.SpriteMaterial({ map: textTexture(r.name), transparent: true, depthWrite: false }),
+      );
+      label.position.set((r.min[0] + r.max[0]) / 2, r.min[1] + 0.03, 0.01);
+      label.scale.set(0.24, 0.06, 1);
+      this.regions.add(label);
     }
   }
 

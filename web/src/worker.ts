@@ -80,6 +80,7 @@ const handlers: Handlers = {
   version: () => lfd.version(),
   plan: ({ domain, problem, options }) => lfd.plan(domain, problem, options),
   check: ({ domain, problem }) => lfd.check(domain, problem),
+  benchmark: ({ id }) => lfd.benchmark(id),
   open: ({ options, scene }) =>
     replace(scene === undefined ? new (sessionClass())(options) : sessionClass().fromScene(options, scene)),
   replay: ({ episode }) => replace(sessionClass().replay(episode)),
