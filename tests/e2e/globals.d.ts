@@ -9,7 +9,7 @@ declare global {
       project: (p: [number, number, number]) => { x: number; y: number };
       stepTimes: () => number[];
       replans: () => [number, number][];
-      setPddl: (domain: string, problem: string) => void;
+      setPddl: (domain: string, problem: string) => Promise<void>;
       loadedAt: number;
     };
   }

@@ -6,7 +6,6 @@ import { EditorView, keymap, lineNumbers, highlightActiveLine, drawSelection } f
 import { defaultKeymap, history, historyKeymap } from '@codemirror/commands';
 import { StreamLanguage, syntaxHighlighting, HighlightStyle, bracketMatching } from '@codemirror/language';
 import { linter, lintGutter, setDiagnostics, type Diagnostic as CmDiagnostic } from '@codemirror/lint';
-import { searchKeymap } from '@codemirror/search';
 import { tags as t } from '@lezer/highlight';
 import type { Diagnostic, PlanOptions, PlanOutcome } from 'logic-lfd';
 import { el } from './dom';
@@ -103,12 +102,13 @@ export class EditorPanel {
       drawSelection(),
       highlightActiveLine(),
       bracketMatching(),
+      EditorView.lineWrapping,
       pddl,
       syntaxHighlighting(highlight),
       lintGutter(),
       linter(null),
       theme,
-      keymap.of([...defaultKeymap, ...historyKeymap, ...searchKeymap]),
+      keymap.of([...defaultKeymap, ...historyKeymap]),
       EditorView.contentAttributes.of({ 'aria-label': `PDDL ${which} editor` }),
       EditorView.updateListener.of((u) => {
         if (u.docChanged) this.scheduleCheck();

@@ -4,7 +4,7 @@ import './style.css';
 import type { Frame, SessionOptions } from 'logic-lfd';
 import { WorkerClient } from './client';
 import { View } from './view';
-import { EditorPanel } from './editor';
+import type { EditorPanel } from './editor';
 import { Charts } from './charts';
 import { el } from './dom';
 import type { FromWorker, Level } from './protocol';
@@ -189,11 +189,19 @@ const view = new View(stage, {
 });
 let autoResume = false;
 const charts = new Charts(chartsPanel);
-const editor = new EditorPanel({
-  plan: (domain, problem, o) => client.call('plan', { domain, problem, options: o }),
-  check: (domain, problem) => client.call('check', { domain, problem }),
-});
-editorHost.append(editor.root);
+// The PDDL editor (CodeMirror) is loaded on first use: the page becomes interactive sooner.
+let editorPromise: Promise<EditorPanel> | null = null;
+function getEditor(): Promise<EditorPanel> {
+  editorPromise ??= import('./editor').then(({ EditorPanel }) => {
+    const e = new EditorPanel({
+      plan: (domain, problem, o) => client.call('plan', { domain, problem, options: o }),
+      check: (domain, problem) => client.call('check', { domain, problem }),
+    });
+    editorHost.append(e.root);
+    return e;
+  });
+  return editorPromise;
+}
 let editorBenchmark: Benchmark | null = null;
 
 function selectTab(id: string): void {
@@ -212,7 +220,7 @@ selectTab('run');
 async function loadEditor(): Promise<void> {
   if (editorBenchmark === options.benchmark) return;
   editorBenchmark = options.benchmark;
-  const b = await client.call('benchmark', { id: options.benchmark });
+  const [editor, b] = await Promise.all([getEditor(), client.call('benchmark', { id: options.benchmark })]);
   editor.setTexts(b.domain, b.problem);
 }
 
@@ -499,7 +507,7 @@ declare global {
       project: (p: [number, number, number]) => { x: number; y: number };
       stepTimes: () => number[];
       replans: () => [number, number][];
-      setPddl: (domain: string, problem: string) => void;
+      setPddl: (domain: string, problem: string) => Promise<void>;
       loadedAt: number;
     };
   }
@@ -510,10 +518,10 @@ window.lfd = {
   project: (p) => view.project(p),
   stepTimes: () => [...stepTimes],
   replans: () => charts.replans(),
-  setPddl: (domain, problem) => {
+  setPddl: async (domain, problem) => {
     editorBenchmark = options.benchmark;
     selectTab('pddl');
-    editor.setTexts(domain, problem);
+    (await getEditor()).setTexts(domain, problem);
   },
   loadedAt: 0,
 };
