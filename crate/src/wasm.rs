@@ -88,7 +88,7 @@ export interface Status {
   of?: number | null;
 }
 /** The last replan: why, how long it took (ms), which demo state it joined, the plan it made. */
-export interface Replan { reason: string; time_ms: number; k?: number | null; plan: string[]; tick: number; }
+export interface Replan { reason: string; time_ms: number; k?: number | null; plan: string[]; tick: number; new_actions?: number; }
 /** One end-effector sample: where the arm's TCP is and where its controller aims. */
 export interface EePoint { arm: number; pos: [number, number, number]; target: [number, number, number]; }
 /** Everything the page draws after a step. */
@@ -109,6 +109,13 @@ export interface Frame {
   replans: number;
   ee: EePoint[];
 }
+/** An accepted drag: where the block went, what it rests on, what settled after it left. */
+export interface PerturbOutcome {
+  body: string; from: [number, number, number]; to: [number, number, number]; support: string;
+  also_moved: [string, [number, number, number]][];
+}
+/** What an injected disturbance (l1..l4) did. */
+export interface Injection { level: string; description: string; moved: [string, [number, number, number]][]; }
 "#;
 
 /// Converts any displayable error into a rejected value (a JS `Error` with the message).

@@ -2,7 +2,7 @@
 // never run on the page's thread, so the page never freezes. It plays the session in real time
 // (scaled by `speed`) and pushes a frame after every tick.
 import init, * as lfd from 'logic-lfd';
-import type { Frame, SessionOptions } from 'logic-lfd';
+import type { Frame, Injection, PerturbOutcome, SessionOptions } from 'logic-lfd';
 import type { Api, ApiKind, FromWorker, ToWorker } from './protocol';
 
 const post = (m: FromWorker) => (self as unknown as Worker).postMessage(m);
@@ -11,8 +11,8 @@ const post = (m: FromWorker) => (self as unknown as Worker).postMessage(m);
 interface SessionHandle {
   frame(): Frame;
   step(dt: number): Frame;
-  perturb(body: string, position: [number, number, number]): string;
-  inject(level: string): string;
+  perturb(body: string, position: [number, number, number]): PerturbOutcome;
+  inject(level: string): Injection;
   reset(seed: number): void;
   cancel(): void;
   episodeJson(): string;
@@ -109,16 +109,17 @@ const handlers: Handlers = {
   perturb: ({ body, position }) => {
     const s = need();
     try {
-      const message = s.perturb(body, position);
-      return { ok: true, message, frame: s.frame() };
+      const o = s.perturb(body, position);
+      const others = o.also_moved.length ? `; ${o.also_moved.map(([b]) => b).join(', ')} settled below` : '';
+      return { ok: true, message: `Moved ${o.body} onto ${o.support}${others}`, frame: s.frame() };
     } catch (e) {
       return { ok: false, reason: errorMessage(e) };
     }
   },
   inject: ({ level }) => {
     const s = need();
-    const message = s.inject(level);
-    return { message, frame: s.frame() };
+    const i = s.inject(level);
+    return { message: i.description, frame: s.frame() };
   },
   reset: ({ seed }) => {
     stop();
