@@ -5,7 +5,11 @@ import assert from 'node:assert/strict';
 const lfd = await import(new URL('../../pkg/node/index.mjs', import.meta.url).href);
 const noSession = typeof lfd.Session === 'function' ? false : 'this build has no closed-loop Session yet';
 
-/** Steps until done/failed (or a bound), calling `each(frame, i)` after every step. */
+/**
+ * Steps until done/failed (or a bound), calling `each(frame, i)` after every step.
+ * @param {any} session
+ * @param {(frame: any, i: number) => void} [each]
+ */
 function run(session, each = () => {}, maxSteps = 4000) {
   let f = session.frame();
   for (let i = 0; i < maxSteps && f.status.kind !== 'done' && f.status.kind !== 'failed'; i++) {

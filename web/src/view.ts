@@ -278,14 +278,15 @@ export class View {
     for (const a of this.arms) this.scene.remove(a.group);
     this.arms.length = 0;
     this.regions.clear();
-    this.trailPoints = [];
+    this.clearTrail();
     this.cancelDrag();
   }
 
   /** Clears the end-effector trail (on reset). */
   clearTrail(): void {
     this.trailPoints = [];
-    this.trail.geometry.setFromPoints([]);
+    this.trail.geometry.dispose();
+    this.trail.geometry = new THREE.BufferGeometry();
     this.dirty = true;
   }
 
@@ -397,25 +398,27 @@ export class View {
     });
   }
 
+  private readonly targetGeometry = new THREE.SphereGeometry(0.012, 12, 8);
+  private readonly targetMaterial = new THREE.MeshBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.9 });
+
   private updateTargets(ee: { arm: number; pos: number[]; target: number[] }[]): void {
-    this.targets.clear();
-    for (const p of ee) {
-      const t = new THREE.Mesh(
-        new THREE.SphereGeometry(0.012, 12, 8),
-        new THREE.MeshBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.9 }),
-      );
-      t.position.set(p.target[0], p.target[1], p.target[2]);
-      this.targets.add(t);
+    while (this.targets.children.length < ee.length) this.targets.add(new THREE.Mesh(this.targetGeometry, this.targetMaterial));
+    this.targets.children.forEach((m, i) => {
+      const p = ee[i];
+      m.visible = !!p;
+      if (!p) return;
+      m.position.set(p.target[0], p.target[1], p.target[2]);
       if (p.arm === 0) {
         const v = new THREE.Vector3(p.pos[0], p.pos[1], p.pos[2]);
         const last = this.trailPoints[this.trailPoints.length - 1];
         if (!last || last.distanceTo(v) > 0.004) {
           this.trailPoints.push(v);
           if (this.trailPoints.length > 600) this.trailPoints.shift();
-          this.trail.geometry.setFromPoints(this.trailPoints);
+          this.trail.geometry.dispose();
+          this.trail.geometry = new THREE.BufferGeometry().setFromPoints(this.trailPoints);
         }
       }
-    }
+    });
   }
 
   // ---- dragging ----
