@@ -10,7 +10,7 @@
 //!   *any* state of the demonstration;
 //! * [`lqt`] is LQT-CP (linear quadratic tracking with control primitives): motion skills with
 //!   time-varying feedback gains that reject perturbations;
-//! * `sim` is a small deterministic kinematic world (tables, shelf, blocks, hook, 7-DoF arms) with
+//! * [`sim`] is a small deterministic kinematic world (tables, shelf, blocks, hook, 7-DoF arms) with
 //!   a scene graph of PDDL facts;
 //! * `lfd` is the reactive loop (paper Algorithm 1) and its baselines; `experiments` reproduces
 //!   the paper's Tables I and II.

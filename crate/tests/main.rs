@@ -1,6 +1,9 @@
 //! Integration tests (one binary, one sub-module per area).
 
 mod ground;
+mod lqt;
 mod multigoal;
+mod pddl;
 mod search;
 mod sim;
+mod validate;

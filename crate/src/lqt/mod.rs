@@ -4,23 +4,33 @@
 //!   and the time-varying feedback gains K̃_t, on the exact conventions of `shared/lqt-cp-io.md`
 //!   (fast structured path; [`reference`](mod@reference) is the dense transcription kept for tests);
 //! * [`task`]: builds the reference μ and weights Q from via-points, goals and a tracked demo;
-//! * [`case`]: the JSON contract of `logic-lfd lqt CASE.json`.
+//! * [`case`]: the JSON contract of `logic-lfd lqt CASE.json`;
+//! * [`Skill`]: an LQT-CP motion skill learned from one demonstrated segment in an object's frame,
+//!   planned for a new start / object pose / via-points into a [`Trajectory`] executed by a
+//!   [`FeedbackController`]; [`Dmp`] is the classic DMP behind the same [`MotionSkill`] trait;
+//! * [`full_pipeline`]: weights, F, gains and one rollout in one call (the benchmark).
 
 // Index loops mirror the formulas (A1[i][j], Y_t[i][k]) in this numeric code.
 #![allow(clippy::needless_range_loop)]
 
 mod basis;
 pub mod case;
+mod dmp;
 mod dynamics;
 mod error;
 mod linalg;
 pub mod reference;
 mod riccati;
+mod skill;
 mod solver;
 pub mod task;
 
 pub use basis::Basis;
+pub use dmp::{Dmp, DmpParams, DmpRunner};
 pub use error::LqtError;
+pub use skill::{
+    FeedbackController, GripperEvent, MotionSkill, Policy, Skill, SkillParams, Trajectory, ViaPoint,
+};
 pub use solver::{
-    BatchSolution, FeedbackGains, LqtConfig, LqtCp, Perturbation, Rollout, MAX_ORDER,
+    full_pipeline, BatchSolution, FeedbackGains, LqtConfig, LqtCp, Perturbation, Rollout, MAX_ORDER,
 };

@@ -642,6 +642,22 @@ impl LqtCp {
     }
 }
 
+/// The whole pipeline of one skill from scratch, as one call (benchmarked natively and from wasm):
+/// factorisation, batch weights from `x0`, F and the N gains, and one closed-loop rollout from
+/// `x0`.
+pub fn full_pipeline(
+    config: &LqtConfig,
+    mu: &DMatrix<f64>,
+    q_diag: &DMatrix<f64>,
+    x0: &[f64],
+) -> Result<(BatchSolution, FeedbackGains, Rollout), LqtError> {
+    let lqt = LqtCp::new(config.clone(), q_diag)?;
+    let batch = lqt.solve(mu, x0)?;
+    let gains = lqt.feedback(mu)?;
+    let roll = gains.rollout(x0, None)?;
+    Ok((batch, gains, roll))
+}
+
 /// One integrator step of one coordinate: `x ← A1 x + B1 u`.
 #[inline]
 pub(crate) fn step1(a1: &[f64], b1: &[f64], x: &mut [f64], u: f64) {
@@ -729,6 +745,21 @@ impl FeedbackGains {
             s += ki * x(i);
         }
         -s
+    }
+
+    /// One step of the dynamics `x ← A x + B u` (x: nx, u: D).
+    pub fn step_state(&self, x: &mut [f64], u: &[f64]) {
+        let (dim, n) = (self.dim, self.order);
+        let mut xd = vec![0.0; n];
+        for d in 0..dim.min(u.len()) {
+            for i in 0..n {
+                xd[i] = x[i * dim + d];
+            }
+            step1(&self.a1, &self.b1, &mut xd, u[d]);
+            for i in 0..n {
+                x[i * dim + d] = xd[i];
+            }
+        }
     }
 
     /// Closed-loop rollout from `x̃_0 = [x_init; 1]` with `u_t = -K̃_t x̃_t`, adding the optional

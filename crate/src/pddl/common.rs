@@ -110,10 +110,10 @@ pub(crate) fn typed_list(
             let Some(ty) = items.get(i + 1) else {
                 return Err(src.error(items[i].span(), "expected a type after `-`"));
             };
-            if ty.head() == Some("either") {
+            if let (Some("either"), SExpr::List(parts, _)) = (ty.head(), ty) {
                 return Err(refuse(
                     src,
-                    ty.span(),
+                    parts[0].span(),
                     "either",
                     "union types are not supported; declare a common supertype",
                 ));

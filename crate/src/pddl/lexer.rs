@@ -63,7 +63,11 @@ pub(crate) fn read_one(src: &Source) -> Result<SExpr, PddlError> {
                     start: i,
                     end: i + 1,
                 },
-                "unexpected text after the end of `(define …)`",
+                if b == b')' {
+                    "unmatched `)` after the end of `(define …)`"
+                } else {
+                    "unexpected text after the end of `(define …)`"
+                },
             ));
         } else if b == b'(' {
             if stack.len() >= MAX_DEPTH {
@@ -136,7 +140,6 @@ pub(crate) fn read_one(src: &Source) -> Result<SExpr, PddlError> {
 }
 
 /// Reads a sequence of top-level lists (a plan file: one `(action arg …)` per line).
-#[allow(dead_code)]
 pub(crate) fn read_many(src: &Source) -> Result<Vec<SExpr>, PddlError> {
     let text = src.text.as_str();
     let bytes = text.as_bytes();
@@ -155,10 +158,10 @@ pub(crate) fn read_many(src: &Source) -> Result<Vec<SExpr>, PddlError> {
             let mut items = Vec::new();
             i += 1;
             loop {
-                while i < bytes.len() && bytes[i].is_ascii_whitespace() {
+                while i < bytes.len() && bytes[i].is_ascii_whitespace() && bytes[i] != b'\n' {
                     i += 1;
                 }
-                if i >= bytes.len() || bytes[i] == b';' {
+                if i >= bytes.len() || bytes[i] == b';' || bytes[i] == b'\n' {
                     return Err(src.error(
                         Span {
                             start,

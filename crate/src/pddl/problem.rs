@@ -266,6 +266,18 @@ fn metric(src: &Source, domain: &Domain, items: &[SExpr], span: Span) -> Result<
     let ok = items.len() == 3
         && matches!(&items[2], SExpr::List(l, _) if l.len() == 1 && l[0].atom() == Some("total-cost"));
     if !ok {
+        if let Some(SExpr::List(l, _)) = items.get(2) {
+            if let Some(h) = l.first().and_then(|h| h.atom()) {
+                if h != "total-cost" {
+                    return Err(refuse(
+                        src,
+                        l[0].span(),
+                        h,
+                        "only `(:metric minimize (total-cost))` is supported",
+                    ));
+                }
+            }
+        }
         let at = items.get(2).map_or(span, |e| e.span());
         return Err(refuse(
             src,
@@ -281,4 +293,35 @@ fn metric(src: &Source, domain: &Domain, items: &[SExpr], span: Span) -> Result<
         ));
     }
     Ok(())
+}
+
+impl Problem {
+    /// A copy of this problem whose initial atoms are `facts` (`"(on a b)"` each, any case; the
+    /// cost-function values are kept). For re-grounding from an observed state — e.g. a scene
+    /// graph whose facts are unreachable from the original `:init`. Errors are located in the
+    /// facts joined one per line, under the file name `<init>`.
+    pub fn with_init(&self, domain: &Domain, facts: &[String]) -> Result<Problem, PddlError> {
+        let src = Source::new(&facts.join("\n"), "<init>");
+        let names: HashMap<String, usize> = domain
+            .constants
+            .iter()
+            .chain(&self.objects)
+            .map(|o| (o.name.text.clone(), o.ty))
+            .collect();
+        let scope = Scope {
+            src: &src,
+            domain,
+            params: &[],
+            objects: &names,
+            context: "goal",
+        };
+        let init = super::lexer::read_many(&src)?
+            .iter()
+            .map(|e| scope.atom(e))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Problem {
+            init,
+            ..self.clone()
+        })
+    }
 }

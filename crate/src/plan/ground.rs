@@ -16,7 +16,8 @@
 //! alternative whose static part is false is dropped — no alternative left means unsolvable).
 //! Costs: `cost(o) = Σ increase amounts` with `(:metric minimize (total-cost))`, else 1.
 
-use std::collections::{HashMap, HashSet, VecDeque};
+use std::collections::VecDeque;
+use std::hash::{BuildHasherDefault, Hasher};
 
 use crate::pddl::{Atom, CostAmount, Domain, Formula, PddlError, Problem, Term};
 
@@ -39,6 +40,43 @@ pub enum GroundError {
 }
 
 type Obj = u32;
+
+/// A small multiplicative hasher (the grounder hashes millions of short integer tuples; SipHash's
+/// DoS resistance is not needed for them).
+#[derive(Default, Clone, Copy)]
+struct FastHasher(u64);
+
+impl FastHasher {
+    #[inline]
+    fn add(&mut self, w: u64) {
+        self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x517c_c1b7_2722_0a95);
+    }
+}
+
+impl Hasher for FastHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut w = [0u8; 8];
+            w[..chunk.len()].copy_from_slice(chunk);
+            self.add(u64::from_le_bytes(w));
+        }
+    }
+    fn write_u32(&mut self, i: u32) {
+        self.add(u64::from(i));
+    }
+    fn write_u64(&mut self, i: u64) {
+        self.add(i);
+    }
+    fn write_usize(&mut self, i: usize) {
+        self.add(i as u64);
+    }
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+type HashMap<K, V> = std::collections::HashMap<K, V, BuildHasherDefault<FastHasher>>;
+type HashSet<K> = std::collections::HashSet<K, BuildHasherDefault<FastHasher>>;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 enum Arg {
@@ -151,6 +189,9 @@ fn dnf(objs: &Objects, f: &Formula, neg: bool) -> Option<Vec<Vec<Literal>>> {
                 let mut acc: Vec<Vec<Literal>> = vec![Vec::new()];
                 for p in parts {
                     let d = dnf(objs, p, neg)?;
+                    if acc.len().saturating_mul(d.len()) > MAX_DISJUNCTS {
+                        return None;
+                    }
                     let mut next = Vec::with_capacity(acc.len() * d.len());
                     for a in &acc {
                         for b in &d {
@@ -263,19 +304,21 @@ impl Grounder<'_> {
         };
         let l = &sch.pos[i];
         let facts = &self.index.facts[l.pred];
-        let all: Vec<u32>;
-        let cands: &[u32] = match key {
+        let list: &[u32] = match key {
             Some((pos, o)) => self.index.by_arg[l.pred][pos]
                 .get(o as usize)
                 .map_or(&[], |v| v.as_slice()),
-            None => {
-                all = (0..facts.len() as u32).collect();
-                &all
-            }
+            None => &[],
+        };
+        let n = if key.is_some() {
+            list.len()
+        } else {
+            facts.len()
         };
         matched[i] = true;
         let mut newly = Vec::new();
-        for &c in cands {
+        for k in 0..n {
+            let c = list.get(k).copied().unwrap_or(k as u32);
             let f = &facts[c as usize];
             if self.unify(s, l, f, b, &mut newly) {
                 self.join(s, matched, b, out);
@@ -340,6 +383,9 @@ impl Grounder<'_> {
 
     /// Enumerates parameters not bound by atoms, by type.
     fn free_vars(&self, s: usize, from: usize, b: &mut Vec<Obj>, out: &mut Vec<Vec<Obj>>) {
+        if out.len() > MAX_OPERATORS {
+            return; // the caller reports the task as too large
+        }
         let Some(v) = (from..b.len()).find(|&v| b[v] == UNBOUND) else {
             if self.constraints_ok(&self.schemas[s], b, true) {
                 out.push(b.clone());
@@ -404,9 +450,9 @@ pub fn ground(domain: &Domain, problem: &Problem) -> Result<Task, GroundError> {
     }
 
     // Initial facts: static ones preloaded into the index, fluent ones queued.
-    let mut statics: HashSet<GAtom> = HashSet::new();
+    let mut statics: HashSet<GAtom> = HashSet::default();
     let mut index = FactIndex::new(domain, nobj);
-    let mut fact_ids: HashMap<GAtom, u32> = HashMap::new();
+    let mut fact_ids: HashMap<GAtom, u32> = HashMap::default();
     let mut fact_list: Vec<GAtom> = Vec::new();
     let mut queue: VecDeque<u32> = VecDeque::new();
     let mut init_fluent: Vec<u32> = Vec::new();
@@ -445,7 +491,7 @@ pub fn ground(domain: &Domain, problem: &Problem) -> Result<Task, GroundError> {
     }
 
     let mut found: Vec<(usize, Vec<Obj>)> = Vec::new();
-    let mut seen: HashSet<(usize, Vec<Obj>)> = HashSet::new();
+    let mut seen: HashSet<(usize, Vec<Obj>)> = HashSet::default();
     let emit = |s: usize,
                 bindings: Vec<Vec<Obj>>,
                 found: &mut Vec<(usize, Vec<Obj>)>,

@@ -4,9 +4,13 @@
 
 mod ground;
 mod task;
+mod validate;
 
 pub use ground::{ground, GroundError};
-pub use task::{Condition, FactId, Goal, Operator, State, Task};
+pub use task::{Condition, FactId, Goal, Operator, State, Task, UnknownFact};
+pub use validate::{
+    parse_plan, validate, validate_names, Outcome, PlanStep, PlanToken, ValidationReport,
+};
 
 mod clock;
 mod heuristic;
@@ -17,5 +21,5 @@ pub use clock::{Clock, NoClock};
 pub use heuristic::{HeuristicEvaluator, HeuristicKind, UnknownName};
 pub use multigoal::{search_multi_goal, MultiGoalMode, MultiGoalResult};
 pub use search::{
-    search, Algorithm, Budget, Outcome, Plan, SearchConfig, SearchResult, SearchStats,
+    search, Algorithm, Budget, Plan, SearchConfig, SearchOutcome, SearchResult, SearchStats,
 };

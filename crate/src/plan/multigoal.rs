@@ -20,7 +20,7 @@
 //! (`cost(π) + c_j < c_k`), which cannot happen when the `c_k` are exact costs-to-go.
 
 use crate::plan::clock::Clock;
-use crate::plan::search::{run, Outcome, Plan, SearchConfig, SearchStats};
+use crate::plan::search::{run, Plan, SearchConfig, SearchOutcome, SearchStats};
 use crate::plan::{Goal, State, Task};
 
 /// How goals with terminal costs are compared.
@@ -37,7 +37,7 @@ pub enum MultiGoalMode {
 #[derive(Clone, PartialEq, Debug)]
 pub struct MultiGoalResult {
     /// Plan, proved unsolvable (no goal reachable), or budget exhausted.
-    pub outcome: Outcome,
+    pub outcome: SearchOutcome,
     /// Index into `goals` of the goal the plan reaches.
     pub goal_index: Option<usize>,
     /// `cost(π) + c_k` of the returned plan.
@@ -89,7 +89,7 @@ pub fn search_multi_goal(
         clock,
     );
     let total_cost = match (&r.outcome, r.goal_index) {
-        (Outcome::Plan(p), Some(k)) => Some(p.cost.saturating_add(goals[k].terminal_cost)),
+        (SearchOutcome::Plan(p), Some(k)) => Some(p.cost.saturating_add(goals[k].terminal_cost)),
         _ => None,
     };
     MultiGoalResult {

@@ -214,6 +214,48 @@ impl Task {
     pub fn empty_state(&self) -> State {
         State::empty(self.facts.len())
     }
+
+    /// The state in which exactly the named fluent facts hold (e.g. from a scene graph).
+    ///
+    /// Names are case-insensitive and whitespace-tolerant: `( ON A  b )` is `(on a b)`. Static
+    /// facts (those in [`Task::static_facts`]) are accepted and ignored; any other name is an
+    /// error.
+    pub fn state_from_names(&self, names: &[String]) -> Result<State, UnknownFact> {
+        let mut s = self.empty_state();
+        for n in names {
+            let norm = normalize_fact_name(n);
+            if let Some(f) = self.fact_id(&norm) {
+                s.insert(f);
+            } else if !self.static_facts.contains(&norm) {
+                return Err(UnknownFact(n.clone()));
+            }
+        }
+        Ok(s)
+    }
+
+    /// The names of the fluent facts that hold in `s`, in [`FactId`] order.
+    pub fn state_names(&self, s: &State) -> Vec<String> {
+        s.facts()
+            .filter_map(|f| self.facts.get(f as usize).cloned())
+            .collect()
+    }
+}
+
+/// A fact name that is neither a fluent nor a static fact of the task.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown fact `{0}`: neither a fluent nor a static fact of this task")]
+pub struct UnknownFact(pub String);
+
+/// `( ON A  b )` → `(on a b)`.
+fn normalize_fact_name(n: &str) -> String {
+    let lower = n.to_lowercase();
+    let inner = lower.trim();
+    let inner = inner.strip_prefix('(').unwrap_or(inner);
+    let inner = inner.strip_suffix(')').unwrap_or(inner);
+    format!(
+        "({})",
+        inner.split_whitespace().collect::<Vec<_>>().join(" ")
+    )
 }
 
 #[cfg(test)]

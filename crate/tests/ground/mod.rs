@@ -154,3 +154,186 @@ fn grounding_is_deterministic() {
     assert_eq!(a.operators, b.operators);
     assert_eq!(a.init, b.init);
 }
+
+fn rooms(problem: &str) -> Task {
+    ground_files(&data_dir().join("rooms"), problem)
+}
+
+fn names(t: &Task, ids: &[u32]) -> Vec<String> {
+    ids.iter().map(|&f| t.facts[f as usize].clone()).collect()
+}
+
+fn op<'t>(t: &'t Task, name: &str) -> &'t logic_lfd::plan::Operator {
+    t.operators
+        .iter()
+        .find(|o| o.name == name)
+        .unwrap_or_else(|| panic!("no operator {name}"))
+}
+
+/// Hand count for rooms/p-costs (see the file): reachable rooms hall, r1, r2 (r3 has no door).
+/// move: (hall r1), (r1 r2) from `(door ?a ?b)`, (r1 hall), (r2 r1) from `(door ?b ?a)`, and
+/// not (r2 r2) although `(door r2 r2)` holds, because of `(not (= ?a ?b))`: 4. take k1 r1: 1
+/// (k2 lies in unreachable r3). unlock k1 ?a r2 from r1 and, through the self-loop door, from r2
+/// itself (relaxed: `(at r2)` is reachable, `(locked r2)` initial): 2. wait (?a ?a) for the 3
+/// reachable rooms (`(= ?a ?b)`): 3. Total 10.
+/// Fluents: at ×3, visited ×3, has k1, key-at k1 r1, locked r2 = 9. Static: 3 doors, opens,
+/// key-at k2 r3 (never taken) = 5.
+#[test]
+fn rooms_costs_negative_preconditions_equality_or() {
+    let t = rooms("p-costs.pddl");
+    assert_eq!(t.facts.len(), 9, "{:?}", t.facts);
+    assert_eq!(
+        t.operators.len(),
+        10,
+        "{:?}",
+        t.operators.iter().map(|o| &o.name).collect::<Vec<_>>()
+    );
+    assert_eq!(t.static_facts.len(), 5, "{:?}", t.static_facts);
+    assert!(t.static_facts.contains(&"(key-at k2 r3)".to_string()));
+    assert!(t.uses_costs);
+    let costs: Vec<(&str, u32)> = t
+        .operators
+        .iter()
+        .map(|o| (o.name.as_str(), o.cost))
+        .collect();
+    for (n, c) in [
+        ("(move hall r1)", 3),
+        ("(move r1 hall)", 3),
+        ("(move r1 r2)", 4),
+        ("(move r2 r1)", 4),
+        ("(take k1 r1)", 0),
+        ("(unlock k1 r1 r2)", 2),
+        ("(wait r2 r2)", 1),
+    ] {
+        assert!(costs.contains(&(n, c)), "{n} cost {c}: {costs:?}");
+    }
+    assert!(!costs
+        .iter()
+        .any(|(n, _)| *n == "(move r2 r2)" || *n == "(wait hall r1)"));
+    // Negative precondition kept where the fact is fluent, dropped where it can never hold.
+    assert_eq!(names(&t, &op(&t, "(move r1 r2)").pre_neg), ["(locked r2)"]);
+    assert!(op(&t, "(move hall r1)").pre_neg.is_empty());
+    // Static `(opens k1 r2)` and `(door r1 r2)` folded out of the precondition.
+    assert_eq!(
+        names(&t, &op(&t, "(unlock k1 r1 r2)").pre),
+        ["(at r1)", "(locked r2)", "(has k1)"] // facts in predicate declaration order
+    );
+    // Goal (at r2) ∧ ((has k1) ∨ (visited r3)): the r3 alternative is unreachable, dropped.
+    assert_eq!(t.goal.alternatives.len(), 1);
+    assert_eq!(
+        names(&t, &t.goal.alternatives[0].pos),
+        ["(at r2)", "(has k1)"]
+    );
+}
+
+/// Without a metric every action costs 1; an or-goal gives two alternatives; a negative goal
+/// literal becomes `Condition::neg`; a true `(= r1 r1)` disappears.
+#[test]
+fn rooms_unit_costs_or_goal_negative_goal() {
+    let t = rooms("p-unit.pddl");
+    assert!(!t.uses_costs);
+    assert!(t.operators.iter().all(|o| o.cost == 1));
+    let alts = &t.goal.alternatives;
+    assert_eq!(alts.len(), 2);
+    assert_eq!(names(&t, &alts[0].pos), ["(at r2)"]);
+    assert_eq!(names(&t, &alts[0].neg), ["(locked r2)"]);
+    assert_eq!(names(&t, &alts[1].pos), ["(has k1)"]);
+    assert_eq!(names(&t, &alts[1].neg), ["(at hall)"]);
+}
+
+#[test]
+fn unreachable_goal_gives_no_alternative() {
+    let t = rooms("p-unreachable.pddl");
+    assert!(t.goal.alternatives.is_empty());
+    assert!(!t.goal.holds(&t.init));
+}
+
+#[test]
+fn missing_cost_value_is_located_in_the_domain() {
+    let dir = data_dir().join("rooms");
+    let d = parse_domain(
+        &std::fs::read_to_string(dir.join("domain.pddl")).unwrap(),
+        "domain.pddl",
+    )
+    .unwrap();
+    let ptext = std::fs::read_to_string(dir.join("p-missing-cost.pddl")).unwrap();
+    let p = parse_problem(&ptext, "p-missing-cost.pddl", &d).unwrap();
+    let e = ground(&d, &p).unwrap_err().to_string();
+    assert!(e.starts_with("domain.pddl:14:53: "), "{e}");
+    assert!(
+        e.contains("no value for `(dist r1 r2)`") && e.contains("(move r1 r2)"),
+        "{e}"
+    );
+}
+
+#[test]
+fn state_from_names_accepts_fluents_and_statics_only() {
+    let t = rooms("p-costs.pddl");
+    let s = t
+        .state_from_names(&[
+            "( AT  R1 )".to_string(),
+            "(door hall r1)".into(),
+            "(has k1)".into(),
+        ])
+        .unwrap();
+    assert_eq!(t.state_names(&s), ["(at r1)", "(has k1)"]);
+    let e = t.state_from_names(&["(at r3)".to_string()]).unwrap_err();
+    assert!(e.to_string().contains("(at r3)"), "{e}");
+    assert_eq!(t.state_from_names(&t.state_names(&t.init)).unwrap(), t.init);
+}
+
+/// A precondition whose DNF explodes is refused with a typed error, not an out-of-memory.
+#[test]
+fn exploding_dnf_is_a_typed_error() {
+    let ors = "(or (p) (q)) ".repeat(13); // 2^13 disjuncts
+    let d = parse_domain(
+        &format!("(define (domain d) (:predicates (p) (q)) (:action a :precondition (and {ors}) :effect (not (p))))"),
+        "d.pddl",
+    )
+    .unwrap();
+    let p = parse_problem(
+        "(define (problem x) (:domain d) (:init (p)) (:goal (q)))",
+        "x.pddl",
+        &d,
+    )
+    .unwrap();
+    let e = ground(&d, &p).unwrap_err();
+    assert!(
+        matches!(e, logic_lfd::plan::GroundError::TooLarge(..)),
+        "{e}"
+    );
+    assert!(
+        e.to_string()
+            .contains("precondition of `a` has more than 4096 disjuncts"),
+        "{e}"
+    );
+}
+
+/// Re-grounding from an observed state reaches facts the original init could not.
+#[test]
+fn regrounding_with_an_observed_init() {
+    let dir = data_dir().join("rooms");
+    let d = parse_domain(
+        &std::fs::read_to_string(dir.join("domain.pddl")).unwrap(),
+        "domain.pddl",
+    )
+    .unwrap();
+    let p = parse_problem(
+        &std::fs::read_to_string(dir.join("p-unreachable.pddl")).unwrap(),
+        "p.pddl",
+        &d,
+    )
+    .unwrap();
+    assert!(ground(&d, &p).unwrap().goal.alternatives.is_empty());
+    let observed: Vec<String> = ["(AT r3)", "(door hall r1)", "(door r1 r2)"]
+        .map(String::from)
+        .to_vec();
+    let q = p.with_init(&d, &observed).unwrap();
+    let t = ground(&d, &q).unwrap();
+    assert_eq!(t.goal.alternatives.len(), 1);
+    assert!(t.goal.holds(&t.init));
+    let e = p
+        .with_init(&d, &["(at r1)".into(), "(at k1)".into()])
+        .unwrap_err();
+    assert_eq!((e.file.as_str(), e.line, e.col), ("<init>", 2, 5), "{e}");
+}

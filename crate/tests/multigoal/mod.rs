@@ -7,7 +7,7 @@ use crate::search::{
 };
 use logic_lfd::plan::{
     search, search_multi_goal, Algorithm, Goal, HeuristicKind, MultiGoalMode, MultiGoalResult,
-    NoClock, Outcome, SearchConfig, State, Task,
+    NoClock, SearchConfig, SearchOutcome, State, Task,
 };
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
@@ -16,7 +16,7 @@ use rand_pcg::Pcg64Mcg;
 /// Checks the plan replays from `start` into a state of the reported goal; returns `cost + c_k`.
 fn check(task: &Task, start: &State, goals: &[Goal], r: &MultiGoalResult) -> Option<u64> {
     match &r.outcome {
-        Outcome::Plan(p) => {
+        SearchOutcome::Plan(p) => {
             let end = replay(task, start, p).unwrap_or_else(|e| panic!("invalid plan: {e}"));
             let k = r.goal_index.expect("a plan names its goal");
             assert!(goals[k].holds(&end), "plan does not reach goal {k}");
@@ -30,11 +30,11 @@ fn check(task: &Task, start: &State, goals: &[Goal], r: &MultiGoalResult) -> Opt
             assert_eq!(r.total_cost, Some(p.cost + goals[k].terminal_cost));
             r.total_cost
         }
-        Outcome::Unsolvable => {
+        SearchOutcome::Unsolvable => {
             assert_eq!((r.goal_index, r.total_cost), (None, None));
             None
         }
-        Outcome::BudgetExhausted { .. } => panic!("no budget was set"),
+        SearchOutcome::BudgetExhausted { .. } => panic!("no budget was set"),
     }
 }
 
@@ -224,7 +224,7 @@ fn unreachable_goals_are_unsolvable() {
                 &SearchConfig::new(alg, h),
                 &NoClock,
             );
-            assert_eq!(r.outcome, Outcome::Unsolvable, "{alg} {h} {mode:?}");
+            assert_eq!(r.outcome, SearchOutcome::Unsolvable, "{alg} {h} {mode:?}");
         }
     }
 }

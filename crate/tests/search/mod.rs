@@ -2,7 +2,7 @@
 
 use logic_lfd::plan::{
     search, Algorithm, Budget, Clock, Condition, Goal, HeuristicEvaluator, HeuristicKind, NoClock,
-    Operator, Outcome, Plan, SearchConfig, State, Task,
+    Operator, Plan, SearchConfig, SearchOutcome, State, Task,
 };
 use proptest::prelude::*;
 use proptest::test_runner::{Config as PtConfig, RngAlgorithm, TestRng, TestRunner};
@@ -360,14 +360,14 @@ fn run_checked(task: &Task, alg: Algorithm, h: HeuristicKind) -> Option<(u64, us
     let cfg = SearchConfig::new(alg, h);
     let r = search(task, &cfg, &NoClock);
     match &r.outcome {
-        Outcome::Plan(p) => {
+        SearchOutcome::Plan(p) => {
             assert_valid(task, p);
             assert_eq!(r.stats.plan_cost, Some(p.cost));
             assert_eq!(r.stats.plan_length, Some(p.len()));
             Some((p.cost, p.len()))
         }
-        Outcome::Unsolvable => None,
-        Outcome::BudgetExhausted { .. } => panic!("no budget was set"),
+        SearchOutcome::Unsolvable => None,
+        SearchOutcome::BudgetExhausted { .. } => panic!("no budget was set"),
     }
 }
 
@@ -561,7 +561,7 @@ fn unsolvable_tasks_are_proved_unsolvable_by_every_config() {
     for task in [one_way_task(), negative_goal_task()] {
         for (alg, h) in OPTIMAL.into_iter().chain(SATISFICING) {
             let r = search(&task, &SearchConfig::new(alg, h), &NoClock);
-            assert_eq!(r.outcome, Outcome::Unsolvable, "{alg} {h}");
+            assert_eq!(r.outcome, SearchOutcome::Unsolvable, "{alg} {h}");
         }
     }
 }
@@ -572,7 +572,7 @@ fn goal_without_alternatives_is_unsolvable() {
     task.goal = Goal::default();
     for (alg, h) in OPTIMAL.into_iter().chain(SATISFICING) {
         let r = search(&task, &SearchConfig::new(alg, h), &NoClock);
-        assert_eq!(r.outcome, Outcome::Unsolvable, "{alg} {h}");
+        assert_eq!(r.outcome, SearchOutcome::Unsolvable, "{alg} {h}");
     }
 }
 
@@ -598,7 +598,7 @@ fn budgets_stop_the_search() {
         let r = search(&task, &cfg, &NoClock);
         assert_eq!(
             r.outcome,
-            Outcome::BudgetExhausted {
+            SearchOutcome::BudgetExhausted {
                 which: Budget::Nodes
             },
             "{alg} {h}"
@@ -611,7 +611,7 @@ fn budgets_stop_the_search() {
         let r = search(&task, &cfg, &SteppingClock(Cell::new(0.0)));
         assert_eq!(
             r.outcome,
-            Outcome::BudgetExhausted {
+            SearchOutcome::BudgetExhausted {
                 which: Budget::Time
             },
             "{alg} {h}"
@@ -629,7 +629,7 @@ fn start_state_satisfying_the_goal_gives_the_empty_plan() {
     };
     for (alg, h) in OPTIMAL.into_iter().chain(SATISFICING) {
         let r = search(&task, &SearchConfig::new(alg, h), &NoClock);
-        assert_eq!(r.outcome, Outcome::Plan(Plan::default()), "{alg} {h}");
+        assert_eq!(r.outcome, SearchOutcome::Plan(Plan::default()), "{alg} {h}");
     }
 }
 

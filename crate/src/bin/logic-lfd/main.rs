@@ -3,7 +3,10 @@
 //! Exit codes: 0 success, 2 bad input, 3 proved unsolvable, 4 budget exhausted, 5 invalid plan.
 //! Errors go to stderr as `file:line:col: message`; `--json` output goes to stdout.
 
+mod cmd_bench;
 mod cmd_lqt;
+mod cmd_plan;
+mod cmd_validate;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -33,9 +36,34 @@ struct Cli {
 enum Command {
     /// Solve an LQT-CP case (shared/lqt-cp-io.md) and print the output object as JSON.
     Lqt(cmd_lqt::Args),
+    /// Replay a plan on a PDDL domain and problem; report the first failing step and why.
+    Validate(cmd_validate::Args),
+    /// Ground a PDDL task and search for a plan (default: A* with LM-cut, optimal).
+    Plan(cmd_plan::Args),
+    /// Benchmarks: `bench planner` runs planner configurations over IPC folders.
+    Bench(cmd_bench::Args),
+}
+
+/// A closed stdout (`logic-lfd plan … | head`) ends the process quietly, as Unix tools do,
+/// instead of printing a panic from `println!`. Every other panic keeps the default report.
+fn exit_quietly_on_closed_stdout() {
+    let default_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(0);
+        }
+        default_hook(info);
+    }));
 }
 
 fn main() -> ExitCode {
+    exit_quietly_on_closed_stdout();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => {
@@ -50,5 +78,8 @@ fn main() -> ExitCode {
     };
     match cli.command {
         Command::Lqt(args) => cmd_lqt::run(args),
+        Command::Validate(a) => cmd_validate::run(a),
+        Command::Plan(args) => cmd_plan::run(args),
+        Command::Bench(args) => cmd_bench::run(args),
     }
 }

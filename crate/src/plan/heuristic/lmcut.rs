@@ -13,13 +13,24 @@
 //!
 //! The sum of the `m`'s is admissible (cost partitioning over landmarks) and dominates h_max.
 
-use super::relaxed::{Combine, Exploration, RelaxedTask, INF};
+use super::relaxed::{has, BucketQueue, RelaxedTask, INF};
 
 /// Buffers for LM-cut.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct LmCut {
+    /// Current operator costs `cost_i`.
     cost: Vec<u64>,
-    ex: Exploration,
+    /// `h_max(s, p)` under `cost_i`.
+    fact_cost: Vec<u64>,
+    /// Whether the fact is in `s ∪ {⊤}`.
+    init: Vec<bool>,
+    /// Unsettled preconditions (0 = the operator is relaxed-reachable).
+    unsat: Vec<u32>,
+    /// `max_{q ∈ pre(o)} h_max(s, q)`.
+    pre_max: Vec<u64>,
+    /// `pcf(o)`.
+    pcf: Vec<u32>,
+    heap: BucketQueue,
     zone: Vec<bool>,
     reached: Vec<bool>,
     in_cut: Vec<bool>,
@@ -28,6 +39,101 @@ pub(crate) struct LmCut {
 }
 
 impl LmCut {
+    /// Full h_max exploration from `s` under `self.cost`.
+    fn hmax_full(&mut self, rt: &RelaxedTask, words: &[u64]) {
+        let nf = rt.num_facts();
+        self.fact_cost.clear();
+        self.fact_cost.resize(nf, INF);
+        self.init.clear();
+        self.init.resize(nf, false);
+        self.unsat.clear();
+        self.unsat
+            .extend(rt.pre_start.windows(2).map(|w| w[1] - w[0]));
+        self.pre_max.clear();
+        self.pre_max.resize(rt.num_ops(), 0);
+        self.pcf.clear();
+        self.pcf.resize(rt.num_ops(), u32::MAX);
+        self.heap.clear();
+        for f in 0..rt.n as u32 {
+            if has(words, f) {
+                self.fact_cost[f as usize] = 0;
+                self.init[f as usize] = true;
+                self.heap.push(0, f);
+            }
+        }
+        let top = rt.top();
+        self.fact_cost[top as usize] = 0;
+        self.init[top as usize] = true;
+        self.heap.push(0, top);
+        while let Some((c, f)) = self.heap.pop() {
+            if c > self.fact_cost[f as usize] {
+                continue;
+            }
+            for &o in rt.pre_of(f) {
+                let o = o as usize;
+                self.unsat[o] -= 1;
+                if self.unsat[o] == 0 {
+                    // Settled in increasing cost: `f` maximises the precondition costs.
+                    self.pre_max[o] = c;
+                    self.pcf[o] = f;
+                    let v = c.saturating_add(self.cost[o]);
+                    for &e in rt.add(o) {
+                        if v < self.fact_cost[e as usize] {
+                            self.fact_cost[e as usize] = v;
+                            self.heap.push(v, e);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Updates h_max after the costs of the cut operators decreased (values only decrease;
+    /// an operator's `pcf` is recomputed when its current `pcf` decreases).
+    fn hmax_incremental(&mut self, rt: &RelaxedTask) {
+        self.heap.clear();
+        for &o in &self.cut {
+            let o = o as usize;
+            let v = self.pre_max[o].saturating_add(self.cost[o]);
+            for &e in rt.add(o) {
+                if v < self.fact_cost[e as usize] {
+                    self.fact_cost[e as usize] = v;
+                    self.heap.push(v, e);
+                }
+            }
+        }
+        while let Some((c, f)) = self.heap.pop() {
+            if c > self.fact_cost[f as usize] {
+                continue;
+            }
+            for &o in rt.pre_of(f) {
+                let o = o as usize;
+                if self.unsat[o] != 0 || self.pcf[o] != f {
+                    continue;
+                }
+                let (mut best, mut arg) = (0u64, u32::MAX);
+                for &q in rt.pre(o) {
+                    let v = self.fact_cost[q as usize];
+                    if arg == u32::MAX || v > best {
+                        best = v;
+                        arg = q;
+                    }
+                }
+                self.pcf[o] = arg;
+                if best < self.pre_max[o] {
+                    self.pre_max[o] = best;
+                    let v = best.saturating_add(self.cost[o]);
+                    for &e in rt.add(o) {
+                        if v < self.fact_cost[e as usize] {
+                            self.fact_cost[e as usize] = v;
+                            self.heap.push(v, e);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
     /// LM-cut value of the packed state, `None` for a dead end (`h_max = ∞`).
     pub fn eval(&mut self, rt: &RelaxedTask, words: &[u64]) -> Option<u64> {
         self.cost.clear();
@@ -35,15 +141,12 @@ impl LmCut {
         let goal = rt.goal_fact() as usize;
         let nf = rt.num_facts();
         let mut h: u64 = 0;
-        let mut first = true;
+        self.hmax_full(rt, words);
+        if self.fact_cost[goal] == INF {
+            return None;
+        }
         loop {
-            self.ex.run(rt, &self.cost, words, Combine::Max, false);
-            let hg = self.ex.fact_cost[goal];
-            if hg == INF {
-                return if first { None } else { Some(h) };
-            }
-            first = false;
-            if hg == 0 {
+            if self.fact_cost[goal] == 0 {
                 return Some(h);
             }
             // Goal zone: backwards from G★ through zero-cost operators' pcf edges.
@@ -55,8 +158,8 @@ impl LmCut {
             while let Some(e) = self.stack.pop() {
                 for &o in rt.add_of(e) {
                     let o = o as usize;
-                    if self.cost[o] == 0 && self.ex.unsat[o] == 0 {
-                        let p = self.ex.last_pre[o] as usize;
+                    if self.cost[o] == 0 && self.unsat[o] == 0 {
+                        let p = self.pcf[o] as usize;
                         if !self.zone[p] {
                             self.zone[p] = true;
                             self.stack.push(p as u32);
@@ -72,7 +175,7 @@ impl LmCut {
             self.cut.clear();
             self.stack.clear();
             for f in 0..nf {
-                if self.ex.fact_cost[f] == 0 && !self.zone[f] && self.ex.supporter[f] == u32::MAX {
+                if self.init[f] && !self.zone[f] {
                     self.reached[f] = true;
                     self.stack.push(f as u32);
                 }
@@ -80,7 +183,7 @@ impl LmCut {
             while let Some(f) = self.stack.pop() {
                 for &o in rt.pre_of(f) {
                     let o = o as usize;
-                    if self.ex.unsat[o] != 0 || self.ex.last_pre[o] != f {
+                    if self.unsat[o] != 0 || self.pcf[o] != f {
                         continue;
                     }
                     for &e in rt.add(o) {
@@ -111,6 +214,7 @@ impl LmCut {
             for &o in &self.cut {
                 self.cost[o as usize] -= m;
             }
+            self.hmax_incremental(rt);
         }
     }
 }

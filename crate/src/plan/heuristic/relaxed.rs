@@ -207,7 +207,7 @@ pub(crate) struct Exploration {
     pub acc: Vec<u64>,
     /// Last settled precondition (a maximiser: the precondition choice function).
     pub last_pre: Vec<u32>,
-    heap: BinaryHeap<Reverse<(u64, u32)>>,
+    heap: BucketQueue,
 }
 
 impl Exploration {
@@ -241,14 +241,14 @@ impl Exploration {
                 w &= w - 1;
                 if (f as usize) < rt.n {
                     self.fact_cost[f as usize] = 0;
-                    self.heap.push(Reverse((0, f)));
+                    self.heap.push(0, f);
                 }
             }
         }
         self.fact_cost[rt.top() as usize] = 0;
-        self.heap.push(Reverse((0, rt.top())));
+        self.heap.push(0, rt.top());
         let goal = rt.goal_fact();
-        while let Some(Reverse((c, f))) = self.heap.pop() {
+        while let Some((c, f)) = self.heap.pop() {
             if c > self.fact_cost[f as usize] {
                 continue;
             }
@@ -273,11 +273,66 @@ impl Exploration {
                         if v < self.fact_cost[e as usize] {
                             self.fact_cost[e as usize] = v;
                             self.supporter[e as usize] = o as u32;
-                            self.heap.push(Reverse((v, e)));
+                            self.heap.push(v, e);
                         }
                     }
                 }
             }
         }
+    }
+}
+
+/// Priority queue of `(cost, fact)` for monotone (Dijkstra-like) use: a bucket per cost below
+/// [`BucketQueue::LIMIT`], a binary heap above. Pops never return a cost below the last popped.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct BucketQueue {
+    buckets: Vec<Vec<u32>>,
+    cur: usize,
+    in_buckets: usize,
+    overflow: BinaryHeap<Reverse<(u64, u32)>>,
+}
+
+impl BucketQueue {
+    const LIMIT: u64 = 1 << 16;
+
+    pub fn clear(&mut self) {
+        if self.in_buckets > 0 {
+            for b in &mut self.buckets[self.cur..] {
+                b.clear();
+            }
+        }
+        self.cur = 0;
+        self.in_buckets = 0;
+        self.overflow.clear();
+    }
+
+    #[inline]
+    pub fn push(&mut self, c: u64, f: u32) {
+        if c < Self::LIMIT {
+            let c = c as usize;
+            if c >= self.buckets.len() {
+                self.buckets.resize_with(c + 1, Vec::new);
+            }
+            self.buckets[c].push(f);
+            if c < self.cur {
+                self.cur = c;
+            }
+            self.in_buckets += 1;
+        } else {
+            self.overflow.push(Reverse((c, f)));
+        }
+    }
+
+    #[inline]
+    pub fn pop(&mut self) -> Option<(u64, u32)> {
+        if self.in_buckets > 0 {
+            while self.buckets[self.cur].is_empty() {
+                self.cur += 1;
+            }
+            self.in_buckets -= 1;
+            let f = self.buckets[self.cur].pop().expect("non-empty bucket");
+            return Some((self.cur as u64, f));
+        }
+        self.overflow.pop().map(|Reverse(x)| x)
     }
 }

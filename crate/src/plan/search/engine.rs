@@ -3,7 +3,7 @@
 
 use super::space::StateSpace;
 use super::succ::SuccessorGenerator;
-use super::{Algorithm, Budget, Outcome, Plan, SearchConfig, SearchStats};
+use super::{Algorithm, Budget, Plan, SearchConfig, SearchOutcome, SearchStats};
 use crate::plan::clock::Clock;
 use crate::plan::heuristic::relaxed::has;
 use crate::plan::heuristic::HeuristicEvaluator;
@@ -13,7 +13,7 @@ use std::collections::{BinaryHeap, VecDeque};
 
 /// Result of one run: outcome, index of the goal reached, statistics.
 pub(crate) struct RunResult {
-    pub outcome: Outcome,
+    pub outcome: SearchOutcome,
     pub goal_index: Option<usize>,
     pub stats: SearchStats,
 }
@@ -128,7 +128,7 @@ pub(crate) fn run(
     };
     e.stats.time_secs = (clock.now_secs() - t0).max(0.0);
     e.stats.states = e.space.len() as u64;
-    if let Outcome::Plan(p) = &outcome {
+    if let SearchOutcome::Plan(p) = &outcome {
         e.stats.plan_cost = Some(p.cost);
         e.stats.plan_length = Some(p.len());
     }
@@ -224,7 +224,7 @@ impl Engine<'_> {
         self.words_buf.extend_from_slice(self.space.get(id));
     }
 
-    fn plan_to(&mut self, id: u32, goal: usize) -> Outcome {
+    fn plan_to(&mut self, id: u32, goal: usize) -> SearchOutcome {
         let mut ops = Vec::new();
         let mut cur = id;
         while self.parent[cur as usize] != NONE {
@@ -237,13 +237,13 @@ impl Engine<'_> {
             .map(|&o| self.task.operators[o].cost as u64)
             .sum();
         self.goal_index = Some(goal);
-        Outcome::Plan(Plan {
+        SearchOutcome::Plan(Plan {
             operators: ops,
             cost,
         })
     }
 
-    fn bfs(&mut self, start: &[u64]) -> Outcome {
+    fn bfs(&mut self, start: &[u64]) -> SearchOutcome {
         let (s, _) = self.register(start, NONE, NONE, 0);
         if let Some((k, _)) = self.goal_at(start) {
             return self.plan_to(s, k);
@@ -252,7 +252,7 @@ impl Engine<'_> {
         let mut ops = std::mem::take(&mut self.ops_buf);
         while let Some(id) = queue.pop_front() {
             if let Some(b) = self.budget() {
-                return Outcome::BudgetExhausted { which: b };
+                return SearchOutcome::BudgetExhausted { which: b };
             }
             self.stats.expanded += 1;
             self.load(id);
@@ -274,10 +274,10 @@ impl Engine<'_> {
                 }
             }
         }
-        Outcome::Unsolvable
+        SearchOutcome::Unsolvable
     }
 
-    fn best_first(&mut self, start: &[u64], alg: Algorithm) -> Outcome {
+    fn best_first(&mut self, start: &[u64], alg: Algorithm) -> SearchOutcome {
         let key = |g: u64, h: u64| match alg {
             Algorithm::Ucs => (g, 0),
             Algorithm::Astar => (g.saturating_add(h), h),
@@ -287,7 +287,7 @@ impl Engine<'_> {
         let (s, _) = self.register(start, NONE, NONE, 0);
         self.stats.evaluated += 1;
         let Some(h0) = self.heur.eval(start, None) else {
-            return Outcome::Unsolvable;
+            return SearchOutcome::Unsolvable;
         };
         self.h[s as usize] = h0;
         if greedy {
@@ -316,7 +316,7 @@ impl Engine<'_> {
                 continue;
             }
             if let Some(b) = self.budget() {
-                return Outcome::BudgetExhausted { which: b };
+                return SearchOutcome::BudgetExhausted { which: b };
             }
             self.load(id);
             let g = e.g;
@@ -388,10 +388,10 @@ impl Engine<'_> {
                 }
             }
         }
-        Outcome::Unsolvable
+        SearchOutcome::Unsolvable
     }
 
-    fn lazy_gbfs(&mut self, start: &[u64]) -> Outcome {
+    fn lazy_gbfs(&mut self, start: &[u64]) -> SearchOutcome {
         // Entries: (parent's h, seq, parent, operator).
         type Lazy = Reverse<(u64, u64, u32, u32)>;
         const BOOST: i64 = 1000;
@@ -415,7 +415,7 @@ impl Engine<'_> {
                     return self.plan_to(id, k);
                 }
                 if let Some(b) = self.budget() {
-                    return Outcome::BudgetExhausted { which: b };
+                    return SearchOutcome::BudgetExhausted { which: b };
                 }
                 self.stats.evaluated += 1;
                 let h = self
@@ -450,7 +450,7 @@ impl Engine<'_> {
             }
             // Pick the next entry.
             let q = match (queues[0].is_empty(), queues[1].is_empty()) {
-                (true, true) => return Outcome::Unsolvable,
+                (true, true) => return SearchOutcome::Unsolvable,
                 (false, true) => 0,
                 (true, false) => 1,
                 (false, false) => usize::from(priority[1] < priority[0]),

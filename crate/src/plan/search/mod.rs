@@ -197,7 +197,7 @@ impl fmt::Display for Budget {
 
 /// How a search ended.
 #[derive(Clone, PartialEq, Eq, Debug)]
-pub enum Outcome {
+pub enum SearchOutcome {
     /// A plan was found.
     Plan(Plan),
     /// The reachable state space holds no goal state (proved by exhausting it).
@@ -209,11 +209,11 @@ pub enum Outcome {
     },
 }
 
-impl Outcome {
+impl SearchOutcome {
     /// The plan, if one was found.
     pub fn plan(&self) -> Option<&Plan> {
         match self {
-            Outcome::Plan(p) => Some(p),
+            SearchOutcome::Plan(p) => Some(p),
             _ => None,
         }
     }
@@ -244,7 +244,7 @@ pub struct SearchStats {
 #[derive(Clone, PartialEq, Debug)]
 pub struct SearchResult {
     /// Plan, proved unsolvable, or budget exhausted.
-    pub outcome: Outcome,
+    pub outcome: SearchOutcome,
     /// Statistics.
     pub stats: SearchStats,
 }

@@ -1,0 +1,169 @@
+//! `logic-lfd plan DOMAIN PROBLEM [--search ALG] [--heuristic H] [--max-nodes N] [--time-limit S]
+//! [--json]`: grounds a PDDL task and searches it.
+//!
+//! Prints the plan one `(action arg …)` per line as IPC planners do, then `; cost = N (unit cost)`
+//! (or `(general cost)` with `:action-costs`) and a `;` statistics line. Default configuration:
+//! A* with LM-cut (optimal). Exit 0 plan found, 3 proved unsolvable, 4 budget exhausted, 2 bad
+//! input (`file:line:col: message` on stderr).
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use logic_lfd::pddl::{parse_domain, parse_problem, read_source, Domain, Problem};
+use logic_lfd::plan::{
+    ground, search, Algorithm, Clock, HeuristicKind, SearchConfig, SearchOutcome, SearchResult,
+    Task,
+};
+
+use crate::exit;
+
+/// Arguments of `plan`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The PDDL domain file.
+    domain: PathBuf,
+    /// The PDDL problem file.
+    problem: PathBuf,
+    /// Search algorithm: bfs|ucs|astar|gbfs|lazy-gbfs.
+    #[arg(long, default_value = "astar")]
+    search: Algorithm,
+    /// Heuristic: blind|hmax|hadd|hff|lmcut (ignored by bfs and ucs).
+    #[arg(long, default_value = "lmcut")]
+    heuristic: HeuristicKind,
+    /// Maximum number of expanded states.
+    #[arg(long)]
+    max_nodes: Option<u64>,
+    /// Maximum search time in seconds.
+    #[arg(long)]
+    time_limit: Option<f64>,
+    /// Print a JSON object on stdout instead of the plan text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Wall-clock time for search budgets (the CLI side of [`Clock`]).
+pub struct WallClock(Instant);
+
+impl WallClock {
+    /// A clock whose origin is now.
+    pub fn start() -> Self {
+        WallClock(Instant::now())
+    }
+}
+
+impl Clock for WallClock {
+    fn now_secs(&self) -> f64 {
+        self.0.elapsed().as_secs_f64()
+    }
+}
+
+/// Parses and grounds a domain/problem pair; the error is the located message.
+pub fn load(domain: &Path, problem: &Path) -> Result<(Domain, Problem, Task), String> {
+    let dtext = read_source(domain).map_err(|e| e.to_string())?;
+    let d = parse_domain(&dtext, &domain.display().to_string()).map_err(|e| e.to_string())?;
+    let ptext = read_source(problem).map_err(|e| e.to_string())?;
+    let p = parse_problem(&ptext, &problem.display().to_string(), &d).map_err(|e| e.to_string())?;
+    let t = ground(&d, &p).map_err(|e| e.to_string())?;
+    Ok((d, p, t))
+}
+
+/// The exit code of a search outcome.
+pub fn outcome_code(o: &SearchOutcome) -> u8 {
+    match o {
+        SearchOutcome::Plan(_) => exit::OK,
+        SearchOutcome::Unsolvable => exit::UNSOLVABLE,
+        SearchOutcome::BudgetExhausted { .. } => exit::BUDGET,
+    }
+}
+
+/// `solved`, `unsolvable` or `budget`.
+pub fn outcome_name(o: &SearchOutcome) -> &'static str {
+    match o {
+        SearchOutcome::Plan(_) => "solved",
+        SearchOutcome::Unsolvable => "unsolvable",
+        SearchOutcome::BudgetExhausted { .. } => "budget",
+    }
+}
+
+/// Runs the subcommand.
+pub fn run(args: Args) -> ExitCode {
+    if args.time_limit.is_some_and(|t| t.is_nan() || t < 0.0) {
+        eprintln!("--time-limit: expected a non-negative number of seconds");
+        return ExitCode::from(exit::BAD_INPUT);
+    }
+    let clock = WallClock::start();
+    let task = match load(&args.domain, &args.problem) {
+        Ok((_, _, t)) => t,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::from(exit::BAD_INPUT);
+        }
+    };
+    let config = SearchConfig {
+        algorithm: args.search,
+        heuristic: args.heuristic,
+        max_nodes: args.max_nodes,
+        time_limit_secs: args.time_limit,
+    };
+    let r = search(&task, &config, &clock);
+    let total = clock.now_secs();
+    if args.json {
+        println!("{}", json(&task, &config, &r, total));
+    } else {
+        print_text(&task, &config, &r);
+    }
+    ExitCode::from(outcome_code(&r.outcome))
+}
+
+fn print_text(task: &Task, config: &SearchConfig, r: &SearchResult) {
+    let s = &r.stats;
+    let stats = format!(
+        "; {} {}: expanded {}, generated {}, evaluated {}, search time {:.3} s",
+        config.algorithm, config.heuristic, s.expanded, s.generated, s.evaluated, s.time_secs
+    );
+    match &r.outcome {
+        SearchOutcome::Plan(p) => {
+            for name in p.names(task) {
+                println!("{name}");
+            }
+            let kind = if task.uses_costs {
+                "general cost"
+            } else {
+                "unit cost"
+            };
+            println!("; cost = {} ({kind})", p.cost);
+            println!("{stats}");
+        }
+        SearchOutcome::Unsolvable => {
+            eprintln!("no plan: the task is unsolvable (reachable state space exhausted)");
+            eprintln!("{stats}");
+        }
+        SearchOutcome::BudgetExhausted { which } => {
+            eprintln!("no plan: {which} exhausted");
+            eprintln!("{stats}");
+        }
+    }
+}
+
+fn json(task: &Task, config: &SearchConfig, r: &SearchResult, total: f64) -> serde_json::Value {
+    let s = &r.stats;
+    let plan = r.outcome.plan();
+    let mut j = serde_json::json!({
+        "status": outcome_name(&r.outcome),
+        "plan": plan.map(|p| p.names(task)),
+        "cost": plan.map(|p| p.cost),
+        "length": plan.map(|p| p.len()),
+        "expanded": s.expanded,
+        "generated": s.generated,
+        "evaluated": s.evaluated,
+        "time_secs": s.time_secs,
+        "total_secs": total,
+        "search": config.algorithm.name(),
+        "heuristic": config.heuristic.name(),
+    });
+    if let SearchOutcome::BudgetExhausted { which } = &r.outcome {
+        j["budget"] = serde_json::Value::from(which.to_string());
+    }
+    j
+}

@@ -1,0 +1,4 @@
+; expect 3:18 :teleportation
+(define (domain d)
+  (:requirements :teleportation :strips)
+  (:predicates (p ?x)))

@@ -1,0 +1,10 @@
+; hall -3- r1 -4- r2 (locked, key k1 in r1); r3 has no door; a self-loop door at r2.
+(define (problem rooms-costs)
+  (:domain ROOMS)
+  (:objects r1 r2 r3 - room k1 k2 - key)
+  (:init (at hall) (door hall r1) (door r1 r2) (door r2 r2) (locked r2)
+         (key-at k1 r1) (key-at k2 r3) (opens k1 r2)
+         (= (dist hall r1) 3) (= (dist r1 hall) 3) (= (dist r1 r2) 4) (= (dist r2 r1) 4)
+         (= (dist r2 r2) 1) (= (total-cost) 0))
+  (:goal (and (at r2) (or (has k1) (visited r3))))
+  (:metric minimize (total-cost)))
