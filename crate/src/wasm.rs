@@ -5,7 +5,7 @@
 //! every fallible call returns a rejected value carrying a message instead of panicking.
 
 use crate::pddl::{self, PddlError};
-use crate::plan::{self, Algorithm, Clock, HeuristicKind, Outcome, SearchConfig};
+use crate::plan::{self, Algorithm, Clock, HeuristicKind, SearchConfig, SearchOutcome};
 use serde::{Deserialize, Serialize};
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
@@ -202,8 +202,8 @@ pub struct PlanOptions {
 /// A located message about one of the inputs.
 #[derive(Debug, Clone, Serialize, Tsify)]
 pub struct Diagnostic {
-    /// Which input: `domain`, `problem` or `options`.
-    #[tsify(type = "\"domain\" | \"problem\" | \"options\"")]
+    /// Which input: `domain`, `problem`, `plan` or `options`.
+    #[tsify(type = "\"domain\" | \"problem\" | \"plan\" | \"options\"")]
     pub source: &'static str,
     /// The file name used in the message.
     pub file: String,
@@ -364,7 +364,7 @@ fn plan_impl(domain_text: &str, problem_text: &str, o: PlanOptions) -> PlanOutco
     };
     let r = plan::search(&task, &config, &clock);
     match r.outcome {
-        Outcome::Plan(p) => {
+        SearchOutcome::Plan(p) => {
             let names = |s: &plan::State| -> Vec<String> {
                 s.facts().map(|f| task.facts[f as usize].clone()).collect()
             };
@@ -386,7 +386,7 @@ fn plan_impl(domain_text: &str, problem_text: &str, o: PlanOptions) -> PlanOutco
                 states,
             })
         }
-        Outcome::Unsolvable => failed(
+        SearchOutcome::Unsolvable => failed(
             "unsolvable",
             format!(
                 "the problem is unsolvable: no goal state among {} reachable states",
@@ -394,7 +394,7 @@ fn plan_impl(domain_text: &str, problem_text: &str, o: PlanOptions) -> PlanOutco
             ),
             vec![],
         ),
-        Outcome::BudgetExhausted { which } => failed(
+        SearchOutcome::BudgetExhausted { which } => failed(
             "budget",
             format!(
                 "no plan within the {which} ({} states expanded)",
@@ -474,5 +474,80 @@ pub fn benchmark(id: &str) -> Result<JsValue, JsError> {
         scene: b.scene_snapshot(),
         domain: b.domain_pddl(),
         problem: b.problem_pddl(),
+    })
+}
+
+/// The verdict of [`validate()`].
+#[derive(Debug, Serialize, Tsify)]
+pub struct Validation {
+    /// Every step applied and the goal holds.
+    pub valid: bool,
+    /// One line for people (`Plan valid, cost 6`, or the first failing step and why).
+    pub message: String,
+    /// Steps applied before the verdict.
+    pub steps_applied: usize,
+    /// Cost of the applied steps.
+    pub cost: u64,
+    /// The 1-based step whose precondition is false, if that is the verdict.
+    #[tsify(optional)]
+    pub failed_step: Option<usize>,
+    /// The false precondition or goal literals.
+    pub false_literals: Vec<String>,
+    /// Located errors in the domain, problem or plan text.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Replays a plan (IPC format, one `(action arg …)` per line, `;` comments) on a problem and
+/// says whether it is valid, or the first failing step and why. Bad PDDL or a malformed plan is
+/// reported with `line:col` diagnostics, not thrown.
+#[wasm_bindgen(unchecked_return_type = "Validation")]
+pub fn validate(domain: &str, problem: &str, plan_text: &str) -> Result<JsValue, JsError> {
+    use crate::plan::Outcome;
+    let (df, pf, planf) = ("domain.pddl", "problem.pddl", "plan");
+    let bad = |d: Diagnostic| Validation {
+        valid: false,
+        message: format!("{}:{}:{}: {}", d.file, d.line, d.col, d.message),
+        steps_applied: 0,
+        cost: 0,
+        failed_step: None,
+        false_literals: vec![],
+        diagnostics: vec![d],
+    };
+    let d = match pddl::parse_domain(domain, df) {
+        Ok(d) => d,
+        Err(e) => return to_js(&bad(diagnostic(&e, df))),
+    };
+    let p = match pddl::parse_problem(problem, pf, &d) {
+        Ok(p) => p,
+        Err(e) => return to_js(&bad(diagnostic(&e, df))),
+    };
+    let plan_diag = |e: &PddlError| Diagnostic {
+        source: "plan",
+        ..diagnostic(e, df)
+    };
+    let steps = match plan::parse_plan(plan_text, planf) {
+        Ok(s) => s,
+        Err(e) => return to_js(&bad(plan_diag(&e))),
+    };
+    let r = plan::validate(&d, &p, &steps);
+    let message = r.to_string();
+    let (failed_step, false_literals, diagnostics) = match &r.outcome {
+        Outcome::Valid => (None, vec![], vec![]),
+        Outcome::Malformed(e) => (None, vec![], vec![plan_diag(e)]),
+        Outcome::PreconditionFalse {
+            step,
+            false_literals,
+            ..
+        } => (Some(*step), false_literals.clone(), vec![]),
+        Outcome::GoalNotReached { false_literals } => (None, false_literals.clone(), vec![]),
+    };
+    to_js(&Validation {
+        valid: r.is_valid(),
+        message,
+        steps_applied: r.steps_applied,
+        cost: r.cost,
+        failed_step,
+        false_literals,
+        diagnostics,
     })
 }
