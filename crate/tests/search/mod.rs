@@ -645,3 +645,242 @@ fn out_of_range_goal_facts_never_hold() {
         assert_eq!(r.stats.plan_length, Some(1), "{alg} {h}");
     }
 }
+
+// ----------------------------------------------------------------------------------------------
+// IPC benchmarks and the CLI.
+
+/// The shared IPC benchmark folder.
+pub fn ipc(path: &str) -> std::path::PathBuf {
+    std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/ipc")).join(path)
+}
+
+/// Parses and grounds an IPC problem.
+pub fn ipc_task(domain: &str, problem: &str) -> Task {
+    let read = |p: &str| std::fs::read_to_string(ipc(p)).unwrap();
+    let d = logic_lfd::pddl::parse_domain(&read(domain), domain).unwrap();
+    let p = logic_lfd::pddl::parse_problem(&read(problem), problem, &d).unwrap();
+    logic_lfd::plan::ground(&d, &p).unwrap()
+}
+
+/// Problem file names of an IPC folder, sorted.
+fn ipc_problems(dir: &str) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(ipc(dir))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".pddl") && n != "domain.pddl")
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn optimal_configs_agree_on_small_ipc_problems() {
+    let cases: Vec<(&str, Vec<String>)> = vec![
+        (
+            "blocks",
+            ipc_problems("blocks")
+                .into_iter()
+                .filter(|p| p.contains("-4-") || p.contains("-5-") || p.contains("-6-"))
+                .collect(),
+        ),
+        ("gripper", vec!["prob01.pddl".into()]),
+        ("logistics00", vec!["probLOGISTICS-4-0.pddl".into()]),
+        ("depot-typed", vec!["p01.pddl".into()]),
+    ];
+    let mut compared = 0;
+    for (dir, problems) in cases {
+        for prob in problems {
+            let task = ipc_task(&format!("{dir}/domain.pddl"), &format!("{dir}/{prob}"));
+            let mut costs = Vec::new();
+            for (alg, h) in OPTIMAL {
+                let cfg = SearchConfig {
+                    max_nodes: Some(20_000),
+                    ..SearchConfig::new(alg, h)
+                };
+                let r = search(&task, &cfg, &NoClock);
+                match &r.outcome {
+                    SearchOutcome::Plan(p) => {
+                        assert_valid(&task, p);
+                        costs.push((alg, h, p.cost));
+                    }
+                    SearchOutcome::BudgetExhausted { .. } => {}
+                    SearchOutcome::Unsolvable => panic!("{dir}/{prob} {alg} {h}: unsolvable"),
+                }
+            }
+            // LM-cut solves every one of these within the budget.
+            assert!(
+                costs.iter().any(|c| c.1 == HeuristicKind::LmCut),
+                "{dir}/{prob}"
+            );
+            for w in costs.windows(2) {
+                assert_eq!(w[0].2, w[1].2, "{dir}/{prob}: {:?}", costs);
+            }
+            compared += costs.len();
+        }
+    }
+    assert!(compared > 40);
+}
+
+#[test]
+fn satisficing_plans_are_valid_on_ipc_blocks_gripper_logistics() {
+    let mut solved = 0;
+    let mut total = 0;
+    for dir in ["blocks", "gripper", "logistics00"] {
+        for prob in ipc_problems(dir) {
+            let task = ipc_task(&format!("{dir}/domain.pddl"), &format!("{dir}/{prob}"));
+            for (alg, h) in [
+                (Algorithm::LazyGbfs, HeuristicKind::HFf),
+                (Algorithm::Gbfs, HeuristicKind::HFf),
+                (Algorithm::LazyGbfs, HeuristicKind::HAdd),
+            ] {
+                let cfg = SearchConfig {
+                    max_nodes: Some(3_000),
+                    ..SearchConfig::new(alg, h)
+                };
+                let r = search(&task, &cfg, &NoClock);
+                total += 1;
+                match &r.outcome {
+                    SearchOutcome::Plan(p) => {
+                        assert_valid(&task, p);
+                        solved += 1;
+                    }
+                    SearchOutcome::BudgetExhausted { .. } => {}
+                    SearchOutcome::Unsolvable => panic!("{dir}/{prob} {alg} {h}: unsolvable"),
+                }
+            }
+        }
+    }
+    // Lazy GBFS with h_FF and preferred operators solves nearly all within the small budget.
+    assert!(solved * 10 >= total * 8, "solved {solved} of {total}");
+}
+
+/// A domain where the goal room cannot be entered: `(move ?from ?to)` needs `(door ?from ?to)`.
+const ONE_WAY_DOMAIN: &str = "(define (domain one-way)
+  (:requirements :strips :negative-preconditions)
+  (:predicates (at ?r) (door ?a ?b))
+  (:action move :parameters (?a ?b)
+    :precondition (and (at ?a) (door ?a ?b) (not (at ?b)))
+    :effect (and (not (at ?a)) (at ?b))))";
+
+const ONE_WAY_PROBLEM: &str = "(define (problem trapped) (:domain one-way)
+  (:objects r1 r2 r3)
+  (:init (at r1) (door r1 r2) (door r2 r1) (door r3 r1))
+  (:goal (at r3)))";
+
+fn run_cli(args: &[&str]) -> (i32, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_logic-lfd"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn temp_files(tag: &str, files: &[(&str, &str)]) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("logic-lfd-search-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in files {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    dir
+}
+
+#[test]
+fn cli_plan_exit_codes_and_output() {
+    let dir = temp_files(
+        "exit",
+        &[
+            ("domain.pddl", ONE_WAY_DOMAIN),
+            ("problem.pddl", ONE_WAY_PROBLEM),
+            (
+                "bad.pddl",
+                "(define (problem p) (:domain one-way)\n  (:init (at r9)",
+            ),
+        ],
+    );
+    let d = dir.join("domain.pddl");
+    let d = d.to_str().unwrap();
+    let p = dir.join("problem.pddl");
+    let p = p.to_str().unwrap();
+    // Proved unsolvable: exit 3, for the default and a satisficing configuration.
+    for extra in [
+        &[][..],
+        &["--search", "lazy-gbfs", "--heuristic", "hff"][..],
+    ] {
+        let mut args = vec!["plan", d, p];
+        args.extend_from_slice(extra);
+        let (code, _, err) = run_cli(&args);
+        assert_eq!(code, 3, "{err}");
+        assert!(err.contains("unsolvable"), "{err}");
+    }
+    // Bad input: exit 2 with a located message.
+    let bad = dir.join("bad.pddl");
+    let (code, _, err) = run_cli(&["plan", d, bad.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(err.contains("bad.pddl:"), "{err}");
+    let (code, _, _) = run_cli(&["plan", d, p, "--heuristic", "ff"]);
+    assert_eq!(code, 2);
+    // Budget exhausted: exit 4.
+    let bd = ipc("blocks/domain.pddl");
+    let bp = ipc("blocks/probBLOCKS-8-0.pddl");
+    let (bd, bp) = (bd.to_str().unwrap(), bp.to_str().unwrap());
+    let (code, out, err) = run_cli(&["plan", bd, bp, "--max-nodes", "5", "--json"]);
+    assert_eq!(code, 4, "{err}");
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(j["status"], "budget");
+    assert_eq!(j["expanded"], 5);
+    // A plan: IPC text, then the cost line; the JSON agrees and the plan replays.
+    let bp = ipc("blocks/probBLOCKS-5-0.pddl");
+    let bp = bp.to_str().unwrap();
+    let (code, out, _) = run_cli(&["plan", bd, bp]);
+    assert_eq!(code, 0);
+    let lines: Vec<&str> = out.lines().filter(|l| !l.starts_with(';')).collect();
+    assert!(out.contains(&format!("; cost = {} (unit cost)", lines.len())));
+    let (code, out, _) = run_cli(&[
+        "plan",
+        bd,
+        bp,
+        "--search",
+        "lazy-gbfs",
+        "--heuristic",
+        "hff",
+        "--json",
+    ]);
+    assert_eq!(code, 0);
+    let j: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let task = ipc_task("blocks/domain.pddl", "blocks/probBLOCKS-5-0.pddl");
+    let names: Vec<String> = j["plan"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap().to_string())
+        .collect();
+    let ops: Vec<usize> = names
+        .iter()
+        .map(|n| task.operators.iter().position(|o| &o.name == n).unwrap())
+        .collect();
+    let cost = ops.len() as u64;
+    assert_valid(
+        &task,
+        &Plan {
+            operators: ops,
+            cost,
+        },
+    );
+    assert_eq!(j["length"], names.len());
+    for key in [
+        "cost",
+        "expanded",
+        "generated",
+        "evaluated",
+        "time_secs",
+        "search",
+        "heuristic",
+    ] {
+        assert!(!j[key].is_null(), "{key}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
