@@ -551,3 +551,131 @@ pub fn validate(domain: &str, problem: &str, plan_text: &str) -> Result<JsValue,
         diagnostics,
     })
 }
+
+/// Converts a JS number to a seed (a non-negative integer below 2^53).
+fn seed_of(seed: f64) -> Result<u64, JsError> {
+    if seed.is_finite() && seed >= 0.0 && seed.fract() == 0.0 && seed <= 9_007_199_254_740_991.0 {
+        Ok(seed as u64)
+    } else {
+        Err(js_err(format!(
+            "seed must be a non-negative integer, got {seed}"
+        )))
+    }
+}
+
+fn session_options(options: JsValue) -> Result<crate::lfd::session::SessionOptions, JsError> {
+    let v: serde_json::Value =
+        serde_wasm_bindgen::from_value(options).map_err(|e| js_err(format!("options: {e}")))?;
+    serde_json::from_value(v).map_err(|e| js_err(format!("options: {e}")))
+}
+
+/// One closed-loop episode (paper Algorithm 1) in a kinematic workcell: step it, draw its frames,
+/// disturb it. Wraps `lfd::Session` 1:1; every method returns plain data (see `Frame`).
+#[wasm_bindgen(js_name = Session)]
+pub struct WasmSession {
+    inner: crate::lfd::session::Session,
+}
+
+#[wasm_bindgen(js_class = Session)]
+impl WasmSession {
+    /// A session on one of the benchmarks (`{ benchmark: "b1", method: "logic-lfd", mode: "paper",
+    /// seed: 1 }`). Rejects unknown options with a message.
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        #[wasm_bindgen(unchecked_param_type = "SessionOptions")] options: JsValue,
+    ) -> Result<WasmSession, JsError> {
+        let o = session_options(options)?;
+        let inner = crate::lfd::session::Session::new(o).map_err(js_err)?;
+        Ok(WasmSession { inner })
+    }
+
+    /// A session on a benchmark's task in a different starting scene (a saved `WorldSnapshot`
+    /// JSON), optionally with another demonstration (`demo.json` text).
+    #[wasm_bindgen(js_name = fromScene)]
+    pub fn from_scene(
+        #[wasm_bindgen(unchecked_param_type = "SessionOptions")] options: JsValue,
+        scene: &str,
+        demo: Option<String>,
+    ) -> Result<WasmSession, JsError> {
+        let o = session_options(options)?;
+        let inner =
+            crate::lfd::session::Session::from_scene(o, scene, demo.as_deref()).map_err(js_err)?;
+        Ok(WasmSession { inner })
+    }
+
+    /// Re-runs a logged episode (from `episodeJson()`) and returns the session at its end.
+    pub fn replay(episode: &str) -> Result<WasmSession, JsError> {
+        let inner = crate::lfd::session::Session::replay(episode).map_err(js_err)?;
+        Ok(WasmSession { inner })
+    }
+
+    /// Advances the episode by `dt` simulated seconds (whole 10 ms ticks; replans happen inside)
+    /// and returns the new frame.
+    #[wasm_bindgen(unchecked_return_type = "Frame")]
+    pub fn step(&mut self, dt: f64) -> Result<JsValue, JsError> {
+        if !dt.is_finite() || dt < 0.0 {
+            return Err(js_err(format!(
+                "dt must be a non-negative number of seconds, got {dt}"
+            )));
+        }
+        let f = self.inner.step(dt, &PerformanceClock);
+        to_js(&f)
+    }
+
+    /// The current frame, without stepping.
+    #[wasm_bindgen(unchecked_return_type = "Frame")]
+    pub fn frame(&self) -> Result<JsValue, JsError> {
+        to_js(&self.inner.frame())
+    }
+
+    /// Moves a block as a user's drag does: to `position` (m), then it settles. Rejects with the
+    /// reason when the world refuses (the block would float, collide, …).
+    #[wasm_bindgen(unchecked_return_type = "PerturbOutcome")]
+    pub fn perturb(
+        &mut self,
+        body: &str,
+        #[wasm_bindgen(unchecked_param_type = "[number, number, number]")] position: Vec<f64>,
+    ) -> Result<JsValue, JsError> {
+        let p: [f64; 3] = position
+            .try_into()
+            .map_err(|_| js_err("position must be [x, y, z]"))?;
+        if p.iter().any(|v| !v.is_finite()) {
+            return Err(js_err("position must be finite"));
+        }
+        let out = self
+            .inner
+            .perturb(body, p)
+            .map_err(|r| js_err(format!("cannot move {}: {}", r.body, r.reason)))?;
+        to_js(&out)
+    }
+
+    /// Injects a disturbance of level `l1`..`l4` and says what it did.
+    #[wasm_bindgen(unchecked_return_type = "Injection")]
+    pub fn inject(&mut self, level: &str) -> Result<JsValue, JsError> {
+        let out = self.inner.inject(level).map_err(js_err)?;
+        to_js(&out)
+    }
+
+    /// Restarts from the initial scene with another seed.
+    pub fn reset(&mut self, seed: f64) -> Result<(), JsError> {
+        self.inner.reset(seed_of(seed)?);
+        Ok(())
+    }
+
+    /// Drops the current plan; the loop replans on the next step.
+    pub fn cancel(&mut self) {
+        self.inner.cancel();
+    }
+
+    /// The full episode log as JSON; `Session.replay` reproduces it exactly.
+    #[wasm_bindgen(js_name = episodeJson)]
+    pub fn episode_json(&self) -> String {
+        self.inner.episode_json()
+    }
+
+    /// The current world as scene JSON (loadable with `Session.fromScene`).
+    #[wasm_bindgen(js_name = sceneJson)]
+    pub fn scene_json(&self) -> String {
+        self.inner.world().to_json()
+    }
+}

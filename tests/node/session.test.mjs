@@ -3,7 +3,6 @@ import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 
 const lfd = await import(new URL('../../pkg/node/index.mjs', import.meta.url).href);
-const noSession = typeof lfd.Session === 'function' ? false : 'this build has no closed-loop Session yet';
 
 /**
  * Steps until done/failed (or a bound), calling `each(frame, i)` after every step.
@@ -21,7 +20,7 @@ function run(session, each = () => {}, maxSteps = 4000) {
 
 const TOWER = ['(on a b)', '(on b c)', '(on c d)'];
 
-describe('Session', { skip: noSession }, () => {
+describe('Session', () => {
   test('a B1 episode reaches success: the tower A on B on C on D stands', () => {
     const s = new lfd.Session({ benchmark: 'b1', method: 'logic-lfd', mode: 'paper', seed: 1 });
     const first = s.frame();
@@ -54,7 +53,8 @@ describe('Session', { skip: noSession }, () => {
   test('a refused drag rejects with the reason and leaves the world unchanged', () => {
     const s = new lfd.Session({ benchmark: 'b1', method: 'logic-lfd', mode: 'paper', seed: 1 });
     const before = s.frame().world;
-    assert.throws(() => s.perturb('a', [0.5, 0, 2.0]), (e) => e instanceof Error && e.message.length > 0);
+    // Off every table: nothing would support it.
+    assert.throws(() => s.perturb('a', [5, 5, 0.03]), (e) => e instanceof Error && e.message.length > 0);
     assert.throws(() => s.perturb('no-such-block', [0.5, 0, 0.03]), /no-such-block/);
     assert.deepEqual(s.frame().world.bodies, before.bodies);
     s.free();

@@ -207,8 +207,8 @@ export class EditorPanel {
       ...diags.map((d) => {
         const where = d.line > 0 ? `${d.file}:${d.line}:${d.col}` : d.file || d.source;
         const li = el('li', { class: 'diagnostic' }, el('code', {}, where), ' ', d.message);
-        if (d.line > 0 && d.source !== 'options') {
-          const src = d.source;
+        if (d.line > 0 && (d.source === 'domain' || d.source === 'problem')) {
+          const src: Which = d.source;
           li.tabIndex = 0;
           li.onclick = () => this.reveal(src, d.line, d.col);
         }

@@ -2,36 +2,12 @@
 // never run on the page's thread, so the page never freezes. It plays the session in real time
 // (scaled by `speed`) and pushes a frame after every tick.
 import init, * as lfd from 'logic-lfd';
-import type { Frame, Injection, PerturbOutcome, SessionOptions } from 'logic-lfd';
+import type { Frame } from 'logic-lfd';
 import type { Api, ApiKind, FromWorker, ToWorker } from './protocol';
 
 const post = (m: FromWorker) => (self as unknown as Worker).postMessage(m);
 
-/** What the worker uses of the package's `Session` class. */
-interface SessionHandle {
-  frame(): Frame;
-  step(dt: number): Frame;
-  perturb(body: string, position: [number, number, number]): PerturbOutcome;
-  inject(level: string): Injection;
-  reset(seed: number): void;
-  cancel(): void;
-  episodeJson(): string;
-  sceneJson(): string;
-  free(): void;
-}
-interface SessionClass {
-  new (options: SessionOptions): SessionHandle;
-  fromScene(options: SessionOptions, scene: string): SessionHandle;
-  replay(episode: string): SessionHandle;
-}
-
-function sessionClass(): SessionClass {
-  const c = (lfd as unknown as { Session?: SessionClass }).Session;
-  if (!c) throw new Error('this build of logic-lfd has no closed-loop Session yet');
-  return c;
-}
-
-let session: SessionHandle | null = null;
+let session: lfd.Session | null = null;
 let playing = false;
 let speed = 1;
 let timer: ReturnType<typeof setTimeout> | null = null;
@@ -41,12 +17,12 @@ const TICK_MS = 1000 / 60;
 /** Never advance more than this much simulated time in one tick (s), so a stalled tab catches up gently. */
 const MAX_DT = 0.1;
 
-function need(): SessionHandle {
+function need(): lfd.Session {
   if (!session) throw new Error('no session: choose a benchmark first');
   return session;
 }
 
-function replace(s: SessionHandle): Frame {
+function replace(s: lfd.Session): Frame {
   stop();
   session?.free();
   session = s;
@@ -82,8 +58,8 @@ const handlers: Handlers = {
   check: ({ domain, problem }) => lfd.check(domain, problem),
   benchmark: ({ id }) => lfd.benchmark(id),
   open: ({ options, scene }) =>
-    replace(scene === undefined ? new (sessionClass())(options) : sessionClass().fromScene(options, scene)),
-  replay: ({ episode }) => replace(sessionClass().replay(episode)),
+    replace(scene === undefined ? new lfd.Session(options) : lfd.Session.fromScene(options, scene)),
+  replay: ({ episode }) => replace(lfd.Session.replay(episode)),
   play: ({ speed: s }) => {
     need();
     speed = s;
