@@ -376,14 +376,17 @@ async function reset(): Promise<void> {
   if (params.get('autoplay') !== '0') await play();
 }
 
+const withoutLevel = (level: Level, m: string) => m.replace(new RegExp(`^${level}:\\s*`, 'i'), '');
+const withLevel = (level: Level, m: string) => `${level.toUpperCase()}: ${withoutLevel(level, m)}`;
+
 async function inject(level: Level): Promise<void> {
   try {
     const r = await client.call('inject', { level });
-    showNotice(`${level.toUpperCase()}: ${r.message}`, 'info');
+    showNotice(withLevel(level, r.message), 'info');
     render(r.frame);
     if (!playing) await play();
   } catch (e) {
-    showNotice(`${level.toUpperCase()} refused: ${(e as Error).message}`, 'error');
+    showNotice(`${level.toUpperCase()} refused: ${withoutLevel(level, (e as Error).message)}`, 'error');
   }
 }
 
@@ -508,6 +511,7 @@ declare global {
       stepTimes: () => number[];
       replans: () => [number, number][];
       setPddl: (domain: string, problem: string) => Promise<void>;
+      renderMs: () => number;
       loadedAt: number;
     };
   }
@@ -523,6 +527,7 @@ window.lfd = {
     selectTab('pddl');
     (await getEditor()).setTexts(domain, problem);
   },
+  renderMs: () => view.renderMs,
   loadedAt: 0,
 };
 

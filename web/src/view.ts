@@ -64,6 +64,20 @@ function textTexture(text: string): THREE.CanvasTexture {
   return t;
 }
 
+/** Whether WebGL is rasterised on the CPU (SwiftShader, llvmpipe). */
+function isSoftwareRenderer(): boolean {
+  try {
+    const gl = document.createElement('canvas').getContext('webgl2');
+    if (!gl) return true;
+    const ext = gl.getExtension('WEBGL_debug_renderer_info');
+    const name = String(ext ? gl.getParameter(ext.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER));
+    gl.getExtension('WEBGL_lose_context')?.loseContext();
+    return /swiftshader|llvmpipe|software/i.test(name);
+  } catch {
+    return false;
+  }
+}
+
 function luminance(hex: string): number {
   const c = new THREE.Color(hex);
   return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
@@ -106,15 +120,23 @@ export class View {
   private readonly fingerMaterial = new THREE.MeshStandardMaterial({ color: 0x2b2f36, roughness: 0.6 });
   private hovered: string | null = null;
   private rendering = false;
+  /** Smoothed time of one `renderer.render` call (ms). */
+  renderMs = 0;
+  /** Whether the renderer runs in software (SwiftShader) or `?quality=low` was asked for. */
+  readonly lowQuality: boolean;
   private dirty = true;
 
   constructor(
     private readonly host: HTMLElement,
     private readonly opts: ViewOptions,
   ) {
-    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
-    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
-    this.renderer.shadowMap.enabled = true;
+    // A software rasteriser (SwiftShader: headless browsers, machines without a GPU) gets the light
+    // settings: no MSAA, no shadows, fewer pixels; it stays interactive instead of 2 frames/s.
+    const q = new URLSearchParams(location.search).get('quality');
+    this.lowQuality = q === 'low' || (q !== 'high' && isSoftwareRenderer());
+    this.renderer = new THREE.WebGLRenderer({ antialias: !this.lowQuality });
+    this.renderer.setPixelRatio(this.lowQuality ? 0.75 : Math.min(window.devicePixelRatio, 2));
+    this.renderer.shadowMap.enabled = !this.lowQuality;
     this.renderer.shadowMap.type = THREE.PCFShadowMap;
     this.renderer.outputColorSpace = THREE.SRGBColorSpace;
     this.renderer.domElement.setAttribute('aria-label', '3-D view of the robot workcell: drag a block to move it');
@@ -186,7 +208,9 @@ export class View {
     const loop = () => {
       this.controls.update();
       if (this.dirty) {
+        const t0 = performance.now();
         this.renderer.render(this.scene, this.camera);
+        this.renderMs = 0.9 * this.renderMs + 0.1 * (performance.now() - t0);
         this.dirty = false;
       }
       requestAnimationFrame(loop);
@@ -431,7 +455,8 @@ export class View {
 
   private pickBlock(): string | null {
     const blocks = [...this.bodies.values()].filter((b) => b.kind === 'block').map((b) => b.object);
-    const hit = this.raycaster.intersectObjects(blocks, true)[0];
+    // Only the block meshes count (edge lines would match any ray passing nearby).
+    const hit = this.raycaster.intersectObjects(blocks, true).find((h) => h.object instanceof THREE.Mesh);
     return hit ? (hit.object.userData.body as string) : null;
   }
 
@@ -443,7 +468,7 @@ export class View {
     const entry = this.bodies.get(name)!;
     this.controls.enabled = false;
     this.renderer.domElement.setPointerCapture(e.pointerId);
-    const src = entry.object.children[0] as THREE.Mesh;
+    const src = entry.object.children.find((c): c is THREE.Mesh => c instanceof THREE.Mesh)!;
     const ghost = new THREE.Mesh(
       src.geometry,
       new THREE.MeshStandardMaterial({ color: 0xffffff, transparent: true, opacity: 0.35, depthWrite: false }),
@@ -471,7 +496,7 @@ export class View {
     const supports = [...this.bodies.entries()]
       .filter(([n, b]) => n !== d.name && (b.kind === 'table' || b.kind === 'shelf' || b.kind === 'block'))
       .map(([, b]) => b.object);
-    const hits = this.raycaster.intersectObjects(supports, true);
+    const hits = this.raycaster.intersectObjects(supports, true).filter((h) => h.object instanceof THREE.Mesh);
     let target: THREE.Vector3 | null = null;
     for (const h of hits) {
       if (!h.face) continue;
