@@ -153,7 +153,7 @@ describe('closed-loop session in the page', () => {
 
   for (const b of ['b1', 'b2', 'b3']) {
     test(`screenshot of ${b.toUpperCase()}`, async () => {
-      const { page, errors } = await open(`?benchmark=${b}&speed=2&seed=1`);
+      const { page, errors } = await open(`?benchmark=${b}&speed=2&seed=1&quality=high`);
       await page.waitForFunction(() => (window.lfd.frame()?.t ?? 0) > 3, null, { timeout: 60000 });
       await page.waitForTimeout(300);
       await page.screenshot({ path: join(screenshots, `${b}.png`) });
