@@ -53,10 +53,13 @@ const size = await sizes();
 const results = [];
 for (let r = 0; r < runs; r++) {
   const { page } = await openPage(browser, `${server.url}?benchmark=${benchmark}&seed=${r + 1}`);
-  const t0 = Date.now();
   await page.waitForSelector('#app[data-ready="true"]', { timeout: 30000 });
   const interactiveMs = await page.evaluate(() => window.lfd.loadedAt);
-  void t0;
+  // Disturb the run so that Logic-LfD replans: L3 twice (unseen states), L4 once (a new block).
+  for (const [t, level] of [[1, 'l3'], [4, 'l4'], [7, 'l3']]) {
+    await page.waitForFunction((t) => (window.lfd.frame()?.t ?? 0) > t, t, { timeout: 60000 });
+    await page.click(`#inject-${level}`);
+  }
   await page.waitForFunction(() => ['done', 'failed'].includes(window.lfd.frame()?.status.kind), null, { timeout: 120000 });
   const out = await page.evaluate(() => ({
     steps: window.lfd.stepTimes(),

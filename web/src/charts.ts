@@ -49,7 +49,7 @@ export class Charts {
     root.append(a, b);
     this.replanChart = chart(a, 'Replanning time', 'simulated time (s)', 'ms', [
       {},
-      { label: 'replan (ms)', stroke: '#ffb224', width: 2, points: { show: true, size: 6, fill: '#ffb224' } },
+      { label: 'replan (ms)', stroke: '#ffb224', width: 0, paths: () => null, points: { show: true, size: 7, fill: '#ffb224' } },
     ]);
     this.eeChart = chart(b, 'End-effector trajectory (arm 1)', 'simulated time (s)', 'm', [
       {},
