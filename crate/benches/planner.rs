@@ -85,7 +85,11 @@ fn tower(c: &mut Criterion) {
         b.iter(|| {
             let p = parse_problem(&reversed, "reversed.pddl", &d).expect("problem");
             let t = ground(&d, &p).expect("ground");
-            black_box(search(&t, &SearchConfig::default(), &NoClock).stats.plan_length)
+            black_box(
+                search(&t, &SearchConfig::default(), &NoClock)
+                    .stats
+                    .plan_length,
+            )
         })
     });
     g.finish();
