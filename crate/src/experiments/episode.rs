@@ -9,8 +9,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::lfd::control::{FailReason, Replan};
 use crate::lfd::session::{
-    mix, BenchmarkId, EpisodeLog, Injection, Session, SessionError, SessionOptions,
-    SessionParams, SkillKind,
+    mix, BenchmarkId, EpisodeLog, Injection, Session, SessionError, SessionOptions, SessionParams,
+    SkillKind,
 };
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;

@@ -185,12 +185,18 @@ enum Phase {
 /// when its anchor moves).
 #[derive(Clone, Debug, PartialEq)]
 enum Via {
-    /// Above the grasp pose of `body` by `dz`.
-    Grasp { body: String, dz: f64 },
-    /// The TCP pose that puts the held body at the placement, raised by `dz`.
-    Place { placement: Placement, dz: f64 },
-    /// Straight up from where the TCP is now, to `z`.
-    Up { dz: f64 },
+    /// Above the grasp pose of `body` by `dz` (`skill`: run the learned grasp-approach skill).
+    Grasp { body: String, dz: f64, skill: bool },
+    /// The TCP pose that puts the held body at the placement, raised by `dz` (`skill`: the
+    /// learned place-approach skill).
+    Place {
+        placement: Placement,
+        dz: f64,
+        skill: bool,
+    },
+    /// Straight up by `dz` from where the TCP is (`skill`: the learned retreat of the action,
+    /// in the frame recorded at the gripper event).
+    Up { dz: f64, skill: bool },
     /// A pull stroke: hook blade behind `body`, then dragged towards the base (`stage` 0 / 1).
     Pull { body: String, stage: u8 },
 }
@@ -212,6 +218,10 @@ pub struct ActionExec {
     gripper: GripperCommand,
     /// Events seen during the action.
     pub events: Vec<WorldEvent>,
+    /// The anchor frame at the gripper event (frame of the retreat skill).
+    event_frame: Option<Isometry3<f64>>,
+    /// The body acted on is the hook (its skills are the `hook-…` ones).
+    hook: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -219,8 +229,19 @@ struct Running {
     traj: SkillSegment,
     t: usize,
     goal: Isometry3<f64>,
+    /// Body watched for re-anchoring, where it was, and the skill frame planned for.
     anchor: Option<(String, Vector3<f64>)>,
+    frame: Option<Isometry3<f64>>,
     lag: usize,
+}
+
+/// Centre + yaw of a pose (the demo's anchor-frame convention).
+fn anchor_frame(p: &Isometry3<f64>) -> Isometry3<f64> {
+    let (_, _, yaw) = p.rotation.euler_angles();
+    Isometry3::from_parts(
+        p.translation,
+        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+    )
 }
 
 /// How an action's execution stands after a tick.
@@ -236,8 +257,64 @@ pub enum ExecStatus {
 
 impl ActionExec {
     /// Prepares the execution of `kind` (placements must be bound).
-    pub fn new(action: &str, kind: ActionKind, world: &World, p: &ExecParams) -> Self {
+    pub fn new(
+        action: &str,
+        kind: ActionKind,
+        world: &World,
+        skills: &SkillLibrary,
+        p: &ExecParams,
+    ) -> Self {
+        let hook = match &kind {
+            ActionKind::Grasp { body, .. } | ActionKind::Release { body, .. } => {
+                world.body_kind(body) == Some(HOOK)
+            }
+            ActionKind::Pull { .. } => true,
+        };
+        let pre = if hook { "hook-" } else { "" };
         let (arm, phases) = match &kind {
+            ActionKind::Grasp { arm, body } if skills.has(&format!("{pre}grasp-approach")) =>
+            {
+                (
+                    *arm,
+                    vec![
+                        Phase::Gripper(GripperCommand::Open),
+                        Phase::Move(Via::Grasp {
+                            body: body.clone(),
+                            dz: 0.0,
+                            skill: true,
+                        }),
+                        Phase::Gripper(GripperCommand::Close),
+                        Phase::Move(Via::Up {
+                            dz: p.lift_height,
+                            skill: skills.has(&format!("{pre}grasp-retreat")),
+                        }),
+                    ],
+                )
+            }
+            ActionKind::Release { arm, placement, .. }
+                if skills.has("place-approach") && skills.has("place-retreat") =>
+            {
+                let placement = placement.clone().unwrap_or(Placement::At {
+                    x: 0.0,
+                    y: 0.0,
+                    yaw: 0.0,
+                });
+                (
+                    *arm,
+                    vec![
+                        Phase::Move(Via::Place {
+                            placement,
+                            dz: p.release_clearance,
+                            skill: true,
+                        }),
+                        Phase::Gripper(GripperCommand::Open),
+                        Phase::Move(Via::Up {
+                            dz: p.approach_height,
+                            skill: skills.has(&format!("{pre}place-retreat")),
+                        }),
+                    ],
+                )
+            }
             ActionKind::Grasp { arm, body } => (
                 *arm,
                 vec![
@@ -245,13 +322,18 @@ impl ActionExec {
                     Phase::Move(Via::Grasp {
                         body: body.clone(),
                         dz: p.approach_height,
+                        skill: false,
                     }),
                     Phase::Move(Via::Grasp {
                         body: body.clone(),
                         dz: 0.0,
+                        skill: false,
                     }),
                     Phase::Gripper(GripperCommand::Close),
-                    Phase::Move(Via::Up { dz: p.lift_height }),
+                    Phase::Move(Via::Up {
+                        dz: p.lift_height,
+                        skill: false,
+                    }),
                 ],
             ),
             ActionKind::Release { arm, placement, .. } => {
@@ -266,14 +348,17 @@ impl ActionExec {
                         Phase::Move(Via::Place {
                             placement: placement.clone(),
                             dz: p.approach_height,
+                            skill: false,
                         }),
                         Phase::Move(Via::Place {
                             placement,
                             dz: p.release_clearance,
+                            skill: false,
                         }),
                         Phase::Gripper(GripperCommand::Open),
                         Phase::Move(Via::Up {
                             dz: p.approach_height,
+                            skill: false,
                         }),
                     ],
                 )
@@ -293,6 +378,10 @@ impl ActionExec {
                         body: body.clone(),
                         stage: 2,
                     }),
+                    Phase::Move(Via::Pull {
+                        body: body.clone(),
+                        stage: 3,
+                    }),
                 ],
             ),
         };
@@ -310,6 +399,8 @@ impl ActionExec {
             wait: 0,
             gripper,
             events: vec![],
+            event_frame: None,
+            hook,
         }
     }
 
@@ -320,9 +411,7 @@ impl ActionExec {
 
     /// The current commanded target of the TCP, if moving.
     pub fn target(&self) -> Option<Vector3<f64>> {
-        self.segment
-            .as_ref()
-            .map(|s| s.traj.position(s.t.min(s.traj.len().saturating_sub(1))))
+        self.segment.as_ref().map(|s| s.traj.current(s.t))
     }
 
     /// Index of the phase being executed and the number of phases.
@@ -341,19 +430,15 @@ impl ActionExec {
                 let Some(tcp) = world.tcp_pose(self.arm) else {
                     return ExecStatus::Failed("no such arm".into());
                 };
-                self.gripper = cmd;
-                if std::env::var("LFD_TRACE").is_ok() && self.wait == 0 {
-                    if let Some(h) = world.held_by(self.arm) {
-                        eprintln!(
-                            "  gripper {cmd:?}: {h} at {:?}, tcp {:?}",
-                            world.body_pose(h).map(|p| p.translation.vector),
-                            tcp.translation.vector
-                        );
-                    }
-                    for b in world.block_names() {
-                        eprintln!("    {b}: {:?}", world.body_pose(b).map(|p| p.translation.vector));
-                    }
+                if self.wait == 0 {
+                    // The retreat's frame: the grasped body where it was grasped; for a release
+                    // the body's resting pose (recorded once it has settled, below).
+                    self.event_frame = world
+                        .held_by(self.arm)
+                        .and_then(|h| world.body_pose(h))
+                        .map(|p| anchor_frame(&p));
                 }
+                self.gripper = cmd;
                 let _ = world.command_arm(self.arm, tcp, cmd);
                 let ev = world.step();
                 self.events.extend(ev.iter().cloned());
@@ -373,13 +458,17 @@ impl ActionExec {
                     if let Some(s) = self.check_gripper(world, cmd) {
                         return ExecStatus::Failed(s);
                     }
+                    if let ActionKind::Release { body, .. } = &self.kind {
+                        self.event_frame = world.body_pose(body).map(|p| anchor_frame(&p));
+                    }
                     self.next_phase();
                 }
                 self.status()
             }
             Phase::Move(via) => {
-                // (Re)plan the segment when it starts or when its anchor object moved.
-                let replan = match &self.segment {
+                // Plan the segment when it starts; when its anchor object moved, re-target the
+                // skill's controller to the new object frame (or re-plan a profile).
+                let moved = match &self.segment {
                     None => true,
                     Some(r) => r.anchor.as_ref().is_some_and(|(name, at)| {
                         world.body_pose(name).is_some_and(|q| {
@@ -387,19 +476,43 @@ impl ActionExec {
                         })
                     }),
                 };
-                if replan {
-                    match self.plan_segment(world, &via, skills, p) {
-                        Ok(r) => self.segment = Some(r),
-                        Err(e) => return ExecStatus::Failed(e),
+                if moved {
+                    let start = world.tcp_pose(self.arm).unwrap_or_else(Isometry3::identity);
+                    let fresh = self.via_pose(world, &via, &start);
+                    let retargeted = match self.segment.as_mut() {
+                        Some(r) => match (fresh, r.frame) {
+                            (Ok((goal, Some(new_frame), anchor)), Some(old)) => {
+                                let ok = r.traj.retarget(&old, &new_frame);
+                                if ok {
+                                    r.goal = goal;
+                                    r.frame = Some(new_frame);
+                                    r.anchor = anchor;
+                                    r.lag = 0;
+                                }
+                                ok
+                            }
+                            _ => false,
+                        },
+                        None => false,
+                    };
+                    if !retargeted {
+                        match self.plan_segment(world, &via, skills, p) {
+                            Ok(r) => self.segment = Some(r),
+                            Err(e) => return ExecStatus::Failed(e),
+                        }
                     }
                 }
                 let Some(seg) = self.segment.as_mut() else {
                     return ExecStatus::Failed("no segment".into());
                 };
                 let i = seg.t.min(seg.traj.len() - 1);
-                let cmd_pos = seg.traj.position(i);
+                let measured = world
+                    .tcp_pose(self.arm)
+                    .map(|q| q.translation.vector)
+                    .unwrap_or_default();
+                let cmd_pos = seg.traj.command(seg.t, &measured);
                 let s = (i as f64 / (seg.traj.len().max(2) - 1) as f64).clamp(0.0, 1.0);
-                let rot = seg.traj.start_rotation.slerp(&seg.goal.rotation, s);
+                let rot = seg.traj.start_rotation().slerp(&seg.goal.rotation, s);
                 let target = Isometry3::from_parts(Translation3::from(cmd_pos), rot);
                 let _ = world.command_arm(self.arm, target, self.gripper);
                 let ev = world.step();
@@ -412,7 +525,7 @@ impl ActionExec {
                 seg.t += 1;
                 if seg.t >= seg.traj.len() {
                     let tcp = world.tcp_pose(self.arm).unwrap_or(seg.goal);
-                    let err = (tcp.translation.vector - seg.goal.translation.vector).norm();
+                    let err = (tcp.translation.vector - seg.traj.goal()).norm();
                     if err <= p.reach_tolerance {
                         self.next_phase();
                     } else {
@@ -439,9 +552,6 @@ impl ActionExec {
     }
 
     fn next_phase(&mut self) {
-        if std::env::var("LFD_TRACE").is_ok() {
-            eprintln!("  [{}] phase {} done", self.action, self.phase);
-        }
         self.phase += 1;
         self.segment = None;
         self.wait = 0;
@@ -470,52 +580,53 @@ impl ActionExec {
         let start = world
             .tcp_pose(self.arm)
             .ok_or_else(|| "no such arm".to_string())?;
-        let (goal, anchor) = self.via_pose(world, via, &start)?;
-        if std::env::var("LFD_TRACE").is_ok() {
-            eprintln!(
-                "  [{}] segment {:?}: from {:?} to {:?}",
-                self.action,
-                via,
-                start.translation.vector.as_slice(),
-                goal.translation.vector.as_slice()
-            );
-        }
+        let (goal, frame, anchor) = self.via_pose(world, via, &start)?;
         let dist = (goal.translation.vector - start.translation.vector).norm();
         let duration = (dist / p.speed).max(p.min_segment);
         let steps = ((duration / world.dt()).round() as usize).max(2);
-        let traj = skills.segment(
-            self.skill_name(via),
-            &start,
-            &goal,
-            anchor.as_ref().map(|(_, at)| *at),
-            steps,
-            world.dt(),
-        );
+        let traj = skills.segment(&self.skill_name(via), &start, &goal, frame.as_ref(), steps);
         Ok(Running {
             traj,
             t: 0,
             goal,
             anchor,
+            frame,
             lag: 0,
         })
     }
 
-    fn skill_name(&self, via: &Via) -> &'static str {
-        match via {
-            Via::Grasp { .. } => "grasp",
-            Via::Place { .. } => "place",
-            Via::Up { .. } => "retreat",
-            Via::Pull { .. } => "pull",
+    fn skill_name(&self, via: &Via) -> String {
+        let grasping = matches!(self.kind, ActionKind::Grasp { .. });
+        let base = match via {
+            Via::Grasp { skill: true, .. } => "grasp-approach",
+            Via::Place { skill: true, .. } => "place-approach",
+            Via::Up { skill: true, .. } if grasping => "grasp-retreat",
+            Via::Up { skill: true, .. } => "place-retreat",
+            _ => return "profile".into(),
+        };
+        if self.hook {
+            format!("hook-{base}")
+        } else {
+            base.to_string()
         }
     }
 
-    /// The TCP goal of a via-point and the anchor object (name, position) it follows.
+    /// The TCP goal of a via-point, the skill's object frame (centre + yaw) and the body it
+    /// follows (name, position) for re-anchoring.
+    #[allow(clippy::type_complexity)]
     fn via_pose(
         &self,
         world: &World,
         via: &Via,
         start: &Isometry3<f64>,
-    ) -> Result<(Isometry3<f64>, Option<(String, Vector3<f64>)>), String> {
+    ) -> Result<
+        (
+            Isometry3<f64>,
+            Option<Isometry3<f64>>,
+            Option<(String, Vector3<f64>)>,
+        ),
+        String,
+    > {
         let up = |iso: Isometry3<f64>, dz: f64| {
             Isometry3::from_parts(
                 Translation3::from(iso.translation.vector + Vector3::z() * dz),
@@ -523,31 +634,37 @@ impl ActionExec {
             )
         };
         match via {
-            Via::Grasp { body, dz } => {
+            Via::Grasp { body, dz, .. } => {
                 let g = grasp_pose(world, self.arm, body)
                     .ok_or_else(|| format!("{body} cannot be grasped"))?;
-                let at = world.body_pose(body).map(|q| q.translation.vector);
-                Ok((up(g, *dz), at.map(|a| (body.clone(), a))))
+                let bp = world.body_pose(body);
+                let at = bp.map(|q| q.translation.vector);
+                Ok((
+                    up(g, *dz),
+                    bp.map(|q| anchor_frame(&q)),
+                    at.map(|a| (body.clone(), a)),
+                ))
             }
-            Via::Place { placement, dz } => {
+            Via::Place { placement, dz, .. } => {
                 let body = match &self.kind {
                     ActionKind::Release { body, .. } => body.clone(),
                     _ => return Err("not a release".into()),
                 };
                 let (pose, anchor) = placement_pose(world, &body, placement)?;
                 let tcp = tcp_for_body_pose(world, self.arm, &pose);
-                Ok((up(tcp, *dz), anchor))
+                Ok((up(tcp, *dz), Some(anchor_frame(&pose)), anchor))
             }
-            Via::Up { dz } => {
+            Via::Up { dz, .. } => {
                 let mut g = *start;
                 g.translation.vector.z += dz;
-                Ok((g, None))
+                Ok((g, self.event_frame, None))
             }
             Via::Pull { body, stage } => {
                 let g = pull_via(world, self.arm, body, *stage)?;
                 let at = world.body_pose(body).map(|q| q.translation.vector);
                 Ok((
                     g,
+                    None,
                     if *stage == 0 {
                         at.map(|a| (body.clone(), a))
                     } else {
@@ -580,41 +697,31 @@ pub(crate) fn placement_pose(
     }
 }
 
-/// Via-points of a pull stroke: 0 above the far side of `body`, 1 lowered behind it, 2 dragged
-/// towards the arm's base until `body` is well inside the reach annulus.
+/// Via-points of a pull stroke (the simulator's hook geometry, `sim::demo::pull_hook_poses`):
+/// 0 above the contact pose (blade behind the block), 1 the contact pose, 2 the pulled pose
+/// (block at `PULL_TARGET_RADIUS` from the base), 3 lifted from there.
 fn pull_via(world: &World, arm: usize, body: &str, stage: u8) -> Result<Isometry3<f64>, String> {
-    let base = world.arm_base(arm).ok_or("no such arm")?.translation.vector;
-    let b = world
+    let base = world.arm_base(arm).ok_or("no such arm")?;
+    let bp = world
         .body_pose(body)
-        .ok_or_else(|| format!("no body {body}"))?
-        .translation
-        .vector;
-    let mut d = Vector3::new(b.x - base.x, b.y - base.y, 0.0);
-    let r = d.norm().max(1e-6);
-    d /= r;
-    // Keep the hook's grasp: the TCP is offset from the blade; we move the TCP so the hook's
-    // blade (the far end) sits behind the block. The hook frame's +x runs from the handle grip
-    // to the blade.
-    let grasp = world.grasp_transform(arm).ok_or("the arm holds no hook")?;
-    let hook_in_tcp = grasp; // hook pose = tcp * grasp
-    let blade_reach = hook_in_tcp.translation.vector.norm() + 0.17;
-    let behind = b + d * 0.06;
-    let yaw = d.y.atan2(d.x);
-    let rot = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw) * tcp_down();
-    let tcp_xy = behind - d * blade_reach;
-    let z_above = b.z + 0.08;
-    let z_low = b.z;
-    let p = match stage {
-        0 => Vector3::new(tcp_xy.x, tcp_xy.y, z_above),
-        1 => Vector3::new(tcp_xy.x, tcp_xy.y, z_low),
-        _ => {
-            let pulled = tcp_xy - d * 0.25;
-            Vector3::new(pulled.x, pulled.y, z_low)
-        }
+        .ok_or_else(|| format!("no body {body}"))?;
+    let (contact, pulled) = crate::sim::demo::pull_hook_poses(
+        &base,
+        &bp,
+        crate::sim::demo::PULL_TARGET_RADIUS,
+    );
+    let lift = |iso: Isometry3<f64>| {
+        Isometry3::from_parts(
+            Translation3::from(iso.translation.vector + Vector3::z() * 0.08),
+            iso.rotation,
+        )
     };
-    Ok(Isometry3::from_parts(Translation3::from(p), rot))
-}
-
-fn tcp_down() -> UnitQuaternion<f64> {
-    crate::sim::panda::down_orientation(0.0)
+    let tc = tcp_for_body_pose(world, arm, &contact);
+    let tp = tcp_for_body_pose(world, arm, &pulled);
+    Ok(match stage {
+        0 => lift(tc),
+        1 => tc,
+        2 => tp,
+        _ => lift(tp),
+    })
 }

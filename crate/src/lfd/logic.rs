@@ -20,7 +20,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::plan::{self, Clock, MultiGoalMode, SearchOutcome, SearchConfig, State, Task};
+use crate::plan::{self, Clock, MultiGoalMode, SearchConfig, SearchOutcome, State, Task};
 
 use super::demo::MultiGoalSpec;
 use super::LfdError;

@@ -16,7 +16,7 @@
 pub mod streams;
 
 use crate::lfd::control::{forbid, Binder};
-use crate::plan::{search, Clock, SearchOutcome, SearchConfig, State, Task};
+use crate::plan::{search, Clock, SearchConfig, SearchOutcome, State, Task};
 
 /// Why TAMP found no plan.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -57,14 +57,22 @@ pub fn run(args: Args) -> ExitCode {
         return replay(path);
     }
     let Some(benchmark) = BenchmarkId::parse(&args.benchmark) else {
-        return bad(format!("--benchmark: unknown benchmark {:?} (b1, b2, b3)", args.benchmark));
+        return bad(format!(
+            "--benchmark: unknown benchmark {:?} (b1, b2, b3)",
+            args.benchmark
+        ));
     };
     let level = if args.level == "none" {
         None
     } else {
         match Level::parse(&args.level) {
             Some(l) => Some(l),
-            None => return bad(format!("--level: unknown level {:?} (l1..l4, none)", args.level)),
+            None => {
+                return bad(format!(
+                    "--level: unknown level {:?} (l1..l4, none)",
+                    args.level
+                ))
+            }
         }
     };
     let Some(method) = Method::parse(&args.method) else {
@@ -74,7 +82,10 @@ pub fn run(args: Args) -> ExitCode {
         ));
     };
     let Some(mode) = Mode::parse(&args.mode) else {
-        return bad(format!("--mode: unknown mode {:?} (paper, prioritised)", args.mode));
+        return bad(format!(
+            "--mode: unknown mode {:?} (paper, prioritised)",
+            args.mode
+        ));
     };
     let scene = match &args.scene {
         Some(p) => match std::fs::read_to_string(p) {

@@ -79,7 +79,15 @@ pub fn run_table1(a: Table1Args) -> ExitCode {
     };
     let clock = WallClock::start();
     let mut p = progress;
-    match table1(&bs, a.tasks, a.seed, SessionParams::default(), &clock, &scene_for, &mut p) {
+    match table1(
+        &bs,
+        a.tasks,
+        a.seed,
+        SessionParams::default(),
+        &clock,
+        &scene_for,
+        &mut p,
+    ) {
         Ok(t) => {
             if a.json {
                 println!("{}", serde_json::to_string(&t).unwrap_or_default());
@@ -106,7 +114,14 @@ pub fn run_table2(a: Table2Args) -> ExitCode {
     };
     let clock = WallClock::start();
     let mut p = progress;
-    match table2(&bs, a.trials, a.seed, SessionParams::default(), &clock, &mut p) {
+    match table2(
+        &bs,
+        a.trials,
+        a.seed,
+        SessionParams::default(),
+        &clock,
+        &mut p,
+    ) {
         Ok(t) => {
             if a.json {
                 println!("{}", serde_json::to_string(&t).unwrap_or_default());
