@@ -26,3 +26,5 @@ pub mod pddl;
 pub mod plan;
 pub mod sim;
 pub mod tamp;
+#[cfg(feature = "wasm")]
+pub mod wasm;

@@ -8,6 +8,8 @@ mod cmd_lqt;
 mod cmd_plan;
 mod cmd_scene;
 mod cmd_run;
+mod cmd_run;
+mod cmd_scene;
 mod cmd_tables;
 mod cmd_validate;
 
@@ -49,6 +51,10 @@ enum Command {
     Scene(cmd_scene::Args),
     /// One closed-loop episode: a benchmark, a disturbance level, a method, a seed.
     Run(cmd_run::Args),
+    /// One closed-loop episode: a benchmark, a disturbance level, a method, a seed.
+    Run(cmd_run::Args),
+    /// Inspect and perturb simulator scenes: facts, check, template, problem, disturb.
+    Scene(cmd_scene::Args),
 }
 
 /// A closed stdout (`logic-lfd plan … | head`) ends the process quietly, as Unix tools do,
@@ -90,5 +96,7 @@ fn main() -> ExitCode {
         Command::Bench(args) => cmd_bench::run(args),
         Command::Scene(args) => cmd_scene::run(args),
         Command::Run(args) => cmd_run::run(args),
+        Command::Run(args) => cmd_run::run(args),
+        Command::Scene(args) => cmd_scene::run(args),
     }
 }
