@@ -1,11 +1,12 @@
 //! Simulator: kinematics, contact rules, scene graph, snapshots, benchmarks, disturbances.
 
 use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::demo;
 use logic_lfd::sim::geometry;
 use logic_lfd::sim::panda::{self, IkParams};
 use logic_lfd::sim::snapshot::WorldSnapshot;
 use logic_lfd::sim::{GripperCommand, SceneGraph, World};
-use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Translation3, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
@@ -65,5 +66,526 @@ fn snapshot_round_trip_is_identity() {
         let s2: WorldSnapshot = serde_json::from_str(&json).unwrap();
         let w2 = World::from_snapshot(&s2).unwrap();
         assert_eq!(w2.snapshot(), s1, "{b:?}");
+    }
+}
+
+#[test]
+fn replaying_each_committed_demo_reaches_the_goal_with_invariants_at_every_step() {
+    for b in Benchmark::ALL {
+        let d = demo::committed(b).unwrap_or_else(|e| panic!("{b:?}: {e}"));
+        assert_eq!(d.benchmark, b.dir_name());
+        let mut w = b.scene();
+        let mut steps = 0usize;
+        demo::replay(&mut w, &d, |w, a, k| {
+            steps += 1;
+            w.check_invariants()
+                .map_err(|v| demo::DemoError::Invariant {
+                    action: a.action.clone(),
+                    step: k,
+                    violations: v,
+                })
+        })
+        .unwrap_or_else(|e| panic!("{b:?}: {e}"));
+        assert!(steps > 500, "{b:?}: only {steps} steps");
+        let sg = SceneGraph::from_world(&w);
+        for g in b.goal() {
+            assert!(
+                sg.facts.contains(&g),
+                "{b:?}: goal {g} missing in {:?}",
+                sg.to_strings()
+            );
+        }
+        // Every hand is empty at the end and nothing was lost.
+        for arm in 0..w.arm_names().len() {
+            assert_eq!(w.held_by(arm), None);
+        }
+    }
+}
+
+#[test]
+fn demo_samples_are_relative_to_the_anchor_object() {
+    // At the grasp key point of a pick, the TCP is at the picked block's centre (anchor origin).
+    let d = demo::committed(Benchmark::B1).unwrap();
+    let pick = &d.actions[0];
+    assert_eq!(pick.name, "pick");
+    let k = pick
+        .key_points
+        .iter()
+        .find(|k| k.label == "grasp")
+        .unwrap()
+        .step;
+    let s = pick.samples[k];
+    assert!(
+        s[0].abs() < 0.004 && s[1].abs() < 0.004 && s[2].abs() < 0.004,
+        "{s:?}"
+    );
+    // The first sample is far from the block (the arm starts at its ready pose).
+    assert!(pick.samples[0][2] > 0.2, "{:?}", pick.samples[0]);
+}
+
+#[test]
+fn ik_round_trip_within_1mm_and_1deg_for_sampled_reachable_poses() {
+    let base = Isometry3::identity();
+    let params = IkParams::default();
+    let mut rng = Pcg64Mcg::seed_from_u64(11);
+    let mut solved = 0;
+    for _ in 0..60 {
+        // Sample a configuration, take its TCP pose: reachable by construction.
+        let mut q = [0.0; 7];
+        for (k, v) in q.iter_mut().enumerate() {
+            let (lo, hi) = (panda::JOINT_LOWER[k], panda::JOINT_UPPER[k]);
+            *v = rng.random_range(lo + 0.2 * (hi - lo)..hi - 0.2 * (hi - lo));
+        }
+        let target = panda::forward_kinematics(&base, &q);
+        // Solve from the ready pose, not from q.
+        let sol = panda::inverse_kinematics(&base, &target, &panda::READY, &params)
+            .unwrap_or_else(|e| panic!("{q:?}: {e}"));
+        let got = panda::forward_kinematics(&base, &sol.joints);
+        let dp = (got.translation.vector - target.translation.vector).norm();
+        let da = (got.rotation * target.rotation.inverse()).angle();
+        assert!(dp < 1e-3, "position error {dp}");
+        assert!(da < 1f64.to_radians(), "orientation error {da}");
+        for k in 0..7 {
+            assert!(
+                sol.joints[k] >= panda::JOINT_LOWER[k] && sol.joints[k] <= panda::JOINT_UPPER[k]
+            );
+        }
+        solved += 1;
+    }
+    assert_eq!(solved, 60);
+}
+
+#[test]
+fn ik_refuses_unreachable_poses_with_a_residual() {
+    let base = Isometry3::identity();
+    let params = IkParams::default();
+    for p in [[1.5, 0.0, 0.3], [0.0, 0.0, 1.6], [0.3, 0.9, -0.2]] {
+        let target = Isometry3::from_parts(
+            Translation3::new(p[0], p[1], p[2]),
+            panda::down_orientation(0.0),
+        );
+        let err = panda::inverse_kinematics(&base, &target, &panda::READY, &params).unwrap_err();
+        assert!(err.position_error > 0.1, "{p:?}: {err}");
+        // The best configuration is within limits and really has that residual.
+        let got = panda::forward_kinematics(&base, &err.best_joints);
+        let dp = (got.translation.vector - target.translation.vector).norm();
+        assert!((dp - err.position_error).abs() < 1e-9);
+    }
+    // World::reachable agrees for B1's arm.
+    let w = Benchmark::B1.scene();
+    let far = Isometry3::from_parts(
+        Translation3::new(1.2, 0.0, 0.03),
+        panda::down_orientation(0.0),
+    );
+    assert!(w.reachable(0, &far).is_err());
+    let near = geometry::grasp_pose(&w, 0, "a").unwrap();
+    assert!(w.reachable(0, &near).is_ok());
+}
+
+/// Builds B1 and rearranges blocks through user moves.
+fn b1_with(moves: &[(&str, [f64; 3])]) -> World {
+    let mut w = Benchmark::B1.scene();
+    for (name, p) in moves {
+        w.move_block(name, Vector3::new(p[0], p[1], p[2]))
+            .unwrap_or_else(|e| panic!("{e}"));
+    }
+    w
+}
+
+fn facts(w: &World) -> Vec<String> {
+    let mut f = SceneGraph::from_world(w).to_strings();
+    f.sort();
+    f
+}
+
+#[test]
+fn scene_graph_reports_on_ontable_clear_from_geometry() {
+    // c on d, b on c (dropped from above: they settle).
+    let w = b1_with(&[("c", [0.55, 0.26, 0.3]), ("b", [0.551, 0.262, 0.4])]);
+    w.check_invariants().unwrap();
+    let f = facts(&w);
+    for want in [
+        "(on c d)",
+        "(on b c)",
+        "(ontable d)",
+        "(ontable a)",
+        "(clear a)",
+        "(clear b)",
+        "(handempty panda)",
+    ] {
+        assert!(f.contains(&want.to_string()), "{want} missing in {f:?}");
+    }
+    for not in [
+        "(clear c)",
+        "(clear d)",
+        "(ontable c)",
+        "(ontable b)",
+        "(on c b)",
+    ] {
+        assert!(!f.contains(&not.to_string()), "{not} wrongly in {f:?}");
+    }
+    assert_eq!(f.len(), 7, "{f:?}");
+}
+
+#[test]
+fn scene_graph_reports_holding_and_handempty() {
+    let mut w = Benchmark::B1.scene();
+    let g = geometry::grasp_pose(&w, 0, "a").unwrap();
+    let sol = w.reachable(0, &g).unwrap();
+    w.set_joints(0, sol.joints).unwrap();
+    w.command_arm(0, g, GripperCommand::Close).unwrap();
+    w.step();
+    assert_eq!(w.held_by(0), Some("a"));
+    let f = facts(&w);
+    assert!(f.contains(&"(holding panda a)".to_string()), "{f:?}");
+    assert!(!f.contains(&"(handempty panda)".to_string()));
+    assert!(
+        !f.iter()
+            .any(|s| s.contains(" a)") && !s.starts_with("(holding")),
+        "{f:?}"
+    );
+    // Lift and release over b: a lands on b.
+    let bp = w.body_pose("b").unwrap().translation.vector;
+    let up = Isometry3::from_parts(Translation3::new(bp.x, bp.y, 0.2), g.rotation);
+    for _ in 0..300 {
+        w.command_arm(0, up, GripperCommand::Close).unwrap();
+        w.step();
+        w.check_invariants().unwrap();
+    }
+    assert_eq!(w.held_by(0), Some("a"), "still held after moving");
+    let ev = {
+        w.command_arm(0, up, GripperCommand::Open).unwrap();
+        w.step()
+    };
+    assert!(
+        ev.iter().any(|e| e.to_string().contains("onto b")),
+        "{ev:?}"
+    );
+    let f = facts(&w);
+    assert!(
+        f.contains(&"(on a b)".to_string()) && f.contains(&"(handempty panda)".to_string()),
+        "{f:?}"
+    );
+    w.check_invariants().unwrap();
+}
+
+#[test]
+fn scene_graph_reports_onshelf_and_inreach_in_b2() {
+    let mut w = Benchmark::B2.scene();
+    let f = facts(&w);
+    assert!(f.contains(&"(inreach panda a)".to_string()));
+    assert!(
+        !f.contains(&"(inreach panda b)".to_string()),
+        "b starts out of reach"
+    );
+    // Drop a onto the shelf; pull b in by hand: onshelf a, inreach b.
+    w.move_block("a", Vector3::new(0.30, -0.50, 0.3)).unwrap();
+    w.move_block("b", Vector3::new(0.60, 0.05, 0.1)).unwrap();
+    let f = facts(&w);
+    for want in [
+        "(onshelf a)",
+        "(inreach panda a)",
+        "(inreach panda b)",
+        "(ontable b)",
+        "(ontable hook)",
+        "(inreach panda hook)",
+    ] {
+        assert!(f.contains(&want.to_string()), "{want} missing in {f:?}");
+    }
+    assert!(!f.contains(&"(ontable a)".to_string()));
+}
+
+#[test]
+fn scene_graph_reports_regions_in_b3() {
+    let mut w = Benchmark::B3.scene();
+    w.move_block("a", Vector3::new(0.38, 0.0, 0.1)).unwrap();
+    w.move_block("b", Vector3::new(0.45, -0.6, 0.1)).unwrap();
+    let f = facts(&w);
+    for want in [
+        "(at a handover)",
+        "(at b right-table)",
+        "(ontable a)",
+        "(handempty left)",
+        "(handempty right)",
+    ] {
+        assert!(f.contains(&want.to_string()), "{want} missing in {f:?}");
+    }
+    w.move_block("a", Vector3::new(0.45, -0.6, 0.3)).unwrap();
+    let f = facts(&w);
+    assert!(
+        f.contains(&"(on a b)".to_string()) && f.contains(&"(at a right-table)".to_string()),
+        "{f:?}"
+    );
+}
+
+#[test]
+fn user_moves_that_interpenetrate_or_float_are_refused_and_change_nothing() {
+    let mut w = Benchmark::B1.scene();
+    let before = w.snapshot();
+    // Into block b.
+    let bp = w.body_pose("b").unwrap().translation.vector;
+    let e = w
+        .move_block("a", bp + Vector3::new(0.02, 0.0, 0.0))
+        .unwrap_err();
+    assert!(e.reason.contains("interpenetrate b"), "{e}");
+    // Off the table: nothing under it.
+    let e = w.move_block("a", Vector3::new(2.0, 0.0, 0.2)).unwrap_err();
+    assert!(e.reason.contains("fall"), "{e}");
+    // Half over the edge of block d: would tip over.
+    let dp = w.body_pose("d").unwrap().translation.vector;
+    let e = w
+        .move_block("a", dp + Vector3::new(0.045, 0.0, 0.2))
+        .unwrap_err();
+    assert!(e.reason.contains("tip"), "{e}");
+    // Into the table top.
+    let e = w
+        .move_block("a", Vector3::new(0.4, -0.25, 0.0))
+        .unwrap_err();
+    assert!(e.reason.contains("table"), "{e}");
+    // Fixed bodies and unknown names.
+    assert!(w.move_block("table", Vector3::new(0.0, 0.0, 0.5)).is_err());
+    assert!(w.move_block("zz", Vector3::new(0.0, 0.0, 0.5)).is_err());
+    assert_eq!(w.snapshot(), before);
+    // An accepted move settles onto the support below.
+    let out = w.move_block("a", dp + Vector3::new(0.0, 0.0, 0.3)).unwrap();
+    assert_eq!(out.support, "d");
+    assert!((out.to[2] - 0.09).abs() < 1e-6, "{out:?}");
+    w.check_invariants().unwrap();
+}
+
+#[test]
+fn moving_a_block_from_under_another_lets_the_upper_one_settle() {
+    let mut w = b1_with(&[("c", [0.55, 0.26, 0.3])]);
+    assert!(facts(&w).contains(&"(on c d)".to_string()));
+    let out = w.move_block("d", Vector3::new(0.40, 0.40, 0.1)).unwrap();
+    assert_eq!(out.also_moved.len(), 1, "{out:?}");
+    assert!((out.also_moved[0].1[2] - 0.03).abs() < 1e-6);
+    let f = facts(&w);
+    assert!(
+        f.contains(&"(ontable c)".to_string()) && f.contains(&"(ontable d)".to_string()),
+        "{f:?}"
+    );
+    w.check_invariants().unwrap();
+}
+
+#[test]
+fn bad_scene_json_names_the_body_and_the_field() {
+    let good = Benchmark::B1.scene().to_json();
+    let e = World::from_json("{ not json").unwrap_err();
+    assert!(e.path.starts_with("line 1"), "{e}");
+    // Overlapping blocks.
+    let mut s: WorldSnapshot = serde_json::from_str(&good).unwrap();
+    let i = s.bodies.iter().position(|b| b.name == "b").unwrap();
+    let a = s.bodies.iter().position(|b| b.name == "a").unwrap();
+    s.bodies[i].pose.position = s.bodies[a].pose.position;
+    let e = World::from_snapshot(&s).unwrap_err();
+    assert!(
+        e.to_string().contains("\"a\"") && e.to_string().contains("interpenetrate"),
+        "{e}"
+    );
+    // A block in the air.
+    let mut s: WorldSnapshot = serde_json::from_str(&good).unwrap();
+    s.bodies[i].pose.position[2] = 0.3;
+    let e = World::from_snapshot(&s).unwrap_err();
+    assert!(
+        e.path.contains("\"b\"") && e.path.ends_with(".pose") && e.message.contains("in the air"),
+        "{e}"
+    );
+    // Unknown held body; bad quaternion; duplicate name; joint out of limits; unknown predicate.
+    let mut s: WorldSnapshot = serde_json::from_str(&good).unwrap();
+    s.arms[0].holding = Some("zz".into());
+    assert!(World::from_snapshot(&s)
+        .unwrap_err()
+        .to_string()
+        .contains("arms[0] \"panda\".holding"));
+    let mut s: WorldSnapshot = serde_json::from_str(&good).unwrap();
+    s.bodies[i].pose.quaternion = [0.0; 4];
+    assert!(World::from_snapshot(&s)
+        .unwrap_err()
+        .path
+        .ends_with("\"b\".pose.quaternion"));
+    let mut s: WorldSnapshot = serde_json::from_str(&good).unwrap();
+    s.bodies[i].name = "a".into();
+    assert!(World::from_snapshot(&s)
+        .unwrap_err()
+        .message
+        .contains("already used"));
+    let mut s: WorldSnapshot = serde_json::from_str(&good).unwrap();
+    s.arms[0].joints[3] = 0.5;
+    assert!(World::from_snapshot(&s)
+        .unwrap_err()
+        .path
+        .ends_with("joints[3]"));
+    let mut s: WorldSnapshot = serde_json::from_str(&good).unwrap();
+    s.predicates.push("above".into());
+    assert!(World::from_snapshot(&s)
+        .unwrap_err()
+        .message
+        .contains("unknown predicate"));
+    // And the good one loads.
+    World::from_json(&good).unwrap();
+}
+
+#[test]
+fn committed_scene_json_files_match_the_builders() {
+    for b in Benchmark::ALL {
+        let path = format!(
+            "{}/../domains/{}/scene.json",
+            env!("CARGO_MANIFEST_DIR"),
+            b.dir_name()
+        );
+        let text = std::fs::read_to_string(&path).unwrap();
+        let w = World::from_json(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
+        assert_eq!(
+            w.snapshot(),
+            b.scene_snapshot(),
+            "{path} is stale: run the record_demos example"
+        );
+    }
+}
+
+#[test]
+fn the_hook_pushes_a_block_its_blade_sweeps_into() {
+    let mut w = Benchmark::B2.scene();
+    // Hold the hook in place of the demo's contact pose behind b, then pull towards the base.
+    let g = geometry::grasp_pose(&w, 0, "hook").unwrap();
+    let sol = w.reachable(0, &g).unwrap();
+    w.set_joints(0, sol.joints).unwrap();
+    w.command_arm(0, g, GripperCommand::Close).unwrap();
+    w.step();
+    assert_eq!(w.held_by(0), Some("hook"));
+    let bp = w.body_pose("b").unwrap();
+    let base = w.arm_base(0).unwrap();
+    let (contact, pulled) = demo::pull_hook_poses(&base, &bp, 0.6);
+    let tc = geometry::tcp_for_body_pose(&w, 0, &contact);
+    let tp = geometry::tcp_for_body_pose(&w, 0, &pulled);
+    // Teleport to the contact pose (lifted first so nothing is swept on the way).
+    let sol = w.reachable(0, &tc).unwrap();
+    w.set_joints(0, sol.joints).unwrap();
+    w.check_invariants().unwrap();
+    let before = w.body_pose("b").unwrap().translation.vector;
+    let mut pushed = false;
+    for k in 1..=400 {
+        let s = (k as f64 / 300.0).min(1.0);
+        let p = tc.translation.vector.lerp(&tp.translation.vector, s);
+        w.command_arm(
+            0,
+            Isometry3::from_parts(Translation3::from(p), tc.rotation),
+            GripperCommand::Close,
+        )
+        .unwrap();
+        pushed |= !w.step().is_empty();
+        w.check_invariants().unwrap();
+    }
+    assert!(pushed);
+    let after = w.body_pose("b").unwrap().translation.vector;
+    let r = |v: Vector3<f64>| v.x.hypot(v.y);
+    assert!(
+        (r(after) - 0.6).abs() < 0.01 && r(before) > 0.9,
+        "{before} -> {after}"
+    );
+    assert!((after.y - before.y).abs() < 0.05 && (after.z - before.z).abs() < 1e-9);
+    assert!(facts(&w).contains(&"(inreach panda b)".to_string()));
+}
+
+mod pddl_models {
+    //! The benchmark PDDL, the demos and the scene graph agree.
+    use super::*;
+    use logic_lfd::plan::{self, NoClock, SearchConfig, SearchOutcome, State, Task};
+
+    fn task(b: Benchmark) -> Task {
+        let dom = logic_lfd::pddl::parse_domain(b.domain_pddl(), "domain.pddl")
+            .unwrap_or_else(|e| panic!("{b:?} domain: {e}"));
+        let prob = logic_lfd::pddl::parse_problem(b.problem_pddl(), "problem.pddl", &dom)
+            .unwrap_or_else(|e| panic!("{b:?} problem: {e}"));
+        plan::ground(&dom, &prob).unwrap_or_else(|e| panic!("{b:?} ground: {e}"))
+    }
+
+    fn state_of(t: &Task, w: &World) -> State {
+        t.state_from_names(&SceneGraph::from_world(w).to_strings())
+            .expect("scene-graph facts are facts of the task")
+    }
+
+    #[test]
+    fn each_benchmark_parses_grounds_and_its_scene_facts_equal_the_init_fluents() {
+        for b in Benchmark::ALL {
+            let t = task(b);
+            let w = b.scene();
+            let sg = SceneGraph::from_world(&w).to_strings();
+            // Fluents: equal as sets.
+            assert_eq!(
+                t.state_names(&state_of(&t, &w)),
+                t.state_names(&t.init),
+                "{b:?}"
+            );
+            // Statics: the benchmark's extra static facts plus the ones the scene graph reports
+            // (B2's `(inreach panda hook)`: nothing changes it) are exactly the task's.
+            let mut statics: Vec<String> = b.static_facts().iter().map(|f| f.to_string()).collect();
+            statics.extend(sg.iter().filter(|f| t.fact_id(f).is_none()).cloned());
+            statics.sort();
+            let mut ts = t.static_facts.clone();
+            ts.sort();
+            assert_eq!(statics, ts, "{b:?} static facts");
+            // The goal facts are the problem's goal.
+            let mut g = t.empty_state();
+            for f in b.goal() {
+                g.insert(t.fact_id(&f.to_string()).unwrap());
+            }
+            assert!(t.goal.holds(&g), "{b:?}");
+        }
+    }
+
+    #[test]
+    fn each_demo_is_a_valid_plan_and_the_simulated_facts_follow_the_pddl_states() {
+        for b in Benchmark::ALL {
+            let t = task(b);
+            let d = demo::committed(b).unwrap();
+            // PDDL replay with Operator::apply.
+            let mut s = t.init.clone();
+            let mut states = vec![s.clone()];
+            for a in &d.actions {
+                let op = t
+                    .operators
+                    .iter()
+                    .find(|o| o.name == a.action)
+                    .unwrap_or_else(|| panic!("{b:?}: no operator {}", a.action));
+                assert!(op.applicable(&s), "{b:?}: {} not applicable", a.action);
+                s = op.apply(&s);
+                states.push(s.clone());
+            }
+            assert!(t.goal.holds(&s), "{b:?}: demo does not reach the goal");
+            // Simulated replay: after each action the scene graph equals the PDDL state.
+            let mut w = b.scene();
+            assert_eq!(state_of(&t, &w), states[0]);
+            let mut k = 0;
+            demo::replay(&mut w, &d, |w, a, step| {
+                if step + 1 == a.samples.len() {
+                    k += 1;
+                    let got = state_of(&t, w);
+                    assert_eq!(
+                        t.state_names(&got),
+                        t.state_names(&states[k]),
+                        "{b:?}: after {}",
+                        a.action
+                    );
+                }
+                Ok(())
+            })
+            .unwrap();
+            assert_eq!(k, d.actions.len());
+        }
+    }
+
+    #[test]
+    fn the_planner_solves_each_template_task_in_the_demo_length() {
+        for b in Benchmark::ALL {
+            let t = task(b);
+            let r = plan::search(&t, &SearchConfig::default(), &NoClock);
+            let SearchOutcome::Plan(p) = r.outcome else {
+                panic!("{b:?}: {:?}", r.outcome)
+            };
+            let d = demo::committed(b).unwrap();
+            assert_eq!(p.operators.len(), d.actions.len(), "{b:?}");
+        }
     }
 }

@@ -40,6 +40,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod benchmark;
+pub mod demo;
 pub mod geometry;
 pub mod panda;
 pub mod scene_graph;
