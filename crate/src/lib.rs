@@ -22,4 +22,5 @@
 pub mod lqt;
 pub mod pddl;
 pub mod plan;
+pub mod recorder;
 pub mod sim;

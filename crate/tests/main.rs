@@ -4,6 +4,7 @@ mod ground;
 mod lqt;
 mod multigoal;
 mod pddl;
+mod recorder;
 mod search;
 mod sim;
 mod validate;

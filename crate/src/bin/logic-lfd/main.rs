@@ -4,6 +4,7 @@
 //! Errors go to stderr as `file:line:col: message`; `--json` output goes to stdout.
 
 mod cmd_bench;
+mod cmd_demo;
 mod cmd_lqt;
 mod cmd_plan;
 mod cmd_validate;
@@ -42,6 +43,8 @@ enum Command {
     Plan(cmd_plan::Args),
     /// Benchmarks: `bench planner` runs planner configurations over IPC folders.
     Bench(cmd_bench::Args),
+    /// Demonstrations: `demo segment` turns a raw recording into a demo.json.
+    Demo(cmd_demo::Args),
 }
 
 fn main() -> ExitCode {
@@ -62,5 +65,6 @@ fn main() -> ExitCode {
         Command::Validate(a) => cmd_validate::run(a),
         Command::Plan(args) => cmd_plan::run(args),
         Command::Bench(args) => cmd_bench::run(args),
+        Command::Demo(args) => cmd_demo::run(args),
     }
 }
