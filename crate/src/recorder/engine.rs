@@ -58,9 +58,10 @@ struct ActionRec {
 }
 
 /// Lengths to roll back to when an edit fails.
-struct Checkpoint {
+pub(super) struct Checkpoint {
     world: World,
     log_len: usize,
+    pub(super) edits_len: usize,
     events_len: usize,
     actions_len: usize,
     state: State,
@@ -255,10 +256,11 @@ impl Recorder {
         &self.facts
     }
 
-    fn checkpoint(&self) -> Checkpoint {
+    pub(super) fn checkpoint(&self) -> Checkpoint {
         Checkpoint {
             world: self.world.clone(),
             log_len: self.log_t.len(),
+            edits_len: self.edits.len(),
             events_len: self.log_events.len(),
             actions_len: self.actions.len(),
             state: self.state.clone(),
@@ -267,7 +269,8 @@ impl Recorder {
         }
     }
 
-    fn rollback(&mut self, c: Checkpoint) {
+    pub(super) fn rollback(&mut self, c: Checkpoint, edits_len: usize) {
+        self.edits.truncate(edits_len);
         self.world = c.world;
         self.log_t.truncate(c.log_len);
         self.log_tcp.truncate(c.log_len);
@@ -280,7 +283,7 @@ impl Recorder {
         self.cur_t = c.cur_t;
     }
 
-    fn event_since(&self, c: &Checkpoint) -> RecorderEvent {
+    pub(super) fn event_since(&self, c: &Checkpoint) -> RecorderEvent {
         RecorderEvent {
             t: self.time(),
             new_segments: (c.actions_len..self.actions.len())
@@ -297,6 +300,7 @@ impl Recorder {
     /// Applies one raw sample (atomically: on error the recorder is unchanged).
     pub fn push_sample(&mut self, sample: &RawSample) -> Result<RecorderEvent, RecorderError> {
         let c = self.checkpoint();
+        let edits_len = self.edits.len();
         match self.apply_sample(sample) {
             Ok(()) => {
                 let ev = self.event_since(&c);
@@ -304,7 +308,7 @@ impl Recorder {
                 Ok(ev)
             }
             Err(e) => {
-                self.rollback(c);
+                self.rollback(c, edits_len);
                 Err(e)
             }
         }
@@ -319,8 +323,7 @@ impl Recorder {
         let edits_len = self.edits.len();
         for s in samples {
             if let Err(e) = self.apply_sample(s) {
-                self.rollback(c);
-                self.edits.truncate(edits_len);
+                self.rollback(c, edits_len);
                 return Err(e);
             }
             self.edits.push((s.clone(), self.log_t.len()));
@@ -650,6 +653,22 @@ impl Recorder {
         let mut v = self.task.state_names(s);
         v.sort();
         v
+    }
+
+    /// The accepted samples as a raw recording (what `logic-lfd demo segment` reads); segmenting
+    /// it gives the same actions as this recorder.
+    pub fn recording(&self) -> super::RawRecording {
+        let scene = match Benchmark::parse(&self.initial.name) {
+            Some(b) if b.scene_snapshot() == self.initial => super::RecordingScene::Benchmark(b),
+            _ => super::RecordingScene::Scene(Box::new(self.initial.clone())),
+        };
+        super::RawRecording {
+            scene,
+            dt: self.world.dt(),
+            samples: self.edits.iter().map(|(s, _)| s.clone()).collect(),
+            goal: self.goal.clone(),
+            seed: self.seed,
+        }
     }
 
     /// Sets the taught goal G: facts that must hold in L_N (any spelling of `(p a b)`).

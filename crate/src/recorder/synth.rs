@@ -50,7 +50,7 @@ impl Default for SynthParams {
             approach_height: 0.10,
             contact_time: 0.6,
             hold_time: 0.3,
-            pull_speed: 0.15,
+            pull_speed: 0.25,
         }
     }
 }
@@ -164,8 +164,20 @@ impl Recorder {
                 self.push_samples(&s)
             }
             Edit::Pull { body, hook, arm } => {
-                let s = pull_samples(self, body, hook.as_deref(), arm, p)?;
-                self.push_samples(&s)
+                // Two phases: pick the hook, then pull with the grasp it actually got.
+                let c = self.checkpoint();
+                let edits_len = c.edits_len;
+                let result = pull_samples(self, body, hook.as_deref(), arm, None, p)
+                    .and_then(|(s, r)| self.push_samples(&s).map(|_| r))
+                    .and_then(|r| pull_samples(self, body, hook.as_deref(), arm, Some(r), p))
+                    .and_then(|(s, _)| self.push_samples(&s));
+                match result {
+                    Ok(_) => Ok(self.event_since(&c)),
+                    Err(e) => {
+                        self.rollback(c, edits_len);
+                        Err(e)
+                    }
+                }
             }
             Edit::Move { body, position } => {
                 let s = RawSample::Move {
@@ -401,14 +413,21 @@ pub fn drag_samples(
     Err(cannot(why.join("; ")))
 }
 
-/// Samples that pull `body` into reach with the hook and put the hook back (see [`Edit::Pull`]).
+/// The arm that picked the hook and the hook's pose before the pick.
+pub type HookGrip = (usize, Isometry3<f64>);
+
+/// Samples of a hook pull (see [`Edit::Pull`]), in two phases: with `holding = None`, picking
+/// the hook and lifting it (returns the arm used); with `holding = Some((arm, home))` (the arm now holds
+/// the hook, using its actual grasp), putting the blade behind `body`, dragging it into reach, lifting, and putting the
+/// hook back at `home`, where it was picked.
 pub fn pull_samples(
     rec: &Recorder,
     body: &str,
     hook: Option<&str>,
     arm: &Option<ArmRef>,
+    holding: Option<HookGrip>,
     p: &SynthParams,
-) -> Result<Vec<RawSample>, RecorderError> {
+) -> Result<(Vec<RawSample>, HookGrip), RecorderError> {
     let world = rec.world();
     let cannot = |why: String| refused(format!("cannot pull {body}: {why}"));
     if world.body_kind(body) != Some(BodyKind::Block) {
@@ -427,6 +446,36 @@ pub fn pull_samples(
     let bp = world
         .body_pose(body)
         .ok_or_else(|| cannot("no pose".into()))?;
+    let safe = highest_top(world) + 0.05 + p.approach_height;
+    if let Some((r, home)) = holding {
+        let grasp = world
+            .grasp_transform(r)
+            .filter(|_| world.held_by(r) == Some(hook_name.as_str()))
+            .ok_or_else(|| cannot(format!("the arm does not hold {hook_name}")))?;
+        let grasp_inv = grasp.inverse();
+        let base = world
+            .arm_base(r)
+            .ok_or_else(|| cannot("no arm base".into()))?;
+        let (contact, pulled) = pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS);
+        let tc = contact * grasp_inv;
+        let tp = pulled * grasp_inv;
+        let mut m = motion_start(rec, r)?;
+        m.grip = GripperCommand::Close;
+        m.transfer(raised(&tc, safe), p.speed);
+        m.to(tc, p.contact_time, None);
+        let d = (tp.translation.vector - tc.translation.vector).norm();
+        m.to(tp, (d / p.pull_speed).max(0.6), None);
+        m.to(raised(&tp, safe), p.contact_time, None);
+        // Put the hook back where it was before the pick (kept in the first phase's log).
+        let mut put = home;
+        put.translation.vector += Vector3::new(0.0, 0.0, 0.002);
+        let place = put * grasp_inv;
+        m.transfer(raised(&place, safe), p.speed);
+        m.to(place, p.contact_time, None);
+        m.to(place, p.hold_time, Some(GripperCommand::Open));
+        m.to(raised(&place, safe), p.contact_time, None);
+        return Ok((m.out, (r, home)));
+    }
     let arms = resolve_arms(world, arm)?;
     let mut why = vec![];
     for &r in &arms {
@@ -443,34 +492,19 @@ pub fn pull_samples(
             .arm_base(r)
             .ok_or_else(|| cannot("no arm base".into()))?;
         let (contact, pulled) = pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS);
-        let tc = contact * grasp_inv;
-        let tp = pulled * grasp_inv;
-        if !reaches(world, r, &[g, tc, tp]) {
+        if !reaches(world, r, &[g, contact * grasp_inv, pulled * grasp_inv]) {
             why.push(format!(
                 "{name} cannot reach behind {body} with {hook_name}"
             ));
             continue;
         }
         let mut m = motion_start(rec, r)?;
-        let safe = g.translation.z.max(highest_top(world) + 0.05) + p.approach_height;
+        let safe = g.translation.z.max(safe);
         m.transfer(raised(&g, safe), p.speed);
         m.to(g, p.contact_time, Some(GripperCommand::Open));
         m.to(g, p.hold_time, Some(GripperCommand::Close));
         m.to(raised(&g, safe), p.contact_time, None);
-        m.transfer(raised(&tc, safe), p.speed);
-        m.to(tc, p.contact_time, None);
-        let d = (tp.translation.vector - tc.translation.vector).norm();
-        m.to(tp, (d / p.pull_speed).max(0.5), None);
-        m.to(raised(&tp, safe), p.contact_time, None);
-        // Put the hook back where it was.
-        let mut put = hp;
-        put.translation.vector += Vector3::new(0.0, 0.0, 0.002);
-        let place = put * grasp_inv;
-        m.transfer(raised(&place, safe), p.speed);
-        m.to(place, p.contact_time, None);
-        m.to(place, p.hold_time, Some(GripperCommand::Open));
-        m.to(raised(&place, safe), p.contact_time, None);
-        return Ok(m.out);
+        return Ok((m.out, (r, hp)));
     }
     Err(cannot(why.join("; ")))
 }
