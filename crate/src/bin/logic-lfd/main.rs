@@ -4,6 +4,7 @@
 //! Errors go to stderr as `file:line:col: message`; `--json` output goes to stdout.
 
 mod cmd_bench;
+mod cmd_demo;
 mod cmd_lqt;
 mod cmd_plan;
 mod cmd_scene;
@@ -73,6 +74,8 @@ fn exit_quietly_on_closed_stdout() {
         }
         default_hook(info);
     }));
+    /// Demonstrations: `demo segment` turns a raw recording into a demo.json.
+    Demo(cmd_demo::Args),
 }
 
 fn main() -> ExitCode {
@@ -98,5 +101,6 @@ fn main() -> ExitCode {
         Command::Run(args) => cmd_run::run(args),
         Command::Run(args) => cmd_run::run(args),
         Command::Scene(args) => cmd_scene::run(args),
+        Command::Demo(args) => cmd_demo::run(args),
     }
 }
