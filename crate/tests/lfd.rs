@@ -73,9 +73,7 @@ fn episode(b: BenchmarkId, level: Level, method: Method, mode: Mode, seed: u64) 
                     if a == "hook" || b == "hook")
             });
             assert!(
-                method == Method::Linear
-                    || hook_graze
-                    || (method == Method::Tamp && carried_graze),
+                method == Method::Linear || hook_graze || (method == Method::Tamp && carried_graze),
                 "{b:?} {level:?} {method:?} seed {seed}: invariants broken at tick {}: {v:?}",
                 s.tick()
             );
@@ -132,9 +130,7 @@ fn matrix(b: BenchmarkId) {
                         matches!(r.reason, Some(FailReason::NoDemoStateMatches { .. })),
                         "{tag}"
                     ),
-                    (Method::Linear, Level::L2 | Level::L3 | Level::L4)
-                        if b != BenchmarkId::B2 =>
-                    {
+                    (Method::Linear, Level::L2 | Level::L3 | Level::L4) if b != BenchmarkId::B2 => {
                         assert!(
                             matches!(
                                 r.reason,
@@ -149,7 +145,9 @@ fn matrix(b: BenchmarkId) {
                     (Method::Linear, Level::L3) => assert!(
                         matches!(
                             r.reason,
-                            Some(FailReason::GoalNotReached { .. } | FailReason::ActionFailed { .. })
+                            Some(
+                                FailReason::GoalNotReached { .. } | FailReason::ActionFailed { .. }
+                            )
                         ),
                         "{tag}"
                     ),
@@ -242,7 +240,13 @@ fn prioritised_mode_never_executes_more_actions_than_paper_mode() {
     for seed in [1, 2, 3] {
         for level in [Level::L3, Level::L4] {
             let p = episode(BenchmarkId::B1, level, Method::LogicLfd, Mode::Paper, seed);
-            let q = episode(BenchmarkId::B1, level, Method::LogicLfd, Mode::Prioritised, seed);
+            let q = episode(
+                BenchmarkId::B1,
+                level,
+                Method::LogicLfd,
+                Mode::Prioritised,
+                seed,
+            );
             assert!(p.success && q.success);
             assert!(
                 q.actions <= p.actions,
@@ -278,21 +282,37 @@ fn multi_goal_plan_plus_suffix_reaches_the_goal_in_the_pddl_model() {
     let cases: [(&[&str], Option<PlanSource>); 3] = [
         (
             &[
-                "(on d a)", "(ontable a)", "(ontable b)", "(ontable c)", "(clear d)",
-                "(clear b)", "(clear c)", "(handempty panda)",
+                "(on d a)",
+                "(ontable a)",
+                "(ontable b)",
+                "(ontable c)",
+                "(clear d)",
+                "(clear b)",
+                "(clear c)",
+                "(handempty panda)",
             ],
             Some(PlanSource::MultiGoal),
         ),
         (
             &[
-                "(on c d)", "(ontable a)", "(ontable b)", "(ontable d)", "(clear c)",
-                "(clear a)", "(clear b)", "(handempty panda)",
+                "(on c d)",
+                "(ontable a)",
+                "(ontable b)",
+                "(ontable d)",
+                "(clear c)",
+                "(clear a)",
+                "(clear b)",
+                "(handempty panda)",
             ],
             Some(PlanSource::LogicIn),
         ),
         (
             &[
-                "(on a b)", "(on b c)", "(on c d)", "(ontable d)", "(clear a)",
+                "(on a b)",
+                "(on b c)",
+                "(on c d)",
+                "(ontable d)",
+                "(clear a)",
                 "(handempty panda)",
             ],
             Some(PlanSource::GoalHolds),

@@ -7,8 +7,6 @@ mod cmd_bench;
 mod cmd_demo;
 mod cmd_lqt;
 mod cmd_plan;
-mod cmd_scene;
-mod cmd_run;
 mod cmd_run;
 mod cmd_scene;
 mod cmd_tables;
@@ -52,10 +50,8 @@ enum Command {
     Scene(cmd_scene::Args),
     /// One closed-loop episode: a benchmark, a disturbance level, a method, a seed.
     Run(cmd_run::Args),
-    /// One closed-loop episode: a benchmark, a disturbance level, a method, a seed.
-    Run(cmd_run::Args),
-    /// Inspect and perturb simulator scenes: facts, check, template, problem, disturb.
-    Scene(cmd_scene::Args),
+    /// Demonstrations: `demo segment` turns a raw recording into a demo.json.
+    Demo(cmd_demo::Args),
 }
 
 /// A closed stdout (`logic-lfd plan … | head`) ends the process quietly, as Unix tools do,
@@ -74,8 +70,6 @@ fn exit_quietly_on_closed_stdout() {
         }
         default_hook(info);
     }));
-    /// Demonstrations: `demo segment` turns a raw recording into a demo.json.
-    Demo(cmd_demo::Args),
 }
 
 fn main() -> ExitCode {
@@ -99,8 +93,6 @@ fn main() -> ExitCode {
         Command::Bench(args) => cmd_bench::run(args),
         Command::Scene(args) => cmd_scene::run(args),
         Command::Run(args) => cmd_run::run(args),
-        Command::Run(args) => cmd_run::run(args),
-        Command::Scene(args) => cmd_scene::run(args),
         Command::Demo(args) => cmd_demo::run(args),
     }
 }
