@@ -73,9 +73,7 @@ fn episode(b: BenchmarkId, level: Level, method: Method, mode: Mode, seed: u64) 
                     if a == "hook" || b == "hook")
             });
             assert!(
-                method == Method::Linear
-                    || hook_graze
-                    || (method == Method::Tamp && carried_graze),
+                method == Method::Linear || hook_graze || (method == Method::Tamp && carried_graze),
                 "{b:?} {level:?} {method:?} seed {seed}: invariants broken at tick {}: {v:?}",
                 s.tick()
             );
@@ -116,7 +114,9 @@ fn matrix(b: BenchmarkId) {
                 let r = episode(b, level, method, Mode::Paper, seed);
                 let tag = format!("{b:?} {level:?} {method:?} seed {seed}: {:?}", r.reason);
                 // Every level can be injected, except L2 on B2 (no single block move there
-                // returns to an earlier demonstration state; README).
+                // returns to an earlier demonstration state; README). On B2 the linear baseline
+                // may succeed at L3/L4 (its skills re-target the pull to the moved block, and a
+                // new block on the shelf may not be in the way) and RLDS at L4 (README).
                 if !(b == BenchmarkId::B2 && level == Level::L2) {
                     assert!(r.injected, "{tag}: no disturbance injected");
                 }
@@ -132,9 +132,7 @@ fn matrix(b: BenchmarkId) {
                         matches!(r.reason, Some(FailReason::NoDemoStateMatches { .. })),
                         "{tag}"
                     ),
-                    (Method::Linear, Level::L2 | Level::L3 | Level::L4)
-                        if b != BenchmarkId::B2 =>
-                    {
+                    (Method::Linear, Level::L2 | Level::L3 | Level::L4) if b != BenchmarkId::B2 => {
                         assert!(
                             matches!(
                                 r.reason,
@@ -146,13 +144,6 @@ fn matrix(b: BenchmarkId) {
                             "{tag}"
                         )
                     }
-                    (Method::Linear, Level::L3) => assert!(
-                        matches!(
-                            r.reason,
-                            Some(FailReason::GoalNotReached { .. } | FailReason::ActionFailed { .. })
-                        ),
-                        "{tag}"
-                    ),
                     _ => {}
                 }
                 assert!(r.success || r.actions < 40, "{tag}");
@@ -242,7 +233,13 @@ fn prioritised_mode_never_executes_more_actions_than_paper_mode() {
     for seed in [1, 2, 3] {
         for level in [Level::L3, Level::L4] {
             let p = episode(BenchmarkId::B1, level, Method::LogicLfd, Mode::Paper, seed);
-            let q = episode(BenchmarkId::B1, level, Method::LogicLfd, Mode::Prioritised, seed);
+            let q = episode(
+                BenchmarkId::B1,
+                level,
+                Method::LogicLfd,
+                Mode::Prioritised,
+                seed,
+            );
             assert!(p.success && q.success);
             assert!(
                 q.actions <= p.actions,
@@ -278,21 +275,37 @@ fn multi_goal_plan_plus_suffix_reaches_the_goal_in_the_pddl_model() {
     let cases: [(&[&str], Option<PlanSource>); 3] = [
         (
             &[
-                "(on d a)", "(ontable a)", "(ontable b)", "(ontable c)", "(clear d)",
-                "(clear b)", "(clear c)", "(handempty panda)",
+                "(on d a)",
+                "(ontable a)",
+                "(ontable b)",
+                "(ontable c)",
+                "(clear d)",
+                "(clear b)",
+                "(clear c)",
+                "(handempty panda)",
             ],
             Some(PlanSource::MultiGoal),
         ),
         (
             &[
-                "(on c d)", "(ontable a)", "(ontable b)", "(ontable d)", "(clear c)",
-                "(clear a)", "(clear b)", "(handempty panda)",
+                "(on c d)",
+                "(ontable a)",
+                "(ontable b)",
+                "(ontable d)",
+                "(clear c)",
+                "(clear a)",
+                "(clear b)",
+                "(handempty panda)",
             ],
             Some(PlanSource::LogicIn),
         ),
         (
             &[
-                "(on a b)", "(on b c)", "(on c d)", "(ontable d)", "(clear a)",
+                "(on a b)",
+                "(on b c)",
+                "(on c d)",
+                "(ontable d)",
+                "(clear a)",
                 "(handempty panda)",
             ],
             Some(PlanSource::GoalHolds),
