@@ -673,12 +673,15 @@ impl ActionExec {
     }
 }
 
+/// A body followed for re-anchoring: its name and where it was.
+pub(crate) type Anchor = Option<(String, Vector3<f64>)>;
+
 /// The resting pose of `body` at a placement, and the anchor it follows (the block below).
 pub(crate) fn placement_pose(
     world: &World,
     body: &str,
     placement: &Placement,
-) -> Result<(Isometry3<f64>, Option<(String, Vector3<f64>)>), String> {
+) -> Result<(Isometry3<f64>, Anchor), String> {
     match placement {
         Placement::OnBlock(y) => {
             let pose = rest_pose_on(world, body, y, 0.0)

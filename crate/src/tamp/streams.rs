@@ -55,10 +55,13 @@ impl Default for StreamParams {
     }
 }
 
+/// A fixed body: name, kind and its boxes in the world.
+type FixedBody = (String, BodyKind, Vec<(Isometry3<f64>, Cuboid)>);
+
 /// Binds skeletons against a world with certified samples; remembers the last bindings.
 pub struct StreamBinder<'w> {
     world: &'w World,
-    fixed: Vec<(String, BodyKind, Vec<(Isometry3<f64>, Cuboid)>)>,
+    fixed: Vec<FixedBody>,
     regions: Vec<crate::sim::snapshot::RegionSnapshot>,
     reach: Vec<crate::sim::snapshot::ReachSnapshot>,
     hooks: Vec<String>,
