@@ -152,6 +152,8 @@ proptest! {
         prop_assert!((fast.cost - dense.cost).abs() <= 1e-9 * dense.cost.abs().max(1e-300));
         let fb = lqt.feedback(&c.mu).unwrap();
         prop_assert!(rel_err(&fb.f_matrix(), &dense.f) < 1e-9);
+        let w2 = fb.weights(&c.x0).unwrap();
+        prop_assert!(rel_err(&w2, &dense.w) < 1e-6, "weights {}", rel_err(&w2, &dense.w));
         let gmax = dense.gains.iter().map(|g| g.amax()).fold(0.0, f64::max);
         for (t, g) in dense.gains.iter().enumerate() {
             let e = (fb.gain(t).unwrap() - g).amax() / gmax;

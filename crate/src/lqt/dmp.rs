@@ -178,19 +178,12 @@ impl Dmp {
         })
     }
 
-    /// The forcing term f(s) for coordinate d with start `y0`.
-    fn forcing(&self, s: f64, d: usize, y0: f64) -> f64 {
-        let (mut num, mut den) = (0.0, 1e-12);
-        for i in 0..self.centers.len() {
-            let psi = (-self.widths[i] * (s - self.centers[i]).powi(2)).exp();
-            num += psi * self.weights[i][d];
-            den += psi;
-        }
-        let a = match self.demo_displacement[d] {
+    /// The amplitude `a` of coordinate d for a start `y0`.
+    fn amplitude(&self, d: usize, y0: f64) -> f64 {
+        match self.demo_displacement[d] {
             Some(g) => (self.goal[d] - y0) / g,
             None => 1.0,
-        };
-        num / den * s * a
+        }
     }
 }
 
@@ -211,12 +204,23 @@ impl DmpRunner {
         let tau = self.dmp.dt * (self.dmp.n_steps - 1) as f64;
         let h = self.dmp.dt / p.substeps as f64;
         let bz = p.alpha_z / 4.0;
+        let k_n = self.dmp.centers.len();
         for _ in 0..p.substeps {
             let s = state[6];
+            // Normalised basis activations, once per sub-step for the three coordinates.
+            let mut f = [0.0; 3];
+            let mut den = 1e-12;
+            for i in 0..k_n {
+                let psi = (-self.dmp.widths[i] * (s - self.dmp.centers[i]).powi(2)).exp();
+                den += psi;
+                for (fd, wd) in f.iter_mut().zip(&self.dmp.weights[i]) {
+                    *fd += psi * wd;
+                }
+            }
             for d in 0..3 {
                 let (y, z) = (state[d], state[3 + d]);
-                let f = self.dmp.forcing(s, d, self.y0[d]);
-                let zd = (p.alpha_z * (bz * (self.dmp.goal[d] - y) - z) + f) / tau;
+                let fd = f[d] / den * s * self.dmp.amplitude(d, self.y0[d]);
+                let zd = (p.alpha_z * (bz * (self.dmp.goal[d] - y) - z) + fd) / tau;
                 state[d] = y + h * z / tau;
                 state[3 + d] = z + h * zd;
             }

@@ -150,9 +150,10 @@ pub struct Skill {
     pub demo_rotations: Vec<UnitQuaternion<f64>>,
     /// Gripper event at the end of the skill.
     pub gripper_event: Option<GripperEvent>,
-    /// Factorisation for the skill without via-points (μ and Q are object-frame constants).
+    /// Factorisation, reference and gains of the skill without via-points (μ and Q are
+    /// object-frame constants, so a new object pose or start only costs the rollout).
     #[serde(skip)]
-    cache: OnceLock<(LqtCp, DMatrix<f64>)>,
+    cache: OnceLock<(LqtCp, DMatrix<f64>, FeedbackGains)>,
 }
 
 fn check_demo(demo: &[Point3<f64>], dt: f64) -> Result<(), LqtError> {
@@ -280,8 +281,9 @@ impl Skill {
             cache: OnceLock::new(),
         };
         // Validate everything (and warm the cache) now rather than at the first plan.
-        let built = skill.build(&[])?;
-        let _ = skill.cache.set(built);
+        let (lqt, mu) = skill.build(&[])?;
+        let gains = lqt.feedback(&mu)?;
+        let _ = skill.cache.set((lqt, mu, gains));
         Ok(skill)
     }
 
@@ -361,22 +363,20 @@ impl Skill {
     ) -> Result<Trajectory, LqtError> {
         let nx = 3 * self.params.order;
         super::solver::check_vector("start_state", start_state, nx)?;
-        let owned;
-        let (lqt, mu) = if via_points.is_empty() {
+        let x0 = to_object(object_pose, start_state);
+        let gains = if via_points.is_empty() {
             match self.cache.get() {
-                Some(c) => (&c.0, &c.1),
+                Some(c) => c.2.clone(),
                 None => {
-                    let built = self.build(&[])?;
-                    let c = self.cache.get_or_init(|| built);
-                    (&c.0, &c.1)
+                    let (lqt, mu) = self.build(&[])?;
+                    let gains = lqt.feedback(&mu)?;
+                    self.cache.get_or_init(|| (lqt, mu, gains)).2.clone()
                 }
             }
         } else {
-            owned = self.build(via_points)?;
-            (&owned.0, &owned.1)
+            let (lqt, mu) = self.build(via_points)?;
+            lqt.feedback(&mu)?
         };
-        let x0 = to_object(object_pose, start_state);
-        let gains = lqt.feedback(mu)?;
         let roll = gains.rollout(&x0, None)?;
         let t_n = self.demo.len();
         let mut positions = Vec::with_capacity(t_n);

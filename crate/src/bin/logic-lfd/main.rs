@@ -8,6 +8,7 @@ mod cmd_lqt;
 mod cmd_plan;
 mod cmd_run;
 mod cmd_tables;
+mod cmd_scene;
 mod cmd_validate;
 
 use clap::{Parser, Subcommand};
@@ -46,6 +47,8 @@ enum Command {
     Bench(cmd_bench::Args),
     /// One closed-loop episode: a benchmark, a disturbance level, a method, a seed.
     Run(cmd_run::Args),
+    /// Inspect and perturb simulator scenes: facts, check, template, problem, disturb.
+    Scene(cmd_scene::Args),
 }
 
 /// A closed stdout (`logic-lfd plan … | head`) ends the process quietly, as Unix tools do,
@@ -86,5 +89,6 @@ fn main() -> ExitCode {
         Command::Plan(args) => cmd_plan::run(args),
         Command::Bench(args) => cmd_bench::run(args),
         Command::Run(args) => cmd_run::run(args),
+        Command::Scene(args) => cmd_scene::run(args),
     }
 }
