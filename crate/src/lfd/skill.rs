@@ -22,7 +22,7 @@ use std::collections::BTreeMap;
 
 use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 
-use crate::lqt::{Dmp, DmpParams, FeedbackController, MotionSkill, Skill, SkillParams};
+use crate::lqt::{Dmp, DmpParams, FeedbackController, Skill, SkillParams};
 
 use super::session::SkillKind;
 

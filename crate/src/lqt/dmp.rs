@@ -49,25 +49,67 @@ impl Default for DmpParams {
     }
 }
 
-/// A DMP learned from one demonstrated segment (object frame).
+/// A DMP learned from one demonstrated segment (object frame). Deserialisation checks the
+/// lengths and parameters.
 #[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(try_from = "DmpData")]
 pub struct Dmp {
-    /// Tunables.
-    pub params: DmpParams,
-    /// Time step (s).
-    pub dt: f64,
-    /// Number of steps of the demo (the plans have as many).
-    pub n_steps: usize,
-    /// Goal g in the object frame (the demo's last position).
-    pub goal: Vector3<f64>,
-    /// Demo orientations in the object frame.
-    pub demo_rotations: Vec<UnitQuaternion<f64>>,
-    /// Weights (K per coordinate).
-    pub weights: Vec<[f64; 3]>,
-    /// The demo's displacement `g - y_0` per coordinate (`None`: too small to scale by).
-    pub demo_displacement: [Option<f64>; 3],
+    params: DmpParams,
+    dt: f64,
+    n_steps: usize,
+    goal: Vector3<f64>,
+    demo_rotations: Vec<UnitQuaternion<f64>>,
+    weights: Vec<[f64; 3]>,
+    demo_displacement: [Option<f64>; 3],
     centers: Vec<f64>,
     widths: Vec<f64>,
+}
+
+/// The serialised form of [`Dmp`], validated by `TryFrom`.
+#[derive(Deserialize)]
+struct DmpData {
+    params: DmpParams,
+    dt: f64,
+    n_steps: usize,
+    goal: Vector3<f64>,
+    demo_rotations: Vec<UnitQuaternion<f64>>,
+    weights: Vec<[f64; 3]>,
+    demo_displacement: [Option<f64>; 3],
+    centers: Vec<f64>,
+    widths: Vec<f64>,
+}
+
+impl TryFrom<DmpData> for Dmp {
+    type Error = String;
+
+    fn try_from(d: DmpData) -> Result<Self, String> {
+        let k = d.params.n_fct;
+        if d.n_steps < 3 || !(d.dt.is_finite() && d.dt > 0.0) || d.params.substeps == 0 || k == 0 {
+            return Err("dmp: n_steps >= 3, dt > 0, substeps >= 1 and n_fct >= 1 expected".into());
+        }
+        if d.weights.len() != k || d.centers.len() != k || d.widths.len() != k {
+            return Err(format!(
+                "dmp: weights, centers and widths must have n_fct = {k} entries"
+            ));
+        }
+        if d.demo_rotations.len() != d.n_steps {
+            return Err(format!(
+                "dmp: demo_rotations must have n_steps = {} entries",
+                d.n_steps
+            ));
+        }
+        Ok(Dmp {
+            params: d.params,
+            dt: d.dt,
+            n_steps: d.n_steps,
+            goal: d.goal,
+            demo_rotations: d.demo_rotations,
+            weights: d.weights,
+            demo_displacement: d.demo_displacement,
+            centers: d.centers,
+            widths: d.widths,
+        })
+    }
 }
 
 /// The integrator of a DMP for one plan: state `[y (3), z (3), s]` in the object frame.
@@ -178,6 +220,31 @@ impl Dmp {
         })
     }
 
+    /// Tunables.
+    pub fn params(&self) -> &DmpParams {
+        &self.params
+    }
+
+    /// Time step (s).
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// Number of steps of the demo (the plans have as many).
+    pub fn n_steps(&self) -> usize {
+        self.n_steps
+    }
+
+    /// Goal g in the object frame (the demo's last position).
+    pub fn goal(&self) -> &Vector3<f64> {
+        &self.goal
+    }
+
+    /// The weights of the forcing term (K per coordinate).
+    pub fn weights(&self) -> &[[f64; 3]] {
+        &self.weights
+    }
+
     /// The amplitude `a` of coordinate d for a start `y0`.
     fn amplitude(&self, d: usize, y0: f64) -> f64 {
         match self.demo_displacement[d] {
@@ -232,6 +299,19 @@ impl DmpRunner {
 impl MotionSkill for Dmp {
     /// Via-points are ignored: a classic DMP cannot encode them.
     fn plan(
+        &self,
+        start: &Point3<f64>,
+        object_pose: &Isometry3<f64>,
+        via_points: &[ViaPoint],
+    ) -> Result<Trajectory, LqtError> {
+        Dmp::plan(self, start, object_pose, via_points)
+    }
+}
+
+impl Dmp {
+    /// Plan from `start` (world, at rest) to the demo's goal in the frame of `object_pose`.
+    /// Via-points are ignored: a classic DMP cannot encode them (the paper's comparison).
+    pub fn plan(
         &self,
         start: &Point3<f64>,
         object_pose: &Isometry3<f64>,

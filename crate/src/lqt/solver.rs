@@ -259,7 +259,9 @@ pub struct Rollout {
 ///
 /// Stored compactly: for each coordinate d, `K̃_t` has nonzeros only on that coordinate's n
 /// derivatives and on the constant column. [`FeedbackGains::gain`] expands to D×(nx+1).
+/// Deserialisation checks every length, so a malformed JSON is an error, never a later panic.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "FeedbackGainsData")]
 pub struct FeedbackGains {
     dim: usize,
     order: usize,
@@ -280,6 +282,65 @@ pub struct FeedbackGains {
     wx: Vec<f64>,
     /// `W^c = -H⁻¹ Ψᵀ Suᵀ Q μ` per coordinate: D×K.
     wc: Vec<f64>,
+}
+
+/// The serialised form of [`FeedbackGains`], validated by `TryFrom`.
+#[derive(Deserialize)]
+struct FeedbackGainsData {
+    dim: usize,
+    order: usize,
+    n_controls: usize,
+    a1: Vec<f64>,
+    b1: Vec<f64>,
+    fx: Vec<f64>,
+    fc: Vec<f64>,
+    kx: Vec<f64>,
+    kc: Vec<f64>,
+    k_n: usize,
+    wx: Vec<f64>,
+    wc: Vec<f64>,
+}
+
+impl TryFrom<FeedbackGainsData> for FeedbackGains {
+    type Error = String;
+
+    fn try_from(g: FeedbackGainsData) -> Result<Self, String> {
+        let (d, n, nc, k) = (g.dim, g.order, g.n_controls, g.k_n);
+        if d == 0 || n == 0 || n > MAX_ORDER || nc == 0 || k == 0 {
+            return Err("feedback gains: dim, order, n_controls and k_n must be positive".into());
+        }
+        let lens = [
+            ("a1", g.a1.len(), n * n),
+            ("b1", g.b1.len(), n),
+            ("fx", g.fx.len(), d * nc * n),
+            ("fc", g.fc.len(), d * nc),
+            ("kx", g.kx.len(), d * nc * n),
+            ("kc", g.kc.len(), d * nc),
+            ("wx", g.wx.len(), d * k * n),
+            ("wc", g.wc.len(), d * k),
+        ];
+        for (name, got, want) in lens {
+            if got != want {
+                return Err(format!(
+                    "feedback gains: {name} has {got} numbers, expected {want}"
+                ));
+            }
+        }
+        Ok(FeedbackGains {
+            dim: d,
+            order: n,
+            n_controls: nc,
+            a1: g.a1,
+            b1: g.b1,
+            fx: g.fx,
+            fc: g.fc,
+            kx: g.kx,
+            kc: g.kc,
+            k_n: k,
+            wx: g.wx,
+            wc: g.wc,
+        })
+    }
 }
 
 fn all_finite(v: &[f64]) -> bool {

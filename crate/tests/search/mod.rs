@@ -877,3 +877,41 @@ fn cli_plan_exit_codes_and_output() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn cli_bench_planner_prints_tables() {
+    let blocks = ipc("blocks");
+    let (code, out, err) = run_cli(&[
+        "bench",
+        "planner",
+        blocks.to_str().unwrap(),
+        "--configs",
+        "astar:lmcut,lazy-gbfs:hff",
+        "--filter",
+        "BLOCKS-4-",
+        "--time-limit",
+        "10",
+        "--markdown",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(out.matches(":lmcut | solved |").count(), 3, "{out}");
+    assert_eq!(out.matches(":hff | solved |").count(), 3, "{out}");
+    assert!(out.contains("| astar:lmcut | blocks | 3/3 |"), "{out}");
+    assert!(out.contains("| lazy-gbfs:hff | blocks | 3/3 |"), "{out}");
+    let dir = temp_files(
+        "bench",
+        &[
+            ("domain.pddl", ONE_WAY_DOMAIN),
+            ("trapped.pddl", ONE_WAY_PROBLEM),
+        ],
+    );
+    let (code, out, err) = run_cli(&["bench", "planner", dir.to_str().unwrap(), "--markdown"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("| trapped | lazy-gbfs:hff | unsolvable |"),
+        "{out}"
+    );
+    let (code, _, _) = run_cli(&["bench", "planner", "--configs", "astar:ff"]);
+    assert_eq!(code, 2);
+    std::fs::remove_dir_all(&dir).ok();
+}

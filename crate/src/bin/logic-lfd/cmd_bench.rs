@@ -113,8 +113,14 @@ fn parse_config(s: &str) -> Result<SearchConfig, String> {
     Ok(SearchConfig::new(a, h))
 }
 
+/// The folders of `../shared/ipc` (relative to the working directory, else to the workspace).
 fn default_dirs() -> Vec<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/ipc");
+    let here = PathBuf::from("../shared/ipc");
+    let root = if here.is_dir() {
+        here
+    } else {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/ipc")
+    };
     let mut v: Vec<PathBuf> = std::fs::read_dir(&root)
         .map(|rd| {
             rd.filter_map(|e| e.ok().map(|e| e.path()))
@@ -175,6 +181,12 @@ fn planner(args: PlannerArgs) -> ExitCode {
     } else {
         args.dirs.clone()
     };
+    if dirs.is_empty() {
+        eprintln!(
+            "bench planner: no benchmark folders (give DIR arguments or run next to ../shared/ipc)"
+        );
+        return ExitCode::from(exit::BAD_INPUT);
+    }
     let mut rows = Vec::new();
     let mut invalid = false;
     for dir in &dirs {
