@@ -3,6 +3,7 @@
 //!
 //! `cargo bench --bench lfd`. Targets (not asserted anywhere): Logic-LfD planning ≤ 1 ms on B1,
 //! ≥ 3× faster than our TAMP on the same states; a replanning tick ≤ 16 ms (60 Hz).
+#![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use logic_lfd::lfd::model::DomainModel;
@@ -36,8 +37,14 @@ fn planning(c: &mut Criterion) {
     let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::HMax);
     // An unseen state: d on a.
     let facts: Vec<String> = [
-        "(on d a)", "(ontable a)", "(ontable b)", "(ontable c)", "(clear d)", "(clear b)",
-        "(clear c)", "(handempty panda)",
+        "(on d a)",
+        "(ontable a)",
+        "(ontable b)",
+        "(ontable c)",
+        "(clear d)",
+        "(clear b)",
+        "(clear c)",
+        "(handempty panda)",
     ]
     .iter()
     .map(|s| s.to_string())
@@ -56,8 +63,15 @@ fn planning(c: &mut Criterion) {
     g.bench_function("logic-lfd LogicIn (template state)", |b| {
         let spec0 = MultiGoalSpec::new(&template, &trace);
         b.iter(|| {
-            plan_logic_lfd(&template, &spec0, &template.init, Mode::Paper, &cfg, &NoClock)
-                .unwrap()
+            plan_logic_lfd(
+                &template,
+                &spec0,
+                &template.init,
+                Mode::Paper,
+                &cfg,
+                &NoClock,
+            )
+            .unwrap()
         })
     });
     g.bench_function("tamp from scratch (same state)", |b| {
@@ -82,21 +96,25 @@ fn replanning_tick(c: &mut Criterion) {
     // Move a onto d mid-action: the next tick interrupts and the one after replans.
     let d = base.world().body_pose("d").unwrap().translation.vector;
     base.perturb("a", [d.x, d.y, d.z + 0.1]).unwrap();
-    c.bench_function("b1 replanning tick (re-observe + replan + bind + first skill step)", |b| {
-        b.iter_batched(
-            || {
-                let s = Session::replay(&base.episode_json()).unwrap();
-                s
-            },
-            |mut s| {
-                s.tick_once(&NoClock);
-                s.tick_once(&NoClock);
-                black_box(s.controller().replans().len())
-            },
-            criterion::BatchSize::LargeInput,
-        )
-    });
+    c.bench_function(
+        "b1 replanning tick (re-observe + replan + bind + first skill step)",
+        |b| {
+            b.iter_batched(
+                || Session::replay(&base.episode_json()).unwrap(),
+                |mut s| {
+                    s.tick_once(&NoClock);
+                    s.tick_once(&NoClock);
+                    black_box(s.controller().replans().len())
+                },
+                criterion::BatchSize::LargeInput,
+            )
+        },
+    );
 }
 
-criterion_group!(benches, planning, replanning_tick);
+criterion_group!(
+    name = benches;
+    config = Criterion::default();
+    targets = planning, replanning_tick
+);
 criterion_main!(benches);
