@@ -50,6 +50,11 @@ pub fn initial_scene(b: BenchmarkId, level: Level, seed: u64) -> Result<String, 
             Err(e) => last = e,
         }
     }
+    // A level that no single move produces from the template (B2 has no L2 state one move
+    // away) falls back to a motion-level variant.
+    if level != Level::L1 {
+        return initial_scene(b, Level::L1, seed);
+    }
     Err(SessionError::Json(format!(
         "{}: cannot generate a {} task: {last}",
         b.as_str(),
