@@ -24,6 +24,7 @@ pub mod lfd;
 pub mod lqt;
 pub mod pddl;
 pub mod plan;
+pub mod recorder;
 pub mod sim;
 pub mod tamp;
 #[cfg(feature = "wasm")]

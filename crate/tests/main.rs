@@ -5,6 +5,7 @@ mod lfd;
 mod lqt;
 mod multigoal;
 mod pddl;
+mod recorder;
 mod search;
 mod sim;
 mod validate;

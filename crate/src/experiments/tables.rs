@@ -31,8 +31,11 @@ pub fn stats(v: &[f64]) -> Option<(f64, f64, f64)> {
     Some((mean, var.sqrt(), median))
 }
 
+/// A paper figure `mean ± sd`; `None` where the paper says N/A.
+pub type MeanSd = Option<(f64, f64)>;
+
 /// The paper's Table I: (success %, planning time mean, sd in s) per method column and benchmark.
-pub const PAPER_TABLE1: [(&str, [(f64, Option<(f64, f64)>); 3]); 3] = [
+pub const PAPER_TABLE1: [(&str, [(f64, MeanSd); 3]); 3] = [
     ("linear", [(27.0, None), (31.0, None), (24.0, None)]),
     (
         "tamp",
@@ -53,7 +56,7 @@ pub const PAPER_TABLE1: [(&str, [(f64, Option<(f64, f64)>); 3]); 3] = [
 ];
 
 /// The paper's Table II: execution time mean ± sd (s) per level, method, benchmark; `None` = N/A.
-pub const PAPER_TABLE2: [(&str, [[Option<(f64, f64)>; 3]; 4]); 3] = [
+pub const PAPER_TABLE2: [(&str, [[MeanSd; 3]; 4]); 3] = [
     (
         "linear",
         [
@@ -455,7 +458,7 @@ mod tests {
     fn stats_are_mean_sample_sd_and_median() {
         let (m, sd, med) = stats(&[1.0, 2.0, 3.0, 10.0]).unwrap();
         assert!((m - 4.0).abs() < 1e-12);
-        assert!((sd - (((9.0 + 4.0 + 1.0 + 36.0) / 3.0) as f64).sqrt()).abs() < 1e-12);
+        assert!((sd - ((9.0_f64 + 4.0 + 1.0 + 36.0) / 3.0).sqrt()).abs() < 1e-12);
         assert!((med - 2.5).abs() < 1e-12);
         assert!(stats(&[]).is_none());
     }

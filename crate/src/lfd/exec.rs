@@ -272,25 +272,22 @@ impl ActionExec {
         };
         let pre = if hook { "hook-" } else { "" };
         let (arm, phases) = match &kind {
-            ActionKind::Grasp { arm, body } if skills.has(&format!("{pre}grasp-approach")) =>
-            {
-                (
-                    *arm,
-                    vec![
-                        Phase::Gripper(GripperCommand::Open),
-                        Phase::Move(Via::Grasp {
-                            body: body.clone(),
-                            dz: 0.0,
-                            skill: true,
-                        }),
-                        Phase::Gripper(GripperCommand::Close),
-                        Phase::Move(Via::Up {
-                            dz: p.lift_height,
-                            skill: skills.has(&format!("{pre}grasp-retreat")),
-                        }),
-                    ],
-                )
-            }
+            ActionKind::Grasp { arm, body } if skills.has(&format!("{pre}grasp-approach")) => (
+                *arm,
+                vec![
+                    Phase::Gripper(GripperCommand::Open),
+                    Phase::Move(Via::Grasp {
+                        body: body.clone(),
+                        dz: 0.0,
+                        skill: true,
+                    }),
+                    Phase::Gripper(GripperCommand::Close),
+                    Phase::Move(Via::Up {
+                        dz: p.lift_height,
+                        skill: skills.has(&format!("{pre}grasp-retreat")),
+                    }),
+                ],
+            ),
             ActionKind::Release { arm, placement, .. }
                 if skills.has("place-approach") && skills.has("place-retreat") =>
             {
@@ -676,12 +673,15 @@ impl ActionExec {
     }
 }
 
+/// A block a placement rests on and the offset of the placed body from it.
+type Anchor = Option<(String, Vector3<f64>)>;
+
 /// The resting pose of `body` at a placement, and the anchor it follows (the block below).
 pub(crate) fn placement_pose(
     world: &World,
     body: &str,
     placement: &Placement,
-) -> Result<(Isometry3<f64>, Option<(String, Vector3<f64>)>), String> {
+) -> Result<(Isometry3<f64>, Anchor), String> {
     match placement {
         Placement::OnBlock(y) => {
             let pose = rest_pose_on(world, body, y, 0.0)
@@ -705,11 +705,8 @@ fn pull_via(world: &World, arm: usize, body: &str, stage: u8) -> Result<Isometry
     let bp = world
         .body_pose(body)
         .ok_or_else(|| format!("no body {body}"))?;
-    let (contact, pulled) = crate::sim::demo::pull_hook_poses(
-        &base,
-        &bp,
-        crate::sim::demo::PULL_TARGET_RADIUS,
-    );
+    let (contact, pulled) =
+        crate::sim::demo::pull_hook_poses(&base, &bp, crate::sim::demo::PULL_TARGET_RADIUS);
     let lift = |iso: Isometry3<f64>| {
         Isometry3::from_parts(
             Translation3::from(iso.translation.vector + Vector3::z() * 0.08),

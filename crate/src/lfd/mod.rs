@@ -1,5 +1,5 @@
 //! Logic-LfD: the demonstration as a multi-goal specification, LogicIn, suffix merging, the
-//! reactive closed loop of the paper's Algorithm 1, its baselines, and the browser [`Session`].
+//! reactive closed loop of the paper's Algorithm 1, its baselines, and the browser [`Session`](session::Session).
 //!
 //! * [`demo`]: L_0..L_N from the demonstrated actions, the goals 𝒢 with terminal costs c_k;
 //! * [`logic`]: LogicIn, merge, Logic-LfD planning in `paper` and `prioritised` modes;

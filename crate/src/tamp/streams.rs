@@ -55,10 +55,13 @@ impl Default for StreamParams {
     }
 }
 
+/// A body that does not move while an action is bound: its name, kind and collision boxes.
+type FixedBody = (String, BodyKind, Vec<(Isometry3<f64>, Cuboid)>);
+
 /// Binds skeletons against a world with certified samples; remembers the last bindings.
 pub struct StreamBinder<'w> {
     world: &'w World,
-    fixed: Vec<(String, BodyKind, Vec<(Isometry3<f64>, Cuboid)>)>,
+    fixed: Vec<FixedBody>,
     regions: Vec<crate::sim::snapshot::RegionSnapshot>,
     reach: Vec<crate::sim::snapshot::ReachSnapshot>,
     hooks: Vec<String>,
@@ -312,9 +315,10 @@ impl<'w> StreamBinder<'w> {
         for n in 0..=self.params.placement_samples {
             let (x, y, yaw, top) = if n == 0 {
                 let Some((x, y, yaw)) = hint else { continue };
-                let Some(&(_, _, top)) = surfaces.iter().find(|(xr, yr, _)| {
-                    xr[0] <= x && x <= xr[1] && yr[0] <= y && y <= yr[1]
-                }) else {
+                let Some(&(_, _, top)) = surfaces
+                    .iter()
+                    .find(|(xr, yr, _)| xr[0] <= x && x <= xr[1] && yr[0] <= y && y <= yr[1])
+                else {
                     continue;
                 };
                 (x, y, yaw, top)

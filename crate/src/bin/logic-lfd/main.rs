@@ -4,6 +4,7 @@
 //! Errors go to stderr as `file:line:col: message`; `--json` output goes to stdout.
 
 mod cmd_bench;
+mod cmd_demo;
 mod cmd_lqt;
 mod cmd_plan;
 mod cmd_run;
@@ -45,10 +46,12 @@ enum Command {
     Plan(cmd_plan::Args),
     /// Benchmarks: `bench planner` runs planner configurations over IPC folders.
     Bench(cmd_bench::Args),
-    /// One closed-loop episode: a benchmark, a disturbance level, a method, a seed.
-    Run(cmd_run::Args),
     /// Inspect and perturb simulator scenes: facts, check, template, problem, disturb.
     Scene(cmd_scene::Args),
+    /// One closed-loop episode: a benchmark, a disturbance level, a method, a seed.
+    Run(cmd_run::Args),
+    /// Demonstrations: `demo segment` turns a raw recording into a demo.json.
+    Demo(cmd_demo::Args),
 }
 
 /// A closed stdout (`logic-lfd plan … | head`) ends the process quietly, as Unix tools do,
@@ -88,7 +91,8 @@ fn main() -> ExitCode {
         Command::Validate(a) => cmd_validate::run(a),
         Command::Plan(args) => cmd_plan::run(args),
         Command::Bench(args) => cmd_bench::run(args),
-        Command::Run(args) => cmd_run::run(args),
         Command::Scene(args) => cmd_scene::run(args),
+        Command::Run(args) => cmd_run::run(args),
+        Command::Demo(args) => cmd_demo::run(args),
     }
 }

@@ -1,0 +1,555 @@
+//! Edits of the page, and the quicker teaching mode: the user drags a block from one support to
+//! another (or asks for a hook pull) and the arm motion is synthesised as gripper samples, which
+//! are then segmented exactly like a hand-made recording.
+//!
+//! A synthesised motion is a chain of minimum-jerk segments between way-points,
+//!
+//! ```text
+//!   p(τ) = p₀ + (p₁ − p₀)(10τ³ − 15τ⁴ + 6τ⁵),   q(τ) = slerp(q₀, q₁, 10τ³ − 15τ⁴ + 6τ⁵),   τ ∈ [0, 1]
+//! ```
+//!
+//! sampled every simulator step `dt`: approach above the body at a safe height, descend to the top
+//! grasp ([`geometry::grasp_pose`]), close and hold, lift, transfer at the safe height, descend to
+//! the pose that puts the body at rest 2 mm above its new support, open and hold, lift; with more
+//! than one arm, the arm then returns to its ready pose (so it leaves the hand-over region free).
+//! A hook pull picks the hook, puts its blade behind the block ([`pull_hook_poses`]), drags it
+//! towards the arm, lifts, and puts the hook back where it was.
+
+use super::engine::gripper_sample;
+use super::recording::{ArmRef, HandMove, RawRecording, RawSample, RecordingScene};
+use super::{Recorder, RecorderError, RecorderEvent};
+use crate::sim::benchmark::Benchmark;
+use crate::sim::demo::{self, pull_hook_poses, Demonstration, PULL_TARGET_RADIUS};
+use crate::sim::geometry;
+use crate::sim::panda;
+use crate::sim::snapshot::BodyKind;
+use crate::sim::{GripperCommand, World};
+use nalgebra::{Isometry3, Vector3};
+use serde::{Deserialize, Serialize};
+
+/// Tunables of the synthesised motions.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct SynthParams {
+    /// Cartesian speed of transfers (m/s).
+    pub speed: f64,
+    /// Height of the approach way-points above the higher of grasp and place (m).
+    pub approach_height: f64,
+    /// Duration of every descent and lift (s).
+    pub contact_time: f64,
+    /// Time the gripper holds still while closing or opening (s).
+    pub hold_time: f64,
+    /// Speed of the hook while pulling (m/s).
+    pub pull_speed: f64,
+}
+
+impl Default for SynthParams {
+    fn default() -> Self {
+        SynthParams {
+            speed: 0.3,
+            approach_height: 0.10,
+            contact_time: 0.6,
+            hold_time: 0.3,
+            pull_speed: 0.25,
+        }
+    }
+}
+
+/// One edit of the page or of a script (JSON: `{"edit": "drag", …}`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "edit", rename_all = "snake_case")]
+pub enum Edit {
+    /// A raw gripper sample (or hand move) as in a recording file.
+    Sample {
+        /// The sample.
+        sample: RawSample,
+    },
+    /// Gripper mode without time stamps: command `arm` to `position`/`yaw` and `gripper`, then
+    /// let the world run for `duration` seconds (at least one step).
+    Gripper {
+        /// The arm.
+        arm: ArmRef,
+        /// TCP position (m, world).
+        position: [f64; 3],
+        /// Gripper yaw (rad).
+        yaw: f64,
+        /// `open` or `closed`.
+        gripper: super::recording::GripperState,
+        /// How long the command holds (s; 0 = one step).
+        #[serde(default)]
+        duration: f64,
+    },
+    /// Quick mode: move `body` onto the block `onto`, or to `position` `[x, y]` on whatever is
+    /// there (table, shelf, block); the arm motion is synthesised.
+    Drag {
+        /// The block to move.
+        body: String,
+        /// A block to stack it on (its centre and yaw are used).
+        #[serde(default)]
+        onto: Option<String>,
+        /// Where to put it instead: `[x, y]` (m, world).
+        #[serde(default)]
+        position: Option<[f64; 2]>,
+        /// Its new yaw (rad; default: kept, or the yaw of `onto`).
+        #[serde(default)]
+        yaw: Option<f64>,
+        /// The arm to use (default: the first that reaches both places).
+        #[serde(default)]
+        arm: Option<ArmRef>,
+    },
+    /// Quick mode: pull an out-of-reach block in with the hook (B2).
+    Pull {
+        /// The block.
+        body: String,
+        /// The hook (default: the scene's first hook).
+        #[serde(default)]
+        hook: Option<String>,
+        /// The arm (default: the first that reaches the hook).
+        #[serde(default)]
+        arm: Option<ArmRef>,
+    },
+    /// The user moves a block by hand (allowed only if no fact changes).
+    Move {
+        /// The block.
+        body: String,
+        /// Its new centre before settling (m).
+        position: [f64; 3],
+    },
+}
+
+impl Recorder {
+    /// Applies one edit (atomically: on error nothing changes) and says what happened.
+    pub fn push(&mut self, edit: &Edit) -> Result<RecorderEvent, RecorderError> {
+        self.push_with(edit, &SynthParams::default())
+    }
+
+    /// [`Recorder::push`] with explicit synthesis tunables.
+    pub fn push_with(
+        &mut self,
+        edit: &Edit,
+        p: &SynthParams,
+    ) -> Result<RecorderEvent, RecorderError> {
+        match edit {
+            Edit::Sample { sample } => self.push_sample(sample),
+            Edit::Gripper {
+                arm,
+                position,
+                yaw,
+                gripper,
+                duration,
+            } => {
+                let t0 = self.time();
+                let n = ((duration / self.world().dt()).round().max(1.0)) as usize;
+                let samples: Vec<RawSample> = (0..n)
+                    .map(|k| RawSample::Gripper {
+                        t: t0 + k as f64 * self.world().dt(),
+                        arm: arm.clone(),
+                        pose: super::recording::GripperPose {
+                            position: *position,
+                            yaw: *yaw,
+                        },
+                        gripper: *gripper,
+                    })
+                    .collect();
+                self.push_samples(&samples)
+            }
+            Edit::Drag {
+                body,
+                onto,
+                position,
+                yaw,
+                arm,
+            } => {
+                let s = drag_samples(self, body, onto.as_deref(), *position, *yaw, arm, p)?;
+                self.push_samples(&s)
+            }
+            Edit::Pull { body, hook, arm } => {
+                // Two phases: pick the hook, then pull with the grasp it actually got.
+                let c = self.checkpoint();
+                let edits_len = c.edits_len;
+                let result = pull_samples(self, body, hook.as_deref(), arm, None, p)
+                    .and_then(|(s, r)| self.push_samples(&s).map(|_| r))
+                    .and_then(|r| pull_samples(self, body, hook.as_deref(), arm, Some(r), p))
+                    .and_then(|(s, _)| self.push_samples(&s));
+                match result {
+                    Ok(_) => Ok(self.event_since(&c)),
+                    Err(e) => {
+                        self.rollback(c, edits_len);
+                        Err(e)
+                    }
+                }
+            }
+            Edit::Move { body, position } => {
+                let s = RawSample::Move {
+                    t: self.time(),
+                    hand: HandMove {
+                        body: body.clone(),
+                        position: *position,
+                    },
+                };
+                self.push_sample(&s)
+            }
+        }
+    }
+}
+
+fn refused(m: impl Into<String>) -> RecorderError {
+    RecorderError::Refused(m.into())
+}
+
+fn min_jerk(t: f64) -> f64 {
+    t * t * t * (10.0 + t * (-15.0 + 6.0 * t))
+}
+
+fn raised(p: &Isometry3<f64>, z: f64) -> Isometry3<f64> {
+    let mut q = *p;
+    q.translation.vector.z = z;
+    q
+}
+
+/// Builds samples segment by segment.
+struct Motion {
+    arm: usize,
+    dt: f64,
+    t: f64,
+    at: Isometry3<f64>,
+    grip: GripperCommand,
+    out: Vec<RawSample>,
+}
+
+impl Motion {
+    fn to(&mut self, target: Isometry3<f64>, duration: f64, grip: Option<GripperCommand>) {
+        if let Some(g) = grip {
+            self.grip = g;
+        }
+        let n = ((duration / self.dt).round() as usize).max(1);
+        let from = self.at;
+        for k in 1..=n {
+            let s = min_jerk(k as f64 / n as f64);
+            let p = from.translation.vector.lerp(&target.translation.vector, s);
+            let r = from.rotation.slerp(&target.rotation, s);
+            let pose = Isometry3::from_parts(p.into(), r);
+            self.out
+                .push(gripper_sample(self.t, self.arm, &pose, self.grip));
+            self.t += self.dt;
+        }
+        self.at = target;
+    }
+
+    fn transfer(&mut self, target: Isometry3<f64>, speed: f64) {
+        let d = (target.translation.vector - self.at.translation.vector).norm();
+        let a = (target.rotation * self.at.rotation.inverse()).angle();
+        self.to(target, (d / speed).max(a / 1.2).max(0.5), None);
+    }
+}
+
+fn resolve_arms(world: &World, arm: &Option<ArmRef>) -> Result<Vec<usize>, RecorderError> {
+    match arm {
+        Some(a) => a
+            .resolve(world)
+            .map(|i| vec![i])
+            .ok_or_else(|| refused(format!("no such arm {a:?}"))),
+        None => Ok((0..world.arm_names().len()).collect()),
+    }
+}
+
+fn motion_start(rec: &Recorder, arm: usize) -> Result<Motion, RecorderError> {
+    let w = rec.world();
+    let at = w.tcp_pose(arm).ok_or_else(|| refused("no such arm"))?;
+    Ok(Motion {
+        arm,
+        dt: w.dt(),
+        t: rec.time(),
+        at,
+        grip: GripperCommand::Open,
+        out: vec![],
+    })
+}
+
+/// The highest top face of any block or the hook (m), for safe transfers.
+fn highest_top(world: &World) -> f64 {
+    world
+        .block_names()
+        .iter()
+        .filter(|b| !world.is_lost(b))
+        .filter_map(|b| world.body_aabb(b).map(|(_, hi)| hi.z))
+        .fold(0.0, f64::max)
+}
+
+/// Pick `body` with `m.arm`, carry it to `rest` (its resting pose), release, lift.
+fn pick_and_place(
+    world: &World,
+    m: &mut Motion,
+    body: &str,
+    rest: &Isometry3<f64>,
+    p: &SynthParams,
+) -> Result<(), RecorderError> {
+    let bp = world
+        .body_pose(body)
+        .ok_or_else(|| refused(format!("no body {body}")))?;
+    let g = geometry::grasp_pose(world, m.arm, body)
+        .ok_or_else(|| refused(format!("{body} cannot be grasped")))?;
+    let grasp = g.inverse() * bp; // the body in the TCP frame
+    let mut put = *rest;
+    put.translation.vector.z += 0.002;
+    let place = put * grasp.inverse();
+    let safe = g
+        .translation
+        .z
+        .max(place.translation.z)
+        .max(highest_top(world) + 0.05)
+        + p.approach_height;
+    m.transfer(raised(&g, safe), p.speed);
+    m.grip = GripperCommand::Open;
+    m.to(g, p.contact_time, Some(GripperCommand::Open));
+    m.to(g, p.hold_time, Some(GripperCommand::Close));
+    m.to(raised(&g, safe), p.contact_time, None);
+    m.transfer(raised(&place, safe), p.speed);
+    m.to(place, p.contact_time, None);
+    m.to(place, p.hold_time, Some(GripperCommand::Open));
+    m.to(
+        raised(&place, place.translation.z + p.approach_height),
+        p.contact_time,
+        None,
+    );
+    Ok(())
+}
+
+fn reaches(world: &World, arm: usize, poses: &[Isometry3<f64>]) -> bool {
+    poses.iter().all(|q| world.reachable(arm, q).is_ok())
+}
+
+fn go_home(world: &World, m: &mut Motion, p: &SynthParams) {
+    if world.arm_names().len() > 1 {
+        if let Some(base) = world.arm_base(m.arm) {
+            m.transfer(panda::forward_kinematics(&base, &panda::READY), p.speed);
+        }
+    }
+}
+
+/// Samples that move `body` onto `onto` or to `position` (see [`Edit::Drag`]).
+pub fn drag_samples(
+    rec: &Recorder,
+    body: &str,
+    onto: Option<&str>,
+    position: Option<[f64; 2]>,
+    yaw: Option<f64>,
+    arm: &Option<ArmRef>,
+    p: &SynthParams,
+) -> Result<Vec<RawSample>, RecorderError> {
+    let world = rec.world();
+    let cannot = |why: String| refused(format!("cannot move {body}: {why}"));
+    match world.body_kind(body) {
+        Some(BodyKind::Block | BodyKind::Hook) => {}
+        Some(_) => return Err(cannot("it is fixed".into())),
+        None => return Err(cannot("there is no such block".into())),
+    }
+    if world.is_lost(body) {
+        return Err(cannot("it is lost".into()));
+    }
+    let arms = resolve_arms(world, arm)?;
+    if (0..world.arm_names().len()).any(|r| world.held_by(r) == Some(body)) {
+        return Err(cannot("it is held".into()));
+    }
+    let bp = world
+        .body_pose(body)
+        .ok_or_else(|| cannot("no pose".into()))?;
+    let cur_yaw = super::engine::yaw_of(&bp.rotation);
+    let (x, y, yaw) = match (onto, position) {
+        (Some(s), _) => {
+            if s == body {
+                return Err(cannot("not onto itself".into()));
+            }
+            let sp = world
+                .body_pose(s)
+                .ok_or_else(|| cannot(format!("there is no body {s}")))?;
+            match (world.body_kind(s), position) {
+                (Some(BodyKind::Block), _) => (
+                    sp.translation.x,
+                    sp.translation.y,
+                    yaw.unwrap_or_else(|| super::engine::yaw_of(&sp.rotation)),
+                ),
+                (_, Some([x, y])) => (x, y, yaw.unwrap_or(cur_yaw)),
+                (_, None) => {
+                    let (lo, hi) = world.body_aabb(s).ok_or_else(|| cannot("no box".into()))?;
+                    let c = 0.5 * (lo + hi);
+                    (c.x, c.y, yaw.unwrap_or(cur_yaw))
+                }
+            }
+        }
+        (None, Some([x, y])) => (x, y, yaw.unwrap_or(cur_yaw)),
+        (None, None) => {
+            return Err(cannot(
+                "say where: \"onto\" a block or a \"position\"".into(),
+            ))
+        }
+    };
+    if !(x.is_finite() && y.is_finite() && yaw.is_finite()) {
+        return Err(cannot("the target is not finite".into()));
+    }
+    // Rest pose with the body itself out of the way.
+    let rest = geometry::rest_pose(world, body, x, y, yaw)
+        .ok_or_else(|| cannot(format!("nothing is under ({x:.3}, {y:.3})")))?;
+    let mut why = vec![];
+    for &r in &arms {
+        let name = world.arm_names()[r].to_string();
+        if let Some(h) = world.held_by(r) {
+            why.push(format!("{name} holds {h}"));
+            continue;
+        }
+        let Some(g) = geometry::grasp_pose(world, r, body) else {
+            return Err(cannot("it cannot be grasped".into()));
+        };
+        let place = rest * (g.inverse() * bp).inverse();
+        if !reaches(world, r, &[g, place]) {
+            why.push(format!("{name} does not reach both places"));
+            continue;
+        }
+        let mut m = motion_start(rec, r)?;
+        pick_and_place(world, &mut m, body, &rest, p)?;
+        go_home(world, &mut m, p);
+        return Ok(m.out);
+    }
+    Err(cannot(why.join("; ")))
+}
+
+/// The arm that picked the hook and the hook's pose before the pick.
+pub type HookGrip = (usize, Isometry3<f64>);
+
+/// Samples of a hook pull (see [`Edit::Pull`]), in two phases: with `holding = None`, picking
+/// the hook and lifting it (returns the arm used); with `holding = Some((arm, home))` (the arm now holds
+/// the hook, using its actual grasp), putting the blade behind `body`, dragging it into reach, lifting, and putting the
+/// hook back at `home`, where it was picked.
+pub fn pull_samples(
+    rec: &Recorder,
+    body: &str,
+    hook: Option<&str>,
+    arm: &Option<ArmRef>,
+    holding: Option<HookGrip>,
+    p: &SynthParams,
+) -> Result<(Vec<RawSample>, HookGrip), RecorderError> {
+    let world = rec.world();
+    let cannot = |why: String| refused(format!("cannot pull {body}: {why}"));
+    if world.body_kind(body) != Some(BodyKind::Block) {
+        return Err(cannot("there is no such block".into()));
+    }
+    let hook_name = match hook {
+        Some(h) => h.to_string(),
+        None => SceneHook::first(world).ok_or_else(|| cannot("the scene has no hook".into()))?,
+    };
+    if world.body_kind(&hook_name) != Some(BodyKind::Hook) {
+        return Err(cannot(format!("{hook_name} is not a hook")));
+    }
+    let hp = world
+        .body_pose(&hook_name)
+        .ok_or_else(|| cannot("no hook pose".into()))?;
+    let bp = world
+        .body_pose(body)
+        .ok_or_else(|| cannot("no pose".into()))?;
+    let safe = highest_top(world) + 0.05 + p.approach_height;
+    if let Some((r, home)) = holding {
+        let grasp = world
+            .grasp_transform(r)
+            .filter(|_| world.held_by(r) == Some(hook_name.as_str()))
+            .ok_or_else(|| cannot(format!("the arm does not hold {hook_name}")))?;
+        let grasp_inv = grasp.inverse();
+        let base = world
+            .arm_base(r)
+            .ok_or_else(|| cannot("no arm base".into()))?;
+        let (contact, pulled) = pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS);
+        let tc = contact * grasp_inv;
+        let tp = pulled * grasp_inv;
+        let mut m = motion_start(rec, r)?;
+        m.grip = GripperCommand::Close;
+        m.transfer(raised(&tc, safe), p.speed);
+        m.to(tc, p.contact_time, None);
+        let d = (tp.translation.vector - tc.translation.vector).norm();
+        m.to(tp, (d / p.pull_speed).max(0.6), None);
+        m.to(raised(&tp, safe), p.contact_time, None);
+        // Put the hook back where it was before the pick (kept in the first phase's log).
+        let mut put = home;
+        put.translation.vector += Vector3::new(0.0, 0.0, 0.002);
+        let place = put * grasp_inv;
+        m.transfer(raised(&place, safe), p.speed);
+        m.to(place, p.contact_time, None);
+        m.to(place, p.hold_time, Some(GripperCommand::Open));
+        m.to(raised(&place, safe), p.contact_time, None);
+        return Ok((m.out, (r, home)));
+    }
+    let arms = resolve_arms(world, arm)?;
+    let mut why = vec![];
+    for &r in &arms {
+        let name = world.arm_names()[r].to_string();
+        if let Some(h) = world.held_by(r) {
+            why.push(format!("{name} holds {h}"));
+            continue;
+        }
+        let Some(g) = geometry::grasp_pose(world, r, &hook_name) else {
+            return Err(cannot("the hook cannot be grasped".into()));
+        };
+        let grasp_inv = (g.inverse() * hp).inverse();
+        let base = world
+            .arm_base(r)
+            .ok_or_else(|| cannot("no arm base".into()))?;
+        let (contact, pulled) = pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS);
+        if !reaches(world, r, &[g, contact * grasp_inv, pulled * grasp_inv]) {
+            why.push(format!(
+                "{name} cannot reach behind {body} with {hook_name}"
+            ));
+            continue;
+        }
+        let mut m = motion_start(rec, r)?;
+        let safe = g.translation.z.max(safe);
+        m.transfer(raised(&g, safe), p.speed);
+        m.to(g, p.contact_time, Some(GripperCommand::Open));
+        m.to(g, p.hold_time, Some(GripperCommand::Close));
+        m.to(raised(&g, safe), p.contact_time, None);
+        return Ok((m.out, (r, hp)));
+    }
+    Err(cannot(why.join("; ")))
+}
+
+struct SceneHook;
+
+impl SceneHook {
+    fn first(world: &World) -> Option<String> {
+        let s = world.snapshot();
+        s.bodies
+            .iter()
+            .find(|b| b.kind == BodyKind::Hook && !b.lost)
+            .map(|b| b.name.clone())
+    }
+}
+
+/// A raw recording of a demonstration: `demo` is replayed from the benchmark's template scene
+/// ([`demo::replay`]) and every commanded gripper pose and state becomes a sample (one per step).
+/// Segmenting it must give back the demonstration's actions.
+pub fn recording_from_demo(
+    b: Benchmark,
+    demonstration: &Demonstration,
+) -> Result<RawRecording, RecorderError> {
+    let mut world = b.scene();
+    let dt = world.dt();
+    let mut samples = vec![];
+    demo::replay(&mut world, demonstration, |w, a, _k| {
+        if let Some(arm) = w.arm_index(&a.arm) {
+            if let Some((Some(target), grip)) = w.arm_command(arm) {
+                samples.push(gripper_sample(
+                    samples.len() as f64 * dt,
+                    arm,
+                    &target,
+                    grip,
+                ));
+            }
+        }
+        Ok(())
+    })
+    .map_err(|e| refused(format!("replaying the demonstration failed: {e}")))?;
+    Ok(RawRecording {
+        scene: RecordingScene::Benchmark(b),
+        dt,
+        samples,
+        goal: None,
+        seed: demonstration.seed,
+    })
+}
