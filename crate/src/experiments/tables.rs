@@ -31,7 +31,7 @@ pub fn stats(v: &[f64]) -> Option<(f64, f64, f64)> {
     Some((mean, var.sqrt(), median))
 }
 
-/// A paper figure `mean ± sd`; `None` where the paper says N/A.
+/// Mean ± sd (s); `None` = N/A.
 pub type MeanSd = Option<(f64, f64)>;
 
 /// The paper's Table I: (success %, planning time mean, sd in s) per method column and benchmark.

@@ -84,16 +84,29 @@ fn table_spot(world: &World, rng: &mut Pcg64Mcg, anywhere: bool) -> Option<[f64;
         .filter(|b| b.kind == BodyKind::Table)
         .filter_map(|b| world.body_aabb(&b.name))
         .collect();
+    // Keep moved blocks away from shelves (a block behind the shelf cannot be pulled past it).
+    let shelves: Vec<_> = snap
+        .bodies
+        .iter()
+        .filter(|b| b.kind == BodyKind::Shelf)
+        .filter_map(|b| world.body_aabb(&b.name))
+        .collect();
+    let clear_of_shelves = |x: f64, y: f64| {
+        shelves.iter().all(|(lo, hi)| {
+            x < lo.x - 0.25 || x > hi.x + 0.25 || y < lo.y - 0.25 || y > hi.y + 0.25
+        })
+    };
     for _ in 0..50 {
         let (lo, hi) = tables.get(rng.random_range(0..tables.len().max(1)))?;
         let x = rng.random_range(lo.x + 0.05..hi.x - 0.05);
         let y = rng.random_range(lo.y + 0.05..hi.y - 0.05);
-        let ok = anywhere
-            || snap.arms.iter().any(|a| {
-                let b = a.base.position;
-                let d = (x - b[0]).hypot(y - b[1]);
-                d > a.reach.min_radius + 0.03 && d < a.reach.max_radius - 0.05
-            });
+        let ok = clear_of_shelves(x, y)
+            && (anywhere
+                || snap.arms.iter().any(|a| {
+                    let b = a.base.position;
+                    let d = (x - b[0]).hypot(y - b[1]);
+                    d > a.reach.min_radius + 0.03 && d < a.reach.max_radius - 0.05
+                }));
         if ok {
             return Some([x, y]);
         }

@@ -673,8 +673,8 @@ impl ActionExec {
     }
 }
 
-/// A block a placement rests on and the offset of the placed body from it.
-type Anchor = Option<(String, Vector3<f64>)>;
+/// A body followed for re-anchoring: its name and where it was.
+pub(crate) type Anchor = Option<(String, Vector3<f64>)>;
 
 /// The resting pose of `body` at a placement, and the anchor it follows (the block below).
 pub(crate) fn placement_pose(

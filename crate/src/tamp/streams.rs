@@ -55,7 +55,7 @@ impl Default for StreamParams {
     }
 }
 
-/// A body that does not move while an action is bound: its name, kind and collision boxes.
+/// A fixed body: name, kind and its boxes in the world.
 type FixedBody = (String, BodyKind, Vec<(Isometry3<f64>, Cuboid)>);
 
 /// Binds skeletons against a world with certified samples; remembers the last bindings.
@@ -280,6 +280,17 @@ impl<'w> StreamBinder<'w> {
         out
     }
 
+    /// Whether `(x, y)` is within `margin` of a shelf's footprint.
+    fn near_shelf(&self, x: f64, y: f64, margin: f64) -> bool {
+        self.fixed
+            .iter()
+            .filter(|b| b.1 == BodyKind::Shelf)
+            .filter_map(|b| self.world.body_aabb(&b.0))
+            .any(|(lo, hi)| {
+                x > lo.x - margin && x < hi.x + margin && y > lo.y - margin && y < hi.y + margin
+            })
+    }
+
     /// Whether arm `a`'s reach annulus contains `(x, y)`.
     fn in_annulus(&self, a: usize, x: f64, y: f64) -> bool {
         match (self.reach.get(a), self.world.arm_base(a)) {
@@ -345,6 +356,14 @@ impl<'w> StreamBinder<'w> {
             );
             if !self.collision_free(geo, body, &pose) {
                 continue;
+            }
+            // The carried hook is not routed around obstacles: sampled hook spots keep clear of
+            // shelves and stay where the arm carried it in the demonstration (near its hint).
+            if !is_block && n > 0 {
+                let near_hint = hint.is_some_and(|(hx, hy, _)| (x - hx).hypot(y - hy) < 0.15);
+                if self.near_shelf(x, y, 0.12) || (hint.is_some() && !near_hint) {
+                    continue;
+                }
             }
             if is_block {
                 let tcp = self.top_grasp(arm, &pose);
