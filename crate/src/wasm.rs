@@ -17,6 +17,36 @@ extern "C" {
     fn performance_now() -> f64;
 }
 
+#[wasm_bindgen]
+extern "C" {
+    /// `console.error(message)`.
+    #[wasm_bindgen(js_namespace = console, js_name = error)]
+    fn console_error(message: &str);
+}
+
+/// The message of the last panic (a bug: user input never panics), for [`last_panic`].
+static LAST_PANIC: std::sync::Mutex<String> = std::sync::Mutex::new(String::new());
+
+/// Runs when the module is instantiated: a panic (which aborts the module) is logged to the
+/// console with its location and kept for [`last_panic`], so the page can say what happened.
+#[wasm_bindgen(start)]
+pub fn start() {
+    std::panic::set_hook(Box::new(|info| {
+        let message = format!("logic-lfd panicked: {info}");
+        console_error(&message);
+        if let Ok(mut last) = LAST_PANIC.lock() {
+            *last = message;
+        }
+    }));
+}
+
+/// The message of the last panic inside the module, or `""`. After a panic the module is dead
+/// (it aborts); load it again to continue.
+#[wasm_bindgen(js_name = lastPanic)]
+pub fn last_panic() -> String {
+    LAST_PANIC.lock().map(|s| s.clone()).unwrap_or_default()
+}
+
 /// The JS high-resolution clock, for search time limits and reported times.
 struct PerformanceClock;
 

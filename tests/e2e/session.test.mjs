@@ -2,7 +2,7 @@
 // real mouse and keyboard events against the production build in web/dist.
 import { after, before, describe, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdir } from 'node:fs/promises';
+import { mkdir, readFile } from 'node:fs/promises';
 import { join } from 'node:path';
 import { currentFrame, finish, launch, openApp, screenshots, serve } from './harness.mjs';
 
@@ -150,6 +150,30 @@ describe('closed-loop session in the page', () => {
       await page.close();
     });
   }
+
+  test('save and load the scene JSON: the loaded session starts from the saved world', async () => {
+    const { page, errors } = await open('?benchmark=b1&seed=1&autoplay=0');
+    await page.click('#play');
+    await page.waitForFunction(() => (window.lfd.frame()?.t ?? 0) > 3, null, { timeout: 60000 });
+    await page.click('#play');
+    await page.waitForSelector('#play[aria-pressed="false"]');
+    const saved = await frame(page);
+    const [download] = await Promise.all([page.waitForEvent('download'), page.click('#save-scene')]);
+    const path = await download.path();
+    const json = JSON.parse(await readFile(path, 'utf8'));
+    assert.equal(json.name, saved.world.name);
+    // Load it back through the file picker.
+    const [chooser] = await Promise.all([page.waitForEvent('filechooser'), page.click('#load-scene')]);
+    await chooser.setFiles(path);
+    await page.waitForFunction(() => window.lfd.frame()?.tick === 0, null, { timeout: 20000 });
+    const loaded = await frame(page);
+    const pos = (f, n) => f.world.bodies.find((b) => b.name === n).pose.position;
+    for (const n of ['a', 'b', 'c', 'd']) {
+      pos(loaded, n).forEach((v, i) => assert.ok(Math.abs(v - pos(saved, n)[i]) < 0.01, `${n} moved by loading`));
+    }
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
 
   for (const b of ['b1', 'b2', 'b3']) {
     test(`screenshot of ${b.toUpperCase()}`, async () => {

@@ -27,6 +27,7 @@ export class WorkerClient {
         resolveReady(m.version);
       } else if (m.type === 'fatal') {
         rejectReady(new Error(m.message));
+        onPush(m);
       } else {
         onPush(m);
       }

@@ -234,6 +234,12 @@ function showNotice(text: string, kind: 'info' | 'error'): void {
 }
 
 function onPush(m: FromWorker): void {
+  if (m.type === 'fatal') {
+    setPlaying(false);
+    status.className = 'status failed';
+    statusText.textContent = m.message;
+    return;
+  }
   if (m.type !== 'frame') return;
   lastStepMs = m.timing.stepMs;
   stepTimes.push(m.timing.stepMs);

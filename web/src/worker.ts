@@ -42,7 +42,13 @@ function tick(): void {
   const dt = Math.min(MAX_DT, ((now - last) / 1000) * speed);
   last = now;
   const t0 = performance.now();
-  const frame = session.step(dt);
+  let frame: Frame;
+  try {
+    frame = session.step(dt);
+  } catch (e) {
+    post({ type: 'fatal', message: errorMessage(e) });
+    return;
+  }
   const stepMs = performance.now() - t0;
   const finished = frame.status.kind === 'done' || frame.status.kind === 'failed';
   if (finished) playing = false;
@@ -113,6 +119,18 @@ const handlers: Handlers = {
 };
 
 function errorMessage(e: unknown): string {
+  if (e instanceof WebAssembly.RuntimeError) {
+    // A panic aborted the module (a bug): say so, with the panic's message, and stop playing.
+    stop();
+    session = null;
+    let why = '';
+    try {
+      why = lfd.lastPanic();
+    } catch {
+      /* the module is gone */
+    }
+    return `internal error in the planner (${why || e.message}); reload the page`;
+  }
   if (e instanceof Error) return e.message;
   return typeof e === 'string' ? e : JSON.stringify(e);
 }
