@@ -15,3 +15,30 @@ say "rust components"
 for c in rustfmt clippy; do
   rustup component list --installed 2>/dev/null | grep -q "^$c" || rustup component add "$c"
 done
+
+# ---- web: wasm target, pinned wasm-bindgen, Chromium for the browser tests, npm packages ----
+say "wasm32 target"
+rustup target list --installed 2>/dev/null | grep -q '^wasm32-unknown-unknown$' \
+  || rustup target add wasm32-unknown-unknown
+
+say "wasm-bindgen (pinned to Cargo.lock)"
+wb_want="$(grep -A1 '^name = "wasm-bindgen"$' Cargo.lock | sed -n 's/^version = "\(.*\)"/\1/p' | head -1)"
+wb_have="$(wasm-bindgen --version 2>/dev/null | awk '{print $2}' || true)"
+if [ "$wb_want" != "$wb_have" ]; then
+  cargo install wasm-bindgen-cli --version "$wb_want"
+fi
+
+if [ ! -x /usr/bin/chromium ]; then
+  if [ "$(id -u)" = 0 ]; then
+    say "chromium (Debian) for the browser tests"
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null
+  else
+    echo "note: /usr/bin/chromium is missing (apt-get install chromium); browser tests will fail" >&2
+  fi
+fi
+
+say "npm packages"
+if [ ! -d node_modules ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
+  if [ -n "${CI:-}" ]; then npm ci --no-audit --no-fund; else npm install --no-audit --no-fund; fi
+fi

@@ -17,3 +17,19 @@ cargo test --workspace --locked
 
 step "cargo doc -D warnings"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked
+
+# ---- web: the npm package, the page, node and browser tests ----
+step "wasm build (npm package into pkg/)"
+bash scripts/build-wasm.sh
+
+step "tsc --noEmit"
+npm run typecheck
+
+step "node tests of the built package"
+npm run test:node
+
+step "page build (vite)"
+npm run build:web
+
+step "browser tests (Playwright + Chromium)"
+npm run test:e2e

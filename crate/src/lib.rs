@@ -10,7 +10,7 @@
 //!   *any* state of the demonstration;
 //! * [`lqt`] is LQT-CP (linear quadratic tracking with control primitives): motion skills with
 //!   time-varying feedback gains that reject perturbations;
-//! * `sim` is a small deterministic kinematic world (tables, shelf, blocks, hook, 7-DoF arms) with
+//! * [`sim`] is a small deterministic kinematic world (tables, shelf, blocks, hook, 7-DoF arms) with
 //!   a scene graph of PDDL facts;
 //! * `lfd` is the reactive loop (paper Algorithm 1) and its baselines; `experiments` reproduces
 //!   the paper's Tables I and II.
@@ -19,8 +19,13 @@
 //! choice takes a seed. The same code runs natively and in WebAssembly (feature `wasm`).
 #![warn(missing_docs)]
 
+pub mod experiments;
+pub mod lfd;
 pub mod lqt;
 pub mod pddl;
 pub mod plan;
 pub mod recorder;
 pub mod sim;
+pub mod tamp;
+#[cfg(feature = "wasm")]
+pub mod wasm;

@@ -152,6 +152,8 @@ proptest! {
         prop_assert!((fast.cost - dense.cost).abs() <= 1e-9 * dense.cost.abs().max(1e-300));
         let fb = lqt.feedback(&c.mu).unwrap();
         prop_assert!(rel_err(&fb.f_matrix(), &dense.f) < 1e-9);
+        let w2 = fb.weights(&c.x0).unwrap();
+        prop_assert!(rel_err(&w2, &dense.w) < 1e-6, "weights {}", rel_err(&w2, &dense.w));
         let gmax = dense.gains.iter().map(|g| g.amax()).fold(0.0, f64::max);
         for (t, g) in dense.gains.iter().enumerate() {
             let e = (fb.gain(t).unwrap() - g).amax() / gmax;
@@ -745,7 +747,24 @@ fn skill_serde_roundtrip_and_bad_input() {
     let b = back.plan(&demo[0], &moved_pose(), &[]).unwrap();
     assert!(max_dist(&a.positions, &b.positions) < 1e-12);
     let tr_json = serde_json::to_string(&a).unwrap();
-    let _: logic_lfd::lqt::Trajectory = serde_json::from_str(&tr_json).unwrap();
+    let tr_back: logic_lfd::lqt::Trajectory = serde_json::from_str(&tr_json).unwrap();
+    assert!(max_dist(&tr_back.positions, &a.positions) < 1e-12);
+    // inconsistent JSON is an error, not a later panic
+    let mut v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    v["demo_rotations"].as_array_mut().unwrap().pop();
+    assert!(serde_json::from_value::<Skill>(v).is_err());
+    let mut v: serde_json::Value = serde_json::from_str(&tr_json).unwrap();
+    v["policy"]["LqtCp"]["kc"].as_array_mut().unwrap().pop();
+    assert!(serde_json::from_value::<logic_lfd::lqt::Trajectory>(v).is_err());
+    let dmp = Dmp::learn(&demo, 0.01, DmpParams::default()).unwrap();
+    let dj = serde_json::to_string(&dmp).unwrap();
+    let dback: Dmp = serde_json::from_str(&dj).unwrap();
+    let p1 = dmp.plan(&demo[0], &moved_pose(), &[]).unwrap();
+    let p2 = dback.plan(&demo[0], &moved_pose(), &[]).unwrap();
+    assert!(max_dist(&p1.positions, &p2.positions) < 1e-12);
+    let mut v: serde_json::Value = serde_json::from_str(&dj).unwrap();
+    v["weights"].as_array_mut().unwrap().pop();
+    assert!(serde_json::from_value::<Dmp>(v).is_err());
 
     assert!(Skill::learn(&demo[..2], 0.01, SkillParams::default()).is_err());
     let bad = SkillParams {

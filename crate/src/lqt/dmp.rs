@@ -49,25 +49,67 @@ impl Default for DmpParams {
     }
 }
 
-/// A DMP learned from one demonstrated segment (object frame).
+/// A DMP learned from one demonstrated segment (object frame). Deserialisation checks the
+/// lengths and parameters.
 #[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(try_from = "DmpData")]
 pub struct Dmp {
-    /// Tunables.
-    pub params: DmpParams,
-    /// Time step (s).
-    pub dt: f64,
-    /// Number of steps of the demo (the plans have as many).
-    pub n_steps: usize,
-    /// Goal g in the object frame (the demo's last position).
-    pub goal: Vector3<f64>,
-    /// Demo orientations in the object frame.
-    pub demo_rotations: Vec<UnitQuaternion<f64>>,
-    /// Weights (K per coordinate).
-    pub weights: Vec<[f64; 3]>,
-    /// The demo's displacement `g - y_0` per coordinate (`None`: too small to scale by).
-    pub demo_displacement: [Option<f64>; 3],
+    params: DmpParams,
+    dt: f64,
+    n_steps: usize,
+    goal: Vector3<f64>,
+    demo_rotations: Vec<UnitQuaternion<f64>>,
+    weights: Vec<[f64; 3]>,
+    demo_displacement: [Option<f64>; 3],
     centers: Vec<f64>,
     widths: Vec<f64>,
+}
+
+/// The serialised form of [`Dmp`], validated by `TryFrom`.
+#[derive(Deserialize)]
+struct DmpData {
+    params: DmpParams,
+    dt: f64,
+    n_steps: usize,
+    goal: Vector3<f64>,
+    demo_rotations: Vec<UnitQuaternion<f64>>,
+    weights: Vec<[f64; 3]>,
+    demo_displacement: [Option<f64>; 3],
+    centers: Vec<f64>,
+    widths: Vec<f64>,
+}
+
+impl TryFrom<DmpData> for Dmp {
+    type Error = String;
+
+    fn try_from(d: DmpData) -> Result<Self, String> {
+        let k = d.params.n_fct;
+        if d.n_steps < 3 || !(d.dt.is_finite() && d.dt > 0.0) || d.params.substeps == 0 || k == 0 {
+            return Err("dmp: n_steps >= 3, dt > 0, substeps >= 1 and n_fct >= 1 expected".into());
+        }
+        if d.weights.len() != k || d.centers.len() != k || d.widths.len() != k {
+            return Err(format!(
+                "dmp: weights, centers and widths must have n_fct = {k} entries"
+            ));
+        }
+        if d.demo_rotations.len() != d.n_steps {
+            return Err(format!(
+                "dmp: demo_rotations must have n_steps = {} entries",
+                d.n_steps
+            ));
+        }
+        Ok(Dmp {
+            params: d.params,
+            dt: d.dt,
+            n_steps: d.n_steps,
+            goal: d.goal,
+            demo_rotations: d.demo_rotations,
+            weights: d.weights,
+            demo_displacement: d.demo_displacement,
+            centers: d.centers,
+            widths: d.widths,
+        })
+    }
 }
 
 /// The integrator of a DMP for one plan: state `[y (3), z (3), s]` in the object frame.
@@ -178,19 +220,37 @@ impl Dmp {
         })
     }
 
-    /// The forcing term f(s) for coordinate d with start `y0`.
-    fn forcing(&self, s: f64, d: usize, y0: f64) -> f64 {
-        let (mut num, mut den) = (0.0, 1e-12);
-        for i in 0..self.centers.len() {
-            let psi = (-self.widths[i] * (s - self.centers[i]).powi(2)).exp();
-            num += psi * self.weights[i][d];
-            den += psi;
-        }
-        let a = match self.demo_displacement[d] {
+    /// Tunables.
+    pub fn params(&self) -> &DmpParams {
+        &self.params
+    }
+
+    /// Time step (s).
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// Number of steps of the demo (the plans have as many).
+    pub fn n_steps(&self) -> usize {
+        self.n_steps
+    }
+
+    /// Goal g in the object frame (the demo's last position).
+    pub fn goal(&self) -> &Vector3<f64> {
+        &self.goal
+    }
+
+    /// The weights of the forcing term (K per coordinate).
+    pub fn weights(&self) -> &[[f64; 3]] {
+        &self.weights
+    }
+
+    /// The amplitude `a` of coordinate d for a start `y0`.
+    fn amplitude(&self, d: usize, y0: f64) -> f64 {
+        match self.demo_displacement[d] {
             Some(g) => (self.goal[d] - y0) / g,
             None => 1.0,
-        };
-        num / den * s * a
+        }
     }
 }
 
@@ -211,12 +271,23 @@ impl DmpRunner {
         let tau = self.dmp.dt * (self.dmp.n_steps - 1) as f64;
         let h = self.dmp.dt / p.substeps as f64;
         let bz = p.alpha_z / 4.0;
+        let k_n = self.dmp.centers.len();
         for _ in 0..p.substeps {
             let s = state[6];
+            // Normalised basis activations, once per sub-step for the three coordinates.
+            let mut f = [0.0; 3];
+            let mut den = 1e-12;
+            for i in 0..k_n {
+                let psi = (-self.dmp.widths[i] * (s - self.dmp.centers[i]).powi(2)).exp();
+                den += psi;
+                for (fd, wd) in f.iter_mut().zip(&self.dmp.weights[i]) {
+                    *fd += psi * wd;
+                }
+            }
             for d in 0..3 {
                 let (y, z) = (state[d], state[3 + d]);
-                let f = self.dmp.forcing(s, d, self.y0[d]);
-                let zd = (p.alpha_z * (bz * (self.dmp.goal[d] - y) - z) + f) / tau;
+                let fd = f[d] / den * s * self.dmp.amplitude(d, self.y0[d]);
+                let zd = (p.alpha_z * (bz * (self.dmp.goal[d] - y) - z) + fd) / tau;
                 state[d] = y + h * z / tau;
                 state[3 + d] = z + h * zd;
             }
@@ -228,6 +299,19 @@ impl DmpRunner {
 impl MotionSkill for Dmp {
     /// Via-points are ignored: a classic DMP cannot encode them.
     fn plan(
+        &self,
+        start: &Point3<f64>,
+        object_pose: &Isometry3<f64>,
+        via_points: &[ViaPoint],
+    ) -> Result<Trajectory, LqtError> {
+        Dmp::plan(self, start, object_pose, via_points)
+    }
+}
+
+impl Dmp {
+    /// Plan from `start` (world, at rest) to the demo's goal in the frame of `object_pose`.
+    /// Via-points are ignored: a classic DMP cannot encode them (the paper's comparison).
+    pub fn plan(
         &self,
         start: &Point3<f64>,
         object_pose: &Isometry3<f64>,

@@ -3,136 +3,64 @@
 //! * [`Qr`]: Householder QR of the stacked least-squares matrix `[√Q Su Ψ; √r Ψ]` of one
 //!   coordinate, so that `H = MᵀM` is never formed (its condition number is the square of M's:
 //!   ~1e11 for 10 Bernstein functions against ~3e5 for M);
-//! * [`Lu`]: LU with partial pivoting for the small n×n systems of the feedback gains.
+//! * [`solve_small_transposed`]: LU (partial pivoting) solve of the small n×n systems of the
+//!   feedback gains, on the stack.
 //!
 //! No explicit inverse is ever formed.
 
-/// LU factorisation with partial pivoting of a square row-major matrix.
-#[derive(Debug, Clone)]
-pub(crate) struct Lu {
-    n: usize,
-    lu: Vec<f64>,
-    perm: Vec<usize>,
-}
+/// Largest order of the small systems solved by [`solve_small_transposed`] (n+1 ≤ 7).
+pub(crate) const SMALL: usize = 8;
 
-impl Lu {
-    /// Factor `a` (n×n, row-major). `None` if a pivot is exactly zero or not finite.
-    pub(crate) fn new(mut a: Vec<f64>, n: usize) -> Option<Lu> {
-        let mut perm: Vec<usize> = (0..n).collect();
+/// Solve `Aᵀ x = b` for a small square row-major `a` (n ≤ [`SMALL`]) by Gaussian elimination with
+/// partial pivoting (an LU solve) on the stack. `false` if a pivot is zero or not finite.
+pub(crate) fn solve_small_transposed(a: &[f64], n: usize, b: &[f64], x: &mut [f64]) -> bool {
+    debug_assert!(n <= SMALL);
+    let mut m = [0.0f64; SMALL * SMALL];
+    let mut r = [0.0f64; SMALL];
+    for i in 0..n {
         for j in 0..n {
-            let mut piv = j;
-            let mut best = a[j * n + j].abs();
-            for i in j + 1..n {
-                let v = a[i * n + j].abs();
-                if v > best {
-                    best = v;
-                    piv = i;
+            m[i * SMALL + j] = a[j * n + i];
+        }
+        r[i] = b[i];
+    }
+    for col in 0..n {
+        let mut piv = col;
+        let mut best = m[col * SMALL + col].abs();
+        for i in col + 1..n {
+            let v = m[i * SMALL + col].abs();
+            if v > best {
+                best = v;
+                piv = i;
+            }
+        }
+        if best == 0.0 || !best.is_finite() {
+            return false;
+        }
+        if piv != col {
+            for c in 0..n {
+                m.swap(col * SMALL + c, piv * SMALL + c);
+            }
+            r.swap(col, piv);
+        }
+        let d = m[col * SMALL + col];
+        for i in col + 1..n {
+            let f = m[i * SMALL + col] / d;
+            if f != 0.0 {
+                for c in col + 1..n {
+                    m[i * SMALL + c] -= f * m[col * SMALL + c];
                 }
+                r[i] -= f * r[col];
             }
-            if best == 0.0 || !best.is_finite() {
-                return None;
-            }
-            if piv != j {
-                for c in 0..n {
-                    a.swap(j * n + c, piv * n + c);
-                }
-                perm.swap(j, piv);
-            }
-            let d = a[j * n + j];
-            for i in j + 1..n {
-                let f = a[i * n + j] / d;
-                a[i * n + j] = f;
-                if f != 0.0 {
-                    for c in j + 1..n {
-                        a[i * n + c] -= f * a[j * n + c];
-                    }
-                }
-            }
-        }
-        Some(Lu { n, lu: a, perm })
-    }
-
-    /// Solve `A x = b`, returning x.
-    #[cfg_attr(not(test), allow(dead_code))]
-    pub(crate) fn solve(&self, b: &[f64]) -> Vec<f64> {
-        let n = self.n;
-        let mut x: Vec<f64> = self.perm.iter().map(|&p| b[p]).collect();
-        for i in 0..n {
-            let mut s = x[i];
-            for p in 0..i {
-                s -= self.lu[i * n + p] * x[p];
-            }
-            x[i] = s;
-        }
-        for i in (0..n).rev() {
-            let mut s = x[i];
-            for p in i + 1..n {
-                s -= self.lu[i * n + p] * x[p];
-            }
-            x[i] = s / self.lu[i * n + i];
-        }
-        x
-    }
-
-    /// Solve `Aᵀ x = b`, returning x.
-    pub(crate) fn solve_transpose(&self, b: &[f64]) -> Vec<f64> {
-        // A = Pᵀ L U  =>  Aᵀ = Uᵀ Lᵀ P ; solve Uᵀ y = b, Lᵀ z = y, x = Pᵀ z.
-        let n = self.n;
-        let mut y = b.to_vec();
-        for i in 0..n {
-            let mut s = y[i];
-            for p in 0..i {
-                s -= self.lu[p * n + i] * y[p];
-            }
-            y[i] = s / self.lu[i * n + i];
-        }
-        for i in (0..n).rev() {
-            let mut s = y[i];
-            for p in i + 1..n {
-                s -= self.lu[p * n + i] * y[p];
-            }
-            y[i] = s;
-        }
-        let mut x = vec![0.0; n];
-        for (i, &p) in self.perm.iter().enumerate() {
-            x[p] = y[i];
-        }
-        x
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn matvec(a: &[f64], n: usize, x: &[f64]) -> Vec<f64> {
-        (0..n)
-            .map(|i| (0..n).map(|j| a[i * n + j] * x[j]).sum())
-            .collect()
-    }
-
-    #[test]
-    fn lu_solves_and_transposed_solves() {
-        let a = vec![0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.5, 4.0];
-        let lu = Lu::new(a.clone(), 3).unwrap();
-        let b = [1.0, -2.0, 0.5];
-        let x = lu.solve(&b);
-        let r = matvec(&a, 3, &x);
-        for i in 0..3 {
-            assert!((r[i] - b[i]).abs() < 1e-12);
-        }
-        let at: Vec<f64> = (0..9).map(|k| a[(k % 3) * 3 + k / 3]).collect();
-        let y = lu.solve_transpose(&b);
-        let r = matvec(&at, 3, &y);
-        for i in 0..3 {
-            assert!((r[i] - b[i]).abs() < 1e-12);
         }
     }
-
-    #[test]
-    fn lu_refuses_singular() {
-        assert!(Lu::new(vec![1.0, 2.0, 2.0, 4.0], 2).is_none());
+    for i in (0..n).rev() {
+        let mut s = r[i];
+        for c in i + 1..n {
+            s -= m[i * SMALL + c] * x[c];
+        }
+        x[i] = s / m[i * SMALL + i];
     }
+    true
 }
 
 /// Householder QR of a tall `m×k` matrix (m ≥ k), for the least-squares solve
@@ -203,6 +131,11 @@ impl Qr {
         })
     }
 
+    /// The triangular factor R (k×k, row-major upper triangle).
+    pub(crate) fn r_factor(&self) -> &[f64] {
+        &self.r
+    }
+
     /// Overwrite `b` (length m) with `Qᵀ b`, then solve `R w = (Qᵀb)[..k]`; the solution is
     /// left in `b[..k]`.
     pub(crate) fn solve_ls(&self, b: &mut [f64]) {
@@ -224,6 +157,29 @@ impl Qr {
             }
             b[i] = s / self.r[i * k + i];
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn small_transposed_solve_and_singular() {
+        let a = [0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.5, 4.0];
+        let b = [1.0, -2.0, 0.5];
+        let mut x = [0.0; 3];
+        assert!(solve_small_transposed(&a, 3, &b, &mut x));
+        for j in 0..3 {
+            let r: f64 = (0..3).map(|i| a[i * 3 + j] * x[i]).sum();
+            assert!((r - b[j]).abs() < 1e-12);
+        }
+        assert!(!solve_small_transposed(
+            &[1.0, 2.0, 2.0, 4.0],
+            2,
+            &[1.0, 1.0],
+            &mut x
+        ));
     }
 }
 

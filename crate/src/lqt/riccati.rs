@@ -18,7 +18,7 @@
 //! With K = N (Ψ = I) this is the standard backward Riccati recursion of LQT. Unlike the forward
 //! product `F_t Φ_t⁻¹`, it stays accurate when strong tracking makes `Φ_t` collapse.
 
-use super::linalg::Lu;
+use super::linalg::solve_small_transposed;
 use super::LqtError;
 
 /// Gains of one coordinate for the piecewise basis: `(k, c)` with `k` N×n (row-major) and `c` N,
@@ -148,12 +148,13 @@ pub(crate) fn piecewise_gains(
                         cj[i * na + c] = ej[i * nz + c] - ej[i * nz + iw] * lk[c];
                     }
                 }
-                let lu = Lu::new(cj, na).ok_or_else(|| {
-                    LqtError::Singular(format!(
+                let mut g = vec![0.0; na];
+                if !solve_small_transposed(&cj, na, &lk, &mut g) {
+                    return Err(LqtError::Singular(format!(
                         "closed-loop transition inside piecewise window {k} is singular at step {t}"
-                    ))
-                })?;
-                lu.solve_transpose(&lk)
+                    )));
+                }
+                g
             };
             kx[t * n..(t + 1) * n].copy_from_slice(&gain[..n]);
             kc[t] = gain[n];

@@ -137,22 +137,50 @@ pub trait MotionSkill {
     ) -> Result<Trajectory, LqtError>;
 }
 
-/// An LQT-CP motion skill learned from one demonstrated segment.
+/// An LQT-CP motion skill learned from one demonstrated segment. Deserialisation re-learns (and
+/// so validates) the skill from its stored demo and parameters.
 #[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(try_from = "SkillData")]
 pub struct Skill {
-    /// Tunables.
-    pub params: SkillParams,
-    /// Time step of the demo and of the plans (s).
-    pub dt: f64,
-    /// Demonstrated positions in the object frame (m).
-    pub demo: Vec<Point3<f64>>,
-    /// Demonstrated orientations in the object frame (identity if not given).
-    pub demo_rotations: Vec<UnitQuaternion<f64>>,
-    /// Gripper event at the end of the skill.
-    pub gripper_event: Option<GripperEvent>,
-    /// Factorisation for the skill without via-points (μ and Q are object-frame constants).
+    params: SkillParams,
+    dt: f64,
+    demo: Vec<Point3<f64>>,
+    demo_rotations: Vec<UnitQuaternion<f64>>,
+    gripper_event: Option<GripperEvent>,
+    /// Factorisation, reference and gains of the skill without via-points (μ and Q are
+    /// object-frame constants, so a new object pose or start only costs the rollout).
     #[serde(skip)]
-    cache: OnceLock<(LqtCp, DMatrix<f64>)>,
+    cache: OnceLock<(LqtCp, DMatrix<f64>, FeedbackGains)>,
+}
+
+/// The serialised form of [`Skill`].
+#[derive(Deserialize)]
+struct SkillData {
+    params: SkillParams,
+    dt: f64,
+    demo: Vec<Point3<f64>>,
+    demo_rotations: Vec<UnitQuaternion<f64>>,
+    gripper_event: Option<GripperEvent>,
+}
+
+impl TryFrom<SkillData> for Skill {
+    type Error = LqtError;
+
+    fn try_from(d: SkillData) -> Result<Self, LqtError> {
+        if d.demo_rotations.len() != d.demo.len() {
+            return Err(LqtError::input(
+                "demo_rotations",
+                format!(
+                    "expected {} rotations (one per demo position), got {}",
+                    d.demo.len(),
+                    d.demo_rotations.len()
+                ),
+            ));
+        }
+        let mut skill = Skill::learn_poses_inner(&d.demo, d.demo_rotations, d.dt, d.params)?;
+        skill.gripper_event = d.gripper_event;
+        Ok(skill)
+    }
 }
 
 fn check_demo(demo: &[Point3<f64>], dt: f64) -> Result<(), LqtError> {
@@ -280,9 +308,35 @@ impl Skill {
             cache: OnceLock::new(),
         };
         // Validate everything (and warm the cache) now rather than at the first plan.
-        let built = skill.build(&[])?;
-        let _ = skill.cache.set(built);
+        let (lqt, mu) = skill.build(&[])?;
+        let gains = lqt.feedback(&mu)?;
+        let _ = skill.cache.set((lqt, mu, gains));
         Ok(skill)
+    }
+
+    /// Tunables.
+    pub fn params(&self) -> &SkillParams {
+        &self.params
+    }
+
+    /// Time step of the demo and of the plans (s).
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// Demonstrated positions in the object frame (m).
+    pub fn demo(&self) -> &[Point3<f64>] {
+        &self.demo
+    }
+
+    /// Demonstrated orientations in the object frame (identity if not given).
+    pub fn demo_rotations(&self) -> &[UnitQuaternion<f64>] {
+        &self.demo_rotations
+    }
+
+    /// Gripper event at the end of the skill.
+    pub fn gripper_event(&self) -> Option<GripperEvent> {
+        self.gripper_event
     }
 
     /// The same skill with a gripper event at its end.
@@ -361,22 +415,20 @@ impl Skill {
     ) -> Result<Trajectory, LqtError> {
         let nx = 3 * self.params.order;
         super::solver::check_vector("start_state", start_state, nx)?;
-        let owned;
-        let (lqt, mu) = if via_points.is_empty() {
+        let x0 = to_object(object_pose, start_state);
+        let gains = if via_points.is_empty() {
             match self.cache.get() {
-                Some(c) => (&c.0, &c.1),
+                Some(c) => c.2.clone(),
                 None => {
-                    let built = self.build(&[])?;
-                    let c = self.cache.get_or_init(|| built);
-                    (&c.0, &c.1)
+                    let (lqt, mu) = self.build(&[])?;
+                    let gains = lqt.feedback(&mu)?;
+                    self.cache.get_or_init(|| (lqt, mu, gains)).2.clone()
                 }
             }
         } else {
-            owned = self.build(via_points)?;
-            (&owned.0, &owned.1)
+            let (lqt, mu) = self.build(via_points)?;
+            lqt.feedback(&mu)?
         };
-        let x0 = to_object(object_pose, start_state);
-        let gains = lqt.feedback(mu)?;
         let roll = gains.rollout(&x0, None)?;
         let t_n = self.demo.len();
         let mut positions = Vec::with_capacity(t_n);
@@ -418,8 +470,10 @@ impl Skill {
     }
 }
 
-impl MotionSkill for Skill {
-    fn plan(
+impl Skill {
+    /// Plan from `start` (world, at rest) for an object at `object_pose`, through `via_points`
+    /// (object frame). The same as [`MotionSkill::plan`], without importing the trait.
+    pub fn plan(
         &self,
         start: &Point3<f64>,
         object_pose: &Isometry3<f64>,
@@ -428,6 +482,17 @@ impl MotionSkill for Skill {
         let mut x = vec![0.0; 3 * self.params.order];
         x[..3].copy_from_slice(start.coords.as_slice());
         self.plan_from_state(&x, object_pose, via_points, None)
+    }
+}
+
+impl MotionSkill for Skill {
+    fn plan(
+        &self,
+        start: &Point3<f64>,
+        object_pose: &Isometry3<f64>,
+        via_points: &[ViaPoint],
+    ) -> Result<Trajectory, LqtError> {
+        Skill::plan(self, start, object_pose, via_points)
     }
 }
 
@@ -517,8 +582,26 @@ impl FeedbackController {
         }
     }
 
+    /// Length of the state this controller's policy expects (3·order, or 7 for a DMP).
+    fn state_len(&self) -> usize {
+        match &self.policy {
+            Policy::LqtCp(g) if g.dim() == 3 => 3 * g.order(),
+            Policy::LqtCp(_) => usize::MAX,
+            Policy::Dmp(_) => 7,
+        }
+    }
+
+    /// Whether state and policy agree (always, unless deserialised from inconsistent JSON; an
+    /// inconsistent controller holds its position instead of panicking).
+    fn consistent(&self) -> bool {
+        self.state.len() == self.state_len()
+    }
+
     /// Current commanded world position.
     pub fn position(&self) -> Point3<f64> {
+        if !self.consistent() {
+            return Point3::from(self.object_pose.translation.vector);
+        }
         self.object_pose
             .transform_point(&Point3::new(self.state[0], self.state[1], self.state[2]))
     }
@@ -527,6 +610,10 @@ impl FeedbackController {
     /// controller's own position, so a pushed end effector is corrected); returns the next commanded
     /// world position (feed it to IK).
     pub fn step(&mut self, measured: Option<&Point3<f64>>) -> Point3<f64> {
+        if !self.consistent() {
+            self.t += 1;
+            return self.position();
+        }
         if let Some(m) = measured {
             if m.coords.iter().all(|v| v.is_finite()) {
                 let o = self.object_pose.inverse_transform_point(m);
@@ -555,6 +642,10 @@ impl FeedbackController {
     /// The object moved: express the controller's state in the new object frame; the same gains
     /// (object-frame reference) now steer to the new goal.
     pub fn retarget(&mut self, new_object_pose: &Isometry3<f64>) {
+        if !self.consistent() {
+            self.object_pose = *new_object_pose;
+            return;
+        }
         let n = match &self.policy {
             Policy::LqtCp(g) => 3 * g.order(),
             Policy::Dmp(_) => 6,

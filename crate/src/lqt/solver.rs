@@ -10,7 +10,7 @@
 //! K̃_0 = F_0, P_0 = I,  P_t = P_{t-1} (Ã - B̃ K̃_{t-1})⁻¹,  K̃_t = F_t P_t
 //! ```
 //!
-//! Structure exploited (the dense transcription of the formulas is [`super::reference`]):
+//! Structure exploited (the dense transcription of the formulas is [`super::reference`](mod@super::reference)):
 //!
 //! * `A = A1 ⊗ I_D`, `B = B1 ⊗ I_D`, Q diagonal: the D coordinates are independent. Each one is
 //!   a 1-D problem with K unknowns and a K×K matrix `H_d`; coordinates whose weights `q` are equal
@@ -40,7 +40,7 @@
 
 use super::basis::Basis;
 use super::dynamics::{dense_ab, integrator};
-use super::linalg::{Lu, Qr};
+use super::linalg::{solve_small_transposed, Qr};
 use super::riccati::piecewise_gains;
 use super::LqtError;
 use nalgebra::{DMatrix, DVector};
@@ -193,11 +193,13 @@ pub(crate) fn check_vector(key: &str, v: &[f64], len: usize) -> Result<(), LqtEr
 struct Group {
     /// Householder QR of the stacked least-squares matrix `[√q ⊙ Su1 φ ; √r φ]` (m×K).
     qr: Qr,
-    /// The weighted rows of the stack: `(t, i, √q_{t,i})` for every q > 0 (t ≥ 1), then N rows
-    /// `√r φ_t` when r > 0.
+    /// The weighted rows of the stack: `(t, i, √q_{t,i})` for every q > 0 (t ≥ 1), then K rows
+    /// `√r R_φ` when r > 0 (`φ = Q_φ R_φ`, so that `r φᵀφ = r R_φᵀ R_φ` with K rows instead of N).
     rows: Vec<(usize, usize, f64)>,
     /// Number of rows m of the stack.
     m: usize,
+    /// `W^x = H⁻¹ φᵀ Su1ᵀ Q Sx1` (K×n).
+    wx: Vec<f64>,
     /// State part of F: `F^x = φ H_d⁻¹ φᵀ Su1ᵀ Q_d Sx1` (N×n).
     fx: Vec<f64>,
     /// State part of the gains `k_t = F^x_t (Φ^x_t)⁻¹` (N×n).
@@ -257,7 +259,9 @@ pub struct Rollout {
 ///
 /// Stored compactly: for each coordinate d, `K̃_t` has nonzeros only on that coordinate's n
 /// derivatives and on the constant column. [`FeedbackGains::gain`] expands to D×(nx+1).
+/// Deserialisation checks every length, so a malformed JSON is an error, never a later panic.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "FeedbackGainsData")]
 pub struct FeedbackGains {
     dim: usize,
     order: usize,
@@ -272,6 +276,71 @@ pub struct FeedbackGains {
     kx: Vec<f64>,
     /// `c_t` per coordinate: D×N.
     kc: Vec<f64>,
+    /// Number of basis functions K.
+    k_n: usize,
+    /// `W^x` per coordinate: D×K×n (`w_d = -(W^x_d x0_d + W^c_d)`).
+    wx: Vec<f64>,
+    /// `W^c = -H⁻¹ Ψᵀ Suᵀ Q μ` per coordinate: D×K.
+    wc: Vec<f64>,
+}
+
+/// The serialised form of [`FeedbackGains`], validated by `TryFrom`.
+#[derive(Deserialize)]
+struct FeedbackGainsData {
+    dim: usize,
+    order: usize,
+    n_controls: usize,
+    a1: Vec<f64>,
+    b1: Vec<f64>,
+    fx: Vec<f64>,
+    fc: Vec<f64>,
+    kx: Vec<f64>,
+    kc: Vec<f64>,
+    k_n: usize,
+    wx: Vec<f64>,
+    wc: Vec<f64>,
+}
+
+impl TryFrom<FeedbackGainsData> for FeedbackGains {
+    type Error = String;
+
+    fn try_from(g: FeedbackGainsData) -> Result<Self, String> {
+        let (d, n, nc, k) = (g.dim, g.order, g.n_controls, g.k_n);
+        if d == 0 || n == 0 || n > MAX_ORDER || nc == 0 || k == 0 {
+            return Err("feedback gains: dim, order, n_controls and k_n must be positive".into());
+        }
+        let lens = [
+            ("a1", g.a1.len(), n * n),
+            ("b1", g.b1.len(), n),
+            ("fx", g.fx.len(), d * nc * n),
+            ("fc", g.fc.len(), d * nc),
+            ("kx", g.kx.len(), d * nc * n),
+            ("kc", g.kc.len(), d * nc),
+            ("wx", g.wx.len(), d * k * n),
+            ("wc", g.wc.len(), d * k),
+        ];
+        for (name, got, want) in lens {
+            if got != want {
+                return Err(format!(
+                    "feedback gains: {name} has {got} numbers, expected {want}"
+                ));
+            }
+        }
+        Ok(FeedbackGains {
+            dim: d,
+            order: n,
+            n_controls: nc,
+            a1: g.a1,
+            b1: g.b1,
+            fx: g.fx,
+            fc: g.fc,
+            kx: g.kx,
+            kc: g.kc,
+            k_n: k,
+            wx: g.wx,
+            wc: g.wc,
+        })
+    }
 }
 
 fn all_finite(v: &[f64]) -> bool {
@@ -334,6 +403,26 @@ impl LqtCp {
             }
         }
 
+        // r φᵀφ = r R_φᵀ R_φ: K rows instead of N in every coordinate's stack.
+        let r_phi = if config.r > 0.0 {
+            let mut cm = vec![0.0; nc * k_n];
+            for t in 0..nc {
+                for c in 0..k_n {
+                    cm[c * nc + t] = phi[t * k_n + c];
+                }
+            }
+            match Qr::new(cm, nc, k_n) {
+                Some(qr) => qr.r_factor().to_vec(),
+                None => {
+                    return Err(LqtError::Singular(format!(
+                        "the basis matrix φ ({}) has dependent columns: H is singular",
+                        config.basis.name()
+                    )))
+                }
+            }
+        } else {
+            Vec::new()
+        };
         let mut group_of = Vec::with_capacity(dim);
         let mut reps: Vec<usize> = Vec::new();
         let mut groups = Vec::new();
@@ -347,7 +436,9 @@ impl LqtCp {
             }
             group_of.push(groups.len());
             reps.push(d);
-            groups.push(Self::build_group(&config, &a1, &b1, &phi, &y, &z, &q, d)?);
+            groups.push(Self::build_group(
+                &config, &a1, &b1, &phi, &r_phi, &y, &z, &q, d,
+            )?);
         }
         Ok(LqtCp {
             config,
@@ -366,6 +457,7 @@ impl LqtCp {
         a1: &[f64],
         b1: &[f64],
         phi: &[f64],
+        r_phi: &[f64],
         y: &[f64],
         z: &[f64],
         q: &[f64],
@@ -389,7 +481,7 @@ impl LqtCp {
         }
         let n_q = rows.len();
         let sr = config.r.sqrt();
-        let m = n_q + if config.r > 0.0 { nc } else { 0 };
+        let m = n_q + if config.r > 0.0 { k_n } else { 0 };
         let singular = || {
             LqtError::Singular(format!(
                 "H = Ψᵀ Suᵀ Q Su Ψ + r ΨᵀΨ is singular for coordinate {d}: the weights q and r do not determine the {k_n} basis weights"
@@ -406,9 +498,9 @@ impl LqtCp {
             }
         }
         if config.r > 0.0 {
-            for t in 0..nc {
-                for c in 0..k_n {
-                    mat[c * m + n_q + t] = sr * phi[t * k_n + c];
+            for a in 0..k_n {
+                for c in a..k_n {
+                    mat[c * m + n_q + a] = sr * r_phi[a * k_n + c];
                 }
             }
         }
@@ -453,14 +545,13 @@ impl LqtCp {
         let mut next = vec![0.0; n * n];
         let phi_form = !matches!(config.basis, Basis::Piecewise { .. });
         for t in 0..if phi_form { nc } else { 0 } {
-            let lu = Lu::new(ph.clone(), n).ok_or_else(|| {
-                LqtError::Singular(format!(
-                    "closed-loop transition Φ_{t} of coordinate {d} is singular: the gain K̃_{t} is undefined"
-                ))
-            })?;
             // k Φ = F^x_t  <=>  Φᵀ kᵀ = F^x_tᵀ.
-            let k = lu.solve_transpose(&fx[t * n..(t + 1) * n]);
-            kx[t * n..(t + 1) * n].copy_from_slice(&k);
+            if !solve_small_transposed(&ph, n, &fx[t * n..(t + 1) * n], &mut kx[t * n..(t + 1) * n])
+            {
+                return Err(LqtError::Singular(format!(
+                    "closed-loop transition Φ_{t} of coordinate {d} is singular: the gain K̃_{t} is undefined"
+                )));
+            }
             for i in 0..n {
                 for c in 0..n {
                     let mut s = -b1[i] * fx[t * n + c];
@@ -481,6 +572,7 @@ impl LqtCp {
             qr,
             rows,
             m,
+            wx,
             fx,
             kx,
         })
@@ -588,6 +680,8 @@ impl LqtCp {
         let mut fc = vec![0.0; dim * nc];
         let mut kx = vec![0.0; dim * nc * n];
         let mut kc = vec![0.0; dim * nc];
+        let mut wx_all = vec![0.0; dim * k_n * n];
+        let mut wc_all = vec![0.0; dim * k_n];
         let mut ph = vec![0.0; n];
         for d in 0..dim {
             let grp = &self.groups[self.group_of[d]];
@@ -596,6 +690,10 @@ impl LqtCp {
             // W^c = -H⁻¹ φᵀ Su1ᵀ Q μ_d, F^c = φ W^c; the constant column of Φ_t follows
             // φ_{t+1} = A1 φ_t - B1 F^c_t, and c_t = F^c_t - k_t φ_t.
             let wc = self.solve_coord(d, |t, i| mu[(t, i * dim + d)]);
+            wx_all[d * k_n * n..(d + 1) * k_n * n].copy_from_slice(&grp.wx);
+            for a in 0..k_n {
+                wc_all[d * k_n + a] = -wc[a];
+            }
             ph.fill(0.0);
             for t in 0..nc {
                 let mut f = 0.0;
@@ -638,24 +736,27 @@ impl LqtCp {
             fc,
             kx,
             kc,
+            k_n,
+            wx: wx_all,
+            wc: wc_all,
         })
     }
 }
 
 /// The whole pipeline of one skill from scratch, as one call (benchmarked natively and from wasm):
-/// factorisation, batch weights from `x0`, F and the N gains, and one closed-loop rollout from
-/// `x0`.
+/// factorisation, F and the N gains, the batch weights w from `x0` (K×D) and one closed-loop
+/// rollout from `x0` (which is the batch trajectory).
 pub fn full_pipeline(
     config: &LqtConfig,
     mu: &DMatrix<f64>,
     q_diag: &DMatrix<f64>,
     x0: &[f64],
-) -> Result<(BatchSolution, FeedbackGains, Rollout), LqtError> {
+) -> Result<(DMatrix<f64>, FeedbackGains, Rollout), LqtError> {
     let lqt = LqtCp::new(config.clone(), q_diag)?;
-    let batch = lqt.solve(mu, x0)?;
     let gains = lqt.feedback(mu)?;
+    let w = gains.weights(x0)?;
     let roll = gains.rollout(x0, None)?;
-    Ok((batch, gains, roll))
+    Ok((w, gains, roll))
 }
 
 /// One integrator step of one coordinate: `x ← A1 x + B1 u`.
@@ -685,6 +786,20 @@ impl FeedbackGains {
     /// N, the number of gains (one per control step).
     pub fn n_controls(&self) -> usize {
         self.n_controls
+    }
+
+    /// Basis weights of the open loop from `x0`: `w_d = -(W^x_d x0_d + W^c_d)` (K×D), i.e. the
+    /// batch solution's weights without another solve.
+    pub fn weights(&self, x0: &[f64]) -> Result<DMatrix<f64>, LqtError> {
+        let (dim, n, k_n) = (self.dim, self.order, self.k_n);
+        check_vector("x0", x0, dim * n)?;
+        Ok(DMatrix::from_fn(k_n, dim, |a, d| {
+            let mut s = self.wc[d * k_n + a];
+            for i in 0..n {
+                s += self.wx[(d * k_n + a) * n + i] * x0[i * dim + d];
+            }
+            -s
+        }))
     }
 
     /// `F` ((N·D)×(nx+1)): row `t*D+d` maps `x̃_0` to `-u_t[d]` in open loop.

@@ -3,7 +3,7 @@
 
 use super::recording::{ArmRef, GripperPose, GripperState, HandMove, RawSample};
 use super::{RecorderError, RecorderEvent, RecorderParams, Segment, SkillFit, Taught, TaughtDemo};
-use crate::lqt::{MotionSkill, Skill, SkillParams};
+use crate::lqt::{Skill, SkillParams};
 use crate::pddl;
 use crate::plan::{self, State, Task};
 use crate::sim::benchmark::Benchmark;

@@ -13,7 +13,7 @@
 //!   arm); blocks `a b` start on the left table; goal `(on a b) (at b right-table)`.
 
 use super::panda::{self, DOF};
-use super::scene_graph::Fact;
+use super::scene_graph::{Fact, SceneGraph};
 use super::snapshot::*;
 use super::world::World;
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
@@ -132,6 +132,44 @@ impl Benchmark {
             // The builders below are fixed data checked by the tests; a failure is a bug here.
             Err(e) => panic!("benchmark scene {} is invalid: {e}", self.dir_name()),
         }
+    }
+
+    /// A PDDL problem for the task "reach this benchmark's goal from `world`": objects and init
+    /// from the scene graph (plus [`Benchmark::static_facts`]), the benchmark's goal. This is how a
+    /// disturbed world (for example with an added block) becomes a planning problem.
+    pub fn problem_for(self, world: &World, problem_name: &str) -> String {
+        let objects = SceneGraph::objects(world);
+        let mut by_type: Vec<(String, Vec<String>)> = Vec::new();
+        for o in objects {
+            if self == Benchmark::B1 && o.kind == "region" {
+                continue;
+            }
+            match by_type.iter_mut().find(|(t, _)| *t == o.kind) {
+                Some((_, v)) => v.push(o.name),
+                None => by_type.push((o.kind, vec![o.name])),
+            }
+        }
+        let mut text = format!(
+            "(define (problem {problem_name})\n  (:domain {})\n  (:objects\n",
+            self.dir_name()
+        );
+        for (t, names) in by_type {
+            text += &format!("    {} - {t}\n", names.join(" "));
+        }
+        text += "  )\n  (:init\n";
+        for f in SceneGraph::from_world(world)
+            .facts
+            .iter()
+            .chain(self.static_facts().iter())
+        {
+            text += &format!("    {f}\n");
+        }
+        text += "  )\n  (:goal (and";
+        for g in self.goal() {
+            text += &format!(" {g}");
+        }
+        text += ")))\n";
+        text
     }
 
     /// The template world as a snapshot (derived drawing fields filled in).

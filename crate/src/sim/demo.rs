@@ -828,3 +828,23 @@ pub fn committed(b: Benchmark) -> Result<Demonstration, DemoError> {
         Benchmark::B3 => include_str!("../../../domains/b3-dual-arm/demo.json"),
     })
 }
+
+/// The demonstration's states `L0..LN` as the scene graph sees them: the facts of the template
+/// world and after each action of the committed demo, replayed in the simulator. (They equal the
+/// PDDL states derived by applying the actions, plus the static facts the scene graph reports —
+/// the integration tests check this.)
+pub fn demo_states(b: Benchmark) -> Result<Vec<std::collections::BTreeSet<String>>, DemoError> {
+    let d = committed(b)?;
+    let mut w = b.scene();
+    let facts = |w: &World| -> std::collections::BTreeSet<String> {
+        SceneGraph::from_world(w).to_strings().into_iter().collect()
+    };
+    let mut out = vec![facts(&w)];
+    replay(&mut w, &d, |w, a, k| {
+        if k + 1 == a.samples.len() {
+            out.push(facts(w));
+        }
+        Ok(())
+    })?;
+    Ok(out)
+}

@@ -35,16 +35,44 @@
 //!    outside their limits.
 //!
 //! Everything is deterministic: fixed steps, seeded randomness, `Vec`s in stable order.
+//!
+//! # Example
+//!
+//! ```
+//! use logic_lfd::sim::{benchmark::Benchmark, geometry, GripperCommand, SceneGraph};
+//!
+//! let mut world = Benchmark::B1.scene();
+//! assert!(SceneGraph::from_world(&world).contains("(ontable c)"));
+//! // Move the gripper onto block c (2 s at 10 ms steps), close it, lift.
+//! let grasp = geometry::grasp_pose(&world, 0, "c").unwrap();
+//! let start = world.tcp_pose(0).unwrap();
+//! for k in 1..=200 {
+//!     let s = k as f64 / 200.0;
+//!     let p = start.translation.vector.lerp(&grasp.translation.vector, s);
+//!     let r = start.rotation.slerp(&grasp.rotation, s);
+//!     world.command_arm(0, nalgebra::Isometry3::from_parts(p.into(), r), GripperCommand::Open).unwrap();
+//!     world.step();
+//! }
+//! for _ in 0..20 {
+//!     world.command_arm(0, grasp, GripperCommand::Close).unwrap();
+//!     world.step();
+//! }
+//! assert_eq!(world.held_by(0), Some("c"));
+//! assert!(SceneGraph::from_world(&world).contains("(holding panda c)"));
+//! world.check_invariants().unwrap();
+//! ```
 
 // Index loops mirror the maths (joint k, coordinate i) in this module.
 #![allow(clippy::needless_range_loop)]
 
 pub mod benchmark;
 pub mod demo;
+pub mod disturb;
 pub mod geometry;
 pub mod panda;
 pub mod scene_graph;
 pub mod snapshot;
+pub mod tasks;
 mod world;
 
 pub use scene_graph::{Fact, SceneGraph};

@@ -19,7 +19,7 @@
 //!
 //! Only the predicates listed in the scene's `predicates` are reported (the benchmark domain's
 //! fluents), so the set equals what the PDDL problem's `:init` states for that world. Facts are
-//! sorted (predicate order of [`KNOWN_PREDICATES`](super::world::KNOWN_PREDICATES), then
+//! sorted (predicate order of [`KNOWN_PREDICATES`], then
 //! arguments), so the output is deterministic.
 //!
 //! [`WorldParams::support_tolerance`]: super::WorldParams::support_tolerance

@@ -169,6 +169,8 @@ pub(crate) struct Arm {
     pub reach: ReachSnapshot,
     pub target: Option<Isometry3<f64>>,
     pub gripper: GripperCommand,
+    /// The gripper command of the previous step (to see it change).
+    pub last_gripper: GripperCommand,
 }
 
 impl Arm {
@@ -585,9 +587,11 @@ impl World {
     /// Parses and validates a JSON scene (see [`World::from_snapshot`]).
     pub fn from_json(text: &str) -> Result<World, SceneError> {
         let snap: WorldSnapshot = serde_json::from_str(text).map_err(|e| {
+            let msg = e.to_string();
+            let suffix = format!(" at line {} column {}", e.line(), e.column());
             scene_err(
                 format!("line {} column {}", e.line(), e.column()),
-                e.to_string(),
+                msg.strip_suffix(&suffix).unwrap_or(&msg),
             )
         })?;
         World::from_snapshot(&snap)
@@ -763,6 +767,7 @@ impl World {
                 reach: a.reach.clone(),
                 target: None,
                 gripper: GripperCommand::Open,
+                last_gripper: GripperCommand::Open,
             };
             if let Some(h) = &a.holding {
                 let Some(bi) = bodies.iter().position(|b: &Body| &b.name == h) else {
@@ -796,6 +801,7 @@ impl World {
                 }
                 arm.holding = Some((bi, tcp.inverse() * b.pose));
                 arm.gripper = GripperCommand::Close;
+                arm.last_gripper = GripperCommand::Close;
             }
             arms.push(arm);
         }
@@ -1009,6 +1015,7 @@ impl World {
         let mut events = Vec::new();
         for ai in 0..self.arms.len() {
             self.step_gripper(ai, &mut events);
+            self.arms[ai].last_gripper = self.arms[ai].gripper;
             self.step_arm(ai, &mut events);
         }
         self.time += self.dt;
@@ -1032,15 +1039,17 @@ impl World {
                             .any(|a| a.holding.is_some_and(|(j, _)| j == i))
                         && b.contains_point(&pt, self.params.grasp_tolerance)
                 });
-                let was_open = self.arms[ai].gripper_opening >= panda::GRIPPER_MAX_OPENING - 1e-9;
-                if let Some(bi) = found.filter(|_| was_open) {
-                    let grasp = tcp.inverse() * self.bodies[bi].pose;
+                // Grasp when the fingers are still wider than the body across them.
+                let opening = self.arms[ai].gripper_opening;
+                let grasp = found.map(|bi| (bi, tcp.inverse() * self.bodies[bi].pose));
+                let fits = grasp.filter(|(bi, g)| self.finger_width(*bi, g) < opening);
+                if let Some((bi, grasp)) = fits {
                     self.arms[ai].holding = Some((bi, grasp));
                     events.push(WorldEvent::Grasped {
                         arm: self.arms[ai].name.clone(),
                         body: self.bodies[bi].name.clone(),
                     });
-                } else if was_open {
+                } else if self.arms[ai].last_gripper == GripperCommand::Open {
                     events.push(WorldEvent::GraspedNothing {
                         arm: self.arms[ai].name.clone(),
                     });
@@ -1483,11 +1492,42 @@ impl World {
         })
     }
 
-    /// Puts a body at an exact pose without any rule (for builders and disturbance injectors; the
-    /// caller checks the invariants).
-    #[allow(dead_code)]
-    pub(crate) fn set_body_pose(&mut self, bi: usize, pose: Isometry3<f64>) {
-        self.bodies[bi].pose = pose;
+    /// Adds a new 6 cm block called `name` (colour `#rrggbb`) and drops it at `position` with yaw
+    /// `yaw` as [`World::move_block`] does. Refused (world unchanged) for a bad or taken name, a
+    /// bad colour, or a place where it cannot rest.
+    pub fn add_block(
+        &mut self,
+        name: &str,
+        color: &str,
+        position: Vector3<f64>,
+        yaw: f64,
+    ) -> Result<MoveOutcome, Refused> {
+        let refuse = |reason: String| Refused {
+            body: name.to_string(),
+            reason,
+        };
+        check_name(name, "block").map_err(|e| refuse(e.message))?;
+        check_color(color, "block").map_err(|e| refuse(e.message))?;
+        if self.body_index(name).is_some()
+            || self.arm_index(name).is_some()
+            || self.regions.iter().any(|r| r.name == name)
+        {
+            return Err(refuse("the name is taken".into()));
+        }
+        let h = 0.5 * super::benchmark::BLOCK_SIZE;
+        let mut trial = self.clone();
+        trial.bodies.push(Body {
+            name: name.to_string(),
+            kind: BodyKind::Block,
+            parts: vec![(Isometry3::identity(), Cuboid::new(Vector3::repeat(h)))],
+            // Far above everything until it is moved into place.
+            pose: Isometry3::translation(0.0, 0.0, 100.0),
+            color: color.to_string(),
+            lost: false,
+        });
+        let out = trial.move_block_to(name, position, yaw)?;
+        *self = trial;
+        Ok(out)
     }
 
     // ----------------------------------------------------------------- invariants

@@ -150,7 +150,7 @@ fn demo_goals(task: &Task) -> (Vec<State>, Vec<Goal>) {
 #[test]
 fn start_in_a_demo_state_returns_the_empty_plan_with_the_closest_goal() {
     for seed in 0..4 {
-        let task = random_blocksworld(5, 40 + seed);
+        let task = random_blocksworld(5, 40 + seed).task;
         let (states, goals) = demo_goals(&task);
         for (k, s) in states.iter().enumerate() {
             for mode in [MultiGoalMode::FirstReached, MultiGoalMode::Prioritised] {
@@ -172,7 +172,7 @@ fn prioritised_repairs_to_the_cheapest_demo_suffix() {
     // From random perturbed states, prioritised A* equals the brute-force optimum of
     // cost-to-L_k + (N − k), and first-reached never beats it.
     for seed in 0..6 {
-        let task = random_blocksworld(5, 60 + seed);
+        let task = random_blocksworld(5, 60 + seed).task;
         let (_, goals) = demo_goals(&task);
         let mut rng = Pcg64Mcg::seed_from_u64(seed);
         let (all, _) = crate::search::reachable(&task, &task.init);
@@ -204,7 +204,7 @@ fn prioritised_repairs_to_the_cheapest_demo_suffix() {
 
 #[test]
 fn unreachable_goals_are_unsolvable() {
-    let task = random_blocksworld(3, 1);
+    let task = random_blocksworld(3, 1).task;
     // Two blocks on the same block at once never holds.
     let on = |x: usize, y: usize| task.fact_id(&format!("(on b{x} b{y})")).unwrap();
     let goals = [Goal {

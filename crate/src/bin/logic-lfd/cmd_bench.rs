@@ -26,6 +26,10 @@ pub struct Args {
 enum Which {
     /// Planner configurations over IPC benchmark folders.
     Planner(PlannerArgs),
+    /// The paper's Table I: generalisation over random initial states (linear, tamp, logic-lfd).
+    Table1(crate::cmd_tables::Table1Args),
+    /// The paper's Table II: reactivity to disturbances L1–L4 (linear, rlds, logic-lfd).
+    Table2(crate::cmd_tables::Table2Args),
 }
 
 /// Arguments of `bench planner`.
@@ -55,6 +59,8 @@ pub struct PlannerArgs {
 pub fn run(args: Args) -> ExitCode {
     match args.which {
         Which::Planner(a) => planner(a),
+        Which::Table1(a) => crate::cmd_tables::run_table1(a),
+        Which::Table2(a) => crate::cmd_tables::run_table2(a),
     }
 }
 
@@ -107,8 +113,14 @@ fn parse_config(s: &str) -> Result<SearchConfig, String> {
     Ok(SearchConfig::new(a, h))
 }
 
+/// The folders of `../shared/ipc` (relative to the working directory, else to the workspace).
 fn default_dirs() -> Vec<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/ipc");
+    let here = PathBuf::from("../shared/ipc");
+    let root = if here.is_dir() {
+        here
+    } else {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/ipc")
+    };
     let mut v: Vec<PathBuf> = std::fs::read_dir(&root)
         .map(|rd| {
             rd.filter_map(|e| e.ok().map(|e| e.path()))
@@ -169,6 +181,12 @@ fn planner(args: PlannerArgs) -> ExitCode {
     } else {
         args.dirs.clone()
     };
+    if dirs.is_empty() {
+        eprintln!(
+            "bench planner: no benchmark folders (give DIR arguments or run next to ../shared/ipc)"
+        );
+        return ExitCode::from(exit::BAD_INPUT);
+    }
     let mut rows = Vec::new();
     let mut invalid = false;
     for dir in &dirs {

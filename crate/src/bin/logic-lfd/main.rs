@@ -7,6 +7,9 @@ mod cmd_bench;
 mod cmd_demo;
 mod cmd_lqt;
 mod cmd_plan;
+mod cmd_run;
+mod cmd_scene;
+mod cmd_tables;
 mod cmd_validate;
 
 use clap::{Parser, Subcommand};
@@ -43,11 +46,34 @@ enum Command {
     Plan(cmd_plan::Args),
     /// Benchmarks: `bench planner` runs planner configurations over IPC folders.
     Bench(cmd_bench::Args),
+    /// Inspect and perturb simulator scenes: facts, check, template, problem, disturb.
+    Scene(cmd_scene::Args),
+    /// One closed-loop episode: a benchmark, a disturbance level, a method, a seed.
+    Run(cmd_run::Args),
     /// Demonstrations: `demo segment` turns a raw recording into a demo.json.
     Demo(cmd_demo::Args),
 }
 
+/// A closed stdout (`logic-lfd plan … | head`) ends the process quietly, as Unix tools do,
+/// instead of printing a panic from `println!`. Every other panic keeps the default report.
+fn exit_quietly_on_closed_stdout() {
+    let default_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let message = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if message.starts_with("failed printing to stdout") && message.contains("Broken pipe") {
+            std::process::exit(0);
+        }
+        default_hook(info);
+    }));
+}
+
 fn main() -> ExitCode {
+    exit_quietly_on_closed_stdout();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => {
@@ -65,6 +91,8 @@ fn main() -> ExitCode {
         Command::Validate(a) => cmd_validate::run(a),
         Command::Plan(args) => cmd_plan::run(args),
         Command::Bench(args) => cmd_bench::run(args),
+        Command::Scene(args) => cmd_scene::run(args),
+        Command::Run(args) => cmd_run::run(args),
         Command::Demo(args) => cmd_demo::run(args),
     }
 }

@@ -144,8 +144,15 @@ impl HeuristicEvaluator {
     }
 
     /// `h(s)`, or `None` when no goal is reachable from `s` even in the relaxation.
+    /// Facts beyond the task's facts are ignored.
     pub fn value(&mut self, s: &State) -> Option<u64> {
-        self.eval(s.words(), None)
+        let n = self.rt.n;
+        if s.words().len() == n.div_ceil(64) {
+            self.eval(s.words(), None)
+        } else {
+            let fixed = State::from_facts(n, s.facts().filter(|&f| (f as usize) < n));
+            self.eval(fixed.words(), None)
+        }
     }
 
     /// `h(s)` of a packed state; with `preferred`, also fills in the preferred operators (task
@@ -259,4 +266,78 @@ fn relaxed_plan(
 #[inline]
 fn in_words(words: &[u64], f: u32) -> bool {
     (f as usize) < words.len() * 64 && has(words, f)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::{Condition, Operator};
+
+    /// Two independent facts, each reached by its own operator of cost 2 and 3; plus a
+    /// combined operator of cost 4 adding both. h* = 4, h_max = 3, h_add = h_FF = 5, LM-cut = 4.
+    fn task() -> (Task, Goal) {
+        let op = |name: &str, add: Vec<u32>, cost| Operator {
+            name: name.into(),
+            pre: vec![],
+            pre_neg: vec![],
+            add,
+            del: vec![],
+            cost,
+        };
+        let goal = Goal {
+            alternatives: vec![Condition {
+                pos: vec![0, 1],
+                neg: vec![],
+            }],
+            terminal_cost: 0,
+        };
+        let t = Task::new(
+            vec!["(a)".into(), "(b)".into()],
+            vec![
+                op("(x)", vec![0], 2),
+                op("(y)", vec![1], 3),
+                op("(z)", vec![0, 1], 4),
+            ],
+            State::empty(2),
+            goal.clone(),
+            vec![],
+            false,
+        );
+        (t, goal)
+    }
+
+    #[test]
+    fn textbook_values() {
+        let (t, g) = task();
+        let goals = [g];
+        let v = |k| HeuristicEvaluator::new(&t, &goals, k).value(&t.init);
+        assert_eq!(v(HeuristicKind::HMax), Some(3));
+        assert_eq!(v(HeuristicKind::HAdd), Some(5));
+        assert_eq!(v(HeuristicKind::HFf), Some(5)); // h_add supporters x and y
+        assert_eq!(v(HeuristicKind::LmCut), Some(4));
+        assert_eq!(v(HeuristicKind::Blind), Some(2));
+    }
+
+    #[test]
+    fn terminal_costs_and_alternatives_take_the_minimum() {
+        let (t, g) = task();
+        let cheap_a = Goal {
+            alternatives: vec![Condition {
+                pos: vec![0],
+                neg: vec![],
+            }],
+            terminal_cost: 5,
+        };
+        // min(4 + 0, 2 + 5) = 4; with c = 1 instead: min(4, 3) = 3.
+        let mut goals = vec![g, cheap_a];
+        let v = |goals: &[Goal]| {
+            HeuristicEvaluator::new(&t, goals, HeuristicKind::LmCut).value(&t.init)
+        };
+        assert_eq!(v(&goals), Some(4));
+        goals[1].terminal_cost = 1;
+        assert_eq!(v(&goals), Some(3));
+        // A state sized for another task does not panic: unknown facts are ignored.
+        let mut h = HeuristicEvaluator::new(&t, &goals, HeuristicKind::HMax);
+        assert_eq!(h.value(&State::from_facts(200, [0, 1, 150])), Some(0));
+    }
 }

@@ -1,0 +1,67 @@
+//! Simulator speed: one B3 world step (both arms tracking a moving target through IK) plus the
+//! scene graph; one IK solve for a top grasp over the table from the ready pose.
+//!
+//! `cargo bench --bench sim`
+
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::panda::{self, IkParams};
+use logic_lfd::sim::{GripperCommand, SceneGraph};
+use nalgebra::{Isometry3, Translation3};
+use std::hint::black_box;
+
+fn step_and_scene_graph(c: &mut Criterion) {
+    let mut w = Benchmark::B3.scene();
+    let homes: Vec<Isometry3<f64>> = (0..2).map(|a| w.tcp_pose(a).unwrap()).collect();
+    let mut k = 0u64;
+    c.bench_function("b3 step + scene graph", |bch| {
+        bch.iter(|| {
+            // A slow circle (r = 5 cm, 4 s period) keeps both arms moving, so IK runs every step.
+            k += 1;
+            let t = k as f64 * 0.01;
+            for (a, h) in homes.iter().enumerate() {
+                let mut p = *h;
+                p.translation.vector.x += 0.05 * (t * 1.57).cos() - 0.05;
+                p.translation.vector.y += 0.05 * (t * 1.57).sin();
+                w.command_arm(a, p, GripperCommand::Open).unwrap();
+            }
+            let ev = w.step();
+            let sg = SceneGraph::from_world(&w);
+            black_box((ev, sg))
+        })
+    });
+}
+
+fn ik_solve(c: &mut Criterion) {
+    let base = Isometry3::identity();
+    let params = IkParams::default();
+    // Top grasps over the table in front of the arm (all reachable).
+    let targets: Vec<Isometry3<f64>> = (0..64)
+        .map(|i| {
+            let r = 0.35 + 0.3 * ((i * 37 % 64) as f64 / 64.0);
+            let a = -1.2 + 2.4 * ((i * 11 % 64) as f64 / 64.0);
+            Isometry3::from_parts(
+                Translation3::new(r * a.cos(), r * a.sin(), 0.03 + 0.1 * ((i % 3) as f64)),
+                panda::down_orientation(a + 0.3 * ((i % 5) as f64 - 2.0)),
+            )
+        })
+        .collect();
+    let mut i = 0;
+    c.bench_function("ik solve (top grasp from ready)", |bch| {
+        bch.iter(|| {
+            i = (i + 1) % targets.len();
+            black_box(panda::inverse_kinematics(
+                &base,
+                &targets[i],
+                &panda::READY,
+                &params,
+            ))
+        })
+    });
+}
+
+criterion_group!(benches, step_and_scene_graph, ik_solve);
+criterion_main!(benches);

@@ -1,0 +1,158 @@
+//! `logic-lfd scene …`: inspect and perturb simulator scenes (the JSON of `sim::snapshot`).
+//!
+//! * `scene facts SCENE.json [--json]` — the scene graph, one fact per line;
+//! * `scene check SCENE.json` — load with validation, then check the invariants;
+//! * `scene template b1|b2|b3` — print a benchmark's template scene;
+//! * `scene problem SCENE.json --benchmark b1` — the PDDL problem of that world and the goal;
+//! * `scene disturb SCENE.json --benchmark b1 --level l3 [--seed N]` — apply an injector, print
+//!   `{"disturbance": …, "scene": …}`.
+
+use crate::exit;
+use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::demo::demo_states;
+use logic_lfd::sim::disturb::{inject, Level};
+use logic_lfd::sim::{SceneGraph, World};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Arguments of `logic-lfd scene`.
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(subcommand)]
+    action: Action,
+}
+
+#[derive(clap::Subcommand)]
+enum Action {
+    /// Print the scene graph facts.
+    Facts {
+        /// Scene JSON.
+        scene: PathBuf,
+        /// Print a JSON array instead of one fact per line.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Validate a scene and check its invariants.
+    Check {
+        /// Scene JSON.
+        scene: PathBuf,
+    },
+    /// Print a benchmark's template scene JSON.
+    Template {
+        /// b1, b2 or b3.
+        benchmark: String,
+    },
+    /// Print the PDDL problem of a scene for a benchmark's goal.
+    Problem {
+        /// Scene JSON.
+        scene: PathBuf,
+        /// b1, b2 or b3.
+        #[arg(long)]
+        benchmark: String,
+    },
+    /// Apply a disturbance (L1–L4) and print it with the new scene.
+    Disturb {
+        /// Scene JSON.
+        scene: PathBuf,
+        /// b1, b2 or b3.
+        #[arg(long)]
+        benchmark: String,
+        /// l1, l2, l3 or l4.
+        #[arg(long)]
+        level: String,
+        /// Injector seed.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+    },
+}
+
+fn load(path: &Path) -> Result<World, ExitCode> {
+    let file = path.display();
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        eprintln!("{file}: cannot read: {e}");
+        ExitCode::from(exit::BAD_INPUT)
+    })?;
+    World::from_json(&text).map_err(|e| {
+        eprintln!("{file}: {e}");
+        ExitCode::from(exit::BAD_INPUT)
+    })
+}
+
+fn benchmark(s: &str) -> Result<Benchmark, ExitCode> {
+    Benchmark::parse(s).ok_or_else(|| {
+        eprintln!("unknown benchmark {s:?} (b1, b2, b3)");
+        ExitCode::from(exit::BAD_INPUT)
+    })
+}
+
+/// Runs the subcommand.
+pub fn run(args: Args) -> ExitCode {
+    match run_inner(args) {
+        Ok(()) => ExitCode::from(exit::OK),
+        Err(code) => code,
+    }
+}
+
+fn run_inner(args: Args) -> Result<(), ExitCode> {
+    match args.action {
+        Action::Facts { scene, json } => {
+            let w = load(&scene)?;
+            let facts = SceneGraph::from_world(&w).to_strings();
+            if json {
+                println!("{}", serde_json::to_string(&facts).unwrap_or_default());
+            } else {
+                for f in facts {
+                    println!("{f}");
+                }
+            }
+        }
+        Action::Check { scene } => {
+            let w = load(&scene)?;
+            if let Err(v) = w.check_invariants() {
+                for x in v {
+                    eprintln!("{}: {x}", scene.display());
+                }
+                return Err(ExitCode::from(exit::BAD_INPUT));
+            }
+            println!("ok");
+        }
+        Action::Template { benchmark: b } => {
+            println!("{}", benchmark(&b)?.scene().to_json());
+        }
+        Action::Problem {
+            scene,
+            benchmark: b,
+        } => {
+            let w = load(&scene)?;
+            print!("{}", benchmark(&b)?.problem_for(&w, "scene"));
+        }
+        Action::Disturb {
+            scene,
+            benchmark: b,
+            level,
+            seed,
+        } => {
+            let b = benchmark(&b)?;
+            let Some(level) = Level::parse(&level) else {
+                eprintln!("unknown level {level:?} (l1, l2, l3, l4)");
+                return Err(ExitCode::from(exit::BAD_INPUT));
+            };
+            let mut w = load(&scene)?;
+            let states = demo_states(b).map_err(|e| {
+                eprintln!("{}: {e}", b.dir_name());
+                ExitCode::from(exit::BAD_INPUT)
+            })?;
+            match inject(&mut w, b, level, &states, seed) {
+                Ok(d) => {
+                    let out = serde_json::json!({ "disturbance": d, "scene": w.snapshot() });
+                    println!("{out}");
+                }
+                Err(e) => {
+                    eprintln!("{}: {e}", scene.display());
+                    return Err(ExitCode::from(exit::BAD_INPUT));
+                }
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Builds the npm package `logic-lfd` into pkg/: the crate for wasm32 (size-optimised profile),
+# wasm-bindgen for the web (`init()` then use) and for node (CommonJS, ready on require),
+# wasm-opt -Oz from the npm `binaryen` package (Debian's binaryen 108 emits broken modules).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+TARGET_DIR="${CARGO_TARGET_DIR:-target}"
+WASM="$TARGET_DIR/wasm32-unknown-unknown/wasm-release/logic_lfd.wasm"
+OUT=pkg
+
+want="$(grep -A1 '^name = "wasm-bindgen"$' Cargo.lock | sed -n 's/^version = "\(.*\)"/\1/p' | head -1)"
+have="$(wasm-bindgen --version 2>/dev/null | awk '{print $2}')"
+if [ "$want" != "$have" ]; then
+  echo "wasm-bindgen $want is needed (found '${have:-none}'): run scripts/setup.sh" >&2
+  exit 1
+fi
+if [ ! -x node_modules/.bin/wasm-opt ]; then
+  echo "node_modules/.bin/wasm-opt missing: run npm ci (scripts/setup.sh does)" >&2
+  exit 1
+fi
+
+echo "== cargo build (wasm32, profile wasm-release)"
+# Keep the target_features section for wasm-bindgen; wasm-opt strips names afterwards.
+CARGO_PROFILE_WASM_RELEASE_STRIP=false cargo build --target wasm32-unknown-unknown --profile wasm-release --features wasm -p logic-lfd --lib --locked
+
+rm -rf "$OUT"
+mkdir -p "$OUT/web" "$OUT/node"
+echo "== wasm-bindgen $have"
+wasm-bindgen "$WASM" --target web --out-dir "$OUT/web" --out-name logic_lfd
+wasm-bindgen "$WASM" --target nodejs --out-dir "$OUT/node" --out-name logic_lfd
+
+echo "== wasm-opt -Oz"
+FEATURES=(--enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext
+  --enable-mutable-globals --enable-reference-types --enable-multivalue)
+node_modules/.bin/wasm-opt -Oz --strip-debug --strip-producers "${FEATURES[@]}" "$OUT/web/logic_lfd_bg.wasm" -o "$OUT/web/logic_lfd_bg.wasm"
+cp "$OUT/web/logic_lfd_bg.wasm" "$OUT/node/logic_lfd_bg.wasm"
+
+# The node build is CommonJS (ready as soon as it is required); index.mjs gives ESM importers the
+# same shape as the web build (a default `init()` that resolves at once), so code runs unchanged.
+echo '{ "type": "commonjs" }' > "$OUT/node/package.json"
+cat > "$OUT/node/index.mjs" <<'JS'
+export * from './logic_lfd.js';
+/** The node build is instantiated on import; `init()` exists so browser code runs unchanged. */
+export default async function init() {}
+JS
+cat > "$OUT/node/index.d.mts" <<'TS'
+export * from './logic_lfd.js';
+/** The node build is instantiated on import; `init()` exists so browser code runs unchanged. */
+export default function init(_module_or_path?: unknown): Promise<void>;
+TS
+cp npm/package.json npm/README.md "$OUT/"
+ver="$(sed -n 's/^version = "\(.*\)"/\1/p' crate/Cargo.toml | head -1)"
+node -e '
+  const fs = require("fs"); const p = JSON.parse(fs.readFileSync(process.argv[1], "utf8"));
+  p.version = process.argv[2]; fs.writeFileSync(process.argv[1], JSON.stringify(p, null, 2) + "\n");
+' "$OUT/package.json" "$ver"
+
+raw=$(wc -c < "$OUT/web/logic_lfd_bg.wasm")
+gz=$(gzip -9 -c "$OUT/web/logic_lfd_bg.wasm" | wc -c)
+echo "== pkg/ ready: logic_lfd_bg.wasm $raw bytes ($gz gzipped)"

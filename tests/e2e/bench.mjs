@@ -1,0 +1,93 @@
+// Measures the page's targets in Chromium (reported in the README, never asserted):
+//   * the whole page's size gzipped (wasm + JS + CSS + HTML of web/dist);
+//   * time from navigation to interactive (the wasm loaded in the worker and the first frame drawn);
+//   * the worker's closed-loop tick (Session::step, replans included) over a B1 run with drags;
+//   * Logic-LfD replanning time in wasm on B1 (from the frames' last_replan.time_ms).
+// Usage: node tests/e2e/bench.mjs [--benchmark b1] [--runs 3]
+import { readdir, readFile } from 'node:fs/promises';
+import { gzipSync } from 'node:zlib';
+import { join } from 'node:path';
+import { dist, launch, openPage, serve } from './harness.mjs';
+
+const arg = (k, d) => {
+  const i = process.argv.indexOf(`--${k}`);
+  return i > 0 ? process.argv[i + 1] : d;
+};
+const benchmark = arg('benchmark', 'b1');
+const runs = Number(arg('runs', '3'));
+
+async function sizes() {
+  const files = [];
+  async function walk(d) {
+    for (const e of await readdir(d, { withFileTypes: true })) {
+      const p = join(d, e.name);
+      if (e.isDirectory()) await walk(p);
+      else files.push(p);
+    }
+  }
+  await walk(dist);
+  let raw = 0;
+  let gz = 0;
+  const rows = [];
+  for (const f of files) {
+    // PDDL sources are fetched only when the editor opens; count them apart.
+    const b = await readFile(f);
+    const g = gzipSync(b, { level: 9 }).length;
+    rows.push({ file: f.slice(dist.length + 1), raw: b.length, gz: g });
+    if (!f.endsWith('.pddl') && !f.includes('pddl')) {
+      raw += b.length;
+      gz += g;
+    }
+  }
+  return { raw, gz, rows };
+}
+
+const pct = (xs, p) => {
+  const s = [...xs].sort((a, b) => a - b);
+  return s.length ? s[Math.min(s.length - 1, Math.floor((p / 100) * s.length))] : NaN;
+};
+
+const server = await serve();
+const browser = await launch();
+const size = await sizes();
+const results = [];
+for (let r = 0; r < runs; r++) {
+  const { page } = await openPage(browser, `${server.url}?benchmark=${benchmark}&seed=${r + 1}`);
+  await page.waitForSelector('#app[data-ready="true"]', { timeout: 30000 });
+  const interactiveMs = await page.evaluate(() => window.lfd.loadedAt);
+  // Disturb the run so that Logic-LfD replans: L3 twice (unseen states), L4 once (a new block).
+  for (const [t, level] of [[1, 'l3'], [4, 'l4'], [7, 'l3']]) {
+    await page.waitForFunction((t) => (window.lfd.frame()?.t ?? 0) > t, t, { timeout: 60000 });
+    await page.click(`#inject-${level}`);
+  }
+  await page.waitForFunction(() => ['done', 'failed'].includes(window.lfd.frame()?.status.kind), null, { timeout: 120000 });
+  const out = await page.evaluate(() => ({
+    steps: window.lfd.stepTimes(),
+    replans: window.lfd.replans().map(([, ms]) => ms),
+    status: window.lfd.frame().status,
+  }));
+  results.push({ interactiveMs, ...out });
+  await page.close();
+}
+await browser.close();
+await server.close();
+
+const steps = results.flatMap((r) => r.steps);
+const replans = results.flatMap((r) => r.replans);
+const summary = {
+  benchmark,
+  runs,
+  page_gzip_kb: +(size.gz / 1024).toFixed(1),
+  page_raw_kb: +(size.raw / 1024).toFixed(1),
+  interactive_ms_median: +pct(results.map((r) => r.interactiveMs), 50).toFixed(0),
+  tick_ms_median: +pct(steps, 50).toFixed(3),
+  tick_ms_p95: +pct(steps, 95).toFixed(3),
+  tick_ms_max: +Math.max(...steps).toFixed(3),
+  replan_ms_median: +pct(replans, 50).toFixed(3),
+  replan_ms_max: replans.length ? +Math.max(...replans).toFixed(3) : null,
+  replans: replans.length,
+  outcomes: results.map((r) => r.status.kind),
+};
+console.log(JSON.stringify(summary, null, 2));
+console.log('\n| file | bytes | gzipped |\n|---|---:|---:|');
+for (const r of size.rows) console.log(`| ${r.file} | ${r.raw} | ${r.gz} |`);

@@ -1,0 +1,16 @@
+// The page's test hooks (web/src/main.ts `window.lfd`), as the browser tests see them.
+import type { Frame } from '../../pkg/web/logic_lfd.js';
+
+declare global {
+  interface Window {
+    lfd: {
+      frame: () => Frame | null;
+      screenPosition: (body: string) => { x: number; y: number } | null;
+      project: (p: [number, number, number]) => { x: number; y: number };
+      stepTimes: () => number[];
+      replans: () => [number, number][];
+      setPddl: (domain: string, problem: string) => Promise<void>;
+      loadedAt: number;
+    };
+  }
+}

@@ -1,0 +1,97 @@
+// Shared set-up for the browser tests: a static server for web/dist (no dev server, so the test
+// sees exactly what `npm start` serves) and Debian's Chromium driven by playwright-core.
+import { createServer } from 'node:http';
+import { readFile, stat } from 'node:fs/promises';
+import { extname, join, normalize } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+export const root = fileURLToPath(new URL('../..', import.meta.url));
+export const dist = join(root, 'web', 'dist');
+export const screenshots = join(root, 'tests', 'e2e', 'screenshots');
+
+const types = {
+  '.html': 'text/html; charset=utf-8',
+  '.js': 'text/javascript; charset=utf-8',
+  '.css': 'text/css; charset=utf-8',
+  '.wasm': 'application/wasm',
+  '.json': 'application/json',
+  '.svg': 'image/svg+xml',
+  '.png': 'image/png',
+  '.pddl': 'text/plain; charset=utf-8',
+};
+
+/** Serves web/dist on 127.0.0.1 at a free port; resolves to { url, close }. */
+export async function serve() {
+  const server = createServer(async (req, res) => {
+    try {
+      const path = decodeURIComponent(new URL(req.url ?? '/', 'http://x').pathname);
+      let file = normalize(join(dist, path));
+      if (!file.startsWith(dist)) throw new Error('outside');
+      if ((await stat(file)).isDirectory()) file = join(file, 'index.html');
+      const body = await readFile(file);
+      res.writeHead(200, { 'content-type': types[extname(file)] ?? 'application/octet-stream' });
+      res.end(body);
+    } catch {
+      res.writeHead(404).end('not found');
+    }
+  });
+  await new Promise((r) => server.listen(0, '127.0.0.1', () => r(undefined)));
+  const { port } = /** @type {import('node:net').AddressInfo} */ (server.address());
+  return { url: `http://127.0.0.1:${port}/`, close: () => new Promise((r) => server.close(r)) };
+}
+
+export const chromiumArgs = [
+  '--no-sandbox',
+  '--headless',
+  '--disable-gpu',
+  '--disable-quic',
+  '--no-first-run',
+  '--disable-background-networking',
+  '--disable-component-update',
+  '--disable-sync',
+];
+
+export async function launch() {
+  return chromium.launch({
+    executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium',
+    args: chromiumArgs,
+  });
+}
+
+/** A new page that records console errors and uncaught exceptions into `errors`. */
+export async function openPage(browser, url, { width = 1440, height = 900 } = {}) {
+  const page = await browser.newPage({ viewport: { width, height } });
+  const errors = [];
+  page.on('console', (m) => {
+    if (m.type() === 'error') errors.push(m.text());
+  });
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(url);
+  return { page, errors };
+}
+
+/** Opens the page with URL parameters and waits until the worker is ready and the first frame drawn. */
+export async function openApp(browser, server, query = '') {
+  const r = await openPage(browser, `${server.url}${query}`);
+  await r.page.waitForSelector('#app[data-ready="true"]', { timeout: 30000 });
+  return r;
+}
+
+/** The page's current frame. */
+export async function currentFrame(page) {
+  return page.evaluate(() => window.lfd.frame());
+}
+
+/** Waits until the run is done or failed and returns the last frame. */
+export async function finish(page, timeout = 120000) {
+  await page.waitForFunction(
+    () => {
+      const f = window.lfd.frame();
+      return f && (f.status.kind === 'done' || f.status.kind === 'failed');
+    },
+    null,
+    { timeout, polling: 200 },
+  );
+  return currentFrame(page);
+}

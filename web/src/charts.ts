@@ -1,0 +1,116 @@
+// Two small uPlot charts: the time of each replan (ms) and the end-effector trajectory (m).
+import uPlot from 'uplot';
+import 'uplot/dist/uPlot.min.css';
+import type { Frame } from 'logic-lfd';
+
+const axis = { stroke: '#8b949e', grid: { stroke: '#21262d', width: 1 }, ticks: { stroke: '#30363d', width: 1 } };
+
+function chart(host: HTMLElement, title: string, xLabel: string, yLabel: string, series: uPlot.Series[]): uPlot {
+  const data = [[], ...series.slice(1).map(() => [])] as unknown as uPlot.AlignedData;
+  return new uPlot(
+    {
+      title,
+      width: Math.max(200, host.clientWidth),
+      height: 170,
+      cursor: { drag: { x: false, y: false } },
+      legend: { live: false },
+      scales: { x: { time: false } },
+      axes: [
+        { ...axis, label: xLabel, size: 36 },
+        { ...axis, label: yLabel, size: 48 },
+      ],
+      series,
+    },
+    data,
+    host,
+  );
+}
+
+export class Charts {
+  readonly root: HTMLElement;
+  private readonly replanChart: uPlot;
+  private readonly eeChart: uPlot;
+  private replanX: number[] = [];
+  private replanY: number[] = [];
+  private lastReplanKey = '';
+  private ee: number[][] = [[], [], [], [], [], [], []];
+  private lastT = -1;
+  private dirty = false;
+
+  constructor(root: HTMLElement) {
+    this.root = root;
+    const a = document.createElement('div');
+    const b = document.createElement('div');
+    a.className = b.className = 'chart';
+    a.id = 'chart-replan';
+    b.id = 'chart-ee';
+    a.setAttribute('aria-label', 'Replanning time per replan, milliseconds');
+    b.setAttribute('aria-label', 'End-effector position and target of the first arm over time');
+    root.append(a, b);
+    this.replanChart = chart(a, 'Replanning time', 'simulated time (s)', 'ms', [
+      {},
+      { label: 'replan (ms)', stroke: '#ffb224', width: 0, paths: () => null, points: { show: true, size: 7, fill: '#ffb224' } },
+    ]);
+    this.eeChart = chart(b, 'End-effector trajectory (arm 1)', 'simulated time (s)', 'm', [
+      {},
+      { label: 'x', stroke: '#e5484d', width: 1.5 },
+      { label: 'y', stroke: '#46a758', width: 1.5 },
+      { label: 'z', stroke: '#3e63dd', width: 1.5 },
+      { label: 'x*', stroke: '#e5484d80', width: 1, dash: [4, 4] },
+      { label: 'y*', stroke: '#46a75880', width: 1, dash: [4, 4] },
+      { label: 'z*', stroke: '#3e63dd80', width: 1, dash: [4, 4] },
+    ]);
+    new ResizeObserver(() => this.resize()).observe(root);
+  }
+
+  private resize(): void {
+    const w = Math.max(200, this.root.clientWidth - 8);
+    this.replanChart.setSize({ width: w, height: 170 });
+    this.eeChart.setSize({ width: w, height: 190 });
+  }
+
+  reset(): void {
+    this.replanX = [];
+    this.replanY = [];
+    this.lastReplanKey = '';
+    this.ee = [[], [], [], [], [], [], []];
+    this.lastT = -1;
+    this.replanChart.setData([[], []]);
+    this.eeChart.setData(this.ee as uPlot.AlignedData);
+  }
+
+  push(f: Frame): void {
+    if (f.t < this.lastT) this.reset();
+    const r = f.last_replan;
+    if (r) {
+      const key = `${r.tick}:${r.reason}`;
+      if (key !== this.lastReplanKey) {
+        this.lastReplanKey = key;
+        this.replanX.push(r.tick * (f.world.dt || 0.01));
+        this.replanY.push(r.time_ms);
+        this.dirty = true;
+      }
+    }
+    const p = f.ee.find((e) => e.arm === 0);
+    if (p && f.t > this.lastT + 0.02) {
+      this.lastT = f.t;
+      const cols = [f.t, ...p.pos, ...p.target];
+      cols.forEach((v, i) => this.ee[i].push(v));
+      if (this.ee[0].length > 3000) for (const c of this.ee) c.shift();
+      this.dirty = true;
+    }
+  }
+
+  /** Redraws when new data arrived (called at most once per animation frame by the page). */
+  draw(): void {
+    if (!this.dirty) return;
+    this.dirty = false;
+    this.replanChart.setData([this.replanX, this.replanY]);
+    this.eeChart.setData(this.ee as uPlot.AlignedData);
+  }
+
+  /** Replans recorded so far, [time (s), ms]. */
+  replans(): [number, number][] {
+    return this.replanX.map((x, i) => [x, this.replanY[i]]);
+  }
+}

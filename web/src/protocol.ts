@@ -1,0 +1,53 @@
+// The one message protocol between the page (main thread) and the worker that owns the wasm
+// module and the Session. Requests carry an `id`; the worker answers each with exactly one `reply`
+// of the same id. While a session plays, the worker pushes `frame` messages on its own.
+import type { BenchmarkInfo, Diagnostic, Frame, PlanOptions, PlanOutcome, SessionOptions } from 'logic-lfd';
+
+export type Level = 'l1' | 'l2' | 'l3' | 'l4';
+export type Vec3 = [number, number, number];
+
+/** The result of a user's drop: accepted (with what the world did) or refused with a reason. */
+export type DropOutcome = { ok: true; message: string; frame: Frame } | { ok: false; reason: string };
+
+/** What an injected disturbance did. */
+export interface InjectOutcome {
+  message: string;
+  frame: Frame;
+}
+
+/** Every request the page can make: its arguments and the value its reply carries. */
+export interface Api {
+  version: { args: Record<string, never>; result: string };
+  plan: { args: { domain: string; problem: string; options: PlanOptions }; result: PlanOutcome };
+  check: { args: { domain: string; problem: string }; result: Diagnostic[] };
+  benchmark: { args: { id: SessionOptions['benchmark'] }; result: BenchmarkInfo };
+  open: { args: { options: SessionOptions; scene?: string }; result: Frame };
+  replay: { args: { episode: string }; result: Frame };
+  play: { args: { speed: number }; result: null };
+  pause: { args: Record<string, never>; result: Frame | null };
+  step: { args: { dt: number }; result: Frame };
+  speed: { args: { speed: number }; result: null };
+  perturb: { args: { body: string; position: Vec3 }; result: DropOutcome };
+  inject: { args: { level: Level }; result: InjectOutcome };
+  reset: { args: { seed: number }; result: Frame };
+  cancel: { args: Record<string, never>; result: Frame };
+  episode: { args: Record<string, never>; result: string };
+  scene: { args: Record<string, never>; result: string };
+}
+
+export type ApiKind = keyof Api;
+
+export type ToWorker = { [K in ApiKind]: { kind: K; id: number; args: Api[K]['args'] } }[ApiKind];
+
+/** Timing of one worker tick: wall time of `Session::step` and of the whole tick (ms). */
+export interface TickTiming {
+  stepMs: number;
+  simSeconds: number;
+}
+
+export type FromWorker =
+  | { type: 'ready'; version: string }
+  | { type: 'fatal'; message: string }
+  | { type: 'frame'; frame: Frame; timing: TickTiming; playing: boolean }
+  | { type: 'reply'; id: number; ok: true; value: unknown }
+  | { type: 'reply'; id: number; ok: false; error: string };

@@ -1,0 +1,560 @@
+// The 3-D view: draws a WorldSnapshot (tables, shelf, regions, labelled blocks, hook, arms from
+// their link capsules and fingers) with three.js, z up, an orbit camera, and lets the user drag a
+// block with the mouse (raycast onto the support under the pointer; the drop is sent to the worker,
+// which accepts or refuses it).
+import * as THREE from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import type { ArmSnapshot, BodySnapshot, PoseSnapshot, WorldSnapshot } from 'logic-lfd';
+
+export interface DropRequest {
+  body: string;
+  position: [number, number, number];
+}
+
+export interface ViewOptions {
+  /** Called when the user releases a dragged block; resolves to a refusal message or null. */
+  onDrop: (d: DropRequest) => Promise<string | null>;
+  /** Called when a drag starts (the page may pause the run meanwhile). */
+  onDragStart?: (body: string) => void;
+  /** Shows a short message over the view (refused drops). */
+  onNotice?: (text: string, kind: 'info' | 'error') => void;
+}
+
+const UP = new THREE.Vector3(0, 0, 1);
+const Y = new THREE.Vector3(0, 1, 0);
+
+function applyPose(o: THREE.Object3D, p: PoseSnapshot): void {
+  o.position.set(p.position[0], p.position[1], p.position[2]);
+  o.quaternion.set(p.quaternion[0], p.quaternion[1], p.quaternion[2], p.quaternion[3]);
+}
+
+function labelTexture(text: string, color: string): THREE.CanvasTexture {
+  const c = document.createElement('canvas');
+  c.width = c.height = 128;
+  const g = c.getContext('2d')!;
+  g.fillStyle = color;
+  g.fillRect(0, 0, 128, 128);
+  g.strokeStyle = 'rgba(0,0,0,0.25)';
+  g.lineWidth = 6;
+  g.strokeRect(3, 3, 122, 122);
+  const dark = luminance(color) > 0.55;
+  g.fillStyle = dark ? '#111' : '#fff';
+  g.font = 'bold 72px system-ui, sans-serif';
+  g.textAlign = 'center';
+  g.textBaseline = 'middle';
+  g.fillText(text.toUpperCase().slice(0, 3), 64, 70);
+  const t = new THREE.CanvasTexture(c);
+  t.colorSpace = THREE.SRGBColorSpace;
+  t.anisotropy = 4;
+  return t;
+}
+
+function textTexture(text: string): THREE.CanvasTexture {
+  const c = document.createElement('canvas');
+  c.width = 256;
+  c.height = 64;
+  const g = c.getContext('2d')!;
+  g.font = '600 30px system-ui, sans-serif';
+  g.textAlign = 'center';
+  g.textBaseline = 'middle';
+  g.fillStyle = 'rgba(20, 23, 28, 0.75)';
+  g.fillText(text, 128, 32);
+  const t = new THREE.CanvasTexture(c);
+  t.colorSpace = THREE.SRGBColorSpace;
+  return t;
+}
+
+/** Whether WebGL is rasterised on the CPU (SwiftShader, llvmpipe). */
+function isSoftwareRenderer(): boolean {
+  try {
+    const gl = document.createElement('canvas').getContext('webgl2');
+    if (!gl) return true;
+    const ext = gl.getExtension('WEBGL_debug_renderer_info');
+    const name = String(ext ? gl.getParameter(ext.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER));
+    gl.getExtension('WEBGL_lose_context')?.loseContext();
+    return /swiftshader|llvmpipe|software/i.test(name);
+  } catch {
+    return false;
+  }
+}
+
+function luminance(hex: string): number {
+  const c = new THREE.Color(hex);
+  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
+
+interface BodyEntry {
+  object: THREE.Object3D;
+  kind: BodySnapshot['kind'];
+  shapeKey: string;
+  halfZ: number;
+}
+
+interface ArmEntry {
+  group: THREE.Group;
+  links: THREE.Mesh[];
+  linkKeys: string[];
+  fingers: THREE.Mesh[];
+  base: THREE.Mesh;
+}
+
+export class View {
+  readonly renderer: THREE.WebGLRenderer;
+  readonly scene = new THREE.Scene();
+  readonly camera: THREE.PerspectiveCamera;
+  readonly controls: OrbitControls;
+  private readonly bodies = new Map<string, BodyEntry>();
+  private readonly arms: ArmEntry[] = [];
+  private readonly regions = new THREE.Group();
+  private readonly targets = new THREE.Group();
+  private readonly trail: THREE.Line;
+  private trailPoints: THREE.Vector3[] = [];
+  private readonly raycaster = new THREE.Raycaster();
+  private readonly pointer = new THREE.Vector2();
+  private drag: { name: string; ghost: THREE.Mesh; target: THREE.Vector3 | null; halfZ: number; planeZ: number } | null =
+    null;
+  private snapshot: WorldSnapshot | null = null;
+  private sceneName = '';
+  private readonly linkMaterial = new THREE.MeshStandardMaterial({ color: 0xe9ecef, roughness: 0.45, metalness: 0.1 });
+  private readonly jointMaterial = new THREE.MeshStandardMaterial({ color: 0x3a3f47, roughness: 0.5 });
+  private readonly fingerMaterial = new THREE.MeshStandardMaterial({ color: 0x2b2f36, roughness: 0.6 });
+  private hovered: string | null = null;
+  private rendering = false;
+  /** Smoothed time of one `renderer.render` call (ms). */
+  renderMs = 0;
+  /** Whether the renderer runs in software (SwiftShader) or `?quality=low` was asked for. */
+  readonly lowQuality: boolean;
+  private dirty = true;
+
+  constructor(
+    private readonly host: HTMLElement,
+    private readonly opts: ViewOptions,
+  ) {
+    // A software rasteriser (SwiftShader: headless browsers, machines without a GPU) gets the light
+    // settings: no MSAA, no shadows, fewer pixels; it stays interactive instead of 2 frames/s.
+    const q = new URLSearchParams(location.search).get('quality');
+    this.lowQuality = q === 'low' || (q !== 'high' && isSoftwareRenderer());
+    this.renderer = new THREE.WebGLRenderer({ antialias: !this.lowQuality });
+    this.renderer.setPixelRatio(this.lowQuality ? 0.75 : Math.min(window.devicePixelRatio, 2));
+    this.renderer.shadowMap.enabled = !this.lowQuality;
+    this.renderer.shadowMap.type = THREE.PCFShadowMap;
+    this.renderer.outputColorSpace = THREE.SRGBColorSpace;
+    this.renderer.domElement.setAttribute('aria-label', '3-D view of the robot workcell: drag a block to move it');
+    this.renderer.domElement.setAttribute('role', 'img');
+    this.renderer.domElement.tabIndex = 0;
+    host.appendChild(this.renderer.domElement);
+
+    this.scene.background = new THREE.Color(0x14171c);
+    this.camera = new THREE.PerspectiveCamera(40, 1, 0.02, 50);
+    this.camera.up.copy(UP);
+    this.camera.position.set(1.45, -1.25, 1.05);
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.target.set(0.45, 0, 0.1);
+    this.controls.enableDamping = true;
+    this.controls.maxPolarAngle = Math.PI * 0.49;
+    this.controls.minDistance = 0.3;
+    this.controls.maxDistance = 6;
+    this.controls.addEventListener('change', () => (this.dirty = true));
+
+    const hemi = new THREE.HemisphereLight(0xdfe8ff, 0x2a2420, 1.4);
+    hemi.position.set(0, 0, 2);
+    this.scene.add(hemi);
+    const sun = new THREE.DirectionalLight(0xffffff, 2.2);
+    sun.position.set(1.2, -1.0, 2.4);
+    sun.castShadow = true;
+    sun.shadow.mapSize.set(1024, 1024);
+    const sc = sun.shadow.camera;
+    sc.left = sc.bottom = -1.6;
+    sc.right = sc.top = 1.6;
+    sc.near = 0.5;
+    sc.far = 6;
+    sun.shadow.bias = -0.0005;
+    this.scene.add(sun);
+
+    const floor = new THREE.Mesh(
+      new THREE.PlaneGeometry(20, 20),
+      new THREE.MeshStandardMaterial({ color: 0x1b1f26, roughness: 0.95 }),
+    );
+    floor.name = 'floor';
+    floor.receiveShadow = true;
+    floor.position.z = -0.75;
+    this.scene.add(floor);
+    const grid = new THREE.GridHelper(8, 32, 0x2d333d, 0x232830);
+    grid.rotation.x = Math.PI / 2;
+    grid.position.z = -0.749;
+    this.scene.add(grid);
+
+    this.scene.add(this.regions, this.targets);
+    this.trail = new THREE.Line(
+      new THREE.BufferGeometry(),
+      new THREE.LineBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.85 }),
+    );
+    this.trail.frustumCulled = false;
+    this.scene.add(this.trail);
+
+    const el = this.renderer.domElement;
+    el.addEventListener('pointerdown', (e) => this.onPointerDown(e));
+    el.addEventListener('pointermove', (e) => this.onPointerMove(e));
+    el.addEventListener('pointerup', (e) => void this.onPointerUp(e));
+    el.addEventListener('pointercancel', () => this.cancelDrag());
+    new ResizeObserver(() => this.resize()).observe(host);
+    this.resize();
+  }
+
+  /** Starts the render loop (renders only when something changed). */
+  start(): void {
+    if (this.rendering) return;
+    this.rendering = true;
+    const loop = () => {
+      this.controls.update();
+      if (this.dirty) {
+        const t0 = performance.now();
+        this.renderer.render(this.scene, this.camera);
+        this.renderMs = 0.9 * this.renderMs + 0.1 * (performance.now() - t0);
+        this.dirty = false;
+      }
+      requestAnimationFrame(loop);
+    };
+    requestAnimationFrame(loop);
+  }
+
+  private resize(): void {
+    const w = Math.max(1, this.host.clientWidth);
+    const h = Math.max(1, this.host.clientHeight);
+    this.renderer.setSize(w, h, false);
+    this.renderer.domElement.style.width = `${w}px`;
+    this.renderer.domElement.style.height = `${h}px`;
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+    this.dirty = true;
+  }
+
+  /** Frames the camera on the scene's bodies (called when a new scene is loaded). */
+  private frameCamera(s: WorldSnapshot): void {
+    const box = new THREE.Box3();
+    for (const b of s.bodies) {
+      const c = new THREE.Vector3(...b.pose.position);
+      const h = b.shape.type === 'cuboid' ? new THREE.Vector3(...b.shape.half_extents) : new THREE.Vector3();
+      box.expandByPoint(c.clone().sub(h)).expandByPoint(c.clone().add(h));
+    }
+    for (const a of s.arms) {
+      box.expandByPoint(new THREE.Vector3(...a.base.position));
+      for (const l of a.links) box.expandByPoint(new THREE.Vector3(...l.b));
+    }
+    if (box.isEmpty()) return;
+    const c = box.getCenter(new THREE.Vector3());
+    const size = box.getSize(new THREE.Vector3()).length();
+    const d = Math.max(1.2, size * 1.2);
+    this.controls.target.set(c.x, c.y, Math.max(0.05, c.z * 0.6));
+    this.camera.position.set(c.x + d * 0.55, c.y - d * 0.8, c.z + d * 0.55);
+    this.controls.update();
+  }
+
+  /** Draws a snapshot (creating meshes the first time a body appears). */
+  update(s: WorldSnapshot, ee?: { arm: number; pos: number[]; target: number[] }[]): void {
+    const fresh = s.name !== this.sceneName;
+    if (fresh) {
+      this.clearScene();
+      this.sceneName = s.name;
+    }
+    this.snapshot = s;
+    const seen = new Set<string>();
+    for (const b of s.bodies) {
+      seen.add(b.name);
+      let e = this.bodies.get(b.name);
+      const key = JSON.stringify(b.shape) + b.color;
+      if (!e || e.shapeKey !== key) {
+        if (e) this.scene.remove(e.object);
+        e = this.makeBody(b, key);
+        this.bodies.set(b.name, e);
+        this.scene.add(e.object);
+      }
+      if (this.drag?.name !== b.name) applyPose(e.object, b.pose);
+      e.object.visible = true;
+      const lost = !!b.lost;
+      e.object.traverse((o) => {
+        if (o instanceof THREE.Mesh && o.userData.lostAware) {
+          const m = o.material as THREE.MeshStandardMaterial | THREE.MeshStandardMaterial[];
+          for (const mm of Array.isArray(m) ? m : [m]) {
+            mm.transparent = lost;
+            mm.opacity = lost ? 0.45 : 1;
+          }
+        }
+      });
+    }
+    for (const [name, e] of this.bodies) {
+      if (!seen.has(name)) {
+        this.scene.remove(e.object);
+        this.bodies.delete(name);
+      }
+    }
+    if (fresh) this.drawRegions(s);
+    s.arms.forEach((a, i) => this.updateArm(i, a));
+    while (this.arms.length > s.arms.length) this.scene.remove(this.arms.pop()!.group);
+    this.updateTargets(ee ?? []);
+    if (fresh) this.frameCamera(s);
+    this.dirty = true;
+  }
+
+  private clearScene(): void {
+    for (const e of this.bodies.values()) this.scene.remove(e.object);
+    this.bodies.clear();
+    for (const a of this.arms) this.scene.remove(a.group);
+    this.arms.length = 0;
+    this.regions.clear();
+    this.clearTrail();
+    this.cancelDrag();
+  }
+
+  /** Clears the end-effector trail (on reset). */
+  clearTrail(): void {
+    this.trailPoints = [];
+    this.trail.geometry.dispose();
+    this.trail.geometry = new THREE.BufferGeometry();
+    this.dirty = true;
+  }
+
+  private makeBody(b: BodySnapshot, key: string): BodyEntry {
+    const group = new THREE.Group();
+    group.name = b.name;
+    group.userData = { body: b.name, kind: b.kind };
+    const parts =
+      b.shape.type === 'cuboid'
+        ? [{ pose: { position: [0, 0, 0], quaternion: [0, 0, 0, 1] } as PoseSnapshot, half_extents: b.shape.half_extents }]
+        : b.shape.parts;
+    let halfZ = 0;
+    for (const p of parts) {
+      const [hx, hy, hz] = p.half_extents;
+      halfZ = Math.max(halfZ, hz + Math.abs(p.pose.position[2]));
+      const geo = new THREE.BoxGeometry(2 * hx, 2 * hy, 2 * hz);
+      let mat: THREE.Material | THREE.Material[];
+      if (b.kind === 'block') {
+        const side = new THREE.MeshStandardMaterial({ map: labelTexture(b.name, b.color), roughness: 0.55 });
+        mat = [side, side, side, side, side, side];
+      } else if (b.kind === 'table') {
+        mat = new THREE.MeshStandardMaterial({ color: b.color, roughness: 0.85, metalness: 0.0 });
+      } else if (b.kind === 'shelf') {
+        mat = new THREE.MeshStandardMaterial({ color: b.color, roughness: 0.7 });
+      } else {
+        mat = new THREE.MeshStandardMaterial({ color: b.color, roughness: 0.35, metalness: 0.4 });
+      }
+      const m = new THREE.Mesh(geo, mat);
+      applyPose(m, p.pose);
+      m.castShadow = b.kind !== 'table';
+      m.receiveShadow = true;
+      m.userData = { body: b.name, kind: b.kind, lostAware: b.kind === 'block' || b.kind === 'hook' };
+      group.add(m);
+      if (b.kind === 'block' || b.kind === 'hook') {
+        const edges = new THREE.LineSegments(
+          new THREE.EdgesGeometry(geo),
+          new THREE.LineBasicMaterial({ color: 0x000000, transparent: true, opacity: 0.35 }),
+        );
+        applyPose(edges, p.pose);
+        group.add(edges);
+      }
+    }
+    return { object: group, kind: b.kind, shapeKey: key, halfZ };
+  }
+
+  private drawRegions(s: WorldSnapshot): void {
+    this.regions.clear();
+    for (const r of s.regions) {
+      const w = r.max[0] - r.min[0];
+      const h = r.max[1] - r.min[1];
+      const m = new THREE.Mesh(
+        new THREE.PlaneGeometry(w, h),
+        new THREE.MeshBasicMaterial({ color: r.color, transparent: true, opacity: 0.22, depthWrite: false }),
+      );
+      m.position.set((r.min[0] + r.max[0]) / 2, (r.min[1] + r.max[1]) / 2, 0.0015);
+      m.name = `region:${r.name}`;
+      this.regions.add(m);
+      const label = new THREE.Sprite(
+        new THREE.SpriteMaterial({ map: textTexture(r.name), transparent: true, depthWrite: false }),
+      );
+      label.position.set((r.min[0] + r.max[0]) / 2, r.min[1] + 0.03, 0.01);
+      label.scale.set(0.24, 0.06, 1);
+      this.regions.add(label);
+    }
+  }
+
+  private updateArm(i: number, a: ArmSnapshot): void {
+    let e = this.arms[i];
+    if (!e) {
+      const group = new THREE.Group();
+      group.name = `arm:${a.name}`;
+      const base = new THREE.Mesh(new THREE.CylinderGeometry(0.09, 0.11, 0.04, 32), this.jointMaterial);
+      base.rotation.x = Math.PI / 2;
+      base.castShadow = true;
+      group.add(base);
+      e = { group, links: [], linkKeys: [], fingers: [], base };
+      this.arms[i] = e;
+      this.scene.add(group);
+    }
+    e.base.position.set(a.base.position[0], a.base.position[1], a.base.position[2] + 0.02);
+    a.links.forEach((c, j) => {
+      const A = new THREE.Vector3(...c.a);
+      const B = new THREE.Vector3(...c.b);
+      const len = A.distanceTo(B);
+      const key = `${c.radius.toFixed(4)}:${len.toFixed(4)}`;
+      let m = e.links[j];
+      if (!m || e.linkKeys[j] !== key) {
+        if (m) e.group.remove(m);
+        m = new THREE.Mesh(new THREE.CapsuleGeometry(c.radius, Math.max(len, 1e-4), 6, 16), j % 2 ? this.linkMaterial : this.linkMaterial);
+        m.castShadow = true;
+        m.receiveShadow = true;
+        e.links[j] = m;
+        e.linkKeys[j] = key;
+        e.group.add(m);
+      }
+      m.position.copy(A).add(B).multiplyScalar(0.5);
+      if (len > 1e-6) m.quaternion.setFromUnitVectors(Y, B.clone().sub(A).normalize());
+    });
+    a.fingers.forEach((f, j) => {
+      let m = e.fingers[j];
+      if (!m) {
+        const [hx, hy, hz] = f.half_extents;
+        m = new THREE.Mesh(new THREE.BoxGeometry(2 * hx, 2 * hy, 2 * hz), this.fingerMaterial);
+        m.castShadow = true;
+        e.fingers[j] = m;
+        e.group.add(m);
+      }
+      applyPose(m, f.pose);
+    });
+  }
+
+  private readonly targetGeometry = new THREE.SphereGeometry(0.012, 12, 8);
+  private readonly targetMaterial = new THREE.MeshBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.9 });
+
+  private updateTargets(ee: { arm: number; pos: number[]; target: number[] }[]): void {
+    while (this.targets.children.length < ee.length) this.targets.add(new THREE.Mesh(this.targetGeometry, this.targetMaterial));
+    this.targets.children.forEach((m, i) => {
+      const p = ee[i];
+      m.visible = !!p;
+      if (!p) return;
+      m.position.set(p.target[0], p.target[1], p.target[2]);
+      if (p.arm === 0) {
+        const v = new THREE.Vector3(p.pos[0], p.pos[1], p.pos[2]);
+        const last = this.trailPoints[this.trailPoints.length - 1];
+        if (!last || last.distanceTo(v) > 0.004) {
+          this.trailPoints.push(v);
+          if (this.trailPoints.length > 600) this.trailPoints.shift();
+          this.trail.geometry.dispose();
+          this.trail.geometry = new THREE.BufferGeometry().setFromPoints(this.trailPoints);
+        }
+      }
+    });
+  }
+
+  // ---- dragging ----
+
+  private setPointer(e: PointerEvent): void {
+    const r = this.renderer.domElement.getBoundingClientRect();
+    this.pointer.set(((e.clientX - r.left) / r.width) * 2 - 1, -((e.clientY - r.top) / r.height) * 2 + 1);
+    this.raycaster.setFromCamera(this.pointer, this.camera);
+  }
+
+  private pickBlock(): string | null {
+    const blocks = [...this.bodies.values()].filter((b) => b.kind === 'block').map((b) => b.object);
+    // Only the block meshes count (edge lines would match any ray passing nearby).
+    const hit = this.raycaster.intersectObjects(blocks, true).find((h) => h.object instanceof THREE.Mesh);
+    return hit ? (hit.object.userData.body as string) : null;
+  }
+
+  private onPointerDown(e: PointerEvent): void {
+    if (e.button !== 0) return;
+    this.setPointer(e);
+    const name = this.pickBlock();
+    if (!name) return;
+    const entry = this.bodies.get(name)!;
+    this.controls.enabled = false;
+    this.renderer.domElement.setPointerCapture(e.pointerId);
+    const src = entry.object.children.find((c): c is THREE.Mesh => c instanceof THREE.Mesh)!;
+    const ghost = new THREE.Mesh(
+      src.geometry,
+      new THREE.MeshStandardMaterial({ color: 0xffffff, transparent: true, opacity: 0.35, depthWrite: false }),
+    );
+    ghost.visible = false;
+    this.scene.add(ghost);
+    this.drag = { name, ghost, target: null, halfZ: entry.halfZ, planeZ: entry.object.position.z };
+    this.opts.onDragStart?.(name);
+    this.onPointerMove(e);
+  }
+
+  private onPointerMove(e: PointerEvent): void {
+    this.setPointer(e);
+    if (!this.drag) {
+      const h = this.pickBlock();
+      if (h !== this.hovered) {
+        this.hovered = h;
+        this.renderer.domElement.style.cursor = h ? 'grab' : '';
+      }
+      return;
+    }
+    this.renderer.domElement.style.cursor = 'grabbing';
+    const d = this.drag;
+    // Surfaces a block may be dropped on: tops of tables, the shelf and the other blocks.
+    const supports = [...this.bodies.entries()]
+      .filter(([n, b]) => n !== d.name && (b.kind === 'table' || b.kind === 'shelf' || b.kind === 'block'))
+      .map(([, b]) => b.object);
+    const hits = this.raycaster.intersectObjects(supports, true).filter((h) => h.object instanceof THREE.Mesh);
+    let target: THREE.Vector3 | null = null;
+    for (const h of hits) {
+      if (!h.face) continue;
+      const n = h.face.normal.clone().transformDirection(h.object.matrixWorld);
+      if (n.dot(UP) > 0.7) {
+        target = h.point.clone().add(new THREE.Vector3(0, 0, d.halfZ + 0.002));
+        break;
+      }
+    }
+    if (!target) {
+      const plane = new THREE.Plane(UP, -d.planeZ);
+      const p = new THREE.Vector3();
+      if (this.raycaster.ray.intersectPlane(plane, p)) target = p;
+    }
+    d.target = target;
+    d.ghost.visible = !!target;
+    if (target) d.ghost.position.copy(target);
+    const obj = this.bodies.get(d.name)?.object;
+    if (obj && target) obj.position.set(target.x, target.y, target.z + 0.04);
+    this.dirty = true;
+  }
+
+  private async onPointerUp(e: PointerEvent): Promise<void> {
+    const d = this.drag;
+    if (!d) return;
+    this.renderer.domElement.releasePointerCapture(e.pointerId);
+    this.drag = null;
+    this.scene.remove(d.ghost);
+    this.controls.enabled = true;
+    this.renderer.domElement.style.cursor = '';
+    if (d.target) {
+      const refusal = await this.opts.onDrop({ body: d.name, position: [d.target.x, d.target.y, d.target.z] });
+      if (refusal) this.opts.onNotice?.(`Drop refused: ${refusal}`, 'error');
+    }
+    if (this.snapshot) this.update(this.snapshot);
+  }
+
+  private cancelDrag(): void {
+    if (!this.drag) return;
+    this.scene.remove(this.drag.ghost);
+    this.drag = null;
+    this.controls.enabled = true;
+    if (this.snapshot) this.update(this.snapshot);
+  }
+
+  /** Projects a body's centre to client coordinates (for tests and tooltips). */
+  screenPosition(body: string): { x: number; y: number } | null {
+    const e = this.bodies.get(body);
+    if (!e) return null;
+    const v = e.object.getWorldPosition(new THREE.Vector3()).project(this.camera);
+    const r = this.renderer.domElement.getBoundingClientRect();
+    return { x: r.left + ((v.x + 1) / 2) * r.width, y: r.top + ((1 - v.y) / 2) * r.height };
+  }
+
+  /** Projects a world point to client coordinates. */
+  project(p: [number, number, number]): { x: number; y: number } {
+    const v = new THREE.Vector3(...p).project(this.camera);
+    const r = this.renderer.domElement.getBoundingClientRect();
+    return { x: r.left + ((v.x + 1) / 2) * r.width, y: r.top + ((1 - v.y) / 2) * r.height };
+  }
+}

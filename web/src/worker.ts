@@ -1,0 +1,137 @@
+// The Web Worker that owns the wasm module and the closed-loop Session: planning and simulation
+// never run on the page's thread, so the page never freezes. It plays the session in real time
+// (scaled by `speed`) and pushes a frame after every tick.
+import init, * as lfd from 'logic-lfd';
+import type { Frame } from 'logic-lfd';
+import type { Api, ApiKind, FromWorker, ToWorker } from './protocol';
+
+const post = (m: FromWorker) => (self as unknown as Worker).postMessage(m);
+
+let session: lfd.Session | null = null;
+let playing = false;
+let speed = 1;
+let timer: ReturnType<typeof setTimeout> | null = null;
+let last = 0;
+/** Ticks aim at 60 Hz; a tick advances the simulation by the wall time elapsed times `speed`. */
+const TICK_MS = 1000 / 60;
+/** Never advance more than this much simulated time in one tick (s), so a stalled tab catches up gently. */
+const MAX_DT = 0.1;
+
+function need(): lfd.Session {
+  if (!session) throw new Error('no session: choose a benchmark first');
+  return session;
+}
+
+function replace(s: lfd.Session): Frame {
+  stop();
+  session?.free();
+  session = s;
+  return s.frame();
+}
+
+function stop(): void {
+  playing = false;
+  if (timer !== null) clearTimeout(timer);
+  timer = null;
+}
+
+function tick(): void {
+  timer = null;
+  if (!playing || !session) return;
+  const now = performance.now();
+  const dt = Math.min(MAX_DT, ((now - last) / 1000) * speed);
+  last = now;
+  const t0 = performance.now();
+  const frame = session.step(dt);
+  const stepMs = performance.now() - t0;
+  const finished = frame.status.kind === 'done' || frame.status.kind === 'failed';
+  if (finished) playing = false;
+  post({ type: 'frame', frame, timing: { stepMs, simSeconds: dt }, playing });
+  if (playing) timer = setTimeout(tick, Math.max(0, TICK_MS - (performance.now() - now)));
+}
+
+type Handlers = { [K in ApiKind]: (args: Api[K]['args']) => Api[K]['result'] | Promise<Api[K]['result']> };
+
+const handlers: Handlers = {
+  version: () => lfd.version(),
+  plan: ({ domain, problem, options }) => lfd.plan(domain, problem, options),
+  check: ({ domain, problem }) => lfd.check(domain, problem),
+  benchmark: ({ id }) => lfd.benchmark(id),
+  open: ({ options, scene }) =>
+    replace(scene === undefined ? new lfd.Session(options) : lfd.Session.fromScene(options, scene)),
+  replay: ({ episode }) => replace(lfd.Session.replay(episode)),
+  play: ({ speed: s }) => {
+    need();
+    speed = s;
+    if (!playing) {
+      playing = true;
+      last = performance.now();
+      timer = setTimeout(tick, 0);
+    }
+    return null;
+  },
+  pause: () => {
+    stop();
+    return session ? session.frame() : null;
+  },
+  step: ({ dt }) => {
+    stop();
+    return need().step(dt);
+  },
+  speed: ({ speed: s }) => {
+    speed = s;
+    return null;
+  },
+  perturb: ({ body, position }) => {
+    const s = need();
+    try {
+      const o = s.perturb(body, position);
+      const others = o.also_moved.length ? `; ${o.also_moved.map(([b]) => b).join(', ')} settled below` : '';
+      return { ok: true, message: `Moved ${o.body} onto ${o.support}${others}`, frame: s.frame() };
+    } catch (e) {
+      return { ok: false, reason: errorMessage(e) };
+    }
+  },
+  inject: ({ level }) => {
+    const s = need();
+    const i = s.inject(level);
+    return { message: i.description, frame: s.frame() };
+  },
+  reset: ({ seed }) => {
+    stop();
+    const s = need();
+    s.reset(seed);
+    return s.frame();
+  },
+  cancel: () => {
+    const s = need();
+    s.cancel();
+    return s.frame();
+  },
+  episode: () => need().episodeJson(),
+  scene: () => need().sceneJson(),
+};
+
+function errorMessage(e: unknown): string {
+  if (e instanceof Error) return e.message;
+  return typeof e === 'string' ? e : JSON.stringify(e);
+}
+
+async function handle(req: ToWorker): Promise<void> {
+  try {
+    const h = handlers[req.kind] as (a: unknown) => unknown;
+    const value = await h(req.args);
+    post({ type: 'reply', id: req.id, ok: true, value });
+  } catch (e) {
+    post({ type: 'reply', id: req.id, ok: false, error: errorMessage(e) });
+  }
+}
+
+const ready = init().then(
+  () => post({ type: 'ready', version: lfd.version() }),
+  (e) => post({ type: 'fatal', message: `could not load the wasm module: ${errorMessage(e)}` }),
+);
+
+self.onmessage = (e: MessageEvent<ToWorker>) => {
+  void ready.then(() => handle(e.data));
+};
