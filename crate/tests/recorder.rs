@@ -456,3 +456,61 @@ fn cli_segments_a_file_and_names_bad_fields() {
         Err(RecorderError::Refused(_))
     ));
 }
+
+/// A taught task (the reverse tower c on b on a, not B1's order) runs closed loop with Logic-LfD
+/// from the template scene to success under an L3 disturbance (facts changed to an unseen state).
+#[test]
+fn taught_reverse_tower_runs_to_success_under_l3() {
+    use logic_lfd::lfd::session::{BenchmarkId, Session, SessionOptions, SessionParams, SkillKind};
+    use logic_lfd::lfd::{Method, Mode};
+    use logic_lfd::plan::NoClock;
+
+    let mut rec = Recorder::for_benchmark(Benchmark::B1).unwrap();
+    rec.push(&drag("b", "a")).unwrap();
+    rec.push(&drag("c", "b")).unwrap();
+    rec.set_goal(vec!["(on b a)".into(), "(on c b)".into()])
+        .unwrap();
+    let taught = rec.finish().unwrap();
+    let demo_json = serde_json::to_string(&taught.demo).unwrap();
+    // The taught task: the template scene's objects and facts, the taught goal.
+    let mut files = BenchmarkId::B1.sources().unwrap();
+    files.problem = format!(
+        "(define (problem taught) (:domain b1-tower) (:objects panda - arm a b c d - block) \
+         (:init {}) (:goal (and {})))",
+        taught.demo.initial_facts.join(" "),
+        taught.demo.goal.join(" ")
+    );
+    let opts = SessionOptions {
+        benchmark: BenchmarkId::B1,
+        method: Method::LogicLfd,
+        mode: Mode::default(),
+        seed: 5,
+        skill: SkillKind::Lqt,
+    };
+    let mut s = Session::with_sources(
+        opts,
+        &files,
+        None,
+        Some(&demo_json),
+        SessionParams::default(),
+    )
+    .unwrap();
+    let mut injected = false;
+    for _ in 0..40_000 {
+        if s.outcome().is_some() {
+            break;
+        }
+        if !injected && !s.is_executing() && s.actions_done() >= 2 {
+            injected = s.inject("l3").is_ok();
+        }
+        s.tick_once(&NoClock);
+    }
+    assert!(injected, "no L3 disturbance could be injected");
+    assert_eq!(
+        s.outcome(),
+        Some(&Ok(())),
+        "the taught task did not succeed"
+    );
+    let facts = SceneGraph::from_world(s.world());
+    assert!(facts.contains("(on b a)") && facts.contains("(on c b)"));
+}

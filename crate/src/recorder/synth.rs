@@ -465,7 +465,15 @@ pub fn pull_samples(
         m.to(tc, p.contact_time, None);
         let d = (tp.translation.vector - tc.translation.vector).norm();
         m.to(tp, (d / p.pull_speed).max(0.6), None);
-        m.to(raised(&tp, safe), p.contact_time, None);
+        // Back the blade off the block before lifting, so the lift cannot scrape it.
+        let mut off = tp;
+        let back = tc.translation.vector - tp.translation.vector;
+        let back = Vector3::new(back.x, back.y, 0.0);
+        if back.norm() > 1e-9 {
+            off.translation.vector += back.normalize() * 0.015;
+        }
+        m.to(off, p.hold_time, None);
+        m.to(raised(&off, safe), p.contact_time, None);
         // Put the hook back where it was before the pick (kept in the first phase's log).
         let mut put = home;
         put.translation.vector += Vector3::new(0.0, 0.0, 0.002);
