@@ -19,7 +19,10 @@
 //! choice takes a seed. The same code runs natively and in WebAssembly (feature `wasm`).
 #![warn(missing_docs)]
 
+pub mod experiments;
+pub mod lfd;
 pub mod lqt;
 pub mod pddl;
 pub mod plan;
 pub mod sim;
+pub mod tamp;

@@ -26,6 +26,10 @@ pub struct Args {
 enum Which {
     /// Planner configurations over IPC benchmark folders.
     Planner(PlannerArgs),
+    /// The paper's Table I: generalisation over random initial states (linear, tamp, logic-lfd).
+    Table1(crate::cmd_tables::Table1Args),
+    /// The paper's Table II: reactivity to disturbances L1–L4 (linear, rlds, logic-lfd).
+    Table2(crate::cmd_tables::Table2Args),
 }
 
 /// Arguments of `bench planner`.
@@ -55,6 +59,8 @@ pub struct PlannerArgs {
 pub fn run(args: Args) -> ExitCode {
     match args.which {
         Which::Planner(a) => planner(a),
+        Which::Table1(a) => crate::cmd_tables::run_table1(a),
+        Which::Table2(a) => crate::cmd_tables::run_table2(a),
     }
 }
 

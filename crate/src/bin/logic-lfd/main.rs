@@ -6,6 +6,8 @@
 mod cmd_bench;
 mod cmd_lqt;
 mod cmd_plan;
+mod cmd_run;
+mod cmd_tables;
 mod cmd_validate;
 
 use clap::{Parser, Subcommand};
@@ -42,6 +44,8 @@ enum Command {
     Plan(cmd_plan::Args),
     /// Benchmarks: `bench planner` runs planner configurations over IPC folders.
     Bench(cmd_bench::Args),
+    /// One closed-loop episode: a benchmark, a disturbance level, a method, a seed.
+    Run(cmd_run::Args),
 }
 
 /// A closed stdout (`logic-lfd plan … | head`) ends the process quietly, as Unix tools do,
@@ -81,5 +85,6 @@ fn main() -> ExitCode {
         Command::Validate(a) => cmd_validate::run(a),
         Command::Plan(args) => cmd_plan::run(args),
         Command::Bench(args) => cmd_bench::run(args),
+        Command::Run(args) => cmd_run::run(args),
     }
 }

@@ -1,0 +1,191 @@
+//! `logic-lfd run --benchmark b1|b2|b3 --level l1..l4 --method logic-lfd|linear|rlds|tamp
+//! [--mode paper|prioritised] --seed N [--scene SCENE.json] [--json]` — one closed-loop episode
+//! with a disturbance injected during execution at a seeded time; prints success, actions
+//! executed, replans, planning times and simulated execution time; `--json` prints the report
+//! with the full episode log (it replays exactly: `logic-lfd run --replay EPISODE.json`).
+//!
+//! Exit codes: 0 the episode ran (success or not, see the output), 2 bad input, 5 a replay that
+//! does not reproduce its log.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use logic_lfd::experiments::{run_episode, EpisodeReport, EpisodeSpec, Level};
+use logic_lfd::lfd::session::{BenchmarkId, EpisodeLog, Session, SessionParams};
+use logic_lfd::lfd::{Method, Mode};
+
+use crate::cmd_plan::WallClock;
+use crate::exit;
+
+/// Arguments of `run`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Benchmark: b1, b2 or b3.
+    #[arg(long, default_value = "b1")]
+    benchmark: String,
+    /// Disturbance level injected during execution: l1, l2, l3, l4 or none.
+    #[arg(long, default_value = "none")]
+    level: String,
+    /// Method: logic-lfd, linear, rlds or tamp.
+    #[arg(long, default_value = "logic-lfd")]
+    method: String,
+    /// Multi-goal mode of Logic-LfD: paper or prioritised.
+    #[arg(long, default_value = "paper")]
+    mode: String,
+    /// Seed of every random choice of the episode.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Initial scene (a world snapshot JSON); default: the benchmark's template scene.
+    #[arg(long)]
+    scene: Option<PathBuf>,
+    /// Print the report and the full episode log as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Replay an episode JSON (the `log` of `--json`, or the whole report) and check it.
+    #[arg(long)]
+    replay: Option<PathBuf>,
+}
+
+fn bad(msg: String) -> ExitCode {
+    eprintln!("{msg}");
+    ExitCode::from(exit::BAD_INPUT)
+}
+
+/// Runs the subcommand.
+pub fn run(args: Args) -> ExitCode {
+    if let Some(path) = &args.replay {
+        return replay(path);
+    }
+    let Some(benchmark) = BenchmarkId::parse(&args.benchmark) else {
+        return bad(format!(
+            "--benchmark: unknown benchmark {:?} (b1, b2, b3)",
+            args.benchmark
+        ));
+    };
+    let level = if args.level == "none" {
+        None
+    } else {
+        match Level::parse(&args.level) {
+            Some(l) => Some(l),
+            None => {
+                return bad(format!(
+                    "--level: unknown level {:?} (l1..l4, none)",
+                    args.level
+                ))
+            }
+        }
+    };
+    let Some(method) = Method::parse(&args.method) else {
+        return bad(format!(
+            "--method: unknown method {:?} (logic-lfd, linear, rlds, tamp)",
+            args.method
+        ));
+    };
+    let Some(mode) = Mode::parse(&args.mode) else {
+        return bad(format!(
+            "--mode: unknown mode {:?} (paper, prioritised)",
+            args.mode
+        ));
+    };
+    let scene = match &args.scene {
+        Some(p) => match std::fs::read_to_string(p) {
+            Ok(t) => Some(t),
+            Err(e) => return bad(format!("{}: {e}", p.display())),
+        },
+        None => None,
+    };
+    let spec = EpisodeSpec {
+        benchmark,
+        level,
+        method,
+        mode,
+        seed: args.seed,
+        scene,
+    };
+    let clock = WallClock::start();
+    let report = match run_episode(&spec, SessionParams::default(), &clock) {
+        Ok(r) => r,
+        Err(e) => {
+            let file = args
+                .scene
+                .as_ref()
+                .map(|p| format!("{}: ", p.display()))
+                .unwrap_or_default();
+            return bad(format!("{file}{e}"));
+        }
+    };
+    if args.json {
+        match serde_json::to_string(&report) {
+            Ok(s) => println!("{s}"),
+            Err(e) => return bad(format!("cannot write JSON: {e}")),
+        }
+    } else {
+        print_summary(&spec, &report);
+    }
+    ExitCode::from(exit::OK)
+}
+
+fn print_summary(spec: &EpisodeSpec, r: &EpisodeReport) {
+    println!(
+        "benchmark {}  level {}  method {}  mode {}  seed {}",
+        spec.benchmark.as_str(),
+        spec.level.map_or("none", |l| l.as_str()),
+        spec.method.as_str(),
+        spec.mode.as_str(),
+        spec.seed
+    );
+    if let Some(i) = &r.injection {
+        println!("disturbance: {}", i.description);
+    }
+    match &r.reason {
+        None => println!("success: true"),
+        Some(reason) => println!("success: false ({reason})"),
+    }
+    println!("actions executed: {}", r.actions_executed);
+    println!("replans: {} (initial plan included)", r.replans);
+    for p in &r.log.replans {
+        println!(
+            "  t={:.2}s  {:.3} ms  k={}  because {}: {}",
+            p.tick as f64 * 0.01,
+            p.time_ms,
+            p.k.map_or("-".to_string(), |k| k.to_string()),
+            p.reason,
+            p.plan.join(" ")
+        );
+    }
+    println!("simulated execution time: {:.2} s", r.execution_s);
+}
+
+fn replay(path: &PathBuf) -> ExitCode {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) => return bad(format!("{}: {e}", path.display())),
+    };
+    // Accept the whole `--json` report or the bare log.
+    let value: serde_json::Value = match serde_json::from_str(&text) {
+        Ok(v) => v,
+        Err(e) => return bad(format!("{}: {e}", path.display())),
+    };
+    let log_value = value.get("log").cloned().unwrap_or(value);
+    let log: EpisodeLog = match serde_json::from_value(log_value) {
+        Ok(l) => l,
+        Err(e) => return bad(format!("{}: log: {e}", path.display())),
+    };
+    let log_text = serde_json::to_string(&log).unwrap_or_default();
+    let replayed = match Session::replay(&log_text) {
+        Ok(s) => s.log(),
+        Err(e) => return bad(format!("{}: {e}", path.display())),
+    };
+    if replayed.canonical() == log.canonical() {
+        println!(
+            "replayed exactly: {} ticks, {} replans, success {}",
+            replayed.ticks,
+            replayed.replans.len(),
+            replayed.result.as_ref().is_some_and(|r| r.success)
+        );
+        ExitCode::from(exit::OK)
+    } else {
+        eprintln!("{}: the replay differs from the log", path.display());
+        ExitCode::from(exit::INVALID_PLAN)
+    }
+}

@@ -1,0 +1,138 @@
+//! `logic-lfd bench table1 [--tasks 100] [--seed S] [--markdown|--json]` and
+//! `logic-lfd bench table2 [--trials 10] [--seed S] [--markdown|--json]`: the paper's Tables I
+//! and II with our numbers beside the paper's (planning times by the wall clock; run in release).
+
+use std::process::ExitCode;
+
+use logic_lfd::experiments::tables::{table1, table2};
+use logic_lfd::experiments::Level;
+use logic_lfd::lfd::session::{BenchmarkId, SessionError, SessionParams};
+
+use crate::cmd_plan::WallClock;
+use crate::exit;
+
+/// Arguments of `bench table1`.
+#[derive(clap::Args)]
+pub struct Table1Args {
+    /// Random initial states per benchmark (levels L1..L4 in turn).
+    #[arg(long, default_value_t = 100)]
+    tasks: usize,
+    /// Seed of the task generator and the episodes.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Benchmarks, comma-separated.
+    #[arg(long, default_value = "b1,b2,b3", value_delimiter = ',')]
+    benchmarks: Vec<String>,
+    /// Print markdown (the default).
+    #[arg(long)]
+    markdown: bool,
+    /// Print JSON (every cell with its raw numbers).
+    #[arg(long)]
+    json: bool,
+}
+
+/// Arguments of `bench table2`.
+#[derive(clap::Args)]
+pub struct Table2Args {
+    /// Trials per level, method and benchmark.
+    #[arg(long, default_value_t = 10)]
+    trials: usize,
+    /// Seed of the first trial (trial i uses seed + i).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Benchmarks, comma-separated.
+    #[arg(long, default_value = "b1,b2,b3", value_delimiter = ',')]
+    benchmarks: Vec<String>,
+    /// Print markdown (the default).
+    #[arg(long)]
+    markdown: bool,
+    /// Print JSON (every cell with its raw numbers).
+    #[arg(long)]
+    json: bool,
+}
+
+fn benchmarks(names: &[String]) -> Result<Vec<BenchmarkId>, String> {
+    names
+        .iter()
+        .map(|n| {
+            BenchmarkId::parse(n).ok_or_else(|| format!("--benchmarks: unknown benchmark {n:?}"))
+        })
+        .collect()
+}
+
+fn progress(line: &str) {
+    eprintln!("{line}");
+}
+
+fn scene_for(b: BenchmarkId, level: Level, seed: u64) -> Result<String, SessionError> {
+    logic_lfd::experiments::tasks::initial_scene(b, level, seed)
+}
+
+/// `bench table1`.
+pub fn run_table1(a: Table1Args) -> ExitCode {
+    let bs = match benchmarks(&a.benchmarks) {
+        Ok(b) => b,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::from(exit::BAD_INPUT);
+        }
+    };
+    let clock = WallClock::start();
+    let mut p = progress;
+    match table1(
+        &bs,
+        a.tasks,
+        a.seed,
+        SessionParams::default(),
+        &clock,
+        &scene_for,
+        &mut p,
+    ) {
+        Ok(t) => {
+            if a.json {
+                println!("{}", serde_json::to_string(&t).unwrap_or_default());
+            } else {
+                print!("{}", t.markdown());
+            }
+            ExitCode::from(exit::OK)
+        }
+        Err(e) => {
+            eprintln!("{e}");
+            ExitCode::from(exit::BAD_INPUT)
+        }
+    }
+}
+
+/// `bench table2`.
+pub fn run_table2(a: Table2Args) -> ExitCode {
+    let bs = match benchmarks(&a.benchmarks) {
+        Ok(b) => b,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::from(exit::BAD_INPUT);
+        }
+    };
+    let clock = WallClock::start();
+    let mut p = progress;
+    match table2(
+        &bs,
+        a.trials,
+        a.seed,
+        SessionParams::default(),
+        &clock,
+        &mut p,
+    ) {
+        Ok(t) => {
+            if a.json {
+                println!("{}", serde_json::to_string(&t).unwrap_or_default());
+            } else {
+                print!("{}", t.markdown());
+            }
+            ExitCode::from(exit::OK)
+        }
+        Err(e) => {
+            eprintln!("{e}");
+            ExitCode::from(exit::BAD_INPUT)
+        }
+    }
+}

@@ -1,0 +1,161 @@
+//! One closed-loop episode (`logic-lfd run`): a [`Session`] stepped to the end, with one
+//! disturbance injected at a seeded action boundary.
+//!
+//! The disturbance of level `L` is injected once, when the arm is idle after action `j` of the
+//! episode completed, `j ~ U{1, …, N − 2}` drawn from the seed (N = demonstration length), so it
+//! always lands *during* execution.
+
+use serde::{Deserialize, Serialize};
+
+use crate::lfd::control::{FailReason, Replan};
+use crate::lfd::session::{
+    mix, BenchmarkId, EpisodeLog, Injection, Session, SessionError, SessionOptions, SessionParams,
+    SkillKind,
+};
+use crate::lfd::{Method, Mode};
+use crate::plan::Clock;
+
+/// Disturbance levels of the paper (§IV-B).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Level {
+    /// Motion level: positions change, facts do not.
+    L1,
+    /// Slight task level: facts change to a state seen in the demonstration.
+    L2,
+    /// Severe task level: facts change to a state the demonstration never visits.
+    L3,
+    /// Extreme task level: a new block appears in the way.
+    L4,
+}
+
+impl Level {
+    /// All levels.
+    pub const ALL: [Level; 4] = [Level::L1, Level::L2, Level::L3, Level::L4];
+
+    /// `l1`..`l4`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Level::L1 => "l1",
+            Level::L2 => "l2",
+            Level::L3 => "l3",
+            Level::L4 => "l4",
+        }
+    }
+
+    /// Parses `l1`..`l4` (case-insensitive).
+    pub fn parse(s: &str) -> Option<Level> {
+        Level::ALL
+            .into_iter()
+            .find(|l| l.as_str().eq_ignore_ascii_case(s))
+    }
+}
+
+/// What to run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EpisodeSpec {
+    /// Benchmark.
+    pub benchmark: BenchmarkId,
+    /// Disturbance injected during execution (`None`: undisturbed).
+    pub level: Option<Level>,
+    /// Method.
+    pub method: Method,
+    /// Multi-goal mode (Logic-LfD).
+    pub mode: Mode,
+    /// Seed of the episode.
+    pub seed: u64,
+    /// Initial scene JSON (`None`: the benchmark's template scene).
+    pub scene: Option<String>,
+}
+
+/// What an episode did.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EpisodeReport {
+    /// The goal holds at the end.
+    pub success: bool,
+    /// Why not.
+    pub reason: Option<FailReason>,
+    /// Actions executed with their effect.
+    pub actions_executed: usize,
+    /// Replans (the initial plan included).
+    pub replans: usize,
+    /// Planning time of every replan (ms, caller's clock).
+    pub planning_ms: Vec<f64>,
+    /// Simulated execution time (s).
+    pub execution_s: f64,
+    /// The injected disturbance.
+    pub injection: Option<Injection>,
+    /// The full log (replays exactly).
+    pub log: EpisodeLog,
+}
+
+impl EpisodeReport {
+    /// Planning time of the first plan (ms).
+    pub fn first_plan_ms(&self) -> Option<f64> {
+        self.planning_ms.first().copied()
+    }
+
+    /// The replans after the first.
+    pub fn replans_after_start(&self) -> &[Replan] {
+        self.log.replans.get(1..).unwrap_or(&[])
+    }
+}
+
+/// Runs one episode to its end (at most `params.max_time` simulated seconds).
+pub fn run_episode(
+    spec: &EpisodeSpec,
+    params: SessionParams,
+    clock: &dyn Clock,
+) -> Result<EpisodeReport, SessionError> {
+    let options = SessionOptions {
+        benchmark: spec.benchmark,
+        method: spec.method,
+        mode: spec.mode,
+        seed: spec.seed,
+        skill: SkillKind::Lqt,
+    };
+    let sources = spec.benchmark.sources()?;
+    let mut s = Session::with_sources(options, &sources, spec.scene.as_deref(), None, params)?;
+    let n = s.controller().trace().len().max(3);
+    let inject_after = 1 + (mix(spec.seed, 77) % (n as u64 - 2)) as usize;
+    let mut injection = None;
+    let mut next_try = inject_after;
+    let max_ticks = (params.max_time / s.world().dt()).ceil() as u64 + 10;
+    for _ in 0..max_ticks {
+        if s.outcome().is_some() {
+            break;
+        }
+        if let Some(level) = spec.level {
+            // At the first idle moment after action `inject_after`; if the level cannot be
+            // produced in this state, try again at the next action boundary.
+            if injection.is_none() && !s.is_executing() && s.actions_done() >= next_try {
+                match s.inject(level.as_str()) {
+                    Ok(i) => injection = Some(i),
+                    Err(_) => next_try = s.actions_done() + 1,
+                }
+            }
+        }
+        s.tick_once(clock);
+    }
+    let log = s.log();
+    let (success, reason) = match s.outcome() {
+        Some(Ok(())) => (true, None),
+        Some(Err(r)) => (false, Some(r.clone())),
+        None => (
+            false,
+            Some(FailReason::Budget {
+                what: "simulated time".into(),
+            }),
+        ),
+    };
+    Ok(EpisodeReport {
+        success,
+        reason,
+        actions_executed: s.actions_done(),
+        replans: log.replans.len(),
+        planning_ms: log.replans.iter().map(|r| r.time_ms).collect(),
+        execution_s: s.world().time(),
+        injection,
+        log,
+    })
+}

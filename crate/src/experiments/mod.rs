@@ -1,0 +1,18 @@
+//! The paper's evaluation (§IV): closed-loop episodes, Table I (generalisation over random
+//! initial states) and Table II (reactivity to disturbances L1–L4), with report writers that put
+//! our numbers beside the paper's.
+//!
+//! * Table I: per benchmark, `tasks` random initial states (levels L1–L4 in turn, from the
+//!   simulator's task generator); methods `linear`, `tamp`, `logic-lfd` (both modes) run the
+//!   whole closed-loop episode from that state; success rate, and planning time of the first plan
+//!   (mean ± sd and median, caller's clock).
+//! * Table II: per benchmark and level, `trials` episodes from the template scene with one
+//!   disturbance injected at a seeded action boundary; methods `linear`, `rlds`, `logic-lfd`;
+//!   simulated execution time mean ± sd over the successful trials (N/A if none succeeds).
+
+pub mod episode;
+pub mod tables;
+pub mod tasks;
+
+pub use episode::{run_episode, EpisodeReport, EpisodeSpec, Level};
+pub use tables::{table1, table2, Table1, Table2};

@@ -1,0 +1,462 @@
+//! Table I (generalisation) and Table II (reactivity) runners and their markdown reports, with
+//! the paper's numbers beside ours.
+
+use serde::{Deserialize, Serialize};
+
+use crate::lfd::session::{mix, BenchmarkId, SessionError, SessionParams};
+use crate::lfd::{Method, Mode};
+use crate::plan::Clock;
+
+use super::episode::{run_episode, EpisodeSpec, Level};
+
+/// Mean, sample standard deviation and median of `v` (`None` when empty).
+pub fn stats(v: &[f64]) -> Option<(f64, f64, f64)> {
+    if v.is_empty() {
+        return None;
+    }
+    let n = v.len() as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    let var = if v.len() > 1 {
+        v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)
+    } else {
+        0.0
+    };
+    let mut s = v.to_vec();
+    s.sort_by(|a, b| a.total_cmp(b));
+    let median = if s.len() % 2 == 1 {
+        s[s.len() / 2]
+    } else {
+        0.5 * (s[s.len() / 2 - 1] + s[s.len() / 2])
+    };
+    Some((mean, var.sqrt(), median))
+}
+
+/// The paper's Table I: (success %, planning time mean, sd in s) per method column and benchmark.
+pub const PAPER_TABLE1: [(&str, [(f64, Option<(f64, f64)>); 3]); 3] = [
+    ("linear", [(27.0, None), (31.0, None), (24.0, None)]),
+    (
+        "tamp",
+        [
+            (100.0, Some((0.53, 0.10))),
+            (100.0, Some((0.53, 0.23))),
+            (100.0, Some((0.23, 0.09))),
+        ],
+    ),
+    (
+        "logic-lfd",
+        [
+            (100.0, Some((0.16, 0.07))),
+            (100.0, Some((0.37, 0.27))),
+            (100.0, Some((0.14, 0.06))),
+        ],
+    ),
+];
+
+/// The paper's Table II: execution time mean ± sd (s) per level, method, benchmark; `None` = N/A.
+pub const PAPER_TABLE2: [(&str, [[Option<(f64, f64)>; 3]; 4]); 3] = [
+    (
+        "linear",
+        [
+            [
+                Some((13.23, 0.58)),
+                Some((12.50, 0.13)),
+                Some((24.63, 0.05)),
+            ],
+            [None, None, None],
+            [None, None, None],
+            [None, None, None],
+        ],
+    ),
+    (
+        "rlds",
+        [
+            [
+                Some((13.70, 1.23)),
+                Some((12.59, 0.19)),
+                Some((24.64, 0.04)),
+            ],
+            [
+                Some((18.07, 0.95)),
+                Some((19.08, 0.01)),
+                Some((30.83, 0.04)),
+            ],
+            [None, None, None],
+            [None, None, None],
+        ],
+    ),
+    (
+        "logic-lfd",
+        [
+            [
+                Some((13.23, 0.35)),
+                Some((12.50, 0.13)),
+                Some((24.62, 0.03)),
+            ],
+            [
+                Some((17.62, 0.67)),
+                Some((19.08, 0.01)),
+                Some((30.79, 0.02)),
+            ],
+            [
+                Some((23.05, 0.49)),
+                Some((26.03, 0.78)),
+                Some((30.23, 0.08)),
+            ],
+            [
+                Some((19.00, 1.29)),
+                Some((12.60, 0.15)),
+                Some((31.57, 0.04)),
+            ],
+        ],
+    ),
+];
+
+/// One method on one benchmark in Table I.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Table1Cell {
+    /// Benchmark.
+    pub benchmark: BenchmarkId,
+    /// Method.
+    pub method: Method,
+    /// Multi-goal mode (Logic-LfD; `paper` for the others).
+    pub mode: Mode,
+    /// Tasks solved.
+    pub successes: usize,
+    /// Tasks run.
+    pub tasks: usize,
+    /// Planning time of the first plan per task (ms).
+    pub plan_ms: Vec<f64>,
+    /// Actions executed per successful task.
+    pub actions: Vec<usize>,
+    /// Failure reasons seen (kind → count).
+    pub failures: Vec<(String, usize)>,
+}
+
+/// Table I.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Table1 {
+    /// Tasks per benchmark.
+    pub tasks: usize,
+    /// Seed of the task generator and episodes.
+    pub seed: u64,
+    /// Cells.
+    pub cells: Vec<Table1Cell>,
+}
+
+fn reason_kind(r: &crate::lfd::control::FailReason) -> String {
+    serde_json::to_value(r)
+        .ok()
+        .and_then(|v| v.get("kind").and_then(|k| k.as_str()).map(str::to_string))
+        .unwrap_or_else(|| "unknown".into())
+}
+
+fn count(failures: &mut Vec<(String, usize)>, k: String) {
+    match failures.iter_mut().find(|(n, _)| *n == k) {
+        Some((_, c)) => *c += 1,
+        None => failures.push((k, 1)),
+    }
+}
+
+/// The methods of Table I (Logic-LfD in both modes).
+pub const TABLE1_METHODS: [(Method, Mode); 4] = [
+    (Method::Linear, Mode::Paper),
+    (Method::Tamp, Mode::Paper),
+    (Method::LogicLfd, Mode::Paper),
+    (Method::LogicLfd, Mode::Prioritised),
+];
+
+/// Runs Table I: `tasks` initial states per benchmark from `scene_for(benchmark, level, seed)`,
+/// levels L1..L4 in turn; every method runs the closed loop from each state.
+pub fn table1(
+    benchmarks: &[BenchmarkId],
+    tasks: usize,
+    seed: u64,
+    params: SessionParams,
+    clock: &dyn Clock,
+    scene_for: &dyn Fn(BenchmarkId, Level, u64) -> Result<String, SessionError>,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Table1, SessionError> {
+    let mut cells = vec![];
+    for &b in benchmarks {
+        let mut row: Vec<Table1Cell> = TABLE1_METHODS
+            .iter()
+            .map(|&(method, mode)| Table1Cell {
+                benchmark: b,
+                method,
+                mode,
+                successes: 0,
+                tasks: 0,
+                plan_ms: vec![],
+                actions: vec![],
+                failures: vec![],
+            })
+            .collect();
+        for i in 0..tasks {
+            let level = Level::ALL[i % 4];
+            let task_seed = mix(seed, (b as u64) << 32 | i as u64);
+            let scene = scene_for(b, level, task_seed)?;
+            for cell in &mut row {
+                let spec = EpisodeSpec {
+                    benchmark: b,
+                    level: None,
+                    method: cell.method,
+                    mode: cell.mode,
+                    seed: task_seed,
+                    scene: Some(scene.clone()),
+                };
+                let r = run_episode(&spec, params, clock)?;
+                cell.tasks += 1;
+                if let Some(t) = r.first_plan_ms() {
+                    cell.plan_ms.push(t);
+                }
+                if r.success {
+                    cell.successes += 1;
+                    cell.actions.push(r.actions_executed);
+                } else if let Some(reason) = &r.reason {
+                    count(&mut cell.failures, reason_kind(reason));
+                }
+            }
+            progress(&format!("table1 {} task {}/{}", b.as_str(), i + 1, tasks));
+        }
+        cells.extend(row);
+    }
+    Ok(Table1 { tasks, seed, cells })
+}
+
+fn fmt_ms(v: &[f64]) -> String {
+    match stats(v) {
+        Some((m, sd, med)) => format!("{m:.3} ± {sd:.3} (median {med:.3})"),
+        None => "N/A".into(),
+    }
+}
+
+impl Table1 {
+    /// Markdown: ours beside the paper's.
+    pub fn markdown(&self) -> String {
+        let mut out = String::new();
+        out.push_str(&format!(
+            "Table I — generalisation over {} random initial states per benchmark (levels L1–L4 in turn), seed {}.\n\n",
+            self.tasks, self.seed
+        ));
+        out.push_str("| method | benchmark | success (ours) | success (paper) | first-plan time, ms (ours: mean ± sd, median) | planning time, s (paper) | failures (ours) |\n");
+        out.push_str("|---|---|---|---|---|---|---|\n");
+        for c in &self.cells {
+            let col = match c.method {
+                Method::Linear => 0,
+                Method::Tamp => 1,
+                _ => 2,
+            };
+            let (ps, pt) = PAPER_TABLE1[col].1[c.benchmark as usize];
+            let name = match (c.method, c.mode) {
+                (Method::LogicLfd, Mode::Prioritised) => "logic-lfd (prioritised)".to_string(),
+                (Method::LogicLfd, Mode::Paper) => "logic-lfd (paper)".to_string(),
+                (m, _) => m.as_str().to_string(),
+            };
+            let ours_t = if c.method == Method::Linear {
+                "N/A (no planning)".to_string()
+            } else {
+                fmt_ms(&c.plan_ms)
+            };
+            let failures = if c.failures.is_empty() {
+                "—".to_string()
+            } else {
+                c.failures
+                    .iter()
+                    .map(|(k, n)| format!("{k} ×{n}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            out.push_str(&format!(
+                "| {} | {} | {:.0} % ({}/{}) | {:.0} % | {} | {} | {} |\n",
+                name,
+                c.benchmark.as_str().to_uppercase(),
+                100.0 * c.successes as f64 / c.tasks.max(1) as f64,
+                c.successes,
+                c.tasks,
+                ps,
+                ours_t,
+                pt.map(|(m, s)| format!("{m:.2} ± {s:.2}"))
+                    .unwrap_or_else(|| "N/A".into()),
+                failures
+            ));
+        }
+        out
+    }
+}
+
+/// One (level, method, benchmark) cell of Table II.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Table2Cell {
+    /// Level.
+    pub level: Level,
+    /// Method.
+    pub method: Method,
+    /// Benchmark.
+    pub benchmark: BenchmarkId,
+    /// Execution times of successful trials (s).
+    pub times: Vec<f64>,
+    /// Trials run.
+    pub trials: usize,
+    /// Failure reasons seen (kind → count).
+    pub failures: Vec<(String, usize)>,
+    /// Seeds of the trials.
+    pub seeds: Vec<u64>,
+}
+
+/// Table II.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Table2 {
+    /// Trials per cell.
+    pub trials: usize,
+    /// Base seed.
+    pub seed: u64,
+    /// Cells.
+    pub cells: Vec<Table2Cell>,
+}
+
+/// The methods of Table II.
+pub const TABLE2_METHODS: [Method; 3] = [Method::Linear, Method::Rlds, Method::LogicLfd];
+
+/// Runs Table II: `trials` disturbed episodes per level, method and benchmark.
+pub fn table2(
+    benchmarks: &[BenchmarkId],
+    trials: usize,
+    seed: u64,
+    params: SessionParams,
+    clock: &dyn Clock,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Table2, SessionError> {
+    let mut cells = vec![];
+    for level in Level::ALL {
+        for method in TABLE2_METHODS {
+            for &b in benchmarks {
+                let mut cell = Table2Cell {
+                    level,
+                    method,
+                    benchmark: b,
+                    times: vec![],
+                    trials: 0,
+                    failures: vec![],
+                    seeds: vec![],
+                };
+                for t in 0..trials {
+                    let s = seed.wrapping_add(t as u64);
+                    let spec = EpisodeSpec {
+                        benchmark: b,
+                        level: Some(level),
+                        method,
+                        mode: Mode::Paper,
+                        seed: s,
+                        scene: None,
+                    };
+                    let r = run_episode(&spec, params, clock)?;
+                    cell.trials += 1;
+                    cell.seeds.push(s);
+                    if r.success {
+                        cell.times.push(r.execution_s);
+                    } else if let Some(reason) = &r.reason {
+                        count(&mut cell.failures, reason_kind(reason));
+                    }
+                }
+                progress(&format!(
+                    "table2 {} {} {}: {}/{} succeeded",
+                    level.as_str(),
+                    method.as_str(),
+                    b.as_str(),
+                    cell.times.len(),
+                    cell.trials
+                ));
+                cells.push(cell);
+            }
+        }
+    }
+    Ok(Table2 {
+        trials,
+        seed,
+        cells,
+    })
+}
+
+impl Table2 {
+    /// Markdown: per level, each method × benchmark as "ours (paper)".
+    pub fn markdown(&self) -> String {
+        let mut out = String::new();
+        out.push_str(&format!(
+            "Table II — simulated execution time [s], mean ± sd over the successful trials of {} per cell (seeds {}..{}); paper in parentheses; N/A = no successful trial.\n\n",
+            self.trials,
+            self.seed,
+            self.seed + self.trials as u64 - 1
+        ));
+        let mut benches: Vec<BenchmarkId> = self.cells.iter().map(|c| c.benchmark).collect();
+        benches.dedup();
+        benches.sort_by_key(|b| *b as usize);
+        benches.dedup();
+        out.push_str("| level |");
+        for m in TABLE2_METHODS {
+            for b in &benches {
+                out.push_str(&format!(" {} {} |", m.as_str(), b.as_str().to_uppercase()));
+            }
+        }
+        out.push('\n');
+        out.push_str("|---|");
+        for _ in 0..TABLE2_METHODS.len() * benches.len() {
+            out.push_str("---|");
+        }
+        out.push('\n');
+        for level in Level::ALL {
+            out.push_str(&format!("| {} |", level.as_str().to_uppercase()));
+            for (mi, m) in TABLE2_METHODS.iter().enumerate() {
+                for b in &benches {
+                    let cell = self
+                        .cells
+                        .iter()
+                        .find(|c| c.level == level && c.method == *m && c.benchmark == *b);
+                    let ours = match cell.and_then(|c| stats(&c.times)) {
+                        Some((mean, sd, _)) => format!(
+                            "{mean:.2} ± {sd:.2} [{}/{}]",
+                            cell.map_or(0, |c| c.times.len()),
+                            cell.map_or(0, |c| c.trials)
+                        ),
+                        None => format!("N/A [0/{}]", cell.map_or(0, |c| c.trials)),
+                    };
+                    let paper = PAPER_TABLE2[mi].1[level as usize][*b as usize]
+                        .map(|(m, s)| format!("{m:.2} ± {s:.2}"))
+                        .unwrap_or_else(|| "N/A".into());
+                    out.push_str(&format!(" {ours} ({paper}) |"));
+                }
+            }
+            out.push('\n');
+        }
+        out.push_str("\nFailure reasons (ours):\n\n");
+        for c in &self.cells {
+            if !c.failures.is_empty() {
+                out.push_str(&format!(
+                    "- {} {} {}: {}\n",
+                    c.level.as_str().to_uppercase(),
+                    c.method.as_str(),
+                    c.benchmark.as_str().to_uppercase(),
+                    c.failures
+                        .iter()
+                        .map(|(k, n)| format!("{k} ×{n}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ));
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stats_are_mean_sample_sd_and_median() {
+        let (m, sd, med) = stats(&[1.0, 2.0, 3.0, 10.0]).unwrap();
+        assert!((m - 4.0).abs() < 1e-12);
+        assert!((sd - (((9.0 + 4.0 + 1.0 + 36.0) / 3.0) as f64).sqrt()).abs() < 1e-12);
+        assert!((med - 2.5).abs() < 1e-12);
+        assert!(stats(&[]).is_none());
+    }
+}

@@ -1,0 +1,599 @@
+//! The task level of the reactive loop (paper Algorithm 1) and of its baselines.
+//!
+//! Every decision point (start, end of an action, a task-level deviation seen mid-action) the
+//! controller gets the scene graph's facts S_C and the world's objects:
+//!
+//! ```text
+//!   S_C ← SceneGraph(env)                      (re-ground the task if S_C names a new object)
+//!   if G ⊆ S_C: done
+//!   if S_C = Ŝ (the state the current plan predicts) and pre(a_next) ⊆ S_C: execute a_next
+//!   else, by method:
+//!     logic-lfd: 𝒫 ← LogicIn(S_C, 𝒢) ? a_{k+1..N} : MultiGoalSearch(S_C, 𝒢) ⧺ a_{k+1..N}
+//!     rlds:      𝒫 ← LogicIn(S_C, 𝒢) ? a_{k+1..N} : fail ("no demonstration state matches")
+//!     tamp:      𝒫 ← TAMP(S_C, G) from scratch
+//!     linear:    never replans: a_1..a_N in order, whatever S_C is
+//!   then bind the continuous parameters (tamp streams) and execute 𝒫[0]
+//! ```
+//!
+//! Every replan is logged with its reason, planning time (caller's clock), matched k and plan.
+
+use std::collections::BTreeSet;
+
+use serde::{Deserialize, Serialize};
+
+use crate::plan::{Clock, SearchConfig, State, Task};
+
+use super::demo::{DemoTrace, MultiGoalSpec};
+use super::logic::{logic_in, plan_logic_lfd, replay, Mode};
+use super::{LfdError, Method};
+
+/// Builds the grounded task for the current world: objects (name, PDDL type) and facts S_C.
+pub trait TaskBuilder {
+    /// A task whose initial state is `facts` and whose goal is the benchmark's goal.
+    fn build(&self, objects: &[(String, String)], facts: &[String]) -> Result<Task, LfdError>;
+}
+
+/// Binds the continuous parameters of a plan (TAMP streams) or reports the first unbindable action.
+pub trait Binder {
+    /// Binds `ops` (operator indices of `task`) executed from the current world. Actions from
+    /// `demo_from` on come from the demonstration and may reuse its parameters.
+    fn bind(&mut self, task: &Task, ops: &[usize], demo_from: usize) -> Result<(), usize>;
+}
+
+/// Why an episode failed (asserted by the tests, shown by the page).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum FailReason {
+    /// The plan ran out but the goal does not hold (linear).
+    GoalNotReached {
+        /// Goal facts that do not hold.
+        missing: Vec<String>,
+    },
+    /// No demonstration state matches S_C and the method cannot plan (rlds).
+    NoDemoStateMatches {
+        /// S_C, sorted.
+        facts: Vec<String>,
+    },
+    /// The planner found no plan.
+    NoPlan {
+        /// The planner's message.
+        message: String,
+    },
+    /// An action could not be executed (linear executes blindly).
+    ActionFailed {
+        /// The action.
+        action: String,
+        /// Why.
+        why: String,
+    },
+    /// Too many replans or too much simulated time.
+    Budget {
+        /// Which budget.
+        what: String,
+    },
+}
+
+impl std::fmt::Display for FailReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FailReason::GoalNotReached { missing } => {
+                write!(f, "the plan ended but {} does not hold", missing.join(" "))
+            }
+            FailReason::NoDemoStateMatches { .. } => {
+                write!(f, "no demonstration state matches the scene")
+            }
+            FailReason::NoPlan { message } => write!(f, "no plan: {message}"),
+            FailReason::ActionFailed { action, why } => write!(f, "{action} failed: {why}"),
+            FailReason::Budget { what } => write!(f, "{what} exhausted"),
+        }
+    }
+}
+
+/// One replan, as logged.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Replan {
+    /// Why: `start`, `(on c d) no longer holds`, `(on e b) appeared`, …
+    pub reason: String,
+    /// Planning time in milliseconds by the caller's clock (not part of the replay identity).
+    pub time_ms: f64,
+    /// The demonstration state index the plan joins.
+    pub k: Option<usize>,
+    /// The new plan.
+    pub plan: Vec<String>,
+    /// Simulation tick when it happened.
+    pub tick: u64,
+    /// How many leading actions of the plan are new (not from the demonstration).
+    pub new_actions: usize,
+}
+
+/// What the controller asks the executor to do.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Decision {
+    /// Execute this action (index into the current plan).
+    Execute {
+        /// Index into [`Controller::plan_names`].
+        index: usize,
+        /// The action `(stack a b)`.
+        action: String,
+    },
+    /// The goal holds.
+    Done,
+    /// The episode failed.
+    Failed(FailReason),
+}
+
+/// Tunables of the task level.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ControlParams {
+    /// Search configuration for Logic-LfD's multi-goal search and the TAMP skeletons.
+    pub search: SearchConfig,
+    /// Maximum replans in an episode before giving up.
+    pub max_replans: usize,
+    /// Skeletons tried per replan when binding fails (TAMP / Logic-LfD).
+    pub max_skeletons: usize,
+}
+
+impl Default for ControlParams {
+    fn default() -> Self {
+        ControlParams {
+            search: SearchConfig {
+                algorithm: crate::plan::Algorithm::Astar,
+                heuristic: crate::plan::HeuristicKind::HMax,
+                max_nodes: Some(200_000),
+                time_limit_secs: None,
+            },
+            max_replans: 40,
+            max_skeletons: 8,
+        }
+    }
+}
+
+/// The task-level controller of one episode.
+pub struct Controller {
+    method: Method,
+    mode: Mode,
+    params: ControlParams,
+    trace: DemoTrace,
+    task: Task,
+    spec: MultiGoalSpec,
+    objects: Vec<(String, String)>,
+    plan: Vec<usize>,
+    plan_names: Vec<String>,
+    /// States predicted by the plan: `predicted[i]` before `plan[i]`.
+    predicted: Vec<State>,
+    cursor: usize,
+    plan_k: Option<usize>,
+    replans: Vec<Replan>,
+    started: bool,
+}
+
+/// A task-level observation: S_C as a state of the current task.
+fn observe(task: &Task, facts: &[String]) -> Option<State> {
+    let statics: BTreeSet<&str> = task.static_facts.iter().map(String::as_str).collect();
+    let mut s = task.empty_state();
+    for f in facts {
+        match task.fact_id(f) {
+            Some(id) => s.insert(id),
+            None if statics.contains(f.as_str()) => {}
+            None => return None,
+        }
+    }
+    // A static fact of a predicate the scene graph reports must still hold.
+    let preds: BTreeSet<&str> = facts.iter().map(|f| predicate(f)).collect();
+    let present: BTreeSet<&str> = facts.iter().map(String::as_str).collect();
+    for f in &task.static_facts {
+        if preds.contains(predicate(f)) && !present.contains(f.as_str()) {
+            return None;
+        }
+    }
+    Some(s)
+}
+
+fn predicate(fact: &str) -> &str {
+    fact.trim_start_matches('(')
+        .split([' ', ')'])
+        .next()
+        .unwrap_or("")
+}
+
+impl Controller {
+    /// A controller for `method` from the demonstration `trace` (derived on the template task).
+    pub fn new(
+        method: Method,
+        mode: Mode,
+        params: ControlParams,
+        trace: DemoTrace,
+        task: Task,
+        objects: Vec<(String, String)>,
+    ) -> Self {
+        let spec = MultiGoalSpec::new(&task, &trace);
+        Controller {
+            method,
+            mode,
+            params,
+            trace,
+            task,
+            spec,
+            objects,
+            plan: vec![],
+            plan_names: vec![],
+            predicted: vec![],
+            cursor: 0,
+            plan_k: None,
+            replans: vec![],
+            started: false,
+        }
+    }
+
+    /// The method.
+    pub fn method(&self) -> Method {
+        self.method
+    }
+
+    /// The current grounded task.
+    pub fn task(&self) -> &Task {
+        &self.task
+    }
+
+    /// The demonstration trace.
+    pub fn trace(&self) -> &DemoTrace {
+        &self.trace
+    }
+
+    /// The current plan as action names.
+    pub fn plan_names(&self) -> &[String] {
+        &self.plan_names
+    }
+
+    /// The current plan as operator indices of [`Controller::task`].
+    pub fn plan_ops(&self) -> &[usize] {
+        &self.plan
+    }
+
+    /// Index of the next action to execute in the plan.
+    pub fn cursor(&self) -> usize {
+        self.cursor
+    }
+
+    /// The demonstration state the current plan joins.
+    pub fn matched_k(&self) -> Option<usize> {
+        self.plan_k
+    }
+
+    /// Every replan so far.
+    pub fn replans(&self) -> &[Replan] {
+        &self.replans
+    }
+
+    /// Drops the current plan; the next decision replans (`cancel` on the page).
+    pub fn cancel(&mut self) {
+        self.plan.clear();
+        self.plan_names.clear();
+        self.predicted.clear();
+        self.cursor = 0;
+        self.plan_k = None;
+    }
+
+    /// Marks the action at the cursor as executed.
+    pub fn advance(&mut self) {
+        self.cursor += 1;
+    }
+
+    /// The fluents the plan predicts now (before the action at the cursor), if there is a plan.
+    fn expected(&self) -> Option<&State> {
+        self.predicted.get(self.cursor)
+    }
+
+    /// Whether S_C is consistent with executing the action at the cursor: every fact that the
+    /// action does not touch is as predicted. `None` if S_C cannot be expressed in the task.
+    pub fn consistent_during_action(&self, facts: &[String]) -> bool {
+        let Some(s) = observe(&self.task, facts) else {
+            return false;
+        };
+        let (Some(before), Some(&op)) = (self.expected(), self.plan.get(self.cursor)) else {
+            return true;
+        };
+        let o = &self.task.operators[op];
+        let touched: BTreeSet<u32> = o
+            .pre
+            .iter()
+            .chain(&o.pre_neg)
+            .chain(&o.add)
+            .chain(&o.del)
+            .copied()
+            .collect();
+        (0..self.task.facts.len() as u32)
+            .filter(|f| !touched.contains(f))
+            .all(|f| s.contains(f) == before.contains(f))
+    }
+
+    /// Whether the fact set, seen after the action at the cursor ended, is what the plan predicted.
+    pub fn action_had_its_effect(&self, facts: &[String]) -> bool {
+        match (
+            observe(&self.task, facts),
+            self.predicted.get(self.cursor + 1),
+        ) {
+            (Some(s), Some(p)) => &s == p,
+            _ => false,
+        }
+    }
+
+    /// The decision at a decision point (start, after an action, after a deviation).
+    pub fn decide(
+        &mut self,
+        facts: &[String],
+        objects: &[(String, String)],
+        builder: &dyn TaskBuilder,
+        binder: &mut dyn Binder,
+        clock: &dyn Clock,
+        tick: u64,
+    ) -> Decision {
+        let t0 = clock.now_secs();
+        let mut regrounded = false;
+        let s = match observe(&self.task, facts) {
+            Some(s) if objects == self.objects.as_slice() => s,
+            _ => {
+                // New objects or facts outside the task: re-ground from the scene.
+                match builder.build(objects, facts) {
+                    Ok(task) => {
+                        self.spec = MultiGoalSpec::new(&task, &self.trace);
+                        self.task = task;
+                        self.objects = objects.to_vec();
+                        regrounded = true;
+                        // Re-express the plan in the new task's operator indices.
+                        let ops: Option<Vec<usize>> = self
+                            .plan_names
+                            .iter()
+                            .map(|n| super::demo::operator_index(&self.task, n))
+                            .collect();
+                        match ops {
+                            Some(ops) => self.plan = ops,
+                            None => self.cancel(),
+                        }
+                        self.predicted.clear();
+                        match observe(&self.task, facts) {
+                            Some(s) => s,
+                            None => {
+                                return Decision::Failed(FailReason::NoPlan {
+                                    message: "the scene has facts the domain cannot express".into(),
+                                })
+                            }
+                        }
+                    }
+                    Err(e) => {
+                        return Decision::Failed(FailReason::NoPlan {
+                            message: e.to_string(),
+                        })
+                    }
+                }
+            }
+        };
+        if self.task.goal.holds(&s) {
+            return Decision::Done;
+        }
+        if self.method == Method::Linear {
+            return self.decide_linear(&s, clock, t0, tick);
+        }
+        // Is the current plan still good?
+        let reason = if !self.started {
+            "start".to_string()
+        } else if self.plan.is_empty() {
+            "no plan (cancelled)".to_string()
+        } else if self.cursor >= self.plan.len() {
+            "the plan ended but the goal does not hold".to_string()
+        } else {
+            let expected = if regrounded {
+                None
+            } else {
+                self.expected().cloned()
+            };
+            let op = &self.task.operators[self.plan[self.cursor]];
+            match expected {
+                Some(e) if e == s && op.applicable(&s) => {
+                    return Decision::Execute {
+                        index: self.cursor,
+                        action: self.plan_names[self.cursor].clone(),
+                    };
+                }
+                Some(e) if e != s => self.describe_change(&e, &s),
+                Some(_) => format!(
+                    "a precondition of {} does not hold: {}",
+                    op.name,
+                    op.pre
+                        .iter()
+                        .filter(|&&f| !s.contains(f))
+                        .map(|&f| self.task.facts[f as usize].clone())
+                        .collect::<Vec<_>>()
+                        .join(" ")
+                ),
+                None if regrounded => "new objects in the scene".to_string(),
+                None => "unknown state".to_string(),
+            }
+        };
+        self.started = true;
+        if self.replans.len() >= self.params.max_replans {
+            return Decision::Failed(FailReason::Budget {
+                what: "replan budget".into(),
+            });
+        }
+        let planned = match self.method {
+            Method::LogicLfd => self.plan_with_logic_lfd(&s, binder, clock),
+            Method::Rlds => self.plan_with_rlds(&s),
+            Method::Tamp => self.plan_with_tamp(&s, binder, clock),
+            Method::Linear => unreachable_linear(),
+        };
+        let time_ms = (clock.now_secs() - t0) * 1e3;
+        match planned {
+            Ok((ops, k, new_actions)) => {
+                self.install(&s, ops, k);
+                self.replans.push(Replan {
+                    reason,
+                    time_ms,
+                    k,
+                    plan: self.plan_names.clone(),
+                    tick,
+                    new_actions,
+                });
+                if self.plan.is_empty() {
+                    return Decision::Done;
+                }
+                Decision::Execute {
+                    index: 0,
+                    action: self.plan_names[0].clone(),
+                }
+            }
+            Err(reason) => Decision::Failed(reason),
+        }
+    }
+
+    fn install(&mut self, s: &State, ops: Vec<usize>, k: Option<usize>) {
+        let mut predicted = vec![s.clone()];
+        let mut cur = s.clone();
+        for &o in &ops {
+            cur = self.task.operators[o].apply(&cur);
+            predicted.push(cur.clone());
+        }
+        self.plan_names = ops
+            .iter()
+            .map(|&o| self.task.operators[o].name.clone())
+            .collect();
+        self.plan = ops;
+        self.predicted = predicted;
+        self.cursor = 0;
+        self.plan_k = k;
+    }
+
+    fn describe_change(&self, expected: &State, s: &State) -> String {
+        let gone: Vec<&str> = expected
+            .facts()
+            .filter(|&f| !s.contains(f))
+            .map(|f| self.task.facts[f as usize].as_str())
+            .collect();
+        let new: Vec<&str> = s
+            .facts()
+            .filter(|&f| !expected.contains(f))
+            .map(|f| self.task.facts[f as usize].as_str())
+            .collect();
+        match (gone.is_empty(), new.is_empty()) {
+            (false, _) => format!("{} no longer holds", gone.join(" ")),
+            (true, false) => format!("{} appeared", new.join(" ")),
+            _ => "the scene changed".into(),
+        }
+    }
+
+    fn decide_linear(&mut self, s: &State, clock: &dyn Clock, t0: f64, tick: u64) -> Decision {
+        if !self.started {
+            self.started = true;
+            let ops: Vec<usize> = self.spec.actions.iter().flatten().copied().collect();
+            self.install(s, ops, Some(0));
+            self.replans.push(Replan {
+                reason: "start".into(),
+                time_ms: (clock.now_secs() - t0) * 1e3,
+                k: Some(0),
+                plan: self.plan_names.clone(),
+                tick,
+                new_actions: 0,
+            });
+        }
+        if self.cursor < self.plan.len() {
+            return Decision::Execute {
+                index: self.cursor,
+                action: self.plan_names[self.cursor].clone(),
+            };
+        }
+        let missing = self.missing_goal_facts(s);
+        Decision::Failed(FailReason::GoalNotReached { missing })
+    }
+
+    fn missing_goal_facts(&self, s: &State) -> Vec<String> {
+        self.task
+            .goal
+            .alternatives
+            .first()
+            .map(|c| {
+                c.pos
+                    .iter()
+                    .filter(|&&f| !s.contains(f))
+                    .map(|&f| self.task.facts[f as usize].clone())
+                    .collect()
+            })
+            .unwrap_or_default()
+    }
+
+    fn plan_with_rlds(&self, s: &State) -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
+        if let Some(k) = logic_in(&self.spec, s) {
+            if let Some(ops) = self.spec.suffix(k) {
+                if replay(&self.task, s, &ops).is_ok_and(|e| self.task.goal.holds(&e)) {
+                    return Ok((ops, Some(k), 0));
+                }
+            }
+        }
+        Err(FailReason::NoDemoStateMatches {
+            facts: super::demo::state_names(&self.task, s),
+        })
+    }
+
+    fn plan_with_logic_lfd(
+        &self,
+        s: &State,
+        binder: &mut dyn Binder,
+        clock: &dyn Clock,
+    ) -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
+        let mut task = self.task.clone();
+        let mut last = String::from("no skeleton");
+        for _ in 0..self.params.max_skeletons {
+            let spec = MultiGoalSpec::new(&task, &self.trace);
+            let p = plan_logic_lfd(&task, &spec, s, self.mode, &self.params.search, clock)
+                .map_err(|e| FailReason::NoPlan {
+                    message: e.to_string(),
+                })?;
+            match binder.bind(&task, &p.ops, p.prefix_len) {
+                Ok(()) => return Ok((p.ops, p.k, p.prefix_len)),
+                Err(i) => {
+                    last = format!("cannot bind {}", task.operators[p.ops[i]].name);
+                    forbid(&mut task, p.ops[i]);
+                }
+            }
+        }
+        Err(FailReason::NoPlan { message: last })
+    }
+
+    fn plan_with_tamp(
+        &self,
+        s: &State,
+        binder: &mut dyn Binder,
+        clock: &dyn Clock,
+    ) -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
+        let r = crate::tamp::plan_from_scratch(
+            &self.task,
+            s,
+            binder,
+            &self.params.search,
+            self.params.max_skeletons,
+            clock,
+        )
+        .map_err(|e| FailReason::NoPlan {
+            message: e.to_string(),
+        })?;
+        let n = r.len();
+        Ok((r, None, n))
+    }
+}
+
+fn unreachable_linear() -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
+    Err(FailReason::NoPlan {
+        message: "linear never replans".into(),
+    })
+}
+
+/// Makes operator `o` inapplicable (a skeleton whose binding failed is not proposed again).
+pub(crate) fn forbid(task: &mut Task, o: usize) {
+    let op = &mut task.operators[o];
+    if let Some(&f) = op.pre.first() {
+        if !op.pre_neg.contains(&f) {
+            op.pre_neg.push(f);
+        }
+    } else {
+        op.pre_neg.extend(0..task.facts.len() as u32);
+    }
+}

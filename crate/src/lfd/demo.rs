@@ -1,0 +1,205 @@
+//! Demonstration → multi-goal specification (paper §III-C, Algorithm 1 line 4).
+//!
+//! A demonstration is the action sequence a_1..a_N shown once. Applying it to the initial state
+//! gives the logical state sequence
+//!
+//! ```text
+//!   L_0 = S_init,   L_k = succ(L_{k-1}, a_k)   (k = 1..N),   G ⊆ L_N
+//! ```
+//!
+//! over *fluents only* (the grounded [`Task`] has already folded static facts away, which is the
+//! paper's `MultiGoalsSpecification` filter). The multi-goal specification 𝒢 = {L_0..L_N, G} is
+//! what the multi-goal search plans to; goal `k` carries the terminal cost
+//!
+//! ```text
+//!   c_k = Σ_{j>k} cost(a_j)        (= (N − k) × unit cost for unit-cost domains),   c_G = 0
+//! ```
+//!
+//! so that the prioritised search minimises "cost to reach L_k + cost of the demo left after k".
+//! The specification is compiled against a particular task: when the world gains an object (L4),
+//! the task is re-grounded and the specification recompiled from the fact *names*.
+
+use std::collections::BTreeSet;
+
+use crate::plan::{Condition, Goal, State, Task};
+
+use super::LfdError;
+
+/// Normalises an action written as `(stack a b)`, `stack a b` or `(STACK  A B)` to the grounded
+/// operator spelling `(stack a b)`.
+pub fn normalize_action(text: &str) -> String {
+    let t = text.trim();
+    let t = t.strip_prefix('(').unwrap_or(t);
+    let t = t.strip_suffix(')').unwrap_or(t);
+    let words: Vec<String> = t.split_whitespace().map(|w| w.to_lowercase()).collect();
+    format!("({})", words.join(" "))
+}
+
+/// The index of the operator named `name` (any spelling accepted by [`normalize_action`]).
+pub fn operator_index(task: &Task, name: &str) -> Option<usize> {
+    let n = normalize_action(name);
+    task.operators.iter().position(|o| o.name == n)
+}
+
+/// The fluent names that hold in `s`, sorted.
+pub fn state_names(task: &Task, s: &State) -> Vec<String> {
+    let mut v: Vec<String> = s.facts().map(|f| task.facts[f as usize].clone()).collect();
+    v.sort();
+    v
+}
+
+/// The demonstration at the logical level: its actions and the states they pass through, by name
+/// (independent of any particular grounding).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DemoTrace {
+    /// a_1..a_N, as grounded operator names `(stack a b)`.
+    pub actions: Vec<String>,
+    /// L_0..L_N: the fluents that hold before a_1, after a_1, …, after a_N.
+    pub states: Vec<BTreeSet<String>>,
+}
+
+impl DemoTrace {
+    /// Applies the demonstrated actions from the task's initial state, checking each is applicable.
+    pub fn derive(task: &Task, actions: &[String]) -> Result<Self, LfdError> {
+        let mut s = task.init.clone();
+        let mut states = vec![names_of(task, &s)];
+        let mut names = Vec::with_capacity(actions.len());
+        for (i, a) in actions.iter().enumerate() {
+            let idx = operator_index(task, a).ok_or_else(|| LfdError::UnknownAction {
+                index: i,
+                action: a.clone(),
+            })?;
+            let op = &task.operators[idx];
+            if !op.applicable(&s) {
+                return Err(LfdError::DemoNotApplicable {
+                    index: i,
+                    action: op.name.clone(),
+                });
+            }
+            s = op.apply(&s);
+            names.push(op.name.clone());
+            states.push(names_of(task, &s));
+        }
+        if !task.goal.holds(&s) {
+            return Err(LfdError::DemoMissesGoal);
+        }
+        Ok(DemoTrace {
+            actions: names,
+            states,
+        })
+    }
+
+    /// N, the number of demonstrated actions.
+    pub fn len(&self) -> usize {
+        self.actions.len()
+    }
+
+    /// Whether the demonstration has no action.
+    pub fn is_empty(&self) -> bool {
+        self.actions.is_empty()
+    }
+}
+
+fn names_of(task: &Task, s: &State) -> BTreeSet<String> {
+    s.facts().map(|f| task.facts[f as usize].clone()).collect()
+}
+
+/// The multi-goal specification 𝒢 compiled against one grounded task.
+#[derive(Clone, Debug)]
+pub struct MultiGoalSpec {
+    /// L_0..L_N as conditions over the task's fluents (`None`: L_k mentions a fact this task can
+    /// never make true, so it cannot be reached).
+    pub states: Vec<Option<Condition>>,
+    /// Operator index of each demonstrated action a_1..a_N in this task (`None`: not grounded).
+    pub actions: Vec<Option<usize>>,
+    /// The demonstrated action names a_1..a_N.
+    pub action_names: Vec<String>,
+    /// Search goals: index k ≤ N is L_k with c_k = cost of the demo after k; index N+1 is G (c = 0).
+    pub goals: Vec<Goal>,
+}
+
+impl MultiGoalSpec {
+    /// Compiles the trace against `task`. Facts of L_k that are static in `task` and true are
+    /// dropped; facts the task does not know make L_k unreachable.
+    pub fn new(task: &Task, demo: &DemoTrace) -> Self {
+        let statics: BTreeSet<&str> = task.static_facts.iter().map(String::as_str).collect();
+        let states: Vec<Option<Condition>> = demo
+            .states
+            .iter()
+            .map(|l| {
+                let mut pos = Vec::with_capacity(l.len());
+                for f in l {
+                    match task.fact_id(f) {
+                        Some(id) => pos.push(id),
+                        None if statics.contains(f.as_str()) => {}
+                        None => return None,
+                    }
+                }
+                pos.sort_unstable();
+                Some(Condition { pos, neg: vec![] })
+            })
+            .collect();
+        let actions: Vec<Option<usize>> = demo
+            .actions
+            .iter()
+            .map(|a| operator_index(task, a))
+            .collect();
+        let n = actions.len();
+        // c_k = Σ_{j>k} cost(a_j); an ungrounded action makes the suffix unusable (c = ∞ → drop).
+        let mut suffix_cost = vec![Some(0u64); n + 1];
+        for k in (0..n).rev() {
+            suffix_cost[k] = match (suffix_cost[k + 1], actions[k]) {
+                (Some(c), Some(i)) => Some(c + u64::from(task.operators[i].cost)),
+                _ => None,
+            };
+        }
+        let mut goals: Vec<Goal> = states
+            .iter()
+            .zip(&suffix_cost)
+            .map(|(c, cost)| match (c, cost) {
+                (Some(c), Some(cost)) => Goal {
+                    alternatives: vec![c.clone()],
+                    terminal_cost: *cost,
+                },
+                _ => Goal {
+                    alternatives: vec![],
+                    terminal_cost: 0,
+                },
+            })
+            .collect();
+        goals.push(Goal {
+            alternatives: task.goal.alternatives.clone(),
+            terminal_cost: 0,
+        });
+        MultiGoalSpec {
+            states,
+            actions,
+            action_names: demo.actions.clone(),
+            goals,
+        }
+    }
+
+    /// N, the number of demonstrated actions.
+    pub fn len(&self) -> usize {
+        self.actions.len()
+    }
+
+    /// Whether the demonstration is empty.
+    pub fn is_empty(&self) -> bool {
+        self.actions.is_empty()
+    }
+
+    /// Index of the goal G in [`MultiGoalSpec::goals`] (N + 1).
+    pub fn goal_index(&self) -> usize {
+        self.actions.len() + 1
+    }
+
+    /// The operator indices of a_{k+1}..a_N (the suffix after L_k), or `None` if one of them is
+    /// not grounded in this task. For `k = N + 1` (the goal G) the suffix is empty.
+    pub fn suffix(&self, k: usize) -> Option<Vec<usize>> {
+        if k >= self.actions.len() {
+            return Some(vec![]);
+        }
+        self.actions[k..].iter().copied().collect()
+    }
+}

@@ -1,0 +1,275 @@
+//! Disturbance injection for the loop (paper §IV-B), defined against the demonstration:
+//!
+//! ```text
+//!   L1  move one free block on its support; S_C unchanged
+//!   L2  move one clear block (to the table or onto another block) so that S_C = L_k for some k
+//!   L3  move one clear block so that no L_k ⊆ S_C (a state the demonstration never visits)
+//!   L4  add a new block on top of a clear block so that no L_k ⊆ S_C (it is in the way)
+//! ```
+//!
+//! Candidates are tried in a seeded random order through the simulator's own user-move rule
+//! ([`World::move_block`]: settles onto the support below, refuses interpenetration), so every
+//! injected world satisfies the simulator's invariants. A candidate whose resulting facts do not
+//! meet the level's definition is undone.
+
+use std::collections::BTreeSet;
+
+use nalgebra::Vector3;
+use rand::seq::SliceRandom;
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+
+use crate::sim::snapshot::{BodyKind, BodySnapshot, PoseSnapshot, ShapeSnapshot};
+use crate::sim::{SceneGraph, World};
+
+use super::demo::DemoTrace;
+use super::session::Injection;
+
+fn facts(world: &World) -> BTreeSet<String> {
+    SceneGraph::from_world(world)
+        .to_strings()
+        .into_iter()
+        .collect()
+}
+
+fn centre(world: &World, b: &str) -> Option<[f64; 3]> {
+    world.body_pose(b).map(|p| {
+        let v = p.translation.vector;
+        [v.x, v.y, v.z]
+    })
+}
+
+/// Free blocks (not held, not lost), sorted.
+fn free_blocks(world: &World) -> Vec<String> {
+    let held: BTreeSet<String> = (0..world.arm_names().len())
+        .filter_map(|a| world.held_by(a).map(str::to_string))
+        .collect();
+    let mut v: Vec<String> = world
+        .block_names()
+        .into_iter()
+        .filter(|b| !held.contains(*b) && !world.is_lost(b))
+        .map(str::to_string)
+        .collect();
+    v.sort();
+    v
+}
+
+/// Whether nothing stands on `b` (by `(clear b)` where the domain has it, else by `on`).
+fn is_clear(f: &BTreeSet<String>, b: &str) -> bool {
+    if f.iter().any(|x| x.starts_with("(clear ")) {
+        return f.contains(&format!("(clear {b})"));
+    }
+    !f.iter()
+        .any(|x| x.starts_with("(on ") && x.ends_with(&format!(" {b})")))
+}
+
+/// A table spot for a block: random (x, y) over a table top in reach of some arm.
+fn table_spot(world: &World, rng: &mut Pcg64Mcg) -> Option<[f64; 2]> {
+    let snap = world.snapshot();
+    let tables: Vec<_> = snap
+        .bodies
+        .iter()
+        .filter(|b| b.kind == BodyKind::Table)
+        .filter_map(|b| world.body_aabb(&b.name))
+        .collect();
+    for _ in 0..50 {
+        let (lo, hi) = tables.get(rng.random_range(0..tables.len().max(1)))?;
+        let x = rng.random_range(lo.x + 0.05..hi.x - 0.05);
+        let y = rng.random_range(lo.y + 0.05..hi.y - 0.05);
+        let ok = snap.arms.iter().any(|a| {
+            let b = a.base.position;
+            let d = (x - b[0]).hypot(y - b[1]);
+            d > a.reach.min_radius + 0.03 && d < a.reach.max_radius - 0.05
+        });
+        if ok {
+            return Some([x, y]);
+        }
+    }
+    None
+}
+
+/// Injects a disturbance of `level` (`l1`..`l4`) into `world`; `trace` defines "seen in the
+/// demonstration". Deterministic in `seed`.
+pub fn inject(
+    world: &mut World,
+    level: &str,
+    trace: &DemoTrace,
+    seed: u64,
+) -> Result<Injection, String> {
+    let mut rng = Pcg64Mcg::seed_from_u64(seed);
+    let before = facts(world);
+    let seen_subset = |f: &BTreeSet<String>| trace.states.iter().any(|l| l.is_subset(f));
+    let level = level.to_ascii_lowercase();
+    let blocks = free_blocks(world);
+    match level.as_str() {
+        "l1" => {
+            let mut order = blocks.clone();
+            order.shuffle(&mut rng);
+            for b in order {
+                let Some(c) = centre(world, &b) else { continue };
+                for _ in 0..12 {
+                    let a = rng.random_range(0.0..std::f64::consts::TAU);
+                    let r = rng.random_range(0.02..0.05);
+                    let target = Vector3::new(c[0] + r * a.cos(), c[1] + r * a.sin(), c[2] + 0.001);
+                    let saved = world.clone();
+                    if world.move_block(&b, target).is_ok() && facts(world) == before {
+                        let to = centre(world, &b).unwrap_or(c);
+                        return Ok(Injection {
+                            level: "l1".into(),
+                            description: format!(
+                                "L1: moved {b} by {:.0} mm; the facts are unchanged",
+                                r * 1e3
+                            ),
+                            moved: vec![(b.clone(), to)],
+                        });
+                    }
+                    *world = saved;
+                }
+            }
+            Err("L1: no block can be moved without changing the facts".into())
+        }
+        "l2" | "l3" => {
+            let want_seen = level == "l2";
+            let n = trace.states.len().saturating_sub(1);
+            let cur = trace.states.iter().position(|l| *l == before);
+            let mut moves: Vec<(String, Option<String>)> = vec![];
+            for b in &blocks {
+                if !is_clear(&before, b) {
+                    continue;
+                }
+                moves.push((b.clone(), None));
+                for o in &blocks {
+                    if o != b && is_clear(&before, o) {
+                        moves.push((b.clone(), Some(o.clone())));
+                    }
+                }
+            }
+            moves.shuffle(&mut rng);
+            // L2 prefers going back along the demonstration (work is undone), then any other
+            // demonstration state short of the goal.
+            let passes: &[u8] = if want_seen { &[0, 1] } else { &[1] };
+            for &pass in passes {
+                for (b, onto) in &moves {
+                    let target = match onto {
+                        Some(o) => {
+                            let Some(c) = centre(world, o) else { continue };
+                            Vector3::new(c[0], c[1], c[2] + 0.1)
+                        }
+                        None => {
+                            let Some([x, y]) = table_spot(world, &mut rng) else {
+                                continue;
+                            };
+                            Vector3::new(x, y, 0.1)
+                        }
+                    };
+                    let saved = world.clone();
+                    if world.move_block(b, target).is_ok() {
+                        let after = facts(world);
+                        let ok = after != before
+                            && if want_seen {
+                                trace.states.iter().enumerate().any(|(k, l)| {
+                                    *l == after
+                                        && k < n
+                                        && (pass == 1 || cur.is_some_and(|c| k < c))
+                                })
+                            } else {
+                                !seen_subset(&after)
+                            };
+                        if ok {
+                            let to = centre(world, b).unwrap_or([0.0; 3]);
+                            let place = onto
+                                .as_ref()
+                                .map(|o| format!("onto {o}"))
+                                .unwrap_or_else(|| "to the table".into());
+                            let what = if want_seen {
+                                "a state of the demonstration"
+                            } else {
+                                "a state the demonstration never visits"
+                            };
+                            return Ok(Injection {
+                                level: level.clone(),
+                                description: format!(
+                                    "{}: moved {b} {place}: {what}",
+                                    level.to_uppercase()
+                                ),
+                                moved: vec![(b.clone(), to)],
+                            });
+                        }
+                    }
+                    *world = saved;
+                }
+            }
+            Err(format!(
+                "{}: no single block move reaches such a state",
+                level.to_uppercase()
+            ))
+        }
+        "l4" => {
+            let snap = world.snapshot();
+            let name = ["e", "f", "g", "h", "x", "y", "z"]
+                .into_iter()
+                .find(|n| {
+                    !snap.bodies.iter().any(|b| b.name == *n)
+                        && !snap.arms.iter().any(|a| a.name == *n)
+                })
+                .ok_or("L4: no free block name")?;
+            let mut targets: Vec<String> = blocks
+                .iter()
+                .filter(|b| is_clear(&before, b))
+                .cloned()
+                .collect();
+            targets.shuffle(&mut rng);
+            // Blocks that something must still be stacked on come first: the new block is in
+            // the way there.
+            let goal = trace.states.last().cloned().unwrap_or_default();
+            let needed = |t: &String| {
+                goal.iter().any(|f| {
+                    f.starts_with("(on ") && f.ends_with(&format!(" {t})")) && !before.contains(f)
+                })
+            };
+            targets.sort_by_key(|t| !needed(t));
+            // A spot on the table for the new block first, then it is dropped on the target.
+            let Some([x, y]) = table_spot(world, &mut rng) else {
+                return Err("L4: no room for a new block".into());
+            };
+            for t in targets {
+                let Some(c) = centre(world, &t) else { continue };
+                let mut s2 = snap.clone();
+                s2.bodies.push(BodySnapshot {
+                    name: name.to_string(),
+                    kind: BodyKind::Block,
+                    shape: ShapeSnapshot::Cuboid {
+                        half_extents: [0.03; 3],
+                    },
+                    pose: PoseSnapshot {
+                        position: [x, y, 0.03],
+                        quaternion: [0.0, 0.0, 0.0, 1.0],
+                    },
+                    color: "#9467bd".into(),
+                    lost: false,
+                });
+                let Ok(mut w2) = World::from_snapshot(&s2) else {
+                    continue;
+                };
+                if w2
+                    .move_block(name, Vector3::new(c[0], c[1], c[2] + 0.1))
+                    .is_err()
+                {
+                    continue;
+                }
+                let after = facts(&w2);
+                if !seen_subset(&after) {
+                    let to = centre(&w2, name).unwrap_or([0.0; 3]);
+                    *world = w2;
+                    return Ok(Injection {
+                        level: "l4".into(),
+                        description: format!("L4: a new block {name} appeared on {t}"),
+                        moved: vec![(name.to_string(), to)],
+                    });
+                }
+            }
+            Err("L4: no block can take a new block on top".into())
+        }
+        other => Err(format!("unknown disturbance level {other:?} (l1..l4)")),
+    }
+}

@@ -1,0 +1,746 @@
+//! Executing one grounded action in the simulator through its motion skill (Algorithm 1 line 14,
+//! τ = LQT-CP(a)).
+//!
+//! An action is classified from its grounded effects, not its name, so every benchmark's domain
+//! works the same way:
+//!
+//! ```text
+//!   add ∋ (holding r x)                          → grasp x with arm r     (pick, unstack)
+//!   del ∋ (holding r x), add ∋ (on x y)          → release x on block y   (stack)
+//!   del ∋ (holding r x), add ∋ (ontable|onshelf|at x …) → release x at a placement (place)
+//!   r holds the hook, add ∋ (inreach r x)        → pull x with the hook   (pull)
+//! ```
+//!
+//! The motion is a chain of segments, each a skill trajectory τ from the current end-effector
+//! state to a via-point expressed in the frame of the object acted on (pre-grasp above it, the
+//! grasp, the lift). Object-centric re-anchoring: while a segment runs, if its anchor object moves
+//! by more than `reanchor_tolerance` (a motion-level disturbance, L1), the rest of the segment is
+//! re-planned from the current state to the new pose; the skill's feedback absorbs the rest.
+
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+
+use crate::plan::{Operator, Task};
+use crate::sim::geometry::{grasp_pose, rest_pose, rest_pose_on, tcp_for_body_pose};
+use crate::sim::{GripperCommand, World, WorldEvent};
+
+use super::skill::{SkillLibrary, SkillSegment};
+
+/// Tunables of action execution (metres, seconds).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ExecParams {
+    /// Height of the approach / retreat via-points above a grasp or placement (m).
+    pub approach_height: f64,
+    /// Height the held block is lifted to after a grasp (m).
+    pub lift_height: f64,
+    /// Mean Cartesian speed of the end effector along a segment (m/s).
+    pub speed: f64,
+    /// Shortest duration of a segment (s).
+    pub min_segment: f64,
+    /// The end effector is "there" when within this distance of the segment's goal (m).
+    pub reach_tolerance: f64,
+    /// How long the arm may lag behind a segment's end before the action fails (s).
+    pub settle_timeout: f64,
+    /// Time given to the fingers to open or close (s).
+    pub gripper_time: f64,
+    /// An anchor object moving more than this re-plans the segment (m).
+    pub reanchor_tolerance: f64,
+    /// Clearance left under a released block (m).
+    pub release_clearance: f64,
+}
+
+impl Default for ExecParams {
+    fn default() -> Self {
+        ExecParams {
+            approach_height: 0.10,
+            lift_height: 0.12,
+            speed: 0.35,
+            min_segment: 0.3,
+            reach_tolerance: 0.004,
+            settle_timeout: 1.5,
+            gripper_time: 0.15,
+            reanchor_tolerance: 0.005,
+            release_clearance: 0.003,
+        }
+    }
+}
+
+/// Where a released body goes.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Placement {
+    /// Centred on top of this block.
+    OnBlock(String),
+    /// Resting with its centre above `(x, y)` with yaw `yaw` (rad) on whatever is below.
+    At {
+        /// x (m).
+        x: f64,
+        /// y (m).
+        y: f64,
+        /// Yaw (rad).
+        yaw: f64,
+    },
+}
+
+/// What an action does physically.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ActionKind {
+    /// Grasp `body` with `arm` (pick / unstack).
+    Grasp {
+        /// Arm index.
+        arm: usize,
+        /// The body.
+        body: String,
+    },
+    /// Release the held `body` at a placement (place / stack).
+    Release {
+        /// Arm index.
+        arm: usize,
+        /// The body.
+        body: String,
+        /// Where; `None` until the placement is bound by a stream.
+        placement: Option<Placement>,
+    },
+    /// Pull `body` towards the arm with the held hook.
+    Pull {
+        /// Arm index.
+        arm: usize,
+        /// The hook.
+        hook: String,
+        /// The body pulled.
+        body: String,
+    },
+}
+
+pub(crate) fn fact_args(fact: &str) -> (&str, Vec<&str>) {
+    let inner = fact.trim().trim_start_matches('(').trim_end_matches(')');
+    let mut it = inner.split_whitespace();
+    let p = it.next().unwrap_or("");
+    (p, it.collect())
+}
+
+/// Classifies a grounded operator (see the module documentation). `None` for an action without
+/// a physical effect the executor knows.
+pub fn classify(task: &Task, op: &Operator, world: &World) -> Option<ActionKind> {
+    let names =
+        |v: &[u32]| -> Vec<String> { v.iter().map(|&f| task.facts[f as usize].clone()).collect() };
+    let add = names(&op.add);
+    let del = names(&op.del);
+    let pre = names(&op.pre);
+    for f in &add {
+        let (p, a) = fact_args(f);
+        if p == "holding" && a.len() == 2 {
+            return Some(ActionKind::Grasp {
+                arm: world.arm_index(a[0])?,
+                body: a[1].to_string(),
+            });
+        }
+    }
+    for f in &del {
+        let (p, a) = fact_args(f);
+        if p == "holding" && a.len() == 2 {
+            let arm = world.arm_index(a[0])?;
+            let body = a[1].to_string();
+            let on = add.iter().find_map(|g| {
+                let (q, b) = fact_args(g);
+                (q == "on" && b.len() == 2 && b[0] == body).then(|| b[1].to_string())
+            });
+            return Some(ActionKind::Release {
+                arm,
+                placement: on.map(Placement::OnBlock),
+                body,
+            });
+        }
+    }
+    // Pull: the arm holds the hook (precondition) and the block comes into reach.
+    let hook = pre.iter().find_map(|f| {
+        let (p, a) = fact_args(f);
+        (p == "holding" && a.len() == 2 && world.body_kind(a[1]) == Some(HOOK))
+            .then(|| (a[0].to_string(), a[1].to_string()))
+    });
+    if let Some((arm, hook)) = hook {
+        let body = add.iter().find_map(|f| {
+            let (p, a) = fact_args(f);
+            (p == "inreach" && a.len() == 2 && a[0] == arm).then(|| a[1].to_string())
+        })?;
+        return Some(ActionKind::Pull {
+            arm: world.arm_index(&arm)?,
+            hook,
+            body,
+        });
+    }
+    None
+}
+
+const HOOK: crate::sim::snapshot::BodyKind = crate::sim::snapshot::BodyKind::Hook;
+
+/// One step of an action's motion.
+#[derive(Clone, Debug, PartialEq)]
+enum Phase {
+    /// Move the TCP to a via-point defined relative to the anchor.
+    Move(Via),
+    /// Open or close the gripper and wait.
+    Gripper(GripperCommand),
+}
+
+/// A via-point: where the TCP goes, computed from the world when the segment starts (and again
+/// when its anchor moves).
+#[derive(Clone, Debug, PartialEq)]
+enum Via {
+    /// Above the grasp pose of `body` by `dz` (`skill`: run the learned grasp-approach skill).
+    Grasp { body: String, dz: f64, skill: bool },
+    /// The TCP pose that puts the held body at the placement, raised by `dz` (`skill`: the
+    /// learned place-approach skill).
+    Place {
+        placement: Placement,
+        dz: f64,
+        skill: bool,
+    },
+    /// Straight up by `dz` from where the TCP is (`skill`: the learned retreat of the action,
+    /// in the frame recorded at the gripper event).
+    Up { dz: f64, skill: bool },
+    /// A pull stroke: hook blade behind `body`, then dragged towards the base (`stage` 0 / 1).
+    Pull { body: String, stage: u8 },
+}
+
+/// The running execution of one action.
+#[derive(Clone, Debug)]
+pub struct ActionExec {
+    /// The action `(stack a b)`.
+    pub action: String,
+    /// What it does.
+    pub kind: ActionKind,
+    arm: usize,
+    phases: Vec<Phase>,
+    phase: usize,
+    /// The segment being followed: planned TCP positions, one per tick, and its goal.
+    segment: Option<Running>,
+    /// Ticks spent waiting in the current phase.
+    wait: usize,
+    gripper: GripperCommand,
+    /// Events seen during the action.
+    pub events: Vec<WorldEvent>,
+    /// The anchor frame at the gripper event (frame of the retreat skill).
+    event_frame: Option<Isometry3<f64>>,
+}
+
+#[derive(Clone, Debug)]
+struct Running {
+    traj: SkillSegment,
+    t: usize,
+    goal: Isometry3<f64>,
+    /// Body watched for re-anchoring, where it was, and the skill frame planned for.
+    anchor: Option<(String, Vector3<f64>)>,
+    frame: Option<Isometry3<f64>>,
+    lag: usize,
+}
+
+/// Centre + yaw of a pose (the demo's anchor-frame convention).
+fn anchor_frame(p: &Isometry3<f64>) -> Isometry3<f64> {
+    let (_, _, yaw) = p.rotation.euler_angles();
+    Isometry3::from_parts(
+        p.translation,
+        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+    )
+}
+
+/// How an action's execution stands after a tick.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ExecStatus {
+    /// Still moving.
+    Running,
+    /// Finished; the world should now show the action's effects.
+    Done,
+    /// Could not be completed (why, in words).
+    Failed(String),
+}
+
+impl ActionExec {
+    /// Prepares the execution of `kind` (placements must be bound).
+    pub fn new(
+        action: &str,
+        kind: ActionKind,
+        world: &World,
+        skills: &SkillLibrary,
+        p: &ExecParams,
+    ) -> Self {
+        let (arm, phases) = match &kind {
+            ActionKind::Grasp { arm, body }
+                if skills.has("grasp-approach") && skills.has("grasp-retreat") =>
+            {
+                (
+                    *arm,
+                    vec![
+                        Phase::Gripper(GripperCommand::Open),
+                        Phase::Move(Via::Grasp {
+                            body: body.clone(),
+                            dz: 0.0,
+                            skill: true,
+                        }),
+                        Phase::Gripper(GripperCommand::Close),
+                        Phase::Move(Via::Up {
+                            dz: p.lift_height,
+                            skill: true,
+                        }),
+                    ],
+                )
+            }
+            ActionKind::Release { arm, placement, .. }
+                if skills.has("place-approach") && skills.has("place-retreat") =>
+            {
+                let placement = placement.clone().unwrap_or(Placement::At {
+                    x: 0.0,
+                    y: 0.0,
+                    yaw: 0.0,
+                });
+                (
+                    *arm,
+                    vec![
+                        Phase::Move(Via::Place {
+                            placement,
+                            dz: p.release_clearance,
+                            skill: true,
+                        }),
+                        Phase::Gripper(GripperCommand::Open),
+                        Phase::Move(Via::Up {
+                            dz: p.approach_height,
+                            skill: true,
+                        }),
+                    ],
+                )
+            }
+            ActionKind::Grasp { arm, body } => (
+                *arm,
+                vec![
+                    Phase::Gripper(GripperCommand::Open),
+                    Phase::Move(Via::Grasp {
+                        body: body.clone(),
+                        dz: p.approach_height,
+                        skill: false,
+                    }),
+                    Phase::Move(Via::Grasp {
+                        body: body.clone(),
+                        dz: 0.0,
+                        skill: false,
+                    }),
+                    Phase::Gripper(GripperCommand::Close),
+                    Phase::Move(Via::Up {
+                        dz: p.lift_height,
+                        skill: false,
+                    }),
+                ],
+            ),
+            ActionKind::Release { arm, placement, .. } => {
+                let placement = placement.clone().unwrap_or(Placement::At {
+                    x: 0.0,
+                    y: 0.0,
+                    yaw: 0.0,
+                });
+                (
+                    *arm,
+                    vec![
+                        Phase::Move(Via::Place {
+                            placement: placement.clone(),
+                            dz: p.approach_height,
+                            skill: false,
+                        }),
+                        Phase::Move(Via::Place {
+                            placement,
+                            dz: p.release_clearance,
+                            skill: false,
+                        }),
+                        Phase::Gripper(GripperCommand::Open),
+                        Phase::Move(Via::Up {
+                            dz: p.approach_height,
+                            skill: false,
+                        }),
+                    ],
+                )
+            }
+            ActionKind::Pull { arm, body, .. } => (
+                *arm,
+                vec![
+                    Phase::Move(Via::Pull {
+                        body: body.clone(),
+                        stage: 0,
+                    }),
+                    Phase::Move(Via::Pull {
+                        body: body.clone(),
+                        stage: 1,
+                    }),
+                    Phase::Move(Via::Pull {
+                        body: body.clone(),
+                        stage: 2,
+                    }),
+                ],
+            ),
+        };
+        let gripper = world
+            .arm_command(arm)
+            .map(|c| c.1)
+            .unwrap_or(GripperCommand::Open);
+        ActionExec {
+            action: action.to_string(),
+            kind,
+            arm,
+            phases,
+            phase: 0,
+            segment: None,
+            wait: 0,
+            gripper,
+            events: vec![],
+            event_frame: None,
+        }
+    }
+
+    /// The arm executing the action.
+    pub fn arm(&self) -> usize {
+        self.arm
+    }
+
+    /// The current commanded target of the TCP, if moving.
+    pub fn target(&self) -> Option<Vector3<f64>> {
+        self.segment.as_ref().map(|s| s.traj.current(s.t))
+    }
+
+    /// Index of the phase being executed and the number of phases.
+    pub fn progress(&self) -> (usize, usize) {
+        (self.phase, self.phases.len())
+    }
+
+    /// Commands the arm for this tick, steps the world once, and reports.
+    pub fn tick(&mut self, world: &mut World, skills: &SkillLibrary, p: &ExecParams) -> ExecStatus {
+        let dt = world.dt();
+        let Some(phase) = self.phases.get(self.phase).cloned() else {
+            return ExecStatus::Done;
+        };
+        match phase {
+            Phase::Gripper(cmd) => {
+                let Some(tcp) = world.tcp_pose(self.arm) else {
+                    return ExecStatus::Failed("no such arm".into());
+                };
+                if self.wait == 0 {
+                    // The retreat's frame: the grasped body where it was grasped; for a release
+                    // the body's resting pose (recorded once it has settled, below).
+                    self.event_frame = world
+                        .held_by(self.arm)
+                        .and_then(|h| world.body_pose(h))
+                        .map(|p| anchor_frame(&p));
+                }
+                self.gripper = cmd;
+                if std::env::var("LFD_TRACE").is_ok() && self.wait == 0 {
+                    if let Some(h) = world.held_by(self.arm) {
+                        eprintln!(
+                            "  gripper {cmd:?}: {h} at {:?}, tcp {:?}",
+                            world.body_pose(h).map(|p| p.translation.vector),
+                            tcp.translation.vector
+                        );
+                    }
+                    for b in world.block_names() {
+                        eprintln!(
+                            "    {b}: {:?}",
+                            world.body_pose(b).map(|p| p.translation.vector)
+                        );
+                    }
+                }
+                let _ = world.command_arm(self.arm, tcp, cmd);
+                let ev = world.step();
+                self.events.extend(ev.iter().cloned());
+                self.wait += 1;
+                if ev
+                    .iter()
+                    .any(|e| matches!(e, WorldEvent::GraspedNothing { .. }))
+                {
+                    return ExecStatus::Failed("the gripper closed on nothing".into());
+                }
+                if let Some(WorldEvent::Lost { body, reason }) =
+                    ev.iter().find(|e| matches!(e, WorldEvent::Lost { .. }))
+                {
+                    return ExecStatus::Failed(format!("{body} fell: {reason}"));
+                }
+                if (self.wait as f64) * dt >= p.gripper_time {
+                    if let Some(s) = self.check_gripper(world, cmd) {
+                        return ExecStatus::Failed(s);
+                    }
+                    if let ActionKind::Release { body, .. } = &self.kind {
+                        self.event_frame = world.body_pose(body).map(|p| anchor_frame(&p));
+                    }
+                    self.next_phase();
+                }
+                self.status()
+            }
+            Phase::Move(via) => {
+                // Plan the segment when it starts; when its anchor object moved, re-target the
+                // skill's controller to the new object frame (or re-plan a profile).
+                let moved = match &self.segment {
+                    None => true,
+                    Some(r) => r.anchor.as_ref().is_some_and(|(name, at)| {
+                        world.body_pose(name).is_some_and(|q| {
+                            (q.translation.vector - at).norm() > p.reanchor_tolerance
+                        })
+                    }),
+                };
+                if moved {
+                    let start = world.tcp_pose(self.arm).unwrap_or_else(Isometry3::identity);
+                    let fresh = self.via_pose(world, &via, &start);
+                    let retargeted = match self.segment.as_mut() {
+                        Some(r) => match (fresh, r.frame) {
+                            (Ok((goal, Some(new_frame), anchor)), Some(old)) => {
+                                let ok = r.traj.retarget(&old, &new_frame);
+                                if ok {
+                                    r.goal = goal;
+                                    r.frame = Some(new_frame);
+                                    r.anchor = anchor;
+                                    r.lag = 0;
+                                }
+                                ok
+                            }
+                            _ => false,
+                        },
+                        None => false,
+                    };
+                    if !retargeted {
+                        match self.plan_segment(world, &via, skills, p) {
+                            Ok(r) => self.segment = Some(r),
+                            Err(e) => return ExecStatus::Failed(e),
+                        }
+                    }
+                }
+                let Some(seg) = self.segment.as_mut() else {
+                    return ExecStatus::Failed("no segment".into());
+                };
+                let i = seg.t.min(seg.traj.len() - 1);
+                let measured = world
+                    .tcp_pose(self.arm)
+                    .map(|q| q.translation.vector)
+                    .unwrap_or_default();
+                let cmd_pos = seg.traj.command(seg.t, &measured);
+                let s = (i as f64 / (seg.traj.len().max(2) - 1) as f64).clamp(0.0, 1.0);
+                let rot = seg.traj.start_rotation().slerp(&seg.goal.rotation, s);
+                let target = Isometry3::from_parts(Translation3::from(cmd_pos), rot);
+                let _ = world.command_arm(self.arm, target, self.gripper);
+                let ev = world.step();
+                self.events.extend(ev.iter().cloned());
+                if let Some(WorldEvent::Lost { body, reason }) =
+                    ev.iter().find(|e| matches!(e, WorldEvent::Lost { .. }))
+                {
+                    return ExecStatus::Failed(format!("{body} fell: {reason}"));
+                }
+                seg.t += 1;
+                if seg.t >= seg.traj.len() {
+                    let tcp = world.tcp_pose(self.arm).unwrap_or(seg.goal);
+                    let err = (tcp.translation.vector - seg.traj.goal()).norm();
+                    if err <= p.reach_tolerance {
+                        self.next_phase();
+                    } else {
+                        seg.lag += 1;
+                        if seg.lag as f64 * dt > p.settle_timeout {
+                            return ExecStatus::Failed(format!(
+                                "the arm cannot reach its via-point ({:.1} mm away)",
+                                err * 1e3
+                            ));
+                        }
+                    }
+                }
+                self.status()
+            }
+        }
+    }
+
+    fn status(&self) -> ExecStatus {
+        if self.phase >= self.phases.len() {
+            ExecStatus::Done
+        } else {
+            ExecStatus::Running
+        }
+    }
+
+    fn next_phase(&mut self) {
+        if std::env::var("LFD_TRACE").is_ok() {
+            eprintln!("  [{}] phase {} done", self.action, self.phase);
+        }
+        self.phase += 1;
+        self.segment = None;
+        self.wait = 0;
+    }
+
+    fn check_gripper(&self, world: &World, cmd: GripperCommand) -> Option<String> {
+        let held = world.held_by(self.arm);
+        match (&self.kind, cmd) {
+            (ActionKind::Grasp { body, .. }, GripperCommand::Close) => match held {
+                Some(h) if h == body => None,
+                Some(h) => Some(format!("grasped {h} instead of {body}")),
+                None => Some(format!("could not grasp {body}")),
+            },
+            (_, GripperCommand::Open) if held.is_some() => Some("could not release".into()),
+            _ => None,
+        }
+    }
+
+    fn plan_segment(
+        &self,
+        world: &World,
+        via: &Via,
+        skills: &SkillLibrary,
+        p: &ExecParams,
+    ) -> Result<Running, String> {
+        let start = world
+            .tcp_pose(self.arm)
+            .ok_or_else(|| "no such arm".to_string())?;
+        let (goal, frame, anchor) = self.via_pose(world, via, &start)?;
+        if std::env::var("LFD_TRACE").is_ok() {
+            eprintln!(
+                "  [{}] segment {:?}: from {:?} to {:?}",
+                self.action,
+                via,
+                start.translation.vector.as_slice(),
+                goal.translation.vector.as_slice()
+            );
+        }
+        let dist = (goal.translation.vector - start.translation.vector).norm();
+        let duration = (dist / p.speed).max(p.min_segment);
+        let steps = ((duration / world.dt()).round() as usize).max(2);
+        let traj = skills.segment(self.skill_name(via), &start, &goal, frame.as_ref(), steps);
+        Ok(Running {
+            traj,
+            t: 0,
+            goal,
+            anchor,
+            frame,
+            lag: 0,
+        })
+    }
+
+    fn skill_name(&self, via: &Via) -> &'static str {
+        let grasping = matches!(self.kind, ActionKind::Grasp { .. });
+        match via {
+            Via::Grasp { skill: true, .. } => "grasp-approach",
+            Via::Place { skill: true, .. } => "place-approach",
+            Via::Up { skill: true, .. } if grasping => "grasp-retreat",
+            Via::Up { skill: true, .. } => "place-retreat",
+            _ => "profile",
+        }
+    }
+
+    /// The TCP goal of a via-point, the skill's object frame (centre + yaw) and the body it
+    /// follows (name, position) for re-anchoring.
+    #[allow(clippy::type_complexity)]
+    fn via_pose(
+        &self,
+        world: &World,
+        via: &Via,
+        start: &Isometry3<f64>,
+    ) -> Result<
+        (
+            Isometry3<f64>,
+            Option<Isometry3<f64>>,
+            Option<(String, Vector3<f64>)>,
+        ),
+        String,
+    > {
+        let up = |iso: Isometry3<f64>, dz: f64| {
+            Isometry3::from_parts(
+                Translation3::from(iso.translation.vector + Vector3::z() * dz),
+                iso.rotation,
+            )
+        };
+        match via {
+            Via::Grasp { body, dz, .. } => {
+                let g = grasp_pose(world, self.arm, body)
+                    .ok_or_else(|| format!("{body} cannot be grasped"))?;
+                let bp = world.body_pose(body);
+                let at = bp.map(|q| q.translation.vector);
+                Ok((
+                    up(g, *dz),
+                    bp.map(|q| anchor_frame(&q)),
+                    at.map(|a| (body.clone(), a)),
+                ))
+            }
+            Via::Place { placement, dz, .. } => {
+                let body = match &self.kind {
+                    ActionKind::Release { body, .. } => body.clone(),
+                    _ => return Err("not a release".into()),
+                };
+                let (pose, anchor) = placement_pose(world, &body, placement)?;
+                let tcp = tcp_for_body_pose(world, self.arm, &pose);
+                Ok((up(tcp, *dz), Some(anchor_frame(&pose)), anchor))
+            }
+            Via::Up { dz, .. } => {
+                let mut g = *start;
+                g.translation.vector.z += dz;
+                Ok((g, self.event_frame, None))
+            }
+            Via::Pull { body, stage } => {
+                let g = pull_via(world, self.arm, body, *stage)?;
+                let at = world.body_pose(body).map(|q| q.translation.vector);
+                Ok((
+                    g,
+                    None,
+                    if *stage == 0 {
+                        at.map(|a| (body.clone(), a))
+                    } else {
+                        None
+                    },
+                ))
+            }
+        }
+    }
+}
+
+/// The resting pose of `body` at a placement, and the anchor it follows (the block below).
+pub(crate) fn placement_pose(
+    world: &World,
+    body: &str,
+    placement: &Placement,
+) -> Result<(Isometry3<f64>, Option<(String, Vector3<f64>)>), String> {
+    match placement {
+        Placement::OnBlock(y) => {
+            let pose = rest_pose_on(world, body, y, 0.0)
+                .ok_or_else(|| format!("nothing to put {body} on at {y}"))?;
+            let at = world.body_pose(y).map(|q| q.translation.vector);
+            Ok((pose, at.map(|a| (y.clone(), a))))
+        }
+        Placement::At { x, y, yaw } => {
+            let pose = rest_pose(world, body, *x, *y, *yaw)
+                .ok_or_else(|| format!("no support under ({x:.3}, {y:.3})"))?;
+            Ok((pose, None))
+        }
+    }
+}
+
+/// Via-points of a pull stroke: 0 above the far side of `body`, 1 lowered behind it, 2 dragged
+/// towards the arm's base until `body` is well inside the reach annulus.
+fn pull_via(world: &World, arm: usize, body: &str, stage: u8) -> Result<Isometry3<f64>, String> {
+    let base = world.arm_base(arm).ok_or("no such arm")?.translation.vector;
+    let b = world
+        .body_pose(body)
+        .ok_or_else(|| format!("no body {body}"))?
+        .translation
+        .vector;
+    let mut d = Vector3::new(b.x - base.x, b.y - base.y, 0.0);
+    let r = d.norm().max(1e-6);
+    d /= r;
+    // Keep the hook's grasp: the TCP is offset from the blade; we move the TCP so the hook's
+    // blade (the far end) sits behind the block. The hook frame's +x runs from the handle grip
+    // to the blade.
+    let grasp = world.grasp_transform(arm).ok_or("the arm holds no hook")?;
+    let hook_in_tcp = grasp; // hook pose = tcp * grasp
+    let blade_reach = hook_in_tcp.translation.vector.norm() + 0.17;
+    let behind = b + d * 0.06;
+    let yaw = d.y.atan2(d.x);
+    let rot = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw) * tcp_down();
+    let tcp_xy = behind - d * blade_reach;
+    let z_above = b.z + 0.08;
+    let z_low = b.z;
+    let p = match stage {
+        0 => Vector3::new(tcp_xy.x, tcp_xy.y, z_above),
+        1 => Vector3::new(tcp_xy.x, tcp_xy.y, z_low),
+        _ => {
+            let pulled = tcp_xy - d * 0.25;
+            Vector3::new(pulled.x, pulled.y, z_low)
+        }
+    };
+    Ok(Isometry3::from_parts(Translation3::from(p), rot))
+}
+
+fn tcp_down() -> UnitQuaternion<f64> {
+    crate::sim::panda::down_orientation(0.0)
+}

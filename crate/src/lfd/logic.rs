@@ -1,0 +1,389 @@
+//! LogicIn, suffix merging and Logic-LfD planning (paper §III-C/D, Algorithm 1 lines 8–13).
+//!
+//! With the multi-goal specification 𝒢 = {L_0..L_N, G} (see [`super::demo`]) and the current
+//! fluents S_C:
+//!
+//! ```text
+//!   LogicIn(S_C, 𝒢) = max { k : L_k ⊆ S_C }                 (the match closest to the goal)
+//!   if LogicIn holds:     𝒫 = a_{k+1} … a_N                  (the demo suffix)
+//!   else:                 (π, k) = MultiGoalSearch(S_C, 𝒢)   (one search, goal test "any L_k")
+//!                         𝒫 = π ⧺ a_{k+1} … a_N
+//! ```
+//!
+//! Two modes of the multi-goal search:
+//! * `paper`: the first goal reached wins, all goals have equal priority (the paper);
+//! * `prioritised`: minimise g(π) + c_k with c_k the cost of the demo left after L_k, so the merged
+//!   plan is never longer than needed (the paper's stated drawback, fixed in the same search).
+//!
+//! Every merged plan is replayed on the task before it is returned: with negative preconditions a
+//! suffix from a superset of L_k is not guaranteed applicable, and then the search is used instead.
+
+use serde::{Deserialize, Serialize};
+
+use crate::plan::{self, Clock, MultiGoalMode, SearchConfig, SearchOutcome, State, Task};
+
+use super::demo::MultiGoalSpec;
+use super::LfdError;
+
+/// How the multi-goal search picks among the demonstration states.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Mode {
+    /// The paper: the first demonstration state reached, all goals of equal priority.
+    #[default]
+    Paper,
+    /// Minimise (cost to reach L_k) + (demo actions left after k) in the same single search.
+    Prioritised,
+}
+
+impl Mode {
+    /// The name used on the CLI and in JSON.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Mode::Paper => "paper",
+            Mode::Prioritised => "prioritised",
+        }
+    }
+
+    /// Parses `paper` or `prioritised` (also `prioritized`).
+    pub fn parse(s: &str) -> Option<Self> {
+        match s {
+            "paper" => Some(Mode::Paper),
+            "prioritised" | "prioritized" => Some(Mode::Prioritised),
+            _ => None,
+        }
+    }
+}
+
+/// Where a Logic-LfD plan came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PlanSource {
+    /// The goal already holds: empty plan.
+    GoalHolds,
+    /// LogicIn matched L_k: the plan is the demo suffix.
+    LogicIn,
+    /// A multi-goal search found a prefix to L_k, merged with the suffix.
+    MultiGoal,
+}
+
+/// A plan produced by Logic-LfD.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LfdPlan {
+    /// Operator indices into the task, in execution order.
+    pub ops: Vec<usize>,
+    /// The demonstration state index the plan joins (`None` when it goes to G directly).
+    pub k: Option<usize>,
+    /// How many leading actions are new (not from the demonstration).
+    pub prefix_len: usize,
+    /// Where the plan came from.
+    pub source: PlanSource,
+    /// Nodes expanded by the search (0 without a search).
+    pub expanded: u64,
+}
+
+/// LogicIn(S_C, 𝒢): the largest k with L_k ⊆ S_C, if any.
+pub fn logic_in(spec: &MultiGoalSpec, s: &State) -> Option<usize> {
+    spec.states
+        .iter()
+        .enumerate()
+        .rev()
+        .find(|(_, l)| l.as_ref().is_some_and(|c| c.holds(s)))
+        .map(|(k, _)| k)
+}
+
+/// Replays `ops` from `s`; returns the final state, or the index of the first inapplicable action.
+pub fn replay(task: &Task, s: &State, ops: &[usize]) -> Result<State, usize> {
+    let mut cur = s.clone();
+    for (i, &o) in ops.iter().enumerate() {
+        let op = &task.operators[o];
+        if !op.applicable(&cur) {
+            return Err(i);
+        }
+        cur = op.apply(&cur);
+    }
+    Ok(cur)
+}
+
+/// `prefix ⧺ a_{k+1}..a_N`, if the result is applicable from `s` and reaches the goal.
+pub fn merge_suffix(
+    task: &Task,
+    spec: &MultiGoalSpec,
+    s: &State,
+    prefix: &[usize],
+    k: usize,
+) -> Option<Vec<usize>> {
+    let mut ops = prefix.to_vec();
+    ops.extend(spec.suffix(k)?);
+    match replay(task, s, &ops) {
+        Ok(end) if task.goal.holds(&end) => Some(ops),
+        _ => None,
+    }
+}
+
+/// Logic-LfD planning from `s`: the demo suffix when LogicIn holds, else one multi-goal search
+/// merged with the suffix. `config` bounds the search (nodes / seconds on `clock`).
+pub fn plan_logic_lfd(
+    task: &Task,
+    spec: &MultiGoalSpec,
+    s: &State,
+    mode: Mode,
+    config: &SearchConfig,
+    clock: &dyn Clock,
+) -> Result<LfdPlan, LfdError> {
+    if task.goal.holds(s) {
+        return Ok(LfdPlan {
+            ops: vec![],
+            k: None,
+            prefix_len: 0,
+            source: PlanSource::GoalHolds,
+            expanded: 0,
+        });
+    }
+    if let Some(k) = logic_in(spec, s) {
+        if let Some(ops) = merge_suffix(task, spec, s, &[], k) {
+            return Ok(LfdPlan {
+                ops,
+                k: Some(k),
+                prefix_len: 0,
+                source: PlanSource::LogicIn,
+                expanded: 0,
+            });
+        }
+    }
+    let search_mode = match mode {
+        Mode::Paper => MultiGoalMode::FirstReached,
+        Mode::Prioritised => MultiGoalMode::Prioritised,
+    };
+    let found = plan::search_multi_goal(task, s, &spec.goals, search_mode, config, clock);
+    let expanded = found.stats.expanded;
+    let (prefix, k) = match (&found.outcome, found.goal_index) {
+        (SearchOutcome::Plan(p), Some(k)) => (p.operators.clone(), k),
+        (SearchOutcome::BudgetExhausted { which }, _) => {
+            return Err(LfdError::NoPlan(format!("{which} exhausted")))
+        }
+        _ => {
+            return Err(LfdError::NoPlan(
+                "no demonstration state is reachable".into(),
+            ))
+        }
+    };
+    let ops = merge_suffix(task, spec, s, &prefix, k).ok_or(LfdError::MergeFailed { k })?;
+    Ok(LfdPlan {
+        prefix_len: prefix.len(),
+        ops,
+        k: (k <= spec.len()).then_some(k),
+        source: PlanSource::MultiGoal,
+        expanded,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lfd::demo::{DemoTrace, MultiGoalSpec};
+    use crate::lfd::testing::{b1_template, state};
+
+    fn spec() -> (Task, MultiGoalSpec) {
+        let (task, demo) = b1_template();
+        let trace = DemoTrace::derive(&task, &demo).unwrap();
+        (task.clone(), MultiGoalSpec::new(&task, &trace))
+    }
+
+    #[test]
+    fn demo_states_are_derived_by_applying_the_actions() {
+        let (task, demo) = b1_template();
+        let trace = DemoTrace::derive(&task, &demo).unwrap();
+        assert_eq!(trace.states.len(), 7);
+        assert!(trace.states[2].contains("(on c d)"));
+        assert!(!trace.states[2].contains("(clear d)"));
+        assert!(trace.states[1].contains("(holding c)"));
+        assert!(trace.states[6].contains("(on a b)"));
+    }
+
+    #[test]
+    fn a_demo_with_an_inapplicable_action_is_refused_with_its_index() {
+        let (task, mut demo) = b1_template();
+        demo.swap(0, 1);
+        match DemoTrace::derive(&task, &demo) {
+            Err(LfdError::DemoNotApplicable { index: 0, action }) => {
+                assert_eq!(action, "(stack c d)")
+            }
+            other => panic!("{other:?}"),
+        }
+        let mut demo2 = b1_template().1;
+        demo2[3] = "(fly b)".into();
+        assert!(matches!(
+            DemoTrace::derive(&task, &demo2),
+            Err(LfdError::UnknownAction { index: 3, .. })
+        ));
+    }
+
+    #[test]
+    fn demo_action_spelling_is_normalised() {
+        assert_eq!(
+            crate::lfd::demo::normalize_action("  STACK  a B "),
+            "(stack a b)"
+        );
+        assert_eq!(crate::lfd::demo::normalize_action("(pick c)"), "(pick c)");
+    }
+
+    #[test]
+    fn logic_in_returns_the_match_closest_to_the_goal() {
+        let (task, spec) = spec();
+        // L_2: C on D, A and B on the table, hand empty.
+        let l2 = state(
+            &task,
+            &[
+                "(handempty)",
+                "(ontable a)",
+                "(ontable b)",
+                "(ontable d)",
+                "(on c d)",
+                "(clear a)",
+                "(clear b)",
+                "(clear c)",
+            ],
+        );
+        assert_eq!(logic_in(&spec, &l2), Some(2));
+        assert_eq!(logic_in(&spec, &task.init), Some(0));
+        // An unseen state: D on A.
+        let unseen = state(
+            &task,
+            &[
+                "(handempty)",
+                "(ontable a)",
+                "(ontable b)",
+                "(ontable c)",
+                "(on d a)",
+                "(clear d)",
+                "(clear b)",
+                "(clear c)",
+            ],
+        );
+        assert_eq!(logic_in(&spec, &unseen), None);
+    }
+
+    #[test]
+    fn logic_in_is_a_subset_test_so_extra_facts_do_not_hide_a_match() {
+        let (task, spec) = spec();
+        let mut s = task.init.clone();
+        // An extra fact the demo never mentions (e.g. about another object) keeps L_0.
+        s.insert(task.fact_id("(on a b)").unwrap());
+        assert_eq!(logic_in(&spec, &s), Some(0));
+    }
+
+    #[test]
+    fn merging_the_suffix_reaches_the_goal_and_a_wrong_k_is_refused() {
+        let (task, spec) = spec();
+        let ops = merge_suffix(&task, &spec, &task.init, &[], 0).unwrap();
+        assert_eq!(ops.len(), 6);
+        let end = replay(&task, &task.init, &ops).unwrap();
+        assert!(task.goal.holds(&end));
+        // From L_0 the suffix after L_3 is not applicable (nothing is held).
+        assert!(merge_suffix(&task, &spec, &task.init, &[], 3).is_none());
+        // The empty suffix of G from the goal state is fine.
+        assert_eq!(
+            merge_suffix(&task, &spec, &end, &[], spec.goal_index()),
+            Some(vec![])
+        );
+    }
+
+    #[test]
+    fn terminal_costs_count_the_demo_left_after_k() {
+        let (_, spec) = spec();
+        let costs: Vec<u64> = spec.goals.iter().map(|g| g.terminal_cost).collect();
+        assert_eq!(costs, vec![6, 5, 4, 3, 2, 1, 0, 0]);
+        assert_eq!(spec.suffix(4).unwrap().len(), 2);
+    }
+
+    fn cfg() -> SearchConfig {
+        SearchConfig::new(plan::Algorithm::Astar, plan::HeuristicKind::HMax)
+    }
+
+    #[test]
+    fn an_unseen_state_gets_a_multi_goal_prefix_merged_with_the_suffix() {
+        let (task, spec) = spec();
+        // D on A, the rest on the table: no L_k holds.
+        let s = state(
+            &task,
+            &[
+                "(handempty)",
+                "(ontable a)",
+                "(ontable b)",
+                "(ontable c)",
+                "(on d a)",
+                "(clear d)",
+                "(clear b)",
+                "(clear c)",
+            ],
+        );
+        for mode in [Mode::Paper, Mode::Prioritised] {
+            let p = plan_logic_lfd(&task, &spec, &s, mode, &cfg(), &plan::NoClock).unwrap();
+            assert_eq!(p.source, PlanSource::MultiGoal);
+            assert!(p.prefix_len > 0);
+            let end = replay(&task, &s, &p.ops).expect("merged plan applicable");
+            assert!(task.goal.holds(&end), "{mode:?}");
+            // The prefix ends in L_k.
+            let mid = replay(&task, &s, &p.ops[..p.prefix_len]).unwrap();
+            let k = p.k.expect("joins the demo");
+            assert!(spec.states[k].as_ref().unwrap().holds(&mid));
+            // Unstack d a, place d: then L_0 holds.
+            assert_eq!(p.prefix_len, 2);
+            assert_eq!(p.k, Some(0));
+            assert_eq!(p.ops.len(), 8);
+        }
+    }
+
+    #[test]
+    fn prioritised_mode_never_returns_a_longer_merged_plan_than_paper_mode() {
+        let (task, spec) = spec();
+        let cases: [&[&str]; 3] = [
+            &[
+                "(holding a)",
+                "(ontable b)",
+                "(ontable d)",
+                "(on c d)",
+                "(clear b)",
+                "(clear c)",
+            ],
+            &[
+                "(handempty)",
+                "(ontable c)",
+                "(ontable d)",
+                "(on b c)",
+                "(on a d)",
+                "(clear a)",
+                "(clear b)",
+            ],
+            &[
+                "(handempty)",
+                "(ontable d)",
+                "(on c d)",
+                "(on a c)",
+                "(ontable b)",
+                "(clear a)",
+                "(clear b)",
+            ],
+        ];
+        for facts in cases {
+            let s = state(&task, facts);
+            let paper =
+                plan_logic_lfd(&task, &spec, &s, Mode::Paper, &cfg(), &plan::NoClock).unwrap();
+            let prio = plan_logic_lfd(&task, &spec, &s, Mode::Prioritised, &cfg(), &plan::NoClock)
+                .unwrap();
+            for p in [&paper, &prio] {
+                assert!(task.goal.holds(&replay(&task, &s, &p.ops).unwrap()));
+            }
+            assert!(prio.ops.len() <= paper.ops.len(), "{facts:?}");
+        }
+        // Prioritised mode with exact terminal costs returns an optimal merged plan.
+        let s = state(&task, cases[0]);
+        let prio =
+            plan_logic_lfd(&task, &spec, &s, Mode::Prioritised, &cfg(), &plan::NoClock).unwrap();
+        let mut t = task.clone();
+        t.init = s.clone();
+        let opt = plan::search(&t, &cfg(), &plan::NoClock);
+        assert_eq!(prio.ops.len(), opt.outcome.plan().unwrap().len());
+    }
+}

@@ -1,0 +1,97 @@
+//! Logic-LfD: the demonstration as a multi-goal specification, LogicIn, suffix merging, the
+//! reactive closed loop of the paper's Algorithm 1, its baselines, and the browser [`Session`].
+//!
+//! * [`demo`]: L_0..L_N from the demonstrated actions, the goals 𝒢 with terminal costs c_k;
+//! * [`logic`]: LogicIn, merge, Logic-LfD planning in `paper` and `prioritised` modes;
+//! * the reactive loop and the session (see their modules).
+
+pub mod control;
+pub mod demo;
+pub mod disturb;
+pub mod exec;
+pub mod logic;
+pub mod model;
+pub mod session;
+pub mod skill;
+#[cfg(test)]
+pub(crate) mod testing;
+
+use serde::{Deserialize, Serialize};
+
+pub use control::TaskBuilder;
+pub use demo::{DemoTrace, MultiGoalSpec};
+pub use logic::{logic_in, merge_suffix, plan_logic_lfd, LfdPlan, Mode, PlanSource};
+
+/// What went wrong in the Logic-LfD layer.
+#[derive(Debug, thiserror::Error)]
+pub enum LfdError {
+    /// A demonstrated action is not an operator of the grounded task.
+    #[error("demo action {index} `{action}` is not an action of the domain")]
+    UnknownAction {
+        /// Position in the demonstration (0-based).
+        index: usize,
+        /// The action as written.
+        action: String,
+    },
+    /// A demonstrated action's preconditions do not hold where the demo applies it.
+    #[error("demo action {index} `{action}` is not applicable in the demonstrated state")]
+    DemoNotApplicable {
+        /// Position in the demonstration (0-based).
+        index: usize,
+        /// The action.
+        action: String,
+    },
+    /// Applying the whole demonstration does not reach the task's goal.
+    #[error("the demonstration does not reach the goal")]
+    DemoMissesGoal,
+    /// The search found no plan (unsolvable or out of budget).
+    #[error("no plan: {0}")]
+    NoPlan(String),
+    /// The benchmark's PDDL, scene or demonstration could not be read.
+    #[error("{0}")]
+    Model(String),
+    /// The prefix found to L_k could not be merged with the demo suffix.
+    #[error("the plan to demonstration state L_{k} does not merge with the demo suffix")]
+    MergeFailed {
+        /// The demonstration state index.
+        k: usize,
+    },
+}
+
+/// The method that closes the loop (the paper's method and its baselines).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Method {
+    /// Logic-LfD (Algorithm 1): LogicIn, else multi-goal search + demo suffix.
+    #[default]
+    #[serde(rename = "logic-lfd")]
+    LogicLfd,
+    /// The demonstration's actions in order, skills re-targeted, no task-level feedback.
+    #[serde(rename = "linear")]
+    Linear,
+    /// RLDS: jump backward/forward along the demonstration to the matching step; never a new plan.
+    #[serde(rename = "rlds")]
+    Rlds,
+    /// TAMP from scratch at every task-level change (the paper's PDDLStream column).
+    #[serde(rename = "tamp")]
+    Tamp,
+}
+
+impl Method {
+    /// All methods, in table order.
+    pub const ALL: [Method; 4] = [Method::Linear, Method::Rlds, Method::Tamp, Method::LogicLfd];
+
+    /// The name used on the CLI and in JSON.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Method::LogicLfd => "logic-lfd",
+            Method::Linear => "linear",
+            Method::Rlds => "rlds",
+            Method::Tamp => "tamp",
+        }
+    }
+
+    /// Parses a CLI / JSON name.
+    pub fn parse(s: &str) -> Option<Self> {
+        Method::ALL.into_iter().find(|m| m.as_str() == s)
+    }
+}

@@ -1,0 +1,73 @@
+//! Task and motion planning: plan a skeleton, bind its continuous parameters with certified
+//! streams, retry (PDDLStream's lazy idea, our own code).
+//!
+//! ```text
+//!   repeat up to max_skeletons:
+//!     π ← Search(task \ forbidden, S_C → G)          (the action skeleton)
+//!     bind π: for each action, draw samples from its stream (grasp, placement on table/shelf/
+//!             block, hook pose for a pull, hand-over pose) until one is certified
+//!             (collision-free with parry, reachable by IK) — or report the first failing action
+//!     success → π with its bindings; failure at a_i → forbid a_i, next skeleton
+//! ```
+//!
+//! This is what Logic-LfD uses to bind the actions it adds, and the "plan from scratch" baseline
+//! of the paper's Table I (the PDDLStream column). Streams live in [`streams`].
+
+pub mod streams;
+
+use crate::lfd::control::{forbid, Binder};
+use crate::plan::{search, Clock, SearchConfig, SearchOutcome, State, Task};
+
+/// Why TAMP found no plan.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TampError {
+    /// The symbolic search found no skeleton (unsolvable or out of budget).
+    #[error("no action skeleton: {0}")]
+    NoSkeleton(String),
+    /// Every skeleton tried had an action whose parameters no sample could certify.
+    #[error("{skeletons} skeletons tried; last failure: cannot bind {action}")]
+    Unbindable {
+        /// Skeletons tried.
+        skeletons: usize,
+        /// The action that failed last.
+        action: String,
+    },
+}
+
+/// TAMP from scratch: skeletons from `s` to the task's goal, bound by `binder`.
+pub fn plan_from_scratch(
+    task: &Task,
+    s: &State,
+    binder: &mut dyn Binder,
+    config: &SearchConfig,
+    max_skeletons: usize,
+    clock: &dyn Clock,
+) -> Result<Vec<usize>, TampError> {
+    let mut t = task.clone();
+    t.init = s.clone();
+    let mut last = String::new();
+    for tried in 0..max_skeletons.max(1) {
+        let r = search(&t, config, clock);
+        let ops = match r.outcome {
+            SearchOutcome::Plan(p) => p.operators,
+            SearchOutcome::Unsolvable if tried == 0 => {
+                return Err(TampError::NoSkeleton("the goal is unreachable".into()))
+            }
+            SearchOutcome::Unsolvable => break,
+            SearchOutcome::BudgetExhausted { which } => {
+                return Err(TampError::NoSkeleton(format!("{which} exhausted")))
+            }
+        };
+        match binder.bind(&t, &ops, ops.len()) {
+            Ok(()) => return Ok(ops),
+            Err(i) => {
+                last = t.operators[ops[i]].name.clone();
+                forbid(&mut t, ops[i]);
+            }
+        }
+    }
+    Err(TampError::Unbindable {
+        skeletons: max_skeletons,
+        action: last,
+    })
+}
