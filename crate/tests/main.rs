@@ -7,3 +7,5 @@ mod pddl;
 mod search;
 mod sim;
 mod validate;
+mod fuzz;
+mod soak;

@@ -7,6 +7,7 @@ mod cmd_bench;
 mod cmd_lqt;
 mod cmd_plan;
 mod cmd_run;
+mod cmd_soak;
 mod cmd_tables;
 mod cmd_validate;
 
@@ -46,6 +47,8 @@ enum Command {
     Bench(cmd_bench::Args),
     /// One closed-loop episode: a benchmark, a disturbance level, a method, a seed.
     Run(cmd_run::Args),
+    /// Random closed-loop episodes with random disturbances, checking every guarantee.
+    Soak(cmd_soak::Args),
 }
 
 /// A closed stdout (`logic-lfd plan … | head`) ends the process quietly, as Unix tools do,
@@ -86,5 +89,6 @@ fn main() -> ExitCode {
         Command::Plan(args) => cmd_plan::run(args),
         Command::Bench(args) => cmd_bench::run(args),
         Command::Run(args) => cmd_run::run(args),
+        Command::Soak(args) => cmd_soak::run(args),
     }
 }
