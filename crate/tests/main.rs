@@ -1,6 +1,7 @@
 //! Integration tests (one binary, one sub-module per area).
 
 mod ground;
+mod lfd;
 mod lqt;
 mod multigoal;
 mod pddl;

@@ -37,11 +37,11 @@ pub fn initial_scene(b: BenchmarkId, level: Level, seed: u64) -> Result<String, 
     for attempt in 0..8 {
         let s = mix(seed, attempt);
         let mut w = world.clone();
-        match disturb::inject(&mut w, level.as_str(), &trace, s) {
+        match disturb::inject(&mut w, level.as_str(), &trace, &[], s) {
             Ok(_) => {
                 // L1 tasks get a second motion-level variation for spread.
                 if level == Level::L1 {
-                    let _ = disturb::inject(&mut w, "l1", &trace, mix(s, 1));
+                    let _ = disturb::inject(&mut w, "l1", &trace, &[], mix(s, 1));
                 }
                 world = w;
                 return serde_json::to_string(&world.snapshot())

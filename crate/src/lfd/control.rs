@@ -24,7 +24,7 @@ use serde::{Deserialize, Serialize};
 use crate::plan::{Clock, SearchConfig, State, Task};
 
 use super::demo::{DemoTrace, MultiGoalSpec};
-use super::logic::{logic_in, plan_logic_lfd, replay, Mode};
+use super::logic::{plan_logic_lfd, replay, Mode};
 use super::{LfdError, Method};
 
 /// Builds the grounded task for the current world: objects (name, PDDL type) and facts S_C.
@@ -377,6 +377,8 @@ impl Controller {
         // Is the current plan still good?
         let reason = if !self.started {
             "start".to_string()
+        } else if regrounded {
+            "new objects in the scene".to_string()
         } else if self.plan.is_empty() {
             "no plan (cancelled)".to_string()
         } else if self.cursor >= self.plan.len() {
@@ -521,7 +523,11 @@ impl Controller {
     }
 
     fn plan_with_rlds(&self, s: &State) -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
-        if let Some(k) = logic_in(&self.spec, s) {
+        // RLDS moves along the demonstration to the step whose state *is* the current one (the
+        // latest such step); it never plans.
+        let names: BTreeSet<String> = super::demo::state_names(&self.task, s).into_iter().collect();
+        let exact = self.trace.states.iter().rposition(|l| *l == names);
+        if let Some(k) = exact {
             if let Some(ops) = self.spec.suffix(k) {
                 if replay(&self.task, s, &ops).is_ok_and(|e| self.task.goal.holds(&e)) {
                     return Ok((ops, Some(k), 0));
@@ -540,22 +546,20 @@ impl Controller {
         clock: &dyn Clock,
     ) -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
         let mut task = self.task.clone();
-        let mut last = String::from("no skeleton");
         for _ in 0..self.params.max_skeletons {
             let spec = MultiGoalSpec::new(&task, &self.trace);
-            let p = plan_logic_lfd(&task, &spec, s, self.mode, &self.params.search, clock)
-                .map_err(|e| FailReason::NoPlan {
-                    message: e.to_string(),
-                })?;
+            let Ok(p) = plan_logic_lfd(&task, &spec, s, self.mode, &self.params.search, clock)
+            else {
+                break;
+            };
             match binder.bind(&task, &p.ops, p.prefix_len) {
                 Ok(()) => return Ok((p.ops, p.k, p.prefix_len)),
-                Err(i) => {
-                    last = format!("cannot bind {}", task.operators[p.ops[i]].name);
-                    forbid(&mut task, p.ops[i]);
-                }
+                Err(i) => forbid(&mut task, p.ops[i]),
             }
         }
-        Err(FailReason::NoPlan { message: last })
+        // No demonstration state can be joined with bindable actions: plan to G from scratch
+        // (the TAMP solver Logic-LfD wraps), so the loop still finishes the task.
+        self.plan_with_tamp(s, binder, clock)
     }
 
     fn plan_with_tamp(

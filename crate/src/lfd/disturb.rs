@@ -63,9 +63,21 @@ fn is_clear(f: &BTreeSet<String>, b: &str) -> bool {
         .any(|x| x.starts_with("(on ") && x.ends_with(&format!(" {b})")))
 }
 
-/// A table spot for a block: random (x, y) over a table top in reach of some arm.
-fn table_spot(world: &World, rng: &mut Pcg64Mcg) -> Option<[f64; 2]> {
+/// A table spot for a block: random (x, y) over a table top, in reach of some arm unless
+/// `anywhere`.
+fn table_spot(world: &World, rng: &mut Pcg64Mcg, anywhere: bool) -> Option<[f64; 2]> {
     let snap = world.snapshot();
+    // Scenes with table regions (B3): a spot inside a random region, so `(at x p)` holds.
+    if !snap.regions.is_empty() {
+        let r = &snap.regions[rng.random_range(0..snap.regions.len())];
+        let m = 0.04;
+        if r.max[0] - r.min[0] > 2.0 * m && r.max[1] - r.min[1] > 2.0 * m {
+            return Some([
+                rng.random_range(r.min[0] + m..r.max[0] - m),
+                rng.random_range(r.min[1] + m..r.max[1] - m),
+            ]);
+        }
+    }
     let tables: Vec<_> = snap
         .bodies
         .iter()
@@ -76,7 +88,7 @@ fn table_spot(world: &World, rng: &mut Pcg64Mcg) -> Option<[f64; 2]> {
         let (lo, hi) = tables.get(rng.random_range(0..tables.len().max(1)))?;
         let x = rng.random_range(lo.x + 0.05..hi.x - 0.05);
         let y = rng.random_range(lo.y + 0.05..hi.y - 0.05);
-        let ok = snap.arms.iter().any(|a| {
+        let ok = anywhere || snap.arms.iter().any(|a| {
             let b = a.base.position;
             let d = (x - b[0]).hypot(y - b[1]);
             d > a.reach.min_radius + 0.03 && d < a.reach.max_radius - 0.05
@@ -90,17 +102,25 @@ fn table_spot(world: &World, rng: &mut Pcg64Mcg) -> Option<[f64; 2]> {
 
 /// Injects a disturbance of `level` (`l1`..`l4`) into `world`; `trace` defines "seen in the
 /// demonstration". Deterministic in `seed`.
+///
+/// `spots` are places the demonstration puts blocks down (its placements): where the scene has
+/// no stacking (B2), the L4 block appears on one of them, in the way of the plan.
 pub fn inject(
     world: &mut World,
     level: &str,
     trace: &DemoTrace,
+    spots: &[(f64, f64)],
     seed: u64,
 ) -> Result<Injection, String> {
     let mut rng = Pcg64Mcg::seed_from_u64(seed);
     let before = facts(world);
     let seen_subset = |f: &BTreeSet<String>| trace.states.iter().any(|l| l.is_subset(f));
+    let seen_equal = |f: &BTreeSet<String>| trace.states.iter().any(|l| l == f);
     let level = level.to_ascii_lowercase();
     let blocks = free_blocks(world);
+    // Domains without `on` (B2) cannot express a block on a block: only table moves there, and
+    // a severe change is a block moved out of reach.
+    let has_on = world.snapshot().predicates.iter().any(|p| p == "on");
     match level.as_str() {
         "l1" => {
             let mut order = blocks.clone();
@@ -137,9 +157,12 @@ pub fn inject(
                 if !is_clear(&before, b) {
                     continue;
                 }
-                moves.push((b.clone(), None));
+                // Several table spots per block (a spot is drawn per try).
+                for _ in 0..6 {
+                    moves.push((b.clone(), None));
+                }
                 for o in &blocks {
-                    if o != b && is_clear(&before, o) {
+                    if has_on && o != b && is_clear(&before, o) {
                         moves.push((b.clone(), Some(o.clone())));
                     }
                 }
@@ -156,7 +179,7 @@ pub fn inject(
                             Vector3::new(c[0], c[1], c[2] + 0.1)
                         }
                         None => {
-                            let Some([x, y]) = table_spot(world, &mut rng) else {
+                            let Some([x, y]) = table_spot(world, &mut rng, !has_on) else {
                                 continue;
                             };
                             Vector3::new(x, y, 0.1)
@@ -165,6 +188,11 @@ pub fn inject(
                     let saved = world.clone();
                     if world.move_block(b, target).is_ok() {
                         let after = facts(world);
+                        // Without stacking (B2) a severe change takes the block out of reach.
+                        let out_of_reach = has_on
+                            || !after.iter().any(|f| {
+                                f.starts_with("(inreach ") && f.ends_with(&format!(" {b})"))
+                            });
                         let ok = after != before
                             && if want_seen {
                                 trace.states.iter().enumerate().any(|(k, l)| {
@@ -173,7 +201,7 @@ pub fn inject(
                                         && (pass == 1 || cur.is_some_and(|c| k < c))
                                 })
                             } else {
-                                !seen_subset(&after)
+                                !seen_subset(&after) && out_of_reach
                             };
                         if ok {
                             let to = centre(world, b).unwrap_or([0.0; 3]);
@@ -228,26 +256,62 @@ pub fn inject(
                 })
             };
             targets.sort_by_key(|t| !needed(t));
+            let n_targets = targets.len();
+            let targets: Vec<(usize, String)> = targets.into_iter().enumerate().collect();
             // A spot on the table for the new block first, then it is dropped on the target.
-            let Some([x, y]) = table_spot(world, &mut rng) else {
+            let Some([x, y]) = table_spot(world, &mut rng, false) else {
                 return Err("L4: no room for a new block".into());
             };
-            for t in targets {
+            let mut s2 = snap.clone();
+            s2.bodies.push(BodySnapshot {
+                name: name.to_string(),
+                kind: BodyKind::Block,
+                shape: ShapeSnapshot::Cuboid {
+                    half_extents: [0.03; 3],
+                },
+                pose: PoseSnapshot {
+                    position: [x, y, 0.03],
+                    quaternion: [0.0, 0.0, 0.0, 1.0],
+                },
+                color: "#9467bd".into(),
+                lost: false,
+            });
+            if !has_on {
+                // No stacking in this domain: the new block appears where the demonstration puts
+                // a block down (in the way), else on the table.
+                let mut order: Vec<(f64, f64)> = spots.to_vec();
+                order.shuffle(&mut rng);
+                if let Ok(w2) = World::from_snapshot(&s2) {
+                    for (sx, sy) in order {
+                        let mut w3 = w2.clone();
+                        if w3.move_block(name, Vector3::new(sx, sy, 0.3)).is_ok()
+                            && !seen_equal(&facts(&w3))
+                        {
+                            let to = centre(&w3, name).unwrap_or([sx, sy, 0.0]);
+                            *world = w3;
+                            return Ok(Injection {
+                                level: "l4".into(),
+                                description: format!(
+                                    "L4: a new block {name} appeared where the demonstration puts a block down"
+                                ),
+                                moved: vec![(name.to_string(), to)],
+                            });
+                        }
+                    }
+                    if !seen_equal(&facts(&w2)) {
+                        *world = w2;
+                        return Ok(Injection {
+                            level: "l4".into(),
+                            description: format!("L4: a new block {name} appeared on the table"),
+                            moved: vec![(name.to_string(), [x, y, 0.03])],
+                        });
+                    }
+                }
+                return Err("L4: no room for a new block".into());
+            }
+            for (ti, t) in targets {
+                let last_resort = ti + 1 == n_targets;
                 let Some(c) = centre(world, &t) else { continue };
-                let mut s2 = snap.clone();
-                s2.bodies.push(BodySnapshot {
-                    name: name.to_string(),
-                    kind: BodyKind::Block,
-                    shape: ShapeSnapshot::Cuboid {
-                        half_extents: [0.03; 3],
-                    },
-                    pose: PoseSnapshot {
-                        position: [x, y, 0.03],
-                        quaternion: [0.0, 0.0, 0.0, 1.0],
-                    },
-                    color: "#9467bd".into(),
-                    lost: false,
-                });
                 let Ok(mut w2) = World::from_snapshot(&s2) else {
                     continue;
                 };
@@ -258,7 +322,7 @@ pub fn inject(
                     continue;
                 }
                 let after = facts(&w2);
-                if !seen_subset(&after) {
+                if !seen_subset(&after) || (last_resort && !seen_equal(&after)) {
                     let to = centre(&w2, name).unwrap_or([0.0; 3]);
                     *world = w2;
                     return Ok(Injection {

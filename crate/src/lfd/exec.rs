@@ -220,6 +220,8 @@ pub struct ActionExec {
     pub events: Vec<WorldEvent>,
     /// The anchor frame at the gripper event (frame of the retreat skill).
     event_frame: Option<Isometry3<f64>>,
+    /// The body acted on is the hook (its skills are the `hook-…` ones).
+    hook: bool,
 }
 
 #[derive(Clone, Debug)]
@@ -262,9 +264,15 @@ impl ActionExec {
         skills: &SkillLibrary,
         p: &ExecParams,
     ) -> Self {
+        let hook = match &kind {
+            ActionKind::Grasp { body, .. } | ActionKind::Release { body, .. } => {
+                world.body_kind(body) == Some(HOOK)
+            }
+            ActionKind::Pull { .. } => true,
+        };
+        let pre = if hook { "hook-" } else { "" };
         let (arm, phases) = match &kind {
-            ActionKind::Grasp { arm, body }
-                if skills.has("grasp-approach") && skills.has("grasp-retreat") =>
+            ActionKind::Grasp { arm, body } if skills.has(&format!("{pre}grasp-approach")) =>
             {
                 (
                     *arm,
@@ -278,7 +286,7 @@ impl ActionExec {
                         Phase::Gripper(GripperCommand::Close),
                         Phase::Move(Via::Up {
                             dz: p.lift_height,
-                            skill: true,
+                            skill: skills.has(&format!("{pre}grasp-retreat")),
                         }),
                     ],
                 )
@@ -302,7 +310,7 @@ impl ActionExec {
                         Phase::Gripper(GripperCommand::Open),
                         Phase::Move(Via::Up {
                             dz: p.approach_height,
-                            skill: true,
+                            skill: skills.has(&format!("{pre}place-retreat")),
                         }),
                     ],
                 )
@@ -370,6 +378,10 @@ impl ActionExec {
                         body: body.clone(),
                         stage: 2,
                     }),
+                    Phase::Move(Via::Pull {
+                        body: body.clone(),
+                        stage: 3,
+                    }),
                 ],
             ),
         };
@@ -388,6 +400,7 @@ impl ActionExec {
             gripper,
             events: vec![],
             event_frame: None,
+            hook,
         }
     }
 
@@ -426,21 +439,6 @@ impl ActionExec {
                         .map(|p| anchor_frame(&p));
                 }
                 self.gripper = cmd;
-                if std::env::var("LFD_TRACE").is_ok() && self.wait == 0 {
-                    if let Some(h) = world.held_by(self.arm) {
-                        eprintln!(
-                            "  gripper {cmd:?}: {h} at {:?}, tcp {:?}",
-                            world.body_pose(h).map(|p| p.translation.vector),
-                            tcp.translation.vector
-                        );
-                    }
-                    for b in world.block_names() {
-                        eprintln!(
-                            "    {b}: {:?}",
-                            world.body_pose(b).map(|p| p.translation.vector)
-                        );
-                    }
-                }
                 let _ = world.command_arm(self.arm, tcp, cmd);
                 let ev = world.step();
                 self.events.extend(ev.iter().cloned());
@@ -554,9 +552,6 @@ impl ActionExec {
     }
 
     fn next_phase(&mut self) {
-        if std::env::var("LFD_TRACE").is_ok() {
-            eprintln!("  [{}] phase {} done", self.action, self.phase);
-        }
         self.phase += 1;
         self.segment = None;
         self.wait = 0;
@@ -586,19 +581,10 @@ impl ActionExec {
             .tcp_pose(self.arm)
             .ok_or_else(|| "no such arm".to_string())?;
         let (goal, frame, anchor) = self.via_pose(world, via, &start)?;
-        if std::env::var("LFD_TRACE").is_ok() {
-            eprintln!(
-                "  [{}] segment {:?}: from {:?} to {:?}",
-                self.action,
-                via,
-                start.translation.vector.as_slice(),
-                goal.translation.vector.as_slice()
-            );
-        }
         let dist = (goal.translation.vector - start.translation.vector).norm();
         let duration = (dist / p.speed).max(p.min_segment);
         let steps = ((duration / world.dt()).round() as usize).max(2);
-        let traj = skills.segment(self.skill_name(via), &start, &goal, frame.as_ref(), steps);
+        let traj = skills.segment(&self.skill_name(via), &start, &goal, frame.as_ref(), steps);
         Ok(Running {
             traj,
             t: 0,
@@ -609,14 +595,19 @@ impl ActionExec {
         })
     }
 
-    fn skill_name(&self, via: &Via) -> &'static str {
+    fn skill_name(&self, via: &Via) -> String {
         let grasping = matches!(self.kind, ActionKind::Grasp { .. });
-        match via {
+        let base = match via {
             Via::Grasp { skill: true, .. } => "grasp-approach",
             Via::Place { skill: true, .. } => "place-approach",
             Via::Up { skill: true, .. } if grasping => "grasp-retreat",
             Via::Up { skill: true, .. } => "place-retreat",
-            _ => "profile",
+            _ => return "profile".into(),
+        };
+        if self.hook {
+            format!("hook-{base}")
+        } else {
+            base.to_string()
         }
     }
 
@@ -706,41 +697,31 @@ pub(crate) fn placement_pose(
     }
 }
 
-/// Via-points of a pull stroke: 0 above the far side of `body`, 1 lowered behind it, 2 dragged
-/// towards the arm's base until `body` is well inside the reach annulus.
+/// Via-points of a pull stroke (the simulator's hook geometry, `sim::demo::pull_hook_poses`):
+/// 0 above the contact pose (blade behind the block), 1 the contact pose, 2 the pulled pose
+/// (block at `PULL_TARGET_RADIUS` from the base), 3 lifted from there.
 fn pull_via(world: &World, arm: usize, body: &str, stage: u8) -> Result<Isometry3<f64>, String> {
-    let base = world.arm_base(arm).ok_or("no such arm")?.translation.vector;
-    let b = world
+    let base = world.arm_base(arm).ok_or("no such arm")?;
+    let bp = world
         .body_pose(body)
-        .ok_or_else(|| format!("no body {body}"))?
-        .translation
-        .vector;
-    let mut d = Vector3::new(b.x - base.x, b.y - base.y, 0.0);
-    let r = d.norm().max(1e-6);
-    d /= r;
-    // Keep the hook's grasp: the TCP is offset from the blade; we move the TCP so the hook's
-    // blade (the far end) sits behind the block. The hook frame's +x runs from the handle grip
-    // to the blade.
-    let grasp = world.grasp_transform(arm).ok_or("the arm holds no hook")?;
-    let hook_in_tcp = grasp; // hook pose = tcp * grasp
-    let blade_reach = hook_in_tcp.translation.vector.norm() + 0.17;
-    let behind = b + d * 0.06;
-    let yaw = d.y.atan2(d.x);
-    let rot = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw) * tcp_down();
-    let tcp_xy = behind - d * blade_reach;
-    let z_above = b.z + 0.08;
-    let z_low = b.z;
-    let p = match stage {
-        0 => Vector3::new(tcp_xy.x, tcp_xy.y, z_above),
-        1 => Vector3::new(tcp_xy.x, tcp_xy.y, z_low),
-        _ => {
-            let pulled = tcp_xy - d * 0.25;
-            Vector3::new(pulled.x, pulled.y, z_low)
-        }
+        .ok_or_else(|| format!("no body {body}"))?;
+    let (contact, pulled) = crate::sim::demo::pull_hook_poses(
+        &base,
+        &bp,
+        crate::sim::demo::PULL_TARGET_RADIUS,
+    );
+    let lift = |iso: Isometry3<f64>| {
+        Isometry3::from_parts(
+            Translation3::from(iso.translation.vector + Vector3::z() * 0.08),
+            iso.rotation,
+        )
     };
-    Ok(Isometry3::from_parts(Translation3::from(p), rot))
-}
-
-fn tcp_down() -> UnitQuaternion<f64> {
-    crate::sim::panda::down_orientation(0.0)
+    let tc = tcp_for_body_pose(world, arm, &contact);
+    let tp = tcp_for_body_pose(world, arm, &pulled);
+    Ok(match stage {
+        0 => lift(tc),
+        1 => tc,
+        2 => tp,
+        _ => lift(tp),
+    })
 }

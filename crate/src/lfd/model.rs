@@ -115,6 +115,21 @@ impl DomainModel {
         })
     }
 
+    /// The parsed domain.
+    pub fn domain(&self) -> &Domain {
+        &self.domain
+    }
+
+    /// The parsed problem of a world with these objects and facts.
+    pub fn problem(
+        &self,
+        objects: &[(String, String)],
+        facts: &[String],
+    ) -> Result<pddl::Problem, LfdError> {
+        pddl::parse_problem(&self.problem_text(objects, facts), &self.file, &self.domain)
+            .map_err(|e| LfdError::Model(e.to_string()))
+    }
+
     /// The template problem's objects (name, type).
     pub fn template_objects(&self) -> &[(String, String)] {
         &self.template_objects

@@ -377,6 +377,22 @@ pub fn demo_actions(demo_json: &str) -> Result<Vec<String>, SessionError> {
         .collect()
 }
 
+/// The placements the demonstration used for its surface releases (`place`,
+/// `place-on-shelf`): action → `(x, y, yaw)` of the resting pose (`sim::demo` anchor poses).
+fn demo_hints(demo_json: &str) -> std::collections::BTreeMap<String, (f64, f64, f64)> {
+    let mut out = std::collections::BTreeMap::new();
+    if let Ok(d) = crate::sim::demo::from_json(demo_json) {
+        for a in d.actions {
+            if a.name.starts_with("place") {
+                let p = a.anchor_pose.position;
+                out.entry(a.action.clone())
+                    .or_insert((p[0], p[1], a.anchor_pose.yaw));
+            }
+        }
+    }
+    out
+}
+
 /// A closed-loop episode stepped by the caller.
 pub struct Session {
     options: SessionOptions,
@@ -385,6 +401,7 @@ pub struct Session {
     model: DomainModel,
     trace: DemoTrace,
     skills: SkillLibrary,
+    hints: std::collections::BTreeMap<String, (f64, f64, f64)>,
     initial: WorldSnapshot,
     demo_json: Option<String>,
     world: World,
@@ -417,8 +434,8 @@ fn objects_of(world: &World) -> Vec<(String, String)> {
         .collect()
 }
 
-/// A seed for the `n`-th random draw of an episode.
-pub(crate) fn mix(seed: u64, n: u64) -> u64 {
+/// A seed for the `n`-th random draw of an episode (SplitMix64 of `seed ⊕ n·φ`).
+pub fn mix(seed: u64, n: u64) -> u64 {
     let mut z = seed ^ n.wrapping_mul(0x9E37_79B9_7F4A_7C15);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
@@ -466,7 +483,9 @@ impl Session {
         demo_json: Option<&str>,
         params: SessionParams,
     ) -> Result<Session, SessionError> {
+        // Through the snapshot once, so the logged initial scene reloads to this very world.
         let world = World::from_json(scene_json.unwrap_or(&files.scene))?;
+        let world = World::from_snapshot(&world.snapshot())?;
         let template = World::from_json(&files.scene)?;
         let predicates = template.snapshot().predicates;
         let model = DomainModel::new(
@@ -498,7 +517,16 @@ impl Session {
             objects,
         );
         let prev_facts = facts_of(&world);
-        let skills = SkillLibrary::learn(demo_json.unwrap_or(&files.demo), options.skill);
+        let hooks: Vec<String> = world
+            .snapshot()
+            .bodies
+            .iter()
+            .filter(|b| b.kind == crate::sim::snapshot::BodyKind::Hook)
+            .map(|b| b.name.clone())
+            .collect();
+        let skills =
+            SkillLibrary::learn(demo_json.unwrap_or(&files.demo), options.skill, &hooks);
+        let hints = demo_hints(demo_json.unwrap_or(&files.demo));
         Ok(Session {
             sources: files.clone(),
             initial: world.snapshot(),
@@ -508,6 +536,7 @@ impl Session {
             model,
             trace,
             skills,
+            hints,
             world,
             controller,
             exec: None,
@@ -559,6 +588,11 @@ impl Session {
     /// The episode's outcome, once it ended.
     pub fn outcome(&self) -> Option<&Result<(), FailReason>> {
         self.outcome.as_ref()
+    }
+
+    /// The benchmark's PDDL model.
+    pub fn model(&self) -> &DomainModel {
+        &self.model
     }
 
     /// The controller (plan, replans, task).
@@ -698,15 +732,39 @@ impl Session {
             &self.world,
             mix(self.options.seed, before as u64 + 1),
             self.params.streams,
-        );
+        )
+        .with_hints(&self.hints);
         let decision =
             self.controller
                 .decide(&facts, &objects, &self.model, &mut binder, clock, self.tick);
         let replanned = self.controller.replans().len() > before;
         if replanned {
             match self.options.method {
-                Method::Linear | Method::Rlds => {
-                    // No new actions: only re-target surface placements (no certification).
+                Method::Linear => {
+                    // The demonstration's placements, as demonstrated (no task-level feedback,
+                    // nothing re-sampled); blocks are re-targeted by the skills.
+                    let task = self.controller.task();
+                    binder.bindings = self
+                        .controller
+                        .plan_ops()
+                        .iter()
+                        .map(|&o| {
+                            let op = &task.operators[o];
+                            match classify(task, op, &self.world) {
+                                Some(ActionKind::Release {
+                                    placement: Some(p), ..
+                                }) => Some(p),
+                                Some(ActionKind::Release { .. }) => self
+                                    .hints
+                                    .get(&op.name)
+                                    .map(|&(x, y, yaw)| Placement::At { x, y, yaw }),
+                                _ => None,
+                            }
+                        })
+                        .collect();
+                }
+                Method::Rlds => {
+                    // No new actions: only surface placements are re-targeted.
                     let ops = self.controller.plan_ops().to_vec();
                     let task = self.controller.task().clone();
                     if binder.bind(&task, &ops, 0).is_err() {
@@ -874,7 +932,14 @@ impl Session {
                 }
                 events.next();
             }
-            if s.tick >= log.ticks || s.outcome.is_some() {
+            if s.outcome.is_some() {
+                break;
+            }
+            if s.tick >= log.ticks {
+                // The final decision (done / failed) takes no tick.
+                if log.result.is_some() {
+                    s.tick_once(&clock);
+                }
                 break;
             }
             let before = s.tick;
@@ -976,10 +1041,12 @@ impl Session {
     /// number of injections so far); what it did, in words and data.
     pub fn inject(&mut self, level: &str) -> Result<Injection, SessionError> {
         let n = self.injections;
+        let spots: Vec<(f64, f64)> = self.hints.values().map(|h| (h.0, h.1)).collect();
         let inj = super::disturb::inject(
             &mut self.world,
             level,
             &self.trace,
+            &spots,
             mix(self.options.seed, 1_000_003 + n),
         )
         .map_err(SessionError::Json)?;
@@ -990,52 +1057,5 @@ impl Session {
             description: inj.description.clone(),
         });
         Ok(inj)
-    }
-}
-
-#[cfg(test)]
-mod devtests {
-    use super::*;
-
-    #[test]
-    fn dev_b1_episode() {
-        let Ok(dir) = std::env::var("LFD_DEV_DIR") else {
-            return;
-        };
-        let rd = |f: &str| std::fs::read_to_string(format!("{dir}/{f}")).unwrap();
-        let b = crate::sim::benchmark::Benchmark::B1;
-        let src = BenchmarkSources {
-            dir: "b1-tower".into(),
-            domain: b.domain_pddl().into(),
-            problem: b.problem_pddl().into(),
-            scene: serde_json::to_string(&b.scene_snapshot()).unwrap(),
-            demo: rd("demo.json"),
-        };
-        for method in [Method::LogicLfd, Method::Linear, Method::Rlds, Method::Tamp] {
-            let opts = SessionOptions {
-                benchmark: BenchmarkId::B1,
-                method,
-                mode: Mode::Paper,
-                seed: 1,
-                skill: SkillKind::Lqt,
-            };
-            let mut s =
-                Session::with_sources(opts, &src, None, None, SessionParams::default()).unwrap();
-            s.run_to_end(30_000, &NoClock);
-            let log = s.log();
-            eprintln!("{method:?}: {:?}", log.result);
-            for a in &log.actions {
-                eprintln!(
-                    "  {} {}..{:?} {}",
-                    a.action, a.start_tick, a.end_tick, a.outcome
-                );
-            }
-            for r in &log.replans {
-                eprintln!("  replan {} k={:?} {:?}", r.reason, r.k, r.plan);
-            }
-            if let Err(v) = s.world().check_invariants() {
-                eprintln!("  invariants: {v:?}");
-            }
-        }
     }
 }

@@ -154,7 +154,9 @@ fn kinds_of(name: &str) -> Option<(&'static str, &'static str)> {
 impl SkillLibrary {
     /// Learns the segment skills from a `demo.json` with trajectories (see `sim::demo`). A demo
     /// without trajectories (only `actions` names) gives an empty library (minimum-jerk motion).
-    pub fn learn(demo_json: &str, kind: SkillKind) -> SkillLibrary {
+    /// Actions whose anchor is one of `hooks` learn `hook-…` skills (the hook is grasped at its
+    /// handle, not at its centre).
+    pub fn learn(demo_json: &str, kind: SkillKind, hooks: &[String]) -> SkillLibrary {
         let mut skills = BTreeMap::new();
         let Ok(demo) = crate::sim::demo::from_json(demo_json) else {
             return SkillLibrary { skills };
@@ -175,8 +177,20 @@ impl SkillLibrary {
                 .iter()
                 .map(|s| Point3::new(s[0], s[1], s[2]))
                 .collect();
+            // The retreat is learned only when it stays near the object (in B3 the demo's
+            // retreat returns to the arm's home pose: not object-centric, so it is a plain lift).
+            let local = |seg: &[Point3<f64>]| {
+                seg.first()
+                    .zip(seg.last())
+                    .is_some_and(|(a, b)| (a - b).norm() < 0.2)
+            };
+            let prefix = if hooks.contains(&a.anchor) { "hook-" } else { "" };
             for (name, seg) in [(approach, &pts[..=ev.step]), (retreat, &pts[ev.step..])] {
-                if skills.contains_key(name) || seg.len() < 8 {
+                if name == retreat && !local(seg) {
+                    continue;
+                }
+                let name = &format!("{prefix}{name}");
+                if skills.contains_key(name.as_str()) || seg.len() < 8 {
                     continue;
                 }
                 let learned = match kind {
@@ -188,7 +202,7 @@ impl SkillLibrary {
                         .map(|d| LearnedSkill::Dmp(Box::new(d))),
                 };
                 if let Some(l) = learned {
-                    skills.insert(name.to_string(), l);
+                    skills.insert(name.clone(), l);
                 }
             }
         }

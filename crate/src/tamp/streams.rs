@@ -47,10 +47,10 @@ pub struct StreamParams {
 impl Default for StreamParams {
     fn default() -> Self {
         StreamParams {
-            placement_samples: 24,
+            placement_samples: 48,
             approach_height: 0.10,
             contact_slack: 0.002,
-            clearance: 0.015,
+            clearance: 0.008,
         }
     }
 }
@@ -68,6 +68,8 @@ pub struct StreamBinder<'w> {
     pub bindings: Vec<Option<Placement>>,
     /// Certifications (IK + collision tests) done so far.
     pub certifications: usize,
+    /// Placements the demonstration used, by action: `(x, y, yaw)` of the resting pose.
+    hints: BTreeMap<String, (f64, f64, f64)>,
 }
 
 #[derive(Clone, Debug)]
@@ -101,7 +103,14 @@ impl<'w> StreamBinder<'w> {
             params,
             bindings: vec![],
             certifications: 0,
+            hints: BTreeMap::new(),
         }
+    }
+
+    /// Placements to try first for these actions (the demonstration's), `(x, y, yaw)`.
+    pub fn with_hints(mut self, hints: &BTreeMap<String, (f64, f64, f64)>) -> Self {
+        self.hints = hints.clone();
+        self
     }
 
     fn geo(&self) -> Geo {
@@ -139,12 +148,34 @@ impl<'w> StreamBinder<'w> {
     /// (touching faces allowed).
     fn collision_free(&mut self, geo: &Geo, body: &str, pose: &Isometry3<f64>) -> bool {
         self.certifications += 1;
-        let h = self.half_extents(body);
-        let me = Cuboid::new(h - Vector3::repeat(self.params.contact_slack));
-        let grown = Cuboid::new(
-            h + Vector3::new(self.params.clearance, self.params.clearance, 0.0)
-                - Vector3::repeat(self.params.contact_slack),
-        );
+        let slack = Vector3::repeat(self.params.contact_slack);
+        let grow = Vector3::new(self.params.clearance, self.params.clearance, 0.0);
+        // The moving body's boxes, relative to its frame, placed at `pose`.
+        let cur = self.world.body_pose(body).unwrap_or(*pose);
+        let mine: Vec<(Isometry3<f64>, Vector3<f64>)> = self
+            .world
+            .body_shapes(body)
+            .into_iter()
+            .map(|(iso, c)| (pose * cur.inverse() * iso, c.half_extents))
+            .collect();
+        for (my_iso, h) in &mine {
+            let me = Cuboid::new((h - slack).sup(&(h * 0.5)));
+            let grown = Cuboid::new((h + grow - slack).sup(&(h * 0.5)));
+            if !self.part_free(geo, body, my_iso, &me, &grown) {
+                return false;
+            }
+        }
+        true
+    }
+
+    fn part_free(
+        &self,
+        geo: &Geo,
+        body: &str,
+        pose: &Isometry3<f64>,
+        me: &Cuboid,
+        grown: &Cuboid,
+    ) -> bool {
         for (name, p) in &geo.poses {
             if name == body || geo.held.values().any(|v| v == name) {
                 continue;
@@ -158,9 +189,9 @@ impl<'w> StreamBinder<'w> {
                         - Vector3::repeat(self.params.contact_slack).inf(&(c.half_extents * 0.5)),
                 );
                 let test_shape = if self.world.body_kind(name) == Some(BodyKind::Block) {
-                    &grown
+                    grown
                 } else {
-                    &me
+                    me
                 };
                 if query::intersection_test(pose, test_shape, &iso, &other).unwrap_or(true) {
                     return false;
@@ -169,7 +200,7 @@ impl<'w> StreamBinder<'w> {
         }
         for (_, _, parts) in &self.fixed {
             for (iso, c) in parts {
-                if query::intersection_test(pose, &me, iso, c).unwrap_or(true) {
+                if query::intersection_test(pose, me, iso, c).unwrap_or(true) {
                     return false;
                 }
             }
@@ -246,49 +277,83 @@ impl<'w> StreamBinder<'w> {
         out
     }
 
+    /// Whether arm `a`'s reach annulus contains `(x, y)`.
+    fn in_annulus(&self, a: usize, x: f64, y: f64) -> bool {
+        match (self.reach.get(a), self.world.arm_base(a)) {
+            (Some(r), Some(b)) => {
+                let d = (x - b.translation.x).hypot(y - b.translation.y);
+                d >= r.min_radius && d <= r.max_radius
+            }
+            _ => false,
+        }
+    }
+
+    /// A certified resting pose for `body` on one of `surfaces`: the demonstration's `hint`
+    /// first, then uniform samples. Certified: inside the placing arm's reach annulus,
+    /// collision-free, reachable (with approach) by the placing arm and by every other arm whose
+    /// annulus contains it (hand-over spots must be graspable from the other side).
     fn sample_surface(
         &mut self,
         geo: &Geo,
         arm: usize,
         body: &str,
         surfaces: &[([f64; 2], [f64; 2], f64)],
-        certify: bool,
+        hint: Option<(f64, f64, f64)>,
     ) -> Option<(Placement, Isometry3<f64>)> {
         if surfaces.is_empty() {
             return None;
         }
         let h = self.half_extents(body);
         let margin = h.x.max(h.y) + 0.01;
-        let reach = self.reach.get(arm).cloned();
-        let base = self.world.arm_base(arm)?.translation.vector;
-        for _ in 0..self.params.placement_samples {
-            let (xr, yr, top) = surfaces[self.rng.random_range(0..surfaces.len())];
-            if xr[1] - xr[0] <= 2.0 * margin || yr[1] - yr[0] <= 2.0 * margin {
-                continue;
-            }
-            let x = self.rng.random_range(xr[0] + margin..xr[1] - margin);
-            let y = self.rng.random_range(yr[0] + margin..yr[1] - margin);
-            if let Some(r) = &reach {
-                let d = (x - base.x).hypot(y - base.y);
-                if d < r.min_radius || d > r.max_radius {
+        // Height of the body's frame above its lowest point (the hook's frame is not centred).
+        let (lo, _) = self.world.body_aabb(body)?;
+        let lift = self.world.body_pose(body)?.translation.z - lo.z;
+        let is_block = self.world.body_kind(body) == Some(BodyKind::Block);
+        for n in 0..=self.params.placement_samples {
+            let (x, y, yaw, top) = if n == 0 {
+                let Some((x, y, yaw)) = hint else { continue };
+                let Some(&(_, _, top)) = surfaces.iter().find(|(xr, yr, _)| {
+                    xr[0] <= x && x <= xr[1] && yr[0] <= y && y <= yr[1]
+                }) else {
+                    continue;
+                };
+                (x, y, yaw, top)
+            } else {
+                let (xr, yr, top) = surfaces[self.rng.random_range(0..surfaces.len())];
+                if xr[1] - xr[0] <= 2.0 * margin || yr[1] - yr[0] <= 2.0 * margin {
                     continue;
                 }
-            }
-            let yaw = if self.rng.random_bool(0.5) {
-                0.0
-            } else {
-                std::f64::consts::FRAC_PI_2
+                let x = self.rng.random_range(xr[0] + margin..xr[1] - margin);
+                let y = self.rng.random_range(yr[0] + margin..yr[1] - margin);
+                let yaw = if self.rng.random_bool(0.5) {
+                    0.0
+                } else {
+                    std::f64::consts::FRAC_PI_2
+                };
+                (x, y, yaw, top)
             };
+            if is_block && !self.in_annulus(arm, x, y) {
+                continue;
+            }
             let pose = Isometry3::from_parts(
-                Translation3::new(x, y, top + h.z),
+                Translation3::new(x, y, top + lift),
                 UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
             );
             if !self.collision_free(geo, body, &pose) {
                 continue;
             }
-            if certify {
+            if is_block {
                 let tcp = self.top_grasp(arm, &pose);
                 if !self.reachable(arm, &tcp) {
+                    continue;
+                }
+                let others: Vec<usize> = (0..self.reach.len())
+                    .filter(|&a| a != arm && self.in_annulus(a, x, y))
+                    .collect();
+                if others.iter().any(|&a| {
+                    let g = self.top_grasp(a, &pose);
+                    !self.reachable(a, &g)
+                }) {
                     continue;
                 }
             }
@@ -355,8 +420,9 @@ impl Binder for StreamBinder<'_> {
                         .collect();
                     let surfaces = self.surfaces(&adds, &body);
                     geo.held.remove(&arm);
+                    let hint = self.hints.get(&op.name).copied();
                     let Some((placement, pose)) =
-                        self.sample_surface(&geo, arm, &body, &surfaces, certify)
+                        self.sample_surface(&geo, arm, &body, &surfaces, hint)
                     else {
                         return Err(i);
                     };

@@ -1,0 +1,309 @@
+//! Logic-LfD end to end: closed-loop episodes for every benchmark × level × method at two seeds
+//! (world invariants after every step, every plan valid in the PDDL model, the expected outcome
+//! and failure reason per method), replay identity, prioritised vs paper mode, and the multi-goal
+//! specification on the real B1 PDDL.
+
+use logic_lfd::experiments::{EpisodeSpec, Level};
+use logic_lfd::lfd::control::FailReason;
+use logic_lfd::lfd::session::{
+    mix, BenchmarkId, Session, SessionOptions, SessionParams, SkillKind,
+};
+use logic_lfd::lfd::{
+    logic_in, plan_logic_lfd, DemoTrace, Method, Mode, MultiGoalSpec, PlanSource, TaskBuilder,
+};
+use logic_lfd::plan::{validate_names, Algorithm, HeuristicKind, NoClock, SearchConfig};
+use logic_lfd::sim::SceneGraph;
+
+/// What one episode did, as the tests see it.
+struct Run {
+    success: bool,
+    reason: Option<FailReason>,
+    injected: bool,
+    actions: usize,
+}
+
+fn objects(s: &Session) -> Vec<(String, String)> {
+    SceneGraph::objects(s.world())
+        .into_iter()
+        .map(|o| (o.name, o.kind))
+        .collect()
+}
+
+/// Runs an episode like `logic-lfd run` does, checking the world's invariants after every tick
+/// and every new plan (Logic-LfD, TAMP, RLDS; linear's only at the start) in the PDDL model from
+/// the facts it was planned from.
+fn episode(b: BenchmarkId, level: Level, method: Method, mode: Mode, seed: u64) -> Run {
+    let opts = SessionOptions {
+        benchmark: b,
+        method,
+        mode,
+        seed,
+        skill: SkillKind::Lqt,
+    };
+    let mut s = Session::new(opts).expect("session");
+    let n = s.controller().trace().len().max(3);
+    let mut next_try = 1 + (mix(seed, 77) % (n as u64 - 2)) as usize;
+    let mut injected = false;
+    let mut checked = 0;
+    for _ in 0..40_000 {
+        if s.outcome().is_some() {
+            break;
+        }
+        if !injected && !s.is_executing() && s.actions_done() >= next_try {
+            match s.inject(level.as_str()) {
+                Ok(_) => injected = true,
+                Err(_) => next_try = s.actions_done() + 1,
+            }
+        }
+        let facts = SceneGraph::from_world(s.world()).to_strings();
+        let objs = objects(&s);
+        s.tick_once(&NoClock);
+        if let Err(v) = s.world().check_invariants() {
+            // A blindly executed baseline may knock blocks over; that is its failure, not ours.
+            assert!(
+                method == Method::Linear,
+                "{b:?} {level:?} {method:?} seed {seed}: invariants broken at tick {}: {v:?}",
+                s.tick()
+            );
+        }
+        let replans = s.controller().replans();
+        if replans.len() > checked {
+            checked = replans.len();
+            let r = replans.last().unwrap();
+            if method != Method::Linear || checked == 1 {
+                let problem = s.model().problem(&objs, &facts).expect("problem");
+                let report = validate_names(s.model().domain(), &problem, &r.plan);
+                assert!(
+                    report.is_valid(),
+                    "{b:?} {level:?} {method:?} seed {seed}: plan {:?} invalid from {facts:?}: {:?}",
+                    r.plan,
+                    report.outcome
+                );
+            }
+        }
+    }
+    let (success, reason) = match s.outcome() {
+        Some(Ok(())) => (true, None),
+        Some(Err(r)) => (false, Some(r.clone())),
+        None => (false, None),
+    };
+    Run {
+        success,
+        reason,
+        injected,
+        actions: s.actions_done(),
+    }
+}
+
+fn matrix(b: BenchmarkId) {
+    for seed in [1, 3] {
+        for level in Level::ALL {
+            for method in Method::ALL {
+                let r = episode(b, level, method, Mode::Paper, seed);
+                let tag = format!("{b:?} {level:?} {method:?} seed {seed}: {:?}", r.reason);
+                // Every level can be injected, except L2 on B2 (no single block move there
+                // returns to an earlier demonstration state; README).
+                if !(b == BenchmarkId::B2 && level == Level::L2) {
+                    assert!(r.injected, "{tag}: no disturbance injected");
+                }
+                match (method, level) {
+                    (Method::LogicLfd | Method::Tamp, _) => assert!(r.success, "{tag}"),
+                    (_, Level::L1) => assert!(r.success, "{tag}"),
+                    (Method::Rlds, Level::L2) => assert!(r.success, "{tag}"),
+                    (Method::Rlds, Level::L3) => assert!(
+                        matches!(r.reason, Some(FailReason::NoDemoStateMatches { .. })),
+                        "{tag}"
+                    ),
+                    (Method::Rlds, Level::L4) if b != BenchmarkId::B2 => assert!(
+                        matches!(r.reason, Some(FailReason::NoDemoStateMatches { .. })),
+                        "{tag}"
+                    ),
+                    (Method::Linear, Level::L2 | Level::L3 | Level::L4)
+                        if b != BenchmarkId::B2 =>
+                    {
+                        assert!(
+                            matches!(
+                                r.reason,
+                                Some(
+                                    FailReason::GoalNotReached { .. }
+                                        | FailReason::ActionFailed { .. }
+                                )
+                            ),
+                            "{tag}"
+                        )
+                    }
+                    (Method::Linear, Level::L3) => assert!(
+                        matches!(
+                            r.reason,
+                            Some(FailReason::GoalNotReached { .. } | FailReason::ActionFailed { .. })
+                        ),
+                        "{tag}"
+                    ),
+                    _ => {}
+                }
+                assert!(r.success || r.actions < 40, "{tag}");
+            }
+        }
+    }
+}
+
+#[test]
+fn b1_every_level_and_method_ends_as_expected() {
+    matrix(BenchmarkId::B1);
+}
+
+#[test]
+fn b2_every_level_and_method_ends_as_expected() {
+    matrix(BenchmarkId::B2);
+}
+
+#[test]
+fn b3_every_level_and_method_ends_as_expected() {
+    matrix(BenchmarkId::B3);
+}
+
+#[test]
+fn the_same_seed_gives_the_identical_episode_and_the_json_replays_exactly() {
+    let spec = EpisodeSpec {
+        benchmark: BenchmarkId::B1,
+        level: Some(Level::L3),
+        method: Method::LogicLfd,
+        mode: Mode::Paper,
+        seed: 5,
+        scene: None,
+    };
+    let a = logic_lfd::experiments::run_episode(&spec, SessionParams::default(), &NoClock).unwrap();
+    let b = logic_lfd::experiments::run_episode(&spec, SessionParams::default(), &NoClock).unwrap();
+    assert_eq!(
+        serde_json::to_string(&a.log).unwrap(),
+        serde_json::to_string(&b.log).unwrap()
+    );
+    assert!(a.success && a.injection.is_some() && a.replans >= 2);
+    let json = serde_json::to_string(&a.log).unwrap();
+    let replayed = Session::replay(&json).unwrap().log();
+    assert_eq!(replayed.canonical(), a.log.canonical());
+    // A different seed is a different episode.
+    let c = logic_lfd::experiments::run_episode(
+        &EpisodeSpec { seed: 6, ..spec },
+        SessionParams::default(),
+        &NoClock,
+    )
+    .unwrap();
+    assert_ne!(c.log.canonical(), a.log.canonical());
+}
+
+#[test]
+fn a_user_drag_is_logged_and_replayed() {
+    let opts = SessionOptions {
+        benchmark: BenchmarkId::B1,
+        method: Method::LogicLfd,
+        mode: Mode::Prioritised,
+        seed: 2,
+        skill: SkillKind::Lqt,
+    };
+    let mut s = Session::new(opts).unwrap();
+    let f = s.step(3.0, &NoClock);
+    assert_eq!(f.tick, 300);
+    assert!(f.status.kind == "executing" || f.status.kind == "replanning");
+    // Move block a onto d while the arm works on c: a task-level change.
+    let pos = s.world().body_pose("d").unwrap().translation.vector;
+    let out = s.perturb("a", [pos.x, pos.y, pos.z + 0.1]);
+    assert!(out.is_ok(), "{out:?}");
+    assert!(s.perturb("nosuchblock", [0.0, 0.0, 0.5]).is_err());
+    for _ in 0..100 {
+        s.step(0.5, &NoClock);
+        if s.outcome().is_some() {
+            break;
+        }
+    }
+    assert_eq!(s.outcome(), Some(&Ok(())));
+    let log = s.log();
+    assert!(log.replans.len() >= 2, "{:?}", log.replans);
+    let replayed = Session::replay(&s.episode_json()).unwrap().log();
+    assert_eq!(replayed.canonical(), log.canonical());
+}
+
+#[test]
+fn prioritised_mode_never_executes_more_actions_than_paper_mode() {
+    for seed in [1, 2, 3] {
+        for level in [Level::L3, Level::L4] {
+            let p = episode(BenchmarkId::B1, level, Method::LogicLfd, Mode::Paper, seed);
+            let q = episode(BenchmarkId::B1, level, Method::LogicLfd, Mode::Prioritised, seed);
+            assert!(p.success && q.success);
+            assert!(
+                q.actions <= p.actions,
+                "seed {seed} {level:?}: prioritised {} > paper {}",
+                q.actions,
+                p.actions
+            );
+        }
+    }
+}
+
+#[test]
+fn multi_goal_plan_plus_suffix_reaches_the_goal_in_the_pddl_model() {
+    let files = BenchmarkId::B1.sources().unwrap();
+    let world = logic_lfd::sim::World::from_json(&files.scene).unwrap();
+    let model = logic_lfd::lfd::model::DomainModel::new(
+        &files.domain,
+        "domain.pddl",
+        &files.problem,
+        "problem.pddl",
+        &world.snapshot().predicates,
+    )
+    .unwrap();
+    let objs: Vec<(String, String)> = SceneGraph::objects(&world)
+        .into_iter()
+        .map(|o| (o.name, o.kind))
+        .collect();
+    let facts = SceneGraph::from_world(&world).to_strings();
+    let template = model.build(&objs, &facts).unwrap();
+    let demo = logic_lfd::lfd::session::demo_actions(&files.demo).unwrap();
+    let trace = DemoTrace::derive(&template, &demo).unwrap();
+    // Hand-made states: unseen (needs a prefix), seen (LogicIn), and the goal.
+    let cases: [(&[&str], Option<PlanSource>); 3] = [
+        (
+            &[
+                "(on d a)", "(ontable a)", "(ontable b)", "(ontable c)", "(clear d)",
+                "(clear b)", "(clear c)", "(handempty panda)",
+            ],
+            Some(PlanSource::MultiGoal),
+        ),
+        (
+            &[
+                "(on c d)", "(ontable a)", "(ontable b)", "(ontable d)", "(clear c)",
+                "(clear a)", "(clear b)", "(handempty panda)",
+            ],
+            Some(PlanSource::LogicIn),
+        ),
+        (
+            &[
+                "(on a b)", "(on b c)", "(on c d)", "(ontable d)", "(clear a)",
+                "(handempty panda)",
+            ],
+            Some(PlanSource::GoalHolds),
+        ),
+    ];
+    let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::HMax);
+    for (facts, source) in cases {
+        let facts: Vec<String> = facts.iter().map(|s| s.to_string()).collect();
+        let task = model.build(&objs, &facts).unwrap();
+        let spec = MultiGoalSpec::new(&task, &trace);
+        for mode in [Mode::Paper, Mode::Prioritised] {
+            let p = plan_logic_lfd(&task, &spec, &task.init, mode, &cfg, &NoClock).unwrap();
+            assert_eq!(Some(p.source), source);
+            let names: Vec<String> = p
+                .ops
+                .iter()
+                .map(|&o| task.operators[o].name.clone())
+                .collect();
+            let problem = model.problem(&objs, &facts).unwrap();
+            let report = validate_names(model.domain(), &problem, &names);
+            assert!(report.is_valid(), "{names:?}: {:?}", report.outcome);
+            if source == Some(PlanSource::LogicIn) {
+                assert_eq!(logic_in(&spec, &task.init), Some(2));
+                assert_eq!(names.len(), 4);
+            }
+        }
+    }
+}
