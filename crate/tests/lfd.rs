@@ -118,9 +118,7 @@ fn matrix(b: BenchmarkId) {
                         matches!(r.reason, Some(FailReason::NoDemoStateMatches { .. })),
                         "{tag}"
                     ),
-                    (Method::Linear, Level::L2 | Level::L3 | Level::L4)
-                        if b != BenchmarkId::B2 =>
-                    {
+                    (Method::Linear, Level::L2 | Level::L3 | Level::L4) if b != BenchmarkId::B2 => {
                         assert!(
                             matches!(
                                 r.reason,
@@ -135,7 +133,9 @@ fn matrix(b: BenchmarkId) {
                     (Method::Linear, Level::L3) => assert!(
                         matches!(
                             r.reason,
-                            Some(FailReason::GoalNotReached { .. } | FailReason::ActionFailed { .. })
+                            Some(
+                                FailReason::GoalNotReached { .. } | FailReason::ActionFailed { .. }
+                            )
                         ),
                         "{tag}"
                     ),
@@ -228,7 +228,13 @@ fn prioritised_mode_never_executes_more_actions_than_paper_mode() {
     for seed in [1, 2, 3] {
         for level in [Level::L3, Level::L4] {
             let p = episode(BenchmarkId::B1, level, Method::LogicLfd, Mode::Paper, seed);
-            let q = episode(BenchmarkId::B1, level, Method::LogicLfd, Mode::Prioritised, seed);
+            let q = episode(
+                BenchmarkId::B1,
+                level,
+                Method::LogicLfd,
+                Mode::Prioritised,
+                seed,
+            );
             assert!(p.success && q.success);
             assert!(
                 q.actions <= p.actions,
@@ -264,21 +270,37 @@ fn multi_goal_plan_plus_suffix_reaches_the_goal_in_the_pddl_model() {
     let cases: [(&[&str], Option<PlanSource>); 3] = [
         (
             &[
-                "(on d a)", "(ontable a)", "(ontable b)", "(ontable c)", "(clear d)",
-                "(clear b)", "(clear c)", "(handempty panda)",
+                "(on d a)",
+                "(ontable a)",
+                "(ontable b)",
+                "(ontable c)",
+                "(clear d)",
+                "(clear b)",
+                "(clear c)",
+                "(handempty panda)",
             ],
             Some(PlanSource::MultiGoal),
         ),
         (
             &[
-                "(on c d)", "(ontable a)", "(ontable b)", "(ontable d)", "(clear c)",
-                "(clear a)", "(clear b)", "(handempty panda)",
+                "(on c d)",
+                "(ontable a)",
+                "(ontable b)",
+                "(ontable d)",
+                "(clear c)",
+                "(clear a)",
+                "(clear b)",
+                "(handempty panda)",
             ],
             Some(PlanSource::LogicIn),
         ),
         (
             &[
-                "(on a b)", "(on b c)", "(on c d)", "(ontable d)", "(clear a)",
+                "(on a b)",
+                "(on b c)",
+                "(on c d)",
+                "(ontable d)",
+                "(clear a)",
                 "(handempty panda)",
             ],
             Some(PlanSource::GoalHolds),

@@ -1,5 +1,6 @@
 //! Integration tests (one binary, one sub-module per area).
 
+mod fuzz;
 mod ground;
 mod lfd;
 mod lqt;
@@ -7,6 +8,5 @@ mod multigoal;
 mod pddl;
 mod search;
 mod sim;
-mod validate;
-mod fuzz;
 mod soak;
+mod validate;

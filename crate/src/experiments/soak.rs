@@ -16,7 +16,8 @@
 //!   of the world at that tick, as a PDDL problem) to the benchmark's goal;
 //! * **stated outcome**: every episode ends in success or in a [`FailReason`] that is
 //!   *legitimate*: the planner's "no plan" is confirmed by an independent exhaustive search that
-//!   proves the disturbed task unsolvable; an exhausted budget is stated as such and counted apart;
+//!   proves the disturbed task unsolvable, or an arm "cannot reach" after a user drag put a block
+//!   outside every arm's workspace; an exhausted budget is stated as such and counted apart;
 //!   anything else (an action that failed, a "no plan" for a solvable task) is *unexplained*;
 //! * **replay identity** (optional): the episode JSON replays to the byte-identical log.
 //!
@@ -260,6 +261,15 @@ fn draw_drag(world: &World, kind: DragKind, rng: &mut Pcg64Mcg) -> (String, [f64
     (body, [target.x, target.y, target.z])
 }
 
+/// Whether a point is inside some arm's workspace annulus (distance from the base in the plane).
+fn in_reach(world: &World, p: [f64; 3]) -> bool {
+    world.snapshot().arms.iter().any(|a| {
+        let b = a.base.position;
+        let d = (p[0] - b[0]).hypot(p[1] - b[1]);
+        d >= a.reach.min_radius && d <= a.reach.max_radius
+    })
+}
+
 /// Parsed benchmark domains (for the validator and the unsolvability check).
 struct Models {
     domains: Vec<(BenchmarkId, Domain)>,
@@ -416,8 +426,7 @@ fn soak_episode(
         Mode::Prioritised
     };
     let session_seed: u64 = rng.random();
-    let mut schedule: Vec<(u64, Disturbance)> = (0..rng
-        .random_range(0..=params.max_disturbances))
+    let mut schedule: Vec<(u64, Disturbance)> = (0..rng.random_range(0..=params.max_disturbances))
         .map(|_| {
             (
                 rng.random_range(0..params.horizon_ticks),
@@ -463,6 +472,8 @@ fn soak_episode(
         }
     };
     let mut broken = false;
+    // Whether an accepted drag put a block outside every arm's workspace.
+    let mut out_of_reach = false;
     while s.outcome().is_none() && s.tick() < params.max_ticks {
         // Disturbances due now, before the tick (as a replay applies them).
         while next < schedule.len() && schedule[next].0 <= s.tick() {
@@ -482,8 +493,9 @@ fn soak_episode(
                 Disturbance::Drag(kind) => {
                     let (body, pos) = draw_drag(s.world(), *kind, &mut rng);
                     match s.perturb(&body, pos) {
-                        Ok(_) => {
+                        Ok(out) => {
                             rep.drags_accepted += 1;
+                            out_of_reach |= !in_reach(s.world(), out.to);
                             (format!("drag {body} to {pos:?}"), true)
                         }
                         Err(_) => {
@@ -542,11 +554,13 @@ fn soak_episode(
             rep.budget_exhausted += 1;
             let _ = what;
         }
+        Some(Err(FailReason::NoPlan { message })) if message.contains("exhausted") => {
+            rep.budget_exhausted += 1
+        }
         Some(Err(FailReason::NoPlan { message })) => {
             match models.unsolvable(bench, s.world(), params.check_nodes) {
                 Some(true) => {
-                    *rep
-                        .legitimate_failures
+                    *rep.legitimate_failures
                         .entry("no plan: the disturbed task is unsolvable".into())
                         .or_default() += 1
                 }
@@ -560,6 +574,14 @@ fn soak_episode(
                 }
                 None => rep.budget_exhausted += 1,
             }
+        }
+        Some(Err(FailReason::ActionFailed { action, why }))
+            if out_of_reach && why.contains("reach") =>
+        {
+            let _ = action;
+            *rep.legitimate_failures
+                .entry("an arm cannot reach: the user dragged a block out of reach".into())
+                .or_default() += 1
         }
         Some(Err(other)) => {
             rep.unexplained_failures += 1;

@@ -525,7 +525,9 @@ impl Controller {
     fn plan_with_rlds(&self, s: &State) -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
         // RLDS moves along the demonstration to the step whose state *is* the current one (the
         // latest such step); it never plans.
-        let names: BTreeSet<String> = super::demo::state_names(&self.task, s).into_iter().collect();
+        let names: BTreeSet<String> = super::demo::state_names(&self.task, s)
+            .into_iter()
+            .collect();
         let exact = self.trace.states.iter().rposition(|l| *l == names);
         if let Some(k) = exact {
             if let Some(ops) = self.spec.suffix(k) {

@@ -88,11 +88,12 @@ fn table_spot(world: &World, rng: &mut Pcg64Mcg, anywhere: bool) -> Option<[f64;
         let (lo, hi) = tables.get(rng.random_range(0..tables.len().max(1)))?;
         let x = rng.random_range(lo.x + 0.05..hi.x - 0.05);
         let y = rng.random_range(lo.y + 0.05..hi.y - 0.05);
-        let ok = anywhere || snap.arms.iter().any(|a| {
-            let b = a.base.position;
-            let d = (x - b[0]).hypot(y - b[1]);
-            d > a.reach.min_radius + 0.03 && d < a.reach.max_radius - 0.05
-        });
+        let ok = anywhere
+            || snap.arms.iter().any(|a| {
+                let b = a.base.position;
+                let d = (x - b[0]).hypot(y - b[1]);
+                d > a.reach.min_radius + 0.03 && d < a.reach.max_radius - 0.05
+            });
         if ok {
             return Some([x, y]);
         }

@@ -272,25 +272,22 @@ impl ActionExec {
         };
         let pre = if hook { "hook-" } else { "" };
         let (arm, phases) = match &kind {
-            ActionKind::Grasp { arm, body } if skills.has(&format!("{pre}grasp-approach")) =>
-            {
-                (
-                    *arm,
-                    vec![
-                        Phase::Gripper(GripperCommand::Open),
-                        Phase::Move(Via::Grasp {
-                            body: body.clone(),
-                            dz: 0.0,
-                            skill: true,
-                        }),
-                        Phase::Gripper(GripperCommand::Close),
-                        Phase::Move(Via::Up {
-                            dz: p.lift_height,
-                            skill: skills.has(&format!("{pre}grasp-retreat")),
-                        }),
-                    ],
-                )
-            }
+            ActionKind::Grasp { arm, body } if skills.has(&format!("{pre}grasp-approach")) => (
+                *arm,
+                vec![
+                    Phase::Gripper(GripperCommand::Open),
+                    Phase::Move(Via::Grasp {
+                        body: body.clone(),
+                        dz: 0.0,
+                        skill: true,
+                    }),
+                    Phase::Gripper(GripperCommand::Close),
+                    Phase::Move(Via::Up {
+                        dz: p.lift_height,
+                        skill: skills.has(&format!("{pre}grasp-retreat")),
+                    }),
+                ],
+            ),
             ActionKind::Release { arm, placement, .. }
                 if skills.has("place-approach") && skills.has("place-retreat") =>
             {
@@ -705,11 +702,8 @@ fn pull_via(world: &World, arm: usize, body: &str, stage: u8) -> Result<Isometry
     let bp = world
         .body_pose(body)
         .ok_or_else(|| format!("no body {body}"))?;
-    let (contact, pulled) = crate::sim::demo::pull_hook_poses(
-        &base,
-        &bp,
-        crate::sim::demo::PULL_TARGET_RADIUS,
-    );
+    let (contact, pulled) =
+        crate::sim::demo::pull_hook_poses(&base, &bp, crate::sim::demo::PULL_TARGET_RADIUS);
     let lift = |iso: Isometry3<f64>| {
         Isometry3::from_parts(
             Translation3::from(iso.translation.vector + Vector3::z() * 0.08),

@@ -524,8 +524,7 @@ impl Session {
             .filter(|b| b.kind == crate::sim::snapshot::BodyKind::Hook)
             .map(|b| b.name.clone())
             .collect();
-        let skills =
-            SkillLibrary::learn(demo_json.unwrap_or(&files.demo), options.skill, &hooks);
+        let skills = SkillLibrary::learn(demo_json.unwrap_or(&files.demo), options.skill, &hooks);
         let hints = demo_hints(demo_json.unwrap_or(&files.demo));
         Ok(Session {
             sources: files.clone(),

@@ -184,7 +184,11 @@ impl SkillLibrary {
                     .zip(seg.last())
                     .is_some_and(|(a, b)| (a - b).norm() < 0.2)
             };
-            let prefix = if hooks.contains(&a.anchor) { "hook-" } else { "" };
+            let prefix = if hooks.contains(&a.anchor) {
+                "hook-"
+            } else {
+                ""
+            };
             for (name, seg) in [(approach, &pts[..=ev.step]), (retreat, &pts[ev.step..])] {
                 if name == retreat && !local(seg) {
                     continue;

@@ -312,9 +312,10 @@ impl<'w> StreamBinder<'w> {
         for n in 0..=self.params.placement_samples {
             let (x, y, yaw, top) = if n == 0 {
                 let Some((x, y, yaw)) = hint else { continue };
-                let Some(&(_, _, top)) = surfaces.iter().find(|(xr, yr, _)| {
-                    xr[0] <= x && x <= xr[1] && yr[0] <= y && y <= yr[1]
-                }) else {
+                let Some(&(_, _, top)) = surfaces
+                    .iter()
+                    .find(|(xr, yr, _)| xr[0] <= x && x <= xr[1] && yr[0] <= y && y <= yr[1])
+                else {
                     continue;
                 };
                 (x, y, yaw, top)

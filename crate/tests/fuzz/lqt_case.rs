@@ -34,7 +34,9 @@ fn mutated_cases_never_panic_and_refusals_name_their_key() {
         .run(&prop::collection::vec(json_edit(), 1..4), |edits| {
             let bytes = mutate_json(&example, &edits);
             let text = String::from_utf8_lossy(&bytes).into_owned();
-            match no_panic("CaseInput::from_json_str", || CaseInput::from_json_str(&text))? {
+            match no_panic("CaseInput::from_json_str", || {
+                CaseInput::from_json_str(&text)
+            })? {
                 Err(LqtError::Input { key, message }) => {
                     prop_assert!(
                         key.is_empty() || TOP_KEYS.iter().any(|k| key.starts_with(k)),
@@ -48,15 +50,13 @@ fn mutated_cases_never_panic_and_refusals_name_their_key() {
                     let _ = column;
                 }
                 Err(e) => prop_assert!(false, "a parse returned a solver error: {e}"),
-                Ok(case) => {
-                    match no_panic("run_case", || run_case(&case))? {
-                        Ok(out) => {
-                            let _ = out;
-                        }
-                        Err(LqtError::Singular(_)) | Err(LqtError::NonFinite(_)) => {}
-                        Err(e) => prop_assert!(false, "a valid case failed as input: {e}"),
+                Ok(case) => match no_panic("run_case", || run_case(&case))? {
+                    Ok(out) => {
+                        let _ = out;
                     }
-                }
+                    Err(LqtError::Singular(_)) | Err(LqtError::NonFinite(_)) => {}
+                    Err(e) => prop_assert!(false, "a valid case failed as input: {e}"),
+                },
             }
             Ok(())
         })

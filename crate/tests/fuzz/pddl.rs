@@ -42,7 +42,10 @@ fn lists(text: &str) -> Vec<(usize, usize)> {
 fn names(text: &str) -> Vec<(usize, usize)> {
     let mut out = Vec::new();
     let mut start = None;
-    for (i, c) in text.char_indices().chain(std::iter::once((text.len(), ' '))) {
+    for (i, c) in text
+        .char_indices()
+        .chain(std::iter::once((text.len(), ' ')))
+    {
         let sep = c == '(' || c == ')' || c.is_whitespace();
         match (start, sep) {
             (None, false) => start = Some(i),
@@ -72,11 +75,11 @@ enum Edit {
 
 fn edit() -> impl Strategy<Value = Edit> {
     prop_oneof![
-        any::<usize>().prop_map(Edit::DeleteList),
-        (any::<usize>(), any::<usize>()).prop_map(|(i, j)| Edit::CopyList(i, j)),
-        (any::<usize>(), any::<usize>()).prop_map(|(i, j)| Edit::SwapLists(i, j)),
+        1 => any::<usize>().prop_map(Edit::DeleteList),
+        1 => (any::<usize>(), any::<usize>()).prop_map(|(i, j)| Edit::CopyList(i, j)),
+        1 => (any::<usize>(), any::<usize>()).prop_map(|(i, j)| Edit::SwapLists(i, j)),
         3 => (any::<usize>(), any::<usize>()).prop_map(|(i, j)| Edit::Rename(i, j)),
-        (any::<usize>(), 1u16..300).prop_map(|(i, n)| Edit::Nest(i, n)),
+        1 => (any::<usize>(), 1u16..300).prop_map(|(i, n)| Edit::Nest(i, n)),
     ]
 }
 
@@ -136,7 +139,7 @@ fn check_domain_then_problem(dom: &str, prob: &str) -> Result<(), TestCaseError>
         Ok(d) => match no_panic("parse_problem", || parse_problem(prob, "p.pddl", &d))? {
             Err(e) => prop_assert!(in_bounds(prob, &e), "problem error out of bounds: {e}"),
             Ok(p) => {
-                no_panic("ground", || logic_lfd::plan::ground(&d, &p))?;
+                let _ = no_panic("ground", || logic_lfd::plan::ground(&d, &p))?;
             }
         },
     }
@@ -147,7 +150,12 @@ fn check_domain_then_problem(dom: &str, prob: &str) -> Result<(), TestCaseError>
 fn structurally_mutated_benchmark_domains_never_panic_and_errors_are_located() {
     let files: Vec<(String, String)> = BENCHES
         .iter()
-        .map(|b| (domain_file(b, "domain.pddl"), domain_file(b, "problem.pddl")))
+        .map(|b| {
+            (
+                domain_file(b, "domain.pddl"),
+                domain_file(b, "problem.pddl"),
+            )
+        })
         .collect();
     runner(700, 14)
         .run(
@@ -164,7 +172,12 @@ fn structurally_mutated_benchmark_domains_never_panic_and_errors_are_located() {
 fn structurally_mutated_benchmark_problems_never_panic_and_errors_are_located() {
     let files: Vec<(String, String)> = BENCHES
         .iter()
-        .map(|b| (domain_file(b, "domain.pddl"), domain_file(b, "problem.pddl")))
+        .map(|b| {
+            (
+                domain_file(b, "domain.pddl"),
+                domain_file(b, "problem.pddl"),
+            )
+        })
         .collect();
     runner(900, 15)
         .run(

@@ -52,8 +52,23 @@ enum Edit {
 
 fn edit() -> impl Strategy<Value = Edit> {
     let frag = prop::sample::select(vec![
-        "(", ")", " ", "\n", ";", "x", "(stack a b)", "(pick panda zz)", "()", "((", "-", "?x",
-        "é", "\t", "(unstack a a)", "panda", "hall",
+        "(",
+        ")",
+        " ",
+        "\n",
+        ";",
+        "x",
+        "(stack a b)",
+        "(pick panda zz)",
+        "()",
+        "((",
+        "-",
+        "?x",
+        "é",
+        "\t",
+        "(unstack a a)",
+        "panda",
+        "hall",
     ]);
     prop_oneof![
         any::<usize>().prop_map(Edit::Delete),
@@ -98,7 +113,7 @@ fn apply(text: &str, edits: &[Edit]) -> String {
 #[test]
 fn mutated_plans_never_panic_and_failures_are_located() {
     let corpus = corpus();
-    runner(3000, 12)
+    runner(3500, 12)
         .run(
             &(0..corpus.len(), prop::collection::vec(edit(), 1..5)),
             |(k, edits)| {
