@@ -1,5 +1,6 @@
 //! Integration tests (one binary, one sub-module per area).
 
+mod fuzz;
 mod ground;
 mod lfd;
 mod lqt;
@@ -8,4 +9,5 @@ mod pddl;
 mod recorder;
 mod search;
 mod sim;
+mod soak;
 mod validate;

@@ -9,6 +9,7 @@ mod cmd_lqt;
 mod cmd_plan;
 mod cmd_run;
 mod cmd_scene;
+mod cmd_soak;
 mod cmd_tables;
 mod cmd_validate;
 
@@ -52,6 +53,8 @@ enum Command {
     Run(cmd_run::Args),
     /// Demonstrations: `demo segment` turns a raw recording into a demo.json.
     Demo(cmd_demo::Args),
+    /// Random closed-loop episodes with random disturbances, checking every guarantee.
+    Soak(cmd_soak::Args),
 }
 
 /// A closed stdout (`logic-lfd plan … | head`) ends the process quietly, as Unix tools do,
@@ -94,5 +97,6 @@ fn main() -> ExitCode {
         Command::Scene(args) => cmd_scene::run(args),
         Command::Run(args) => cmd_run::run(args),
         Command::Demo(args) => cmd_demo::run(args),
+        Command::Soak(args) => cmd_soak::run(args),
     }
 }

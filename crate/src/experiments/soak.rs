@@ -1,0 +1,614 @@
+//! Closed-loop soak (issue 8, item 2): many random Logic-LfD episodes over B1–B3 with random
+//! disturbances, checking the loop's guarantees at every step.
+//!
+//! Episode `e` of a soak with seed `S` draws everything from `Pcg64Mcg(mix(S, e))`: the benchmark,
+//! the multi-goal mode, the session seed, and a schedule of `0..=max_disturbances` disturbances at
+//! random ticks in `[0, horizon_ticks)`; each is an injected level `L1`–`L4` or a user-like drag
+//! through [`Session::perturb`] (onto another block, to a table spot, a small nudge, or a hostile
+//! request: a held or fixed body, an unknown name, a non-finite or far-away position). Checked:
+//!
+//! * **world invariants** ([`crate::sim::World::check_invariants`]) after every tick and every
+//!   disturbance: no interpenetration, every free body supported, nothing lost, joints in limits;
+//! * **nothing partially applied**: a refused drag or a disturbance that cannot be produced leaves
+//!   the world's snapshot and the episode's event log byte-identical;
+//! * **plan validity**: every plan the loop adopts is replayed by the lifted PDDL validator
+//!   ([`crate::plan::validate_names`]) from the observed state it was planned in (the scene graph
+//!   of the world at that tick, as a PDDL problem) to the benchmark's goal;
+//! * **stated outcome**: every episode ends in success or in a [`FailReason`] that is
+//!   *legitimate*: the planner's "no plan" is confirmed by an independent exhaustive search that
+//!   proves the disturbed task unsolvable, or an arm "cannot reach" after a user drag put a block
+//!   outside every arm's workspace; an exhausted budget is stated as such and counted apart;
+//!   anything else (an action that failed, a "no plan" for a solvable task) is *unexplained*;
+//! * **replay identity** (optional): the episode JSON replays to the byte-identical log.
+//!
+//! No clock is read: planning runs under the controller's node budgets, so a soak's report is a
+//! pure function of its seed.
+
+use std::collections::BTreeMap;
+
+use nalgebra::Vector3;
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+use serde::{Deserialize, Serialize};
+
+use crate::lfd::control::FailReason;
+use crate::lfd::session::{mix, BenchmarkId, Session, SessionOptions, SkillKind};
+use crate::lfd::{Method, Mode};
+use crate::pddl::{parse_domain, parse_problem, Domain};
+use crate::plan::{
+    ground, search, validate_names, Algorithm, HeuristicKind, NoClock, Outcome, SearchConfig,
+    SearchOutcome,
+};
+use crate::sim::snapshot::BodyKind;
+use crate::sim::World;
+
+/// Tunables of a soak.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SoakParams {
+    /// Number of episodes.
+    pub episodes: usize,
+    /// Seed of the whole soak.
+    pub seed: u64,
+    /// Most disturbances scheduled per episode (uniform in `0..=max_disturbances`).
+    pub max_disturbances: usize,
+    /// Disturbances are scheduled uniformly over `[0, horizon_ticks)` (10 ms ticks).
+    pub horizon_ticks: u64,
+    /// Ticks after which an episode is stopped (the session's own simulated-time budget is 240 s).
+    pub max_ticks: u64,
+    /// Node budget of the independent search that checks a "no plan".
+    pub check_nodes: u64,
+    /// Replay every episode's JSON and compare the logs byte for byte.
+    pub check_replay: bool,
+}
+
+impl Default for SoakParams {
+    fn default() -> Self {
+        SoakParams {
+            episodes: 20,
+            seed: 0,
+            max_disturbances: 6,
+            horizon_ticks: 2_500,
+            max_ticks: 30_000,
+            check_nodes: 2_000_000,
+            check_replay: true,
+        }
+    }
+}
+
+/// A broken guarantee, with enough to replay it (`logic-lfd soak --episodes 1 --seed …` or the
+/// episode seed with `logic-lfd run`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SoakFinding {
+    /// Episode index within the soak.
+    pub episode: usize,
+    /// Benchmark.
+    pub benchmark: String,
+    /// The session seed of that episode.
+    pub session_seed: u64,
+    /// Tick at which it was found.
+    pub tick: u64,
+    /// `invariant`, `partial_apply`, `invalid_plan`, `unexplained_failure`, `replay`, `panic`.
+    pub kind: String,
+    /// What happened, in words.
+    pub detail: String,
+}
+
+/// The figures of a soak.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SoakReport {
+    /// The parameters.
+    pub params: Option<SoakParams>,
+    /// Episodes run.
+    pub episodes: usize,
+    /// Episodes per benchmark.
+    pub per_benchmark: BTreeMap<String, usize>,
+    /// Simulated 10 ms ticks in total.
+    pub ticks: u64,
+    /// Disturbances applied (accepted drags + produced injections).
+    pub disturbances: usize,
+    /// Injections produced per level.
+    pub injections: BTreeMap<String, usize>,
+    /// Drags accepted.
+    pub drags_accepted: usize,
+    /// Drags refused by the world (checked: nothing applied).
+    pub drags_refused: usize,
+    /// Injections the state did not allow (checked: nothing applied).
+    pub injections_refused: usize,
+    /// World-invariant checks performed.
+    pub invariant_checks: u64,
+    /// Invariant violations found.
+    pub invariant_violations: usize,
+    /// Refusals that changed the world or the log.
+    pub partial_applies: usize,
+    /// Plans adopted by the loop and replayed by the validator.
+    pub plans_checked: usize,
+    /// Plans the validator rejected.
+    pub invalid_plans: usize,
+    /// Episodes that reached the goal.
+    pub successes: usize,
+    /// Episodes that ended with a legitimate stated reason, by reason.
+    pub legitimate_failures: BTreeMap<String, usize>,
+    /// Episodes that ended with an exhausted budget (stated, counted apart).
+    pub budget_exhausted: usize,
+    /// Episodes whose failure is not explained.
+    pub unexplained_failures: usize,
+    /// Episodes whose replay differed.
+    pub replay_mismatches: usize,
+    /// Episodes replayed.
+    pub replays_checked: usize,
+    /// Panics caught (the loop must never panic).
+    pub panics: usize,
+    /// Every broken guarantee (at most 100 kept).
+    pub findings: Vec<SoakFinding>,
+}
+
+impl SoakReport {
+    /// Whether every guarantee held.
+    pub fn is_clean(&self) -> bool {
+        self.invariant_violations == 0
+            && self.partial_applies == 0
+            && self.invalid_plans == 0
+            && self.unexplained_failures == 0
+            && self.replay_mismatches == 0
+            && self.panics == 0
+    }
+
+    fn find(&mut self, f: SoakFinding) {
+        if self.findings.len() < 100 {
+            self.findings.push(f);
+        }
+    }
+}
+
+/// One scheduled disturbance.
+#[derive(Clone, Debug)]
+enum Disturbance {
+    Inject(&'static str),
+    Drag(DragKind),
+}
+
+#[derive(Clone, Copy, Debug)]
+enum DragKind {
+    OntoBlock,
+    TableSpot,
+    Nudge,
+    Hostile,
+}
+
+fn draw_disturbance(rng: &mut Pcg64Mcg) -> Disturbance {
+    match rng.random_range(0..10) {
+        0..=1 => Disturbance::Inject("l1"),
+        2 => Disturbance::Inject("l2"),
+        3 => Disturbance::Inject("l3"),
+        4 => Disturbance::Inject("l4"),
+        5..=6 => Disturbance::Drag(DragKind::OntoBlock),
+        7 => Disturbance::Drag(DragKind::TableSpot),
+        8 => Disturbance::Drag(DragKind::Nudge),
+        _ => Disturbance::Drag(DragKind::Hostile),
+    }
+}
+
+fn held(world: &World) -> Vec<String> {
+    (0..world.arm_names().len())
+        .filter_map(|a| world.held_by(a).map(str::to_string))
+        .collect()
+}
+
+fn centre(world: &World, b: &str) -> Option<Vector3<f64>> {
+    world.body_pose(b).map(|p| p.translation.vector)
+}
+
+/// A user-like drag request: (body, target centre).
+fn draw_drag(world: &World, kind: DragKind, rng: &mut Pcg64Mcg) -> (String, [f64; 3]) {
+    let held = held(world);
+    let free: Vec<String> = world
+        .block_names()
+        .into_iter()
+        .filter(|b| !world.is_lost(b) && !held.iter().any(|h| h == b))
+        .map(str::to_string)
+        .collect();
+    let pick = |v: &[String], rng: &mut Pcg64Mcg| -> Option<String> {
+        (!v.is_empty()).then(|| v[rng.random_range(0..v.len())].clone())
+    };
+    let Some(body) = pick(&free, rng) else {
+        return ("a".into(), [0.4, 0.0, 0.2]);
+    };
+    let c = centre(world, &body).unwrap_or_default();
+    let target = match kind {
+        DragKind::OntoBlock => {
+            let others: Vec<String> = free.iter().filter(|o| **o != body).cloned().collect();
+            match pick(&others, rng).and_then(|o| centre(world, &o)) {
+                Some(o) => o + Vector3::new(0.0, 0.0, 0.1),
+                None => c,
+            }
+        }
+        DragKind::TableSpot => {
+            let snap = world.snapshot();
+            let tables: Vec<_> = snap
+                .bodies
+                .iter()
+                .filter(|b| b.kind == BodyKind::Table)
+                .filter_map(|b| world.body_aabb(&b.name))
+                .collect();
+            match tables.get(rng.random_range(0..tables.len().max(1))) {
+                Some((lo, hi)) => Vector3::new(
+                    rng.random_range(lo.x..=hi.x),
+                    rng.random_range(lo.y..=hi.y),
+                    hi.z + 0.05,
+                ),
+                None => c,
+            }
+        }
+        DragKind::Nudge => {
+            let a = rng.random_range(0.0..std::f64::consts::TAU);
+            let r = rng.random_range(0.005..0.06);
+            c + Vector3::new(r * a.cos(), r * a.sin(), 0.002)
+        }
+        DragKind::Hostile => {
+            return match rng.random_range(0..6) {
+                0 => (body, [f64::NAN, 0.0, 0.1]),
+                1 => (body, [1e9, -1e9, 1e9]),
+                2 => (body, [c.x, c.y, -5.0]),
+                3 => (
+                    held.first().cloned().unwrap_or_else(|| "table".into()),
+                    [c.x, c.y, c.z + 0.2],
+                ),
+                4 => ("table".into(), [0.0, 0.0, 0.5]),
+                _ => ("<no such body>".into(), [0.4, 0.0, 0.2]),
+            }
+        }
+    };
+    (body, [target.x, target.y, target.z])
+}
+
+/// Whether a point is inside some arm's workspace annulus (distance from the base in the plane).
+fn in_reach(world: &World, p: [f64; 3]) -> bool {
+    world.snapshot().arms.iter().any(|a| {
+        let b = a.base.position;
+        let d = (p[0] - b[0]).hypot(p[1] - b[1]);
+        d >= a.reach.min_radius && d <= a.reach.max_radius
+    })
+}
+
+/// Parsed benchmark domains (for the validator and the unsolvability check).
+struct Models {
+    domains: Vec<(BenchmarkId, Domain)>,
+}
+
+impl Models {
+    fn new() -> Result<Models, String> {
+        let domains = BenchmarkId::ALL
+            .into_iter()
+            .map(|b| {
+                parse_domain(b.sim().domain_pddl(), "domain.pddl")
+                    .map(|d| (b, d))
+                    .map_err(|e| e.to_string())
+            })
+            .collect::<Result<_, _>>()?;
+        Ok(Models { domains })
+    }
+
+    fn domain(&self, b: BenchmarkId) -> &Domain {
+        &self
+            .domains
+            .iter()
+            .find(|(x, _)| *x == b)
+            .expect("every benchmark's domain is parsed in Models::new")
+            .1
+    }
+
+    /// Validates `plan` from the world's observed state to the benchmark's goal.
+    fn validate(&self, b: BenchmarkId, world: &World, plan: &[String]) -> Result<(), String> {
+        let text = b.sim().problem_for(world, "observed");
+        let d = self.domain(b);
+        let p = parse_problem(&text, "observed.pddl", d).map_err(|e| e.to_string())?;
+        let r = validate_names(d, &p, plan);
+        match r.outcome {
+            Outcome::Valid => Ok(()),
+            Outcome::Malformed(e) => Err(format!("malformed: {e}")),
+            Outcome::PreconditionFalse {
+                step,
+                action,
+                false_literals,
+                ..
+            } => Err(format!(
+                "step {step} {action}: false precondition {}",
+                false_literals.join(" ")
+            )),
+            Outcome::GoalNotReached { false_literals } => {
+                Err(format!("goal not reached: {}", false_literals.join(" ")))
+            }
+        }
+    }
+
+    /// Whether the benchmark's goal is provably unreachable from the world's observed state
+    /// (`Some(true)`), reachable (`Some(false)`), or undecided within `nodes` expansions.
+    fn unsolvable(&self, b: BenchmarkId, world: &World, nodes: u64) -> Option<bool> {
+        let text = b.sim().problem_for(world, "observed");
+        let d = self.domain(b);
+        let p = parse_problem(&text, "observed.pddl", d).ok()?;
+        let task = ground(d, &p).ok()?;
+        let cfg = SearchConfig {
+            max_nodes: Some(nodes),
+            ..SearchConfig::new(Algorithm::Astar, HeuristicKind::HMax)
+        };
+        match search(&task, &cfg, &NoClock).outcome {
+            SearchOutcome::Unsolvable => Some(true),
+            SearchOutcome::Plan(_) => Some(false),
+            SearchOutcome::BudgetExhausted { .. } => None,
+        }
+    }
+}
+
+/// Runs a soak (see the module documentation). Every episode runs under `catch_unwind` on
+/// native targets, so a panic is counted as a finding instead of ending the soak.
+pub fn soak(params: &SoakParams) -> Result<SoakReport, String> {
+    let models = Models::new()?;
+    let mut report = SoakReport {
+        params: Some(*params),
+        ..SoakReport::default()
+    };
+    for e in 0..params.episodes {
+        let mut ep = SoakReport::default();
+        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            soak_episode(params, e, &models, &mut ep)
+        }));
+        match r {
+            Ok(Ok(())) => {}
+            Ok(Err(msg)) => return Err(format!("episode {e}: {msg}")),
+            Err(p) => {
+                let msg = p
+                    .downcast_ref::<String>()
+                    .cloned()
+                    .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+                    .unwrap_or_default();
+                ep.panics += 1;
+                ep.find(SoakFinding {
+                    episode: e,
+                    benchmark: String::new(),
+                    session_seed: mix(params.seed, e as u64),
+                    tick: 0,
+                    kind: "panic".into(),
+                    detail: msg,
+                });
+            }
+        }
+        report.merge(ep);
+    }
+    Ok(report)
+}
+
+impl SoakReport {
+    fn merge(&mut self, o: SoakReport) {
+        self.episodes += o.episodes;
+        for (k, v) in o.per_benchmark {
+            *self.per_benchmark.entry(k).or_default() += v;
+        }
+        self.ticks += o.ticks;
+        self.disturbances += o.disturbances;
+        for (k, v) in o.injections {
+            *self.injections.entry(k).or_default() += v;
+        }
+        self.drags_accepted += o.drags_accepted;
+        self.drags_refused += o.drags_refused;
+        self.injections_refused += o.injections_refused;
+        self.invariant_checks += o.invariant_checks;
+        self.invariant_violations += o.invariant_violations;
+        self.partial_applies += o.partial_applies;
+        self.plans_checked += o.plans_checked;
+        self.invalid_plans += o.invalid_plans;
+        self.successes += o.successes;
+        for (k, v) in o.legitimate_failures {
+            *self.legitimate_failures.entry(k).or_default() += v;
+        }
+        self.budget_exhausted += o.budget_exhausted;
+        self.unexplained_failures += o.unexplained_failures;
+        self.replay_mismatches += o.replay_mismatches;
+        self.replays_checked += o.replays_checked;
+        self.panics += o.panics;
+        for f in o.findings {
+            self.find(f);
+        }
+    }
+}
+
+fn soak_episode(
+    params: &SoakParams,
+    e: usize,
+    models: &Models,
+    rep: &mut SoakReport,
+) -> Result<(), String> {
+    let mut rng = Pcg64Mcg::seed_from_u64(mix(params.seed, e as u64));
+    let bench = BenchmarkId::ALL[rng.random_range(0..3)];
+    let mode = if rng.random_bool(0.5) {
+        Mode::Paper
+    } else {
+        Mode::Prioritised
+    };
+    let session_seed: u64 = rng.random();
+    let mut schedule: Vec<(u64, Disturbance)> = (0..rng.random_range(0..=params.max_disturbances))
+        .map(|_| {
+            (
+                rng.random_range(0..params.horizon_ticks),
+                draw_disturbance(&mut rng),
+            )
+        })
+        .collect();
+    schedule.sort_by_key(|(t, _)| *t);
+    let options = SessionOptions {
+        benchmark: bench,
+        method: Method::LogicLfd,
+        mode,
+        seed: session_seed,
+        skill: SkillKind::Lqt,
+    };
+    let mut s = Session::new(options).map_err(|e| e.to_string())?;
+    rep.episodes = 1;
+    *rep.per_benchmark.entry(bench.as_str().into()).or_default() += 1;
+    let finding = |tick: u64, kind: &str, detail: String| SoakFinding {
+        episode: e,
+        benchmark: bench.as_str().into(),
+        session_seed,
+        tick,
+        kind: kind.into(),
+        detail,
+    };
+    let mut next = 0;
+    let mut replans_seen = 0;
+    let clock = NoClock;
+    let invariant_check = |s: &Session, rep: &mut SoakReport, when: &str| {
+        rep.invariant_checks += 1;
+        if let Err(v) = s.world().check_invariants() {
+            rep.invariant_violations += 1;
+            let list: Vec<String> = v.iter().map(|v| v.to_string()).collect();
+            rep.find(finding(
+                s.tick(),
+                "invariant",
+                format!("{when}: {}", list.join("; ")),
+            ));
+            true
+        } else {
+            false
+        }
+    };
+    let mut broken = false;
+    // Whether an accepted drag put a block outside every arm's workspace.
+    let mut out_of_reach = false;
+    while s.outcome().is_none() && s.tick() < params.max_ticks {
+        // Disturbances due now, before the tick (as a replay applies them).
+        while next < schedule.len() && schedule[next].0 <= s.tick() {
+            let before_world = serde_json::to_string(&s.world().snapshot()).unwrap_or_default();
+            let before_events = s.log().events.len();
+            let (what, applied) = match &schedule[next].1 {
+                Disturbance::Inject(level) => match s.inject(level) {
+                    Ok(_) => {
+                        *rep.injections.entry((*level).into()).or_default() += 1;
+                        (format!("inject {level}"), true)
+                    }
+                    Err(_) => {
+                        rep.injections_refused += 1;
+                        (format!("inject {level}"), false)
+                    }
+                },
+                Disturbance::Drag(kind) => {
+                    let (body, pos) = draw_drag(s.world(), *kind, &mut rng);
+                    match s.perturb(&body, pos) {
+                        Ok(out) => {
+                            rep.drags_accepted += 1;
+                            out_of_reach |= !in_reach(s.world(), out.to);
+                            (format!("drag {body} to {pos:?}"), true)
+                        }
+                        Err(_) => {
+                            rep.drags_refused += 1;
+                            (format!("drag {body} to {pos:?}"), false)
+                        }
+                    }
+                }
+            };
+            next += 1;
+            if applied {
+                rep.disturbances += 1;
+                broken |= invariant_check(&s, rep, &format!("after {what}"));
+            } else {
+                let after_world = serde_json::to_string(&s.world().snapshot()).unwrap_or_default();
+                if after_world != before_world || s.log().events.len() != before_events {
+                    rep.partial_applies += 1;
+                    rep.find(finding(
+                        s.tick(),
+                        "partial_apply",
+                        format!("refused {what} changed the world or the log"),
+                    ));
+                }
+            }
+        }
+        let pre = s.world().clone();
+        let t0 = s.tick();
+        s.tick_once(&clock);
+        let replans = s.controller().replans();
+        if replans.len() > replans_seen {
+            // Plans adopted during this tick were made from the world as it was before it.
+            for r in &replans[replans_seen..] {
+                rep.plans_checked += 1;
+                if let Err(why) = models.validate(bench, &pre, &r.plan) {
+                    rep.invalid_plans += 1;
+                    rep.find(finding(
+                        r.tick,
+                        "invalid_plan",
+                        format!("plan {:?} (because {}): {why}", r.plan, r.reason),
+                    ));
+                }
+            }
+            replans_seen = replans.len();
+        }
+        if !broken {
+            broken |= invariant_check(&s, rep, "after a tick");
+        }
+        if s.tick() == t0 && s.outcome().is_none() && !s.is_executing() {
+            break;
+        }
+    }
+    rep.ticks = s.tick();
+    match s.outcome() {
+        Some(Ok(())) => rep.successes += 1,
+        Some(Err(FailReason::Budget { what })) => {
+            rep.budget_exhausted += 1;
+            let _ = what;
+        }
+        Some(Err(FailReason::NoPlan { message })) if message.contains("exhausted") => {
+            rep.budget_exhausted += 1
+        }
+        Some(Err(FailReason::NoPlan { message })) => {
+            match models.unsolvable(bench, s.world(), params.check_nodes) {
+                Some(true) => {
+                    *rep.legitimate_failures
+                        .entry("no plan: the disturbed task is unsolvable".into())
+                        .or_default() += 1
+                }
+                Some(false) => {
+                    rep.unexplained_failures += 1;
+                    rep.find(finding(
+                        s.tick(),
+                        "unexplained_failure",
+                        format!("no plan ({message}) but the observed task is solvable"),
+                    ));
+                }
+                None => rep.budget_exhausted += 1,
+            }
+        }
+        Some(Err(FailReason::ActionFailed { action, why }))
+            if out_of_reach && why.contains("reach") =>
+        {
+            let _ = action;
+            *rep.legitimate_failures
+                .entry("an arm cannot reach: the user dragged a block out of reach".into())
+                .or_default() += 1
+        }
+        Some(Err(other)) => {
+            rep.unexplained_failures += 1;
+            rep.find(finding(s.tick(), "unexplained_failure", other.to_string()));
+        }
+        None => {
+            rep.budget_exhausted += 1;
+        }
+    }
+    if params.check_replay {
+        rep.replays_checked += 1;
+        let json = s.episode_json();
+        match Session::replay(&json) {
+            Ok(r) if r.episode_json() == json => {}
+            Ok(_) => {
+                rep.replay_mismatches += 1;
+                rep.find(finding(
+                    s.tick(),
+                    "replay",
+                    "the replayed episode JSON differs".into(),
+                ));
+            }
+            Err(err) => {
+                rep.replay_mismatches += 1;
+                rep.find(finding(s.tick(), "replay", format!("replay failed: {err}")));
+            }
+        }
+    }
+    Ok(())
+}

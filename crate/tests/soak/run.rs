@@ -1,0 +1,27 @@
+//! The closed-loop soak at CI size (`logic-lfd soak --episodes 8 --seed 2026`); the README reports
+//! the large run.
+
+use logic_lfd::experiments::soak::{soak, SoakParams};
+
+#[test]
+fn soak_episodes_never_panic_never_half_apply_and_only_adopt_valid_plans() {
+    let p = SoakParams {
+        episodes: 8,
+        seed: 2026,
+        ..SoakParams::default()
+    };
+    let r = soak(&p).unwrap();
+    assert_eq!(r.episodes, 8);
+    assert!(r.disturbances > 0, "no disturbance was applied: {r:?}");
+    assert!(r.plans_checked >= r.episodes, "{r:?}");
+    assert!(r.invariant_checks > 1000, "{r:?}");
+    assert_eq!(r.panics, 0, "{:#?}", r.findings);
+    assert_eq!(r.partial_applies, 0, "{:#?}", r.findings);
+    assert_eq!(r.invalid_plans, 0, "{:#?}", r.findings);
+    // Every episode ends with a stated outcome, each counted once.
+    let stated = r.successes
+        + r.legitimate_failures.values().sum::<usize>()
+        + r.budget_exhausted
+        + r.unexplained_failures;
+    assert_eq!(stated, r.episodes, "{r:?}");
+}
