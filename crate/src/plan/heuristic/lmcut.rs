@@ -7,13 +7,20 @@
 //! 2. precondition choice function: `pcf(o) ∈ argmax_{q ∈ pre(o)} h_max(s, q)`;
 //! 3. justification graph: an edge `pcf(o) → e` labelled `o` for every `e ∈ add(o)`;
 //! 4. goal zone `V*`: facts from which `G★` is reached through edges of cost-0 operators;
-//! 5. `V⁰`: facts reached from `s ∪ {⊤}` without entering `V*`; the cut
-//!    `L = { o : pcf(o) ∈ V⁰, add(o) ∩ V* ≠ ∅ }` is a disjunctive action landmark;
+//! 5. `V⁰`: facts reached from `s ∪ {⊤}` through edges of operators with no effect in `V*`;
+//!    the cut `L = { o : pcf(o) ∈ V⁰, add(o) ∩ V* ≠ ∅ }` is a disjunctive action landmark
+//!    (every relaxed plan's first operator adding a fact of `V*` is in `L`);
 //! 6. `m = min_{o ∈ L} cost_i(o)`, `h += m`, `cost_{i+1}(o) = cost_i(o) − m` on `L`; repeat.
 //!
 //! The sum of the `m`'s is admissible (cost partitioning over landmarks) and dominates h_max.
+//!
+//! Cost per round: after step 6 only costs on `L` decreased, so `h_max` is repaired
+//! incrementally (values only decrease; an operator's `pcf` is recomputed only when the value of
+//! its current `pcf` decreased). Fact marks (`V*`, `V⁰`) are epoch stamps, so no round clears an
+//! array of all facts; each operator is met at most once per round in step 5 (through its unique
+//! `pcf`), so `L` needs no duplicate check.
 
-use super::relaxed::{has, BucketQueue, RelaxedTask, INF};
+use super::relaxed::{BucketQueue, RelaxedTask, INF};
 
 /// Buffers for LM-cut.
 #[derive(Clone, Debug, Default)]
@@ -22,8 +29,8 @@ pub(crate) struct LmCut {
     cost: Vec<u64>,
     /// `h_max(s, p)` under `cost_i`.
     fact_cost: Vec<u64>,
-    /// Whether the fact is in `s ∪ {⊤}`.
-    init: Vec<bool>,
+    /// The facts of `s ∪ {⊤}`.
+    init: Vec<u32>,
     /// Unsettled preconditions (0 = the operator is relaxed-reachable).
     unsat: Vec<u32>,
     /// `max_{q ∈ pre(o)} h_max(s, q)`.
@@ -31,9 +38,11 @@ pub(crate) struct LmCut {
     /// `pcf(o)`.
     pcf: Vec<u32>,
     heap: BucketQueue,
-    zone: Vec<bool>,
-    reached: Vec<bool>,
-    in_cut: Vec<bool>,
+    /// `zone[p] == epoch` ⇔ `p ∈ V*` in the current round.
+    zone: Vec<u32>,
+    /// `reached[p] == epoch` ⇔ `p ∈ V⁰` in the current round.
+    reached: Vec<u32>,
+    epoch: u32,
     stack: Vec<u32>,
     cut: Vec<u32>,
 }
@@ -44,8 +53,6 @@ impl LmCut {
         let nf = rt.num_facts();
         self.fact_cost.clear();
         self.fact_cost.resize(nf, INF);
-        self.init.clear();
-        self.init.resize(nf, false);
         self.unsat.clear();
         self.unsat
             .extend(rt.pre_start.windows(2).map(|w| w[1] - w[0]));
@@ -54,17 +61,22 @@ impl LmCut {
         self.pcf.clear();
         self.pcf.resize(rt.num_ops(), u32::MAX);
         self.heap.clear();
-        for f in 0..rt.n as u32 {
-            if has(words, f) {
-                self.fact_cost[f as usize] = 0;
-                self.init[f as usize] = true;
-                self.heap.push(0, f);
+        self.init.clear();
+        for (i, &w) in words.iter().enumerate() {
+            let mut w = w;
+            while w != 0 {
+                let f = (i * 64) as u32 + w.trailing_zeros();
+                w &= w - 1;
+                if (f as usize) < rt.n {
+                    self.init.push(f);
+                }
             }
         }
-        let top = rt.top();
-        self.fact_cost[top as usize] = 0;
-        self.init[top as usize] = true;
-        self.heap.push(0, top);
+        self.init.push(rt.top());
+        for &f in &self.init {
+            self.fact_cost[f as usize] = 0;
+            self.heap.push(0, f);
+        }
         while let Some((c, f)) = self.heap.pop() {
             if c > self.fact_cost[f as usize] {
                 continue;
@@ -108,13 +120,14 @@ impl LmCut {
             }
             for &o in rt.pre_of(f) {
                 let o = o as usize;
-                if self.unsat[o] != 0 || self.pcf[o] != f {
+                // Unreached operators stay unreached; others only change through their pcf.
+                if self.pcf[o] != f || self.pre_max[o] <= c || self.unsat[o] != 0 {
                     continue;
                 }
-                let (mut best, mut arg) = (0u64, u32::MAX);
+                let (mut best, mut arg) = (c, f);
                 for &q in rt.pre(o) {
                     let v = self.fact_cost[q as usize];
-                    if arg == u32::MAX || v > best {
+                    if v > best {
                         best = v;
                         arg = q;
                     }
@@ -134,68 +147,71 @@ impl LmCut {
         }
     }
 
+    /// Starts a new round of marks (`V*`, `V⁰`), resetting the stamps on wrap-around.
+    fn next_epoch(&mut self, nf: usize) {
+        if self.zone.len() != nf || self.epoch == u32::MAX {
+            self.zone.clear();
+            self.zone.resize(nf, 0);
+            self.reached.clear();
+            self.reached.resize(nf, 0);
+            self.epoch = 0;
+        }
+        self.epoch += 1;
+    }
+
     /// LM-cut value of the packed state, `None` for a dead end (`h_max = ∞`).
     pub fn eval(&mut self, rt: &RelaxedTask, words: &[u64]) -> Option<u64> {
         self.cost.clear();
         self.cost.extend_from_slice(&rt.cost);
-        let goal = rt.goal_fact() as usize;
+        let goal = rt.goal_fact();
         let nf = rt.num_facts();
         let mut h: u64 = 0;
         self.hmax_full(rt, words);
-        if self.fact_cost[goal] == INF {
+        if self.fact_cost[goal as usize] == INF {
             return None;
         }
-        loop {
-            if self.fact_cost[goal] == 0 {
-                return Some(h);
-            }
-            // Goal zone: backwards from G★ through zero-cost operators' pcf edges.
-            self.zone.clear();
-            self.zone.resize(nf, false);
-            self.zone[goal] = true;
+        while self.fact_cost[goal as usize] != 0 {
+            self.next_epoch(nf);
+            let ep = self.epoch;
+            // Goal zone V*: backwards from G★ through zero-cost operators' pcf edges.
+            self.zone[goal as usize] = ep;
             self.stack.clear();
-            self.stack.push(goal as u32);
+            self.stack.push(goal);
             while let Some(e) = self.stack.pop() {
                 for &o in rt.add_of(e) {
                     let o = o as usize;
                     if self.cost[o] == 0 && self.unsat[o] == 0 {
                         let p = self.pcf[o] as usize;
-                        if !self.zone[p] {
-                            self.zone[p] = true;
+                        if self.zone[p] != ep {
+                            self.zone[p] = ep;
                             self.stack.push(p as u32);
                         }
                     }
                 }
             }
-            // Forward from s ∪ {⊤} without entering the zone; collect the cut.
-            self.reached.clear();
-            self.reached.resize(nf, false);
-            self.in_cut.clear();
-            self.in_cut.resize(rt.num_ops(), false);
+            // V⁰: forward from s ∪ {⊤}; an operator with an effect in V* joins the cut and
+            // is not followed. h_max(G★) > 0 keeps every fact of s ∪ {⊤} outside V*.
             self.cut.clear();
             self.stack.clear();
-            for f in 0..nf {
-                if self.init[f] && !self.zone[f] {
-                    self.reached[f] = true;
-                    self.stack.push(f as u32);
-                }
+            for &f in &self.init {
+                self.reached[f as usize] = ep;
+                self.stack.push(f);
             }
             while let Some(f) = self.stack.pop() {
                 for &o in rt.pre_of(f) {
                     let o = o as usize;
-                    if self.unsat[o] != 0 || self.pcf[o] != f {
+                    if self.pcf[o] != f || self.unsat[o] != 0 {
                         continue;
                     }
-                    for &e in rt.add(o) {
-                        let e = e as usize;
-                        if self.zone[e] {
-                            if !self.in_cut[o] {
-                                self.in_cut[o] = true;
-                                self.cut.push(o as u32);
-                            }
-                        } else if !self.reached[e] {
-                            self.reached[e] = true;
-                            self.stack.push(e as u32);
+                    let adds = rt.add(o);
+                    if adds.iter().any(|&e| self.zone[e as usize] == ep) {
+                        self.cut.push(o as u32);
+                        continue;
+                    }
+                    for &e in adds {
+                        if self.reached[e as usize] != ep {
+                            self.reached[e as usize] = ep;
+                            self.stack.push(e);
                         }
                     }
                 }
@@ -216,5 +232,6 @@ impl LmCut {
             }
             self.hmax_incremental(rt);
         }
+        Some(h)
     }
 }

@@ -318,6 +318,53 @@ mod tests {
         assert_eq!(v(HeuristicKind::Blind), Some(2));
     }
 
+    /// The cut follows only operators without an effect in the goal zone (the `V⁰` of the
+    /// module header): `o1 = ⟨∅ → {a, y}, 2⟩`, `o2 = ⟨{y} → {a, d}, 1⟩`, `o4 = ⟨∅ → {d}, 1⟩`,
+    /// goal `{a, d}`. Round 1: `V* = {G★, a}`, `L = {o1}` (`y` is not reached through `o1`,
+    /// so `o2 ∉ L`), `m = 2`; round 2: `V* = {G★, d}`, `L = {o2, o4}`, `m = 1`. LM-cut = 3 = h*
+    /// (following `o1` to `y` would put `o2` in the first cut and give 2).
+    #[test]
+    fn cut_does_not_pass_through_cut_operators() {
+        let op = |name: &str, pre: Vec<u32>, add: Vec<u32>, cost| Operator {
+            name: name.into(),
+            pre,
+            pre_neg: vec![],
+            add,
+            del: vec![],
+            cost,
+        };
+        let goal = Goal {
+            alternatives: vec![Condition {
+                pos: vec![0, 1],
+                neg: vec![],
+            }],
+            terminal_cost: 0,
+        };
+        let t = Task::new(
+            vec!["(a)".into(), "(d)".into(), "(y)".into()],
+            vec![
+                op("(o1)", vec![], vec![0, 2], 2),
+                op("(o2)", vec![2], vec![0, 1], 1),
+                op("(o4)", vec![], vec![1], 1),
+            ],
+            State::empty(3),
+            goal.clone(),
+            vec![],
+            false,
+        );
+        let goals = [goal];
+        let v = |k| HeuristicEvaluator::new(&t, &goals, k).value(&t.init);
+        assert_eq!(v(HeuristicKind::HMax), Some(2));
+        assert_eq!(v(HeuristicKind::LmCut), Some(3));
+        // Repeated evaluations reuse the buffers (epoch marks) and agree.
+        let mut h = HeuristicEvaluator::new(&t, &goals, HeuristicKind::LmCut);
+        for _ in 0..3 {
+            assert_eq!(h.value(&t.init), Some(3));
+            assert_eq!(h.value(&State::from_facts(3, [2])), Some(1));
+            assert_eq!(h.value(&State::from_facts(3, [0, 1])), Some(0));
+        }
+    }
+
     #[test]
     fn terminal_costs_and_alternatives_take_the_minimum() {
         let (t, g) = task();
