@@ -79,7 +79,7 @@ pub fn run_table1(a: Table1Args) -> ExitCode {
     };
     let clock = WallClock::start();
     let mut p = progress;
-    match table1(
+    let result = table1(
         &bs,
         a.tasks,
         a.seed,
@@ -87,20 +87,11 @@ pub fn run_table1(a: Table1Args) -> ExitCode {
         &clock,
         &scene_for,
         &mut p,
-    ) {
-        Ok(t) => {
-            if a.json {
-                println!("{}", serde_json::to_string(&t).unwrap_or_default());
-            } else {
-                print!("{}", t.markdown());
-            }
-            ExitCode::from(exit::OK)
-        }
-        Err(e) => {
-            eprintln!("{e}");
-            ExitCode::from(exit::BAD_INPUT)
-        }
-    }
+    );
+    report(
+        result.map(|t| (serde_json::to_string(&t), t.markdown())),
+        a.json,
+    )
 }
 
 /// `bench table2`.
@@ -114,19 +105,31 @@ pub fn run_table2(a: Table2Args) -> ExitCode {
     };
     let clock = WallClock::start();
     let mut p = progress;
-    match table2(
+    let result = table2(
         &bs,
         a.trials,
         a.seed,
         SessionParams::default(),
         &clock,
         &mut p,
-    ) {
-        Ok(t) => {
-            if a.json {
-                println!("{}", serde_json::to_string(&t).unwrap_or_default());
+    );
+    report(
+        result.map(|t| (serde_json::to_string(&t), t.markdown())),
+        a.json,
+    )
+}
+
+/// Prints a finished table as JSON or markdown, or its error on stderr (exit 2).
+fn report(
+    table: Result<(serde_json::Result<String>, String), SessionError>,
+    json: bool,
+) -> ExitCode {
+    match table {
+        Ok((as_json, markdown)) => {
+            if json {
+                println!("{}", as_json.unwrap_or_default());
             } else {
-                print!("{}", t.markdown());
+                print!("{markdown}");
             }
             ExitCode::from(exit::OK)
         }
