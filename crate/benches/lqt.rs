@@ -17,7 +17,7 @@ fn demo(t_n: usize) -> Vec<Point3<f64>> {
             let e = s * s * (3.0 - 2.0 * s);
             Point3::new(
                 -0.3 * (1.0 - e),
-                0.1 * (std::f64::consts::PI * e).sin(),
+                0.1 * libm::sin(std::f64::consts::PI * e),
                 0.3 - 0.28 * e,
             )
         })

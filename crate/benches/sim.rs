@@ -24,8 +24,8 @@ fn step_and_scene_graph(c: &mut Criterion) {
             let t = k as f64 * 0.01;
             for (a, h) in homes.iter().enumerate() {
                 let mut p = *h;
-                p.translation.vector.x += 0.05 * (t * 1.57).cos() - 0.05;
-                p.translation.vector.y += 0.05 * (t * 1.57).sin();
+                p.translation.vector.x += 0.05 * libm::cos(t * 1.57) - 0.05;
+                p.translation.vector.y += 0.05 * libm::sin(t * 1.57);
                 w.command_arm(a, p, GripperCommand::Open).unwrap();
             }
             let ev = w.step();
@@ -44,7 +44,11 @@ fn ik_solve(c: &mut Criterion) {
             let r = 0.35 + 0.3 * ((i * 37 % 64) as f64 / 64.0);
             let a = -1.2 + 2.4 * ((i * 11 % 64) as f64 / 64.0);
             Isometry3::from_parts(
-                Translation3::new(r * a.cos(), r * a.sin(), 0.03 + 0.1 * ((i % 3) as f64)),
+                Translation3::new(
+                    r * libm::cos(a),
+                    r * libm::sin(a),
+                    0.03 + 0.1 * ((i % 3) as f64),
+                ),
                 panda::down_orientation(a + 0.3 * ((i % 5) as f64 - 2.0)),
             )
         })

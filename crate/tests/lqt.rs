@@ -62,7 +62,7 @@ fn random_case(dim: usize, order: usize, n_steps: usize, basis_kind: u8, seed: u
         order,
         dt: rng.random_range(0.01..0.1),
         n_steps,
-        r: 10f64.powf(rng.random_range(-4.0..-1.0)),
+        r: libm::pow(10f64, rng.random_range(-4.0..-1.0)),
         basis,
     };
     let mut targets = Vec::new();
@@ -81,7 +81,7 @@ fn random_case(dim: usize, order: usize, n_steps: usize, basis_kind: u8, seed: u
                 TargetRole::Via
             },
             pos: (0..dim).map(|_| rng.random_range(-1.0..1.0)).collect(),
-            w_pos: 10f64.powf(rng.random_range(0.0..3.0)),
+            w_pos: libm::pow(10f64, rng.random_range(0.0..3.0)),
             vel: with_vel.then(|| (0..dim).map(|_| rng.random_range(-0.5..0.5)).collect()),
             w_vel: with_vel.then(|| rng.random_range(0.1..10.0)),
         });
@@ -90,7 +90,7 @@ fn random_case(dim: usize, order: usize, n_steps: usize, basis_kind: u8, seed: u
         let ph: f64 = rng.random_range(0.0..3.0);
         Tracking {
             demo_pos: DMatrix::from_fn(n_steps, dim, |t, d| {
-                (ph + d as f64 + 3.0 * t as f64 / n_steps as f64).sin()
+                libm::sin(ph + d as f64 + 3.0 * t as f64 / n_steps as f64)
             }),
             weights_per_order: (0..order)
                 .map(|_| {
@@ -247,7 +247,7 @@ fn example_like(
         },
     ];
     let tr = tracking.then(|| Tracking {
-        demo_pos: DMatrix::from_fn(60, 2, |t, d| ((t as f64) * 0.05 + d as f64).sin()),
+        demo_pos: DMatrix::from_fn(60, 2, |t, d| libm::sin((t as f64) * 0.05 + d as f64)),
         weights_per_order: (0..order)
             .map(|i| if i + 1 == order { 1e-3 } else { 0.0 })
             .collect(),
@@ -597,7 +597,7 @@ fn demo_segment() -> Vec<Point3<f64>> {
             let e = s * s * (3.0 - 2.0 * s);
             Point3::new(
                 -0.3 * (1.0 - e),
-                0.1 * (std::f64::consts::PI * e).sin(),
+                0.1 * libm::sin(std::f64::consts::PI * e),
                 0.3 - 0.28 * e,
             )
         })

@@ -69,7 +69,7 @@ fn grasp_yaw(world: &World, body: &str) -> ([f64; 3], f64) {
         );
     let x = r * nalgebra::Vector3::x();
     let p = g.translation.vector;
-    ([p.x, p.y, p.z], x.y.atan2(x.x))
+    ([p.x, p.y, p.z], libm::atan2(x.y, x.x))
 }
 
 /// Segmenting a recording replayed from each benchmark's scripted demo gives back its actions.

@@ -479,7 +479,7 @@ fn the_hook_pushes_a_block_its_blade_sweeps_into() {
     }
     assert!(pushed);
     let after = w.body_pose("b").unwrap().translation.vector;
-    let r = |v: Vector3<f64>| v.x.hypot(v.y);
+    let r = |v: Vector3<f64>| libm::hypot(v.x, v.y);
     assert!(
         (r(after) - 0.6).abs() < 0.01 && r(before) > 0.9,
         "{before} -> {after}"

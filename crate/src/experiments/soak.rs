@@ -242,7 +242,7 @@ fn draw_drag(world: &World, kind: DragKind, rng: &mut Pcg64Mcg) -> (String, [f64
         DragKind::Nudge => {
             let a = rng.random_range(0.0..std::f64::consts::TAU);
             let r = rng.random_range(0.005..0.06);
-            c + Vector3::new(r * a.cos(), r * a.sin(), 0.002)
+            c + Vector3::new(r * libm::cos(a), r * libm::sin(a), 0.002)
         }
         DragKind::Hostile => {
             return match rng.random_range(0..6) {
@@ -265,7 +265,7 @@ fn draw_drag(world: &World, kind: DragKind, rng: &mut Pcg64Mcg) -> (String, [f64
 fn in_reach(world: &World, p: [f64; 3]) -> bool {
     world.snapshot().arms.iter().any(|a| {
         let b = a.base.position;
-        let d = (p[0] - b[0]).hypot(p[1] - b[1]);
+        let d = libm::hypot(p[0] - b[0], p[1] - b[1]);
         d >= a.reach.min_radius && d <= a.reach.max_radius
     })
 }

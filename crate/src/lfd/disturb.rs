@@ -104,7 +104,7 @@ fn table_spot(world: &World, rng: &mut Pcg64Mcg, anywhere: bool) -> Option<[f64;
             && (anywhere
                 || snap.arms.iter().any(|a| {
                     let b = a.base.position;
-                    let d = (x - b[0]).hypot(y - b[1]);
+                    let d = libm::hypot(x - b[0], y - b[1]);
                     d > a.reach.min_radius + 0.03 && d < a.reach.max_radius - 0.05
                 }));
         if ok {
@@ -144,7 +144,11 @@ pub fn inject(
                 for _ in 0..12 {
                     let a = rng.random_range(0.0..std::f64::consts::TAU);
                     let r = rng.random_range(0.02..0.05);
-                    let target = Vector3::new(c[0] + r * a.cos(), c[1] + r * a.sin(), c[2] + 0.001);
+                    let target = Vector3::new(
+                        c[0] + r * libm::cos(a),
+                        c[1] + r * libm::sin(a),
+                        c[2] + 0.001,
+                    );
                     let saved = world.clone();
                     if world.move_block(&b, target).is_ok() && facts(world) == before {
                         let to = centre(world, &b).unwrap_or(c);

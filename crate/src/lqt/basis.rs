@@ -141,7 +141,7 @@ impl Basis {
                 centers, lambda, ..
             } => {
                 for (o, c) in out.iter_mut().zip(centers) {
-                    *o = (-lambda * (s - c) * (s - c)).exp();
+                    *o = libm::exp(-lambda * (s - c) * (s - c));
                 }
             }
             Basis::Bernstein { .. } => {
@@ -152,7 +152,7 @@ impl Basis {
             }
             Basis::Fourier { .. } => {
                 for (k, o) in out.iter_mut().enumerate() {
-                    *o = (2.0 * std::f64::consts::PI * k as f64 * s).cos();
+                    *o = libm::cos(2.0 * std::f64::consts::PI * k as f64 * s);
                 }
             }
             Basis::Piecewise { .. } => {

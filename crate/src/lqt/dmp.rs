@@ -159,7 +159,7 @@ impl Dmp {
                 } else {
                     i as f64 / (k_n - 1) as f64
                 };
-                (-params.alpha_s * frac).exp()
+                libm::exp(-params.alpha_s * frac)
             })
             .collect();
         let widths: Vec<f64> = (0..k_n)
@@ -197,8 +197,8 @@ impl Dmp {
             for (i, w) in weights.iter_mut().enumerate() {
                 let (mut num, mut den) = (0.0, 1e-12);
                 for t in 0..t_n {
-                    let s = (-params.alpha_s * t as f64 / (t_n - 1) as f64).exp();
-                    let psi = (-widths[i] * (s - centers[i]).powi(2)).exp();
+                    let s = libm::exp(-params.alpha_s * t as f64 / (t_n - 1) as f64);
+                    let psi = libm::exp(-widths[i] * (s - centers[i]).powi(2));
                     let f = tau * tau * ydd[t] - az * (bz * (goal[d] - y[t]) - tau * yd[t]);
                     let xi = s;
                     num += xi * psi * f;
@@ -278,7 +278,7 @@ impl DmpRunner {
             let mut f = [0.0; 3];
             let mut den = 1e-12;
             for i in 0..k_n {
-                let psi = (-self.dmp.widths[i] * (s - self.dmp.centers[i]).powi(2)).exp();
+                let psi = libm::exp(-self.dmp.widths[i] * (s - self.dmp.centers[i]).powi(2));
                 den += psi;
                 for (fd, wd) in f.iter_mut().zip(&self.dmp.weights[i]) {
                     *fd += psi * wd;

@@ -115,7 +115,7 @@ fn model_err(e: impl std::fmt::Display) -> RecorderError {
 /// Yaw (rotation about world `z`) of an orientation: the heading of its `x` axis.
 pub(crate) fn yaw_of(rot: &UnitQuaternion<f64>) -> f64 {
     let x = rot * Vector3::x();
-    x.y.atan2(x.x)
+    libm::atan2(x.y, x.x)
 }
 
 /// The gripper yaw of a TCP orientation (inverse of [`panda::down_orientation`]).

@@ -546,7 +546,7 @@ pub fn pull_hook_poses(
     let d = Vector3::new(b.x - o.x, b.y - o.y, 0.0);
     let r = d.norm().max(1e-9);
     let u = d / r; // away from the base
-    let yaw = u.y.atan2(u.x);
+    let yaw = libm::atan2(u.y, u.x);
     let rot = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw);
     // Block centre in the hook frame: 1 cm gap to the blade's inner face (x = 0.18), mid-blade.
     let local = Vector3::new(0.18 - 0.01 - 0.5 * BLOCK_SIZE, 0.08, 0.0);

@@ -71,10 +71,10 @@ fn closest_yaw(yaw: f64, step: f64, preferred: f64) -> f64 {
 fn yaw_from_base(world: &World, arm: usize, p: &Vector3<f64>) -> f64 {
     let base = world.arm_base(arm).unwrap_or_else(Isometry3::identity);
     let d = p - base.translation.vector;
-    if d.x.hypot(d.y) < 1e-6 {
+    if libm::hypot(d.x, d.y) < 1e-6 {
         yaw_of(&base.rotation)
     } else {
-        d.y.atan2(d.x)
+        libm::atan2(d.y, d.x)
     }
 }
 

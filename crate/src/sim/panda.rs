@@ -107,8 +107,8 @@ impl Frame {
 
 /// Modified DH transform `Rot_x(α) Trans_x(a) Rot_z(θ) Trans_z(d)`.
 fn dh(a: f64, d: f64, alpha: f64, theta: f64) -> Frame {
-    let (st, ct) = theta.sin_cos();
-    let (sa, ca) = alpha.sin_cos();
+    let (st, ct) = libm::sincos(theta);
+    let (sa, ca) = libm::sincos(alpha);
     Frame {
         r: Matrix3::new(ct, -st, 0.0, st * ca, ct * ca, -sa, st * sa, ct * sa, ca),
         p: Vector3::new(a, -sa * d, ca * d),
@@ -174,7 +174,7 @@ fn rotation_error(target: &Matrix3<f64>, current: &Matrix3<f64>) -> Vector3<f64>
         // θ ≈ π: fall back to the eigen-axis from nalgebra.
         return nalgebra::Rotation3::from_matrix_unchecked(m).scaled_axis();
     }
-    v * (s.atan2(c) / s)
+    v * (libm::atan2(s, c) / s)
 }
 
 /// Tunables of the IK solver.

@@ -155,7 +155,7 @@ impl SceneGraph {
                             }
                             _ => b.pose.translation.vector,
                         };
-                        let r = (p.x - base.x).hypot(p.y - base.y);
+                        let r = libm::hypot(p.x - base.x, p.y - base.y);
                         r >= a.reach.min_radius && r <= a.reach.max_radius
                     } else {
                         false

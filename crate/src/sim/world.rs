@@ -154,7 +154,7 @@ impl Body {
 /// Yaw (rotation about world `z`) of a pose's rotation.
 pub(crate) fn yaw_of(rot: &UnitQuaternion<f64>) -> f64 {
     let x = rot * Vector3::x();
-    x.y.atan2(x.x)
+    libm::atan2(x.y, x.x)
 }
 
 /// One arm with its gripper.

@@ -227,7 +227,7 @@ impl<'w> StreamBinder<'w> {
             .arm_base(arm)
             .map(|b| b.translation.vector)
             .unwrap_or_default();
-        let heading = (p.y - base.y).atan2(p.x - base.x);
+        let heading = libm::atan2(p.y - base.y, p.x - base.x);
         let (_, _, yaw) = pose.rotation.euler_angles();
         let step = std::f64::consts::FRAC_PI_2;
         let k = ((heading - yaw) / step).round();
@@ -295,7 +295,7 @@ impl<'w> StreamBinder<'w> {
     fn in_annulus(&self, a: usize, x: f64, y: f64) -> bool {
         match (self.reach.get(a), self.world.arm_base(a)) {
             (Some(r), Some(b)) => {
-                let d = (x - b.translation.x).hypot(y - b.translation.y);
+                let d = libm::hypot(x - b.translation.x, y - b.translation.y);
                 d >= r.min_radius && d <= r.max_radius
             }
             _ => false,
@@ -360,7 +360,7 @@ impl<'w> StreamBinder<'w> {
             // The carried hook is not routed around obstacles: sampled hook spots keep clear of
             // shelves and stay where the arm carried it in the demonstration (near its hint).
             if !is_block && n > 0 {
-                let near_hint = hint.is_some_and(|(hx, hy, _)| (x - hx).hypot(y - hy) < 0.15);
+                let near_hint = hint.is_some_and(|(hx, hy, _)| libm::hypot(x - hx, y - hy) < 0.15);
                 if self.near_shelf(x, y, 0.12) || (hint.is_some() && !near_hint) {
                     continue;
                 }
