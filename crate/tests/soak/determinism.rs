@@ -120,7 +120,7 @@ fn an_episode_with_full_precision_drags_replays_to_identical_json() {
             if let Some(p) = s.world().body_pose(body) {
                 let c = p.translation.vector;
                 let d: f64 = rng.random_range(0.01..0.04);
-                let a: f64 = rng.random_range(0.0..6.28);
+                let a: f64 = rng.random_range(0.0..std::f64::consts::TAU);
                 let pos = [
                     c.x + d * libm::cos(a),
                     c.y + d * libm::sin(a),
