@@ -13,7 +13,7 @@
 //! scene cannot describe: a block on the hook, on a held block, or on a block where the domain
 //! has no `on`). A candidate whose resulting facts do not meet the level's definition, or that
 //! leaves the moved or new block where no arm can grasp or pull it
-//! ([`handleable`](crate::sim::disturb::handleable), IK), is undone: an injection never makes
+//! ([`crate::sim::disturb::handleable`], IK), is undone: an injection never makes
 //! the task geometrically impossible; when no candidate qualifies it is refused with the reason.
 
 use std::collections::BTreeSet;
