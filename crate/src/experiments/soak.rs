@@ -16,15 +16,16 @@
 //!   of the world at that tick, as a PDDL problem) to the benchmark's goal;
 //! * **stated outcome**: every episode ends in success or in a [`FailReason`] that is
 //!   *legitimate*: the planner's "no plan" is confirmed by an independent exhaustive search that
-//!   proves the disturbed task unsolvable, or an arm "cannot reach" after a user drag put a block
-//!   outside every arm's workspace; an exhausted budget is stated as such and counted apart;
-//!   anything else (an action that failed, a "no plan" for a solvable task) is *unexplained*;
+//!   proves the disturbed task unsolvable, or a block a user dragged is now where no arm can
+//!   grasp it or pull it with the hook (checked with IK, [`handleable`]); an exhausted budget is
+//!   stated as such and counted apart; anything else (an action that failed, a "no plan" for a
+//!   solvable task) is *unexplained*;
 //! * **replay identity** (optional): the episode JSON replays to the byte-identical log.
 //!
 //! No clock is read: planning runs under the controller's node budgets, so a soak's report is a
 //! pure function of its seed.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use nalgebra::Vector3;
 use rand::{Rng, SeedableRng};
@@ -39,6 +40,7 @@ use crate::plan::{
     ground, search, validate_names, Algorithm, HeuristicKind, NoClock, Outcome, SearchConfig,
     SearchOutcome,
 };
+use crate::sim::disturb::handleable;
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
 
@@ -59,6 +61,10 @@ pub struct SoakParams {
     pub check_nodes: u64,
     /// Replay every episode's JSON and compare the logs byte for byte.
     pub check_replay: bool,
+    /// Index of the first episode (episodes `first_episode..first_episode + episodes` run, so
+    /// one episode of a large soak can be re-run alone).
+    #[serde(default)]
+    pub first_episode: usize,
 }
 
 impl Default for SoakParams {
@@ -71,6 +77,7 @@ impl Default for SoakParams {
             max_ticks: 30_000,
             check_nodes: 2_000_000,
             check_replay: true,
+            first_episode: 0,
         }
     }
 }
@@ -261,14 +268,25 @@ fn draw_drag(world: &World, kind: DragKind, rng: &mut Pcg64Mcg) -> (String, [f64
     (body, [target.x, target.y, target.z])
 }
 
-/// Whether a point is inside some arm's workspace annulus (distance from the base in the plane).
-fn in_reach(world: &World, p: [f64; 3]) -> bool {
-    world.snapshot().arms.iter().any(|a| {
-        let b = a.base.position;
-        let d = libm::hypot(p[0] - b[0], p[1] - b[1]);
-        d >= a.reach.min_radius && d <= a.reach.max_radius
+/// A stated, legitimate reason for a failure that a user drag explains: a block the user moved
+/// (directly, or standing on a moved one) is now where no arm can grasp it or pull it with the
+/// hook, by IK ([`handleable`]).
+fn dragged_out_of_reach(world: &World, dragged: &BTreeSet<String>) -> Option<String> {
+    dragged.iter().find_map(|b| {
+        if world.is_lost(b) || world.body_kind(b) != Some(BodyKind::Block) {
+            return None;
+        }
+        let held = (0..world.arm_names().len()).any(|a| world.held_by(a) == Some(b.as_str()));
+        if held {
+            return None;
+        }
+        handleable(world, b).err()
     })
 }
+
+/// The legitimate reason of [`dragged_out_of_reach`].
+const DRAGGED_AWAY: &str =
+    "a user drag put a block where no arm can grasp it or pull it with the hook (IK)";
 
 /// Parsed benchmark domains (for the validator and the unsolvability check).
 struct Models {
@@ -343,15 +361,25 @@ impl Models {
 /// Runs a soak (see the module documentation). Every episode runs under `catch_unwind` on
 /// native targets, so a panic is counted as a finding instead of ending the soak.
 pub fn soak(params: &SoakParams) -> Result<SoakReport, String> {
+    soak_with(params, |_, _, _| {})
+}
+
+/// [`soak`], calling `on_episode(index, episode_report, episode_json)` after each episode (the
+/// CLI saves the JSON of episodes with findings; `logic-lfd run --replay` re-runs them).
+pub fn soak_with(
+    params: &SoakParams,
+    mut on_episode: impl FnMut(usize, &SoakReport, &str),
+) -> Result<SoakReport, String> {
     let models = Models::new()?;
     let mut report = SoakReport {
         params: Some(*params),
         ..SoakReport::default()
     };
-    for e in 0..params.episodes {
+    for e in params.first_episode..params.first_episode + params.episodes {
         let mut ep = SoakReport::default();
+        let mut json = String::new();
         let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            soak_episode(params, e, &models, &mut ep)
+            soak_episode(params, e, &models, &mut ep, &mut json)
         }));
         match r {
             Ok(Ok(())) => {}
@@ -373,6 +401,7 @@ pub fn soak(params: &SoakParams) -> Result<SoakReport, String> {
                 });
             }
         }
+        on_episode(e, &ep, &json);
         report.merge(ep);
     }
     Ok(report)
@@ -417,6 +446,7 @@ fn soak_episode(
     e: usize,
     models: &Models,
     rep: &mut SoakReport,
+    json_out: &mut String,
 ) -> Result<(), String> {
     let mut rng = Pcg64Mcg::seed_from_u64(mix(params.seed, e as u64));
     let bench = BenchmarkId::ALL[rng.random_range(0..3)];
@@ -472,8 +502,8 @@ fn soak_episode(
         }
     };
     let mut broken = false;
-    // Whether an accepted drag put a block outside every arm's workspace.
-    let mut out_of_reach = false;
+    // Blocks moved by accepted user drags (with what stood on them).
+    let mut dragged: BTreeSet<String> = BTreeSet::new();
     while s.outcome().is_none() && s.tick() < params.max_ticks {
         // Disturbances due now, before the tick (as a replay applies them).
         while next < schedule.len() && schedule[next].0 <= s.tick() {
@@ -495,7 +525,8 @@ fn soak_episode(
                     match s.perturb(&body, pos) {
                         Ok(out) => {
                             rep.drags_accepted += 1;
-                            out_of_reach |= !in_reach(s.world(), out.to);
+                            dragged.insert(out.body.clone());
+                            dragged.extend(out.also_moved.iter().map(|(b, _)| b.clone()));
                             (format!("drag {body} to {pos:?}"), true)
                         }
                         Err(_) => {
@@ -564,36 +595,43 @@ fn soak_episode(
                         .entry("no plan: the disturbed task is unsolvable".into())
                         .or_default() += 1
                 }
-                Some(false) => {
-                    rep.unexplained_failures += 1;
-                    rep.find(finding(
-                        s.tick(),
-                        "unexplained_failure",
-                        format!("no plan ({message}) but the observed task is solvable"),
-                    ));
-                }
+                Some(false) => match dragged_out_of_reach(s.world(), &dragged) {
+                    Some(_) => {
+                        *rep.legitimate_failures
+                            .entry(DRAGGED_AWAY.into())
+                            .or_default() += 1
+                    }
+                    None => {
+                        rep.unexplained_failures += 1;
+                        rep.find(finding(
+                            s.tick(),
+                            "unexplained_failure",
+                            format!("no plan ({message}) but the observed task is solvable"),
+                        ));
+                    }
+                },
                 None => rep.budget_exhausted += 1,
             }
         }
-        Some(Err(FailReason::ActionFailed { action, why }))
-            if out_of_reach && why.contains("reach") =>
-        {
-            let _ = action;
-            *rep.legitimate_failures
-                .entry("an arm cannot reach: the user dragged a block out of reach".into())
-                .or_default() += 1
-        }
-        Some(Err(other)) => {
-            rep.unexplained_failures += 1;
-            rep.find(finding(s.tick(), "unexplained_failure", other.to_string()));
-        }
+        Some(Err(other)) => match dragged_out_of_reach(s.world(), &dragged) {
+            Some(_) => {
+                *rep.legitimate_failures
+                    .entry(DRAGGED_AWAY.into())
+                    .or_default() += 1
+            }
+            None => {
+                rep.unexplained_failures += 1;
+                rep.find(finding(s.tick(), "unexplained_failure", other.to_string()));
+            }
+        },
         None => {
             rep.budget_exhausted += 1;
         }
     }
+    let json = s.episode_json();
+    *json_out = json.clone();
     if params.check_replay {
         rep.replays_checked += 1;
-        let json = s.episode_json();
         match Session::replay(&json) {
             Ok(r) if r.episode_json() == json => {}
             Ok(_) => {

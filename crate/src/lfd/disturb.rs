@@ -9,8 +9,12 @@
 //!
 //! Candidates are tried in a seeded random order through the simulator's own user-move rule
 //! ([`World::move_block`]: settles onto the support below, refuses interpenetration), so every
-//! injected world satisfies the simulator's invariants. A candidate whose resulting facts do not
-//! meet the level's definition is undone.
+//! injected world satisfies the simulator's invariants (and the move rule refuses a world the
+//! scene cannot describe: a block on the hook, on a held block, or on a block where the domain
+//! has no `on`). A candidate whose resulting facts do not meet the level's definition, or that
+//! leaves the moved or new block where no arm can grasp or pull it
+//! ([`crate::sim::disturb::handleable`], IK), is undone: an injection never makes
+//! the task geometrically impossible; when no candidate qualifies it is refused with the reason.
 
 use std::collections::BTreeSet;
 
@@ -19,6 +23,7 @@ use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
+use crate::sim::disturb::handleable;
 use crate::sim::snapshot::{BodyKind, BodySnapshot, PoseSnapshot, ShapeSnapshot};
 use crate::sim::{SceneGraph, World};
 
@@ -150,7 +155,10 @@ pub fn inject(
                         c[2] + 0.001,
                     );
                     let saved = world.clone();
-                    if world.move_block(&b, target).is_ok() && facts(world) == before {
+                    if world.move_block(&b, target).is_ok()
+                        && facts(world) == before
+                        && handleable(world, &b).is_ok()
+                    {
                         let to = centre(world, &b).unwrap_or(c);
                         return Ok(Injection {
                             level: "l1".into(),
@@ -221,7 +229,8 @@ pub fn inject(
                             } else {
                                 !seen_subset(&after) && out_of_reach
                             };
-                        if ok {
+                        // The moved block stays where an arm can grasp or pull it.
+                        if ok && handleable(world, b).is_ok() {
                             let to = centre(world, b).unwrap_or([0.0; 3]);
                             let place = onto
                                 .as_ref()
@@ -302,8 +311,12 @@ pub fn inject(
                 if let Ok(w2) = World::from_snapshot(&s2) {
                     for (sx, sy) in order {
                         let mut w3 = w2.clone();
+                        // Not on the shelf: a block left on the shelf can take the room the
+                        // goal needs there, and no action takes a block off the shelf.
                         if w3.move_block(name, Vector3::new(sx, sy, 0.3)).is_ok()
                             && !seen_equal(&facts(&w3))
+                            && !facts(&w3).contains(&format!("(onshelf {name})"))
+                            && handleable(&w3, name).is_ok()
                         {
                             let to = centre(&w3, name).unwrap_or([sx, sy, 0.0]);
                             *world = w3;
@@ -316,7 +329,7 @@ pub fn inject(
                             });
                         }
                     }
-                    if !seen_equal(&facts(&w2)) {
+                    if !seen_equal(&facts(&w2)) && handleable(&w2, name).is_ok() {
                         *world = w2;
                         return Ok(Injection {
                             level: "l4".into(),
@@ -340,6 +353,9 @@ pub fn inject(
                     continue;
                 }
                 let after = facts(&w2);
+                if handleable(&w2, name).is_err() {
+                    continue;
+                }
                 if !seen_subset(&after) || (last_resort && !seen_equal(&after)) {
                     let to = centre(&w2, name).unwrap_or([0.0; 3]);
                     *world = w2;

@@ -20,7 +20,9 @@
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
 use crate::plan::{Operator, Task};
-use crate::sim::geometry::{grasp_pose, rest_pose, rest_pose_on, tcp_for_body_pose};
+use crate::sim::geometry::{
+    grasp_pose, quarter_turn_for_arm, rest_pose, rest_pose_on, tcp_for_body_pose,
+};
 use crate::sim::{GripperCommand, World, WorldEvent};
 
 use super::skill::{SkillLibrary, SkillSegment};
@@ -46,6 +48,11 @@ pub struct ExecParams {
     pub reanchor_tolerance: f64,
     /// Clearance left under a released block (m).
     pub release_clearance: f64,
+    /// A segment whose end lags by more than `recovery_distance` (m) for `recovery_after` (s)
+    /// recovers in joint space (planning IK) once.
+    pub recovery_distance: f64,
+    /// See `recovery_distance` (s).
+    pub recovery_after: f64,
 }
 
 impl Default for ExecParams {
@@ -60,6 +67,8 @@ impl Default for ExecParams {
             gripper_time: 0.15,
             reanchor_tolerance: 0.005,
             release_clearance: 0.003,
+            recovery_distance: 0.01,
+            recovery_after: 0.25,
         }
     }
 }
@@ -199,6 +208,10 @@ enum Via {
     Up { dz: f64, skill: bool },
     /// A pull stroke: hook blade behind `body`, then dragged towards the base (`stage` 0 / 1).
     Pull { body: String, stage: u8 },
+    /// Transit: straight up (or down) to TCP height `z`.
+    Rise { z: f64 },
+    /// Transit: above the goal of `inner`, at TCP height `z`.
+    Over { inner: Box<Via>, z: f64 },
 }
 
 /// The running execution of one action.
@@ -220,6 +233,8 @@ pub struct ActionExec {
     pub events: Vec<WorldEvent>,
     /// The anchor frame at the gripper event (frame of the retreat skill).
     event_frame: Option<Isometry3<f64>>,
+    /// Phase before which a transit (rise, move over, descend) was inserted.
+    transit_at: Option<usize>,
     /// The body acted on is the hook (its skills are the `hook-…` ones).
     hook: bool,
 }
@@ -233,6 +248,12 @@ struct Running {
     anchor: Option<(String, Vector3<f64>)>,
     frame: Option<Isometry3<f64>>,
     lag: usize,
+    /// Joint-space recovery: the planning IK's joints for `goal`, followed instead of the
+    /// Cartesian command while set; `recovered` once tried for this segment.
+    joint_goal: Option<[f64; crate::sim::panda::DOF]>,
+    recovered: bool,
+    /// Ticks spent in joint-space recovery.
+    joint_ticks: usize,
 }
 
 /// Centre + yaw of a pose (the demo's anchor-frame convention).
@@ -397,6 +418,7 @@ impl ActionExec {
             gripper,
             events: vec![],
             event_frame: None,
+            transit_at: None,
             hook,
         }
     }
@@ -444,6 +466,15 @@ impl ActionExec {
                     .iter()
                     .any(|e| matches!(e, WorldEvent::GraspedNothing { .. }))
                 {
+                    if let ActionKind::Grasp { body, .. } = &self.kind {
+                        let above = world.resting_on(body);
+                        if !above.is_empty() {
+                            return ExecStatus::Failed(format!(
+                                "cannot lift {body}: {} stands on it",
+                                above.join(", ")
+                            ));
+                        }
+                    }
                     return ExecStatus::Failed("the gripper closed on nothing".into());
                 }
                 if let Some(WorldEvent::Lost { body, reason }) =
@@ -494,7 +525,26 @@ impl ActionExec {
                     };
                     if !retargeted {
                         match self.plan_segment(world, &via, skills, p) {
-                            Ok(r) => self.segment = Some(r),
+                            Ok(r) => {
+                                // A carried body whose path would sweep through another goes
+                                // up, over at a safe height, and down instead.
+                                if let Some(z) = self.transit_height(world, &via, &r) {
+                                    self.transit_at = Some(self.phase);
+                                    self.phases.splice(
+                                        self.phase..self.phase,
+                                        [
+                                            Phase::Move(Via::Rise { z }),
+                                            Phase::Move(Via::Over {
+                                                inner: Box::new(via.clone()),
+                                                z,
+                                            }),
+                                        ],
+                                    );
+                                    self.segment = None;
+                                    return ExecStatus::Running;
+                                }
+                                self.segment = Some(r);
+                            }
                             Err(e) => return ExecStatus::Failed(e),
                         }
                     }
@@ -511,7 +561,14 @@ impl ActionExec {
                 let s = (i as f64 / (seg.traj.len().max(2) - 1) as f64).clamp(0.0, 1.0);
                 let rot = seg.traj.start_rotation().slerp(&seg.goal.rotation, s);
                 let target = Isometry3::from_parts(Translation3::from(cmd_pos), rot);
-                let _ = world.command_arm(self.arm, target, self.gripper);
+                match seg.joint_goal {
+                    Some(q) => {
+                        let _ = world.command_joints(self.arm, q, self.gripper);
+                    }
+                    None => {
+                        let _ = world.command_arm(self.arm, target, self.gripper);
+                    }
+                }
                 let ev = world.step();
                 self.events.extend(ev.iter().cloned());
                 if let Some(WorldEvent::Lost { body, reason }) =
@@ -525,13 +582,47 @@ impl ActionExec {
                     let err = (tcp.translation.vector - seg.traj.goal()).norm();
                     if err <= p.reach_tolerance {
                         self.next_phase();
+                    } else if let Some(q) = seg.joint_goal {
+                        // Joint-space recovery: back to Cartesian tracking once there (or after
+                        // `settle_timeout` more), to settle on the goal.
+                        seg.joint_ticks += 1;
+                        let there = world
+                            .joints(self.arm)
+                            .is_none_or(|j| j.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-6));
+                        let stopped = world.arm_blocked_by(self.arm).is_some();
+                        if there || stopped || seg.joint_ticks as f64 * dt > 2.0 * p.settle_timeout
+                        {
+                            seg.joint_goal = None;
+                            seg.lag = 0;
+                        }
                     } else {
                         seg.lag += 1;
+                        // Cartesian tracking stuck far from a goal the planning IK reaches (a
+                        // local minimum of the tracking IK after a large reconfiguration): move
+                        // in joint space to the planning IK's solution, once per segment.
+                        if !seg.recovered
+                            && err > p.recovery_distance
+                            && seg.lag as f64 * dt > p.recovery_after
+                            && world.arm_blocked_by(self.arm).is_none()
+                        {
+                            seg.recovered = true;
+                            if let Ok(sol) = world.reachable(self.arm, &seg.goal) {
+                                seg.joint_goal = Some(sol.joints);
+                                seg.joint_ticks = 0;
+                                seg.lag = 0;
+                            }
+                        }
                         if seg.lag as f64 * dt > p.settle_timeout {
-                            return ExecStatus::Failed(format!(
-                                "the arm cannot reach its via-point ({:.1} mm away)",
-                                err * 1e3
-                            ));
+                            return ExecStatus::Failed(match world.arm_blocked_by(self.arm) {
+                                Some(b) => format!(
+                                    "the held body is stopped by {b} ({:.1} mm from the via-point)",
+                                    err * 1e3
+                                ),
+                                None => format!(
+                                    "the arm cannot reach its via-point ({:.1} mm away)",
+                                    err * 1e3
+                                ),
+                            });
                         }
                     }
                 }
@@ -589,7 +680,48 @@ impl ActionExec {
             anchor,
             frame,
             lag: 0,
+            joint_goal: None,
+            recovered: false,
+            joint_ticks: 0,
         })
+    }
+
+    /// When the arm carries a body and the planned segment `r` would sweep it into another
+    /// body, the TCP height of a safe transit (the held body's bottom 3 cm above every top
+    /// between start and goal); `None` when the path is clear, nothing is carried, the via is a
+    /// pull stroke or a transit itself, or a transit was already inserted for this phase.
+    fn transit_height(&self, world: &World, via: &Via, r: &Running) -> Option<f64> {
+        if matches!(via, Via::Pull { .. } | Via::Rise { .. } | Via::Over { .. })
+            || self.transit_at.is_some()
+        {
+            return None;
+        }
+        let held = world.held_by(self.arm)?.to_string();
+        let g = world.grasp_transform(self.arm)?;
+        let n = r.traj.len();
+        let tol = world.params().penetration_tolerance;
+        let collides = (0..n).step_by(4).chain(std::iter::once(n - 1)).any(|t| {
+            let s = (t as f64 / (n.max(2) - 1) as f64).clamp(0.0, 1.0);
+            let rot = r.traj.start_rotation().slerp(&r.goal.rotation, s);
+            let tcp = Isometry3::from_parts(Translation3::from(r.traj.current(t)), rot);
+            world
+                .overlap_at(&held, &(tcp * g))
+                .is_some_and(|(d, _)| d > 0.5 * tol)
+        });
+        if !collides {
+            return None;
+        }
+        let a = world.tcp_pose(self.arm)?.translation.vector;
+        let b = r.goal.translation.vector;
+        let m = 0.08;
+        let top = world.highest_top_in(
+            [a.x.min(b.x) - m, a.y.min(b.y) - m],
+            [a.x.max(b.x) + m, a.y.max(b.y) + m],
+            &held,
+        );
+        let (lo, _) = world.body_aabb(&held)?;
+        let below_tcp = a.z - lo.z;
+        Some((top + 0.03 + below_tcp).max(a.z).max(b.z))
     }
 
     fn skill_name(&self, via: &Via) -> String {
@@ -648,6 +780,7 @@ impl ActionExec {
                     _ => return Err("not a release".into()),
                 };
                 let (pose, anchor) = placement_pose(world, &body, placement)?;
+                let pose = quarter_turn_for_arm(world, self.arm, &body, &pose);
                 let tcp = tcp_for_body_pose(world, self.arm, &pose);
                 Ok((up(tcp, *dz), Some(anchor_frame(&pose)), anchor))
             }
@@ -655,6 +788,16 @@ impl ActionExec {
                 let mut g = *start;
                 g.translation.vector.z += dz;
                 Ok((g, self.event_frame, None))
+            }
+            Via::Rise { z } => {
+                let mut g = *start;
+                g.translation.vector.z = *z;
+                Ok((g, None, None))
+            }
+            Via::Over { inner, z } => {
+                let (mut g, _, anchor) = self.via_pose(world, inner, start)?;
+                g.translation.vector.z = *z;
+                Ok((g, None, anchor))
             }
             Via::Pull { body, stage } => {
                 let g = pull_via(world, self.arm, body, *stage)?;

@@ -533,7 +533,7 @@ fn perform(
 pub const PULL_TARGET_RADIUS: f64 = 0.60;
 
 /// Hook poses for pulling the block at `block` towards the arm based at `base` until its centre
-/// is `reach` metres from the base axis: `(contact, pulled)`. At `contact` the hook lies 3 mm above
+/// is `reach` metres from the base axis: `(contact, pulled)`. At `contact` the hook lies 6 mm above
 /// the table with its blade 1 cm behind the block's far face and the block in the middle of the
 /// blade; `pulled` is `contact` moved straight towards the base.
 pub fn pull_hook_poses(
@@ -551,7 +551,9 @@ pub fn pull_hook_poses(
     // Block centre in the hook frame: 1 cm gap to the blade's inner face (x = 0.18), mid-blade.
     let local = Vector3::new(0.18 - 0.01 - 0.5 * BLOCK_SIZE, 0.08, 0.0);
     let mut origin = b - rot * local;
-    origin.z = 0.013;
+    // 6 mm of clearance: the arm's tracking tilts the long hook by a few mm at the blade, and
+    // a blade that scrapes the table is stopped at contact (it was 3 mm: stopped strokes).
+    origin.z = 0.016;
     let contact = Isometry3::from_parts(Translation3::from(origin), rot);
     let dist = (r - reach).max(0.0) + 0.01;
     let pulled = Isometry3::from_parts(Translation3::from(origin - u * dist), rot);

@@ -272,6 +272,90 @@ fn workable(w: &World, b: Benchmark, x: &str) -> bool {
     true
 }
 
+/// Whether some arm can work block `x` where it is, whatever the benchmark: grasp it from above
+/// (inside the arm's reach annulus, IK of the top grasp and of the approach 12 cm above it), or,
+/// where the scene has a hook and the block lies beyond the annulus, pull it in (IK of the
+/// hook's contact and pulled poses, the hook at contact clear of every other block). `Err` says why not. Disturbances keep every block they move workable, and the
+/// soak uses this to tell a user drag that put a block beyond every arm from a planner failure.
+pub fn handleable(w: &World, x: &str) -> Result<(), String> {
+    let arms = w.arm_names().len();
+    let snap = w.snapshot();
+    let Some(c) = w.body_pose(x).map(|p| p.translation.vector) else {
+        return Err(format!("there is no body {x}"));
+    };
+    // Distance of the block from arm `arm`'s base in the plane, and its reach annulus (the
+    // scene graph's `inreach`).
+    let radius = |arm: usize| {
+        snap.arms.get(arm).map(|a| {
+            let b = a.base.position;
+            (
+                libm::hypot(c.x - b[0], c.y - b[1]),
+                a.reach.min_radius,
+                a.reach.max_radius,
+            )
+        })
+    };
+    for arm in 0..arms {
+        let Some(g) = geometry::grasp_pose(w, arm, x) else {
+            return Err(format!("{x} is not a block or hook"));
+        };
+        if radius(arm).is_none_or(|(d, lo, hi)| d < lo || d > hi) {
+            continue;
+        }
+        let mut above = g;
+        above.translation.vector.z += 0.12;
+        if w.reachable(arm, &g).is_ok() && w.reachable(arm, &above).is_ok() {
+            return Ok(());
+        }
+    }
+    let hooks: Vec<String> = snap
+        .bodies
+        .iter()
+        .filter(|b| b.kind == super::snapshot::BodyKind::Hook && !b.lost)
+        .map(|b| b.name.clone())
+        .collect();
+    for hook in &hooks {
+        for arm in 0..arms {
+            // The hook pulls a block from beyond the annulus towards the base.
+            if radius(arm).is_none_or(|(d, _, hi)| d <= hi) {
+                continue;
+            }
+            let (Some(base), Some(bp), Some(hp), Some(gp)) = (
+                w.arm_base(arm),
+                w.body_pose(x),
+                w.body_pose(hook),
+                geometry::grasp_pose(w, arm, hook),
+            ) else {
+                continue;
+            };
+            let grasp = gp.inverse() * hp;
+            let (contact, pulled) = pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS);
+            if [contact, pulled]
+                .iter()
+                .any(|h| w.reachable(arm, &(h * grasp.inverse())).is_err())
+            {
+                continue;
+            }
+            let clear = w.body_shapes(hook).iter().all(|(iso, c)| {
+                let at = contact * hp.inverse() * iso;
+                w.block_names().into_iter().filter(|o| *o != x).all(|o| {
+                    w.body_shapes(o).iter().all(|(oi, oc)| {
+                        !parry3d_f64::query::intersection_test(&at, c, oi, oc).unwrap_or(true)
+                    })
+                })
+            });
+            if clear {
+                return Ok(());
+            }
+        }
+    }
+    Err(if hooks.is_empty() {
+        format!("no arm can grasp {x} where it is (IK)")
+    } else {
+        format!("no arm can grasp {x} where it is, nor pull it with the hook (IK)")
+    })
+}
+
 /// A sampling rectangle `(xmin, xmax, ymin, ymax)` for a table/shelf support.
 fn area(w: &World, b: Benchmark, s: &Support) -> Option<(f64, f64, f64, f64)> {
     let m = 0.5 * BLOCK_SIZE + 0.01;

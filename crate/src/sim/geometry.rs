@@ -152,6 +152,47 @@ pub fn rest_pose_on(world: &World, body: &str, support: &str, yaw: f64) -> Optio
     rest_pose(world, body, c.x, c.y, yaw)
 }
 
+/// `body_pose` turned about the vertical by the quarter turn (0, ±π/2, π) that makes the TCP of
+/// arm `arm`, holding `body` with its actual grasp, point its fingers closest to the direction
+/// from the base (the orientation the placement streams certify with IK). A block with a square
+/// footprint looks the same after a quarter turn, so its facts and footprint do not change; any
+/// other body, or an arm that holds nothing, gets `body_pose` back.
+///
+/// Regression: a block picked with one quarter-turn grasp and placed with the placement's yaw as
+/// sampled put the wrist up to 180° away from the certified orientation, and the arm could not
+/// reach the place via-point ("the arm cannot reach its via-point (540 mm away)").
+pub fn quarter_turn_for_arm(
+    world: &World,
+    arm: usize,
+    body: &str,
+    body_pose: &Isometry3<f64>,
+) -> Isometry3<f64> {
+    let (Some(g), Some(bi)) = (world.grasp_transform(arm), world.body_index(body)) else {
+        return *body_pose;
+    };
+    let b = &world.bodies[bi];
+    let square = b.kind == BodyKind::Block
+        && b.parts.len() == 1
+        && (b.parts[0].1.half_extents.x - b.parts[0].1.half_extents.y).abs() < 1e-9;
+    if !square {
+        return *body_pose;
+    }
+    let heading = yaw_from_base(world, arm, &body_pose.translation.vector);
+    let mut best = (f64::INFINITY, *body_pose);
+    for k in 0..4 {
+        let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), k as f64 * FRAC_PI_2);
+        let pose = Isometry3::from_parts(body_pose.translation, turn * body_pose.rotation);
+        let tcp = pose * g.inverse();
+        // The TCP's fingers close along its y axis; its "yaw" is that of its x axis.
+        let x = tcp.rotation * Vector3::x();
+        let off = wrap(libm::atan2(x.y, x.x) - heading).abs();
+        if off < best.0 - 1e-9 {
+            best = (off, pose);
+        }
+    }
+    best.1
+}
+
 /// The TCP pose that puts the body held by arm `arm` at `body_pose` (using the actual grasp), or,
 /// when the arm holds nothing, the standard top grasp of a block at `body_pose`.
 pub fn tcp_for_body_pose(world: &World, arm: usize, body_pose: &Isometry3<f64>) -> Isometry3<f64> {

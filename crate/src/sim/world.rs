@@ -171,6 +171,10 @@ pub(crate) struct Arm {
     pub gripper: GripperCommand,
     /// The gripper command of the previous step (to see it change).
     pub last_gripper: GripperCommand,
+    /// The body the held one touched when the last step was stopped at contact (not saved).
+    pub blocked_by: Option<String>,
+    /// A joint-space target (instead of `target`), followed at the joint velocity limits.
+    pub joint_target: Option<[f64; DOF]>,
 }
 
 impl Arm {
@@ -296,6 +300,9 @@ pub enum SimError {
     /// No body or arm with this name.
     #[error("no body or arm named {0:?}")]
     UnknownName(String),
+    /// A command with a non-finite number.
+    #[error("a command is not finite")]
+    NonFinite,
 }
 
 /// A user move refused, with the reason (the world is unchanged).
@@ -768,6 +775,8 @@ impl World {
                 target: None,
                 gripper: GripperCommand::Open,
                 last_gripper: GripperCommand::Open,
+                blocked_by: None,
+                joint_target: None,
             };
             if let Some(h) = &a.holding {
                 let Some(bi) = bodies.iter().position(|b: &Body| &b.name == h) else {
@@ -999,6 +1008,26 @@ impl World {
     ) -> Result<(), SimError> {
         let a = self.arms.get_mut(arm).ok_or(SimError::NoSuchArm(arm))?;
         a.target = Some(target);
+        a.joint_target = None;
+        a.gripper = gripper;
+        Ok(())
+    }
+
+    /// Commands arm `arm` to move in joint space to `joints` (each joint at its velocity limit,
+    /// clamped to its range), replacing any TCP target until the next [`World::command_arm`].
+    /// Used to recover when Cartesian tracking is stuck far from a reachable goal.
+    pub fn command_joints(
+        &mut self,
+        arm: usize,
+        joints: [f64; DOF],
+        gripper: GripperCommand,
+    ) -> Result<(), SimError> {
+        if joints.iter().any(|j| !j.is_finite()) {
+            return Err(SimError::NonFinite);
+        }
+        let a = self.arms.get_mut(arm).ok_or(SimError::NoSuchArm(arm))?;
+        a.joint_target = Some(joints);
+        a.target = None;
         a.gripper = gripper;
         Ok(())
     }
@@ -1100,26 +1129,32 @@ impl World {
     }
 
     fn step_arm(&mut self, ai: usize, events: &mut Vec<WorldEvent>) {
-        let Some(target) = self.arms[ai].target else {
-            return;
-        };
         let a = &self.arms[ai];
-        let current = a.tcp();
-        let pos_err = (target.translation.vector - current.translation.vector).norm();
-        let rot_err = (target.rotation * current.rotation.inverse()).angle();
-        if pos_err < 1e-5 && rot_err < 1e-4 {
-            return;
-        }
-        let desired = match panda::inverse_kinematics(
-            &a.base,
-            &target,
-            &a.joints,
-            &self.params.tracking_ik,
-        ) {
-            Ok(s) => s.joints,
-            Err(u) => u.best_joints,
+        let desired = if let Some(q) = a.joint_target {
+            if (0..DOF).all(|k| (q[k] - a.joints[k]).abs() < 1e-9) {
+                return;
+            }
+            q
+        } else {
+            let Some(target) = a.target else {
+                return;
+            };
+            let current = a.tcp();
+            let pos_err = (target.translation.vector - current.translation.vector).norm();
+            let rot_err = (target.rotation * current.rotation.inverse()).angle();
+            if pos_err < 1e-5 && rot_err < 1e-4 {
+                return;
+            }
+            match panda::inverse_kinematics(&a.base, &target, &a.joints, &self.params.tracking_ik) {
+                Ok(s) => s.joints,
+                Err(u) => u.best_joints,
+            }
         };
         let dt = self.dt;
+        // Contact stop: what the held body overlaps now (it may only get shallower).
+        let held = self.arms[ai].holding.map(|(bi, _)| bi);
+        let depth_before = held.map_or(0.0, |bi| self.held_penetration(bi).0);
+        let saved = held.map(|_| (self.arms[ai].joints, self.bodies.clone(), events.len()));
         let a = &mut self.arms[ai];
         for k in 0..DOF {
             let max = panda::JOINT_VELOCITY[k] * dt;
@@ -1133,6 +1168,89 @@ impl World {
         if let Some((hi, before)) = hook_before {
             self.hook_push(hi, &before, events);
         }
+        self.arms[ai].blocked_by = None;
+        if let (Some(bi), Some((joints, bodies, n_events))) = (held, saved) {
+            let limit = 0.9 * self.params.penetration_tolerance;
+            let (depth, with) = self.held_penetration(bi);
+            if depth > limit.max(depth_before + 1e-9) {
+                // The carried body would press into another: the arm stops at the contact
+                // (the step is undone, pushes included), as a compliant controller would.
+                self.arms[ai].joints = joints;
+                self.bodies = bodies;
+                events.truncate(n_events);
+                self.arms[ai].blocked_by = with.map(|j| self.bodies[j].name.clone());
+            }
+        }
+    }
+
+    /// Deepest overlap of body `bi` with any other body that is neither lost nor held, and with
+    /// which one. (Bodies held by two arms are not stopped against each other: the TAMP
+    /// baseline's B3 hand-over plans may still graze them; the soak reports it.)
+    fn held_penetration(&self, bi: usize) -> (f64, Option<usize>) {
+        let mut best = (0.0, None);
+        for j in 0..self.bodies.len() {
+            if j == bi || self.bodies[j].lost || self.is_held(j) {
+                continue;
+            }
+            let d = self.bodies[bi].penetration(&self.bodies[j]);
+            if d > best.0 {
+                best = (d, Some(j));
+            }
+        }
+        best
+    }
+
+    /// The deepest overlap (m) body `name` would have at `pose` with another body that is not
+    /// lost (bodies held by arms included), and that body's name; `None` when it would touch
+    /// nothing.
+    pub fn overlap_at(&self, name: &str, pose: &Isometry3<f64>) -> Option<(f64, String)> {
+        let bi = self.body_index(name)?;
+        let mut probe = self.bodies[bi].clone();
+        probe.pose = *pose;
+        let mut best: Option<(f64, String)> = None;
+        for (j, o) in self.bodies.iter().enumerate() {
+            if j == bi || o.lost {
+                continue;
+            }
+            let d = probe.penetration(o);
+            if d > 0.0 && best.as_ref().is_none_or(|(b, _)| d > *b) {
+                best = Some((d, o.name.clone()));
+            }
+        }
+        best
+    }
+
+    /// The highest top face (m) of the bodies (not lost, `except` left out) whose
+    /// horizontal bounds meet the rectangle `[lo, hi]` (x, y); the floor height if none.
+    pub fn highest_top_in(&self, lo: [f64; 2], hi: [f64; 2], except: &str) -> f64 {
+        let mut top = self.floor_z;
+        for b in &self.bodies {
+            if b.lost || b.name == except {
+                continue;
+            }
+            let (blo, bhi) = b.aabb();
+            if blo.x <= hi[0] && bhi.x >= lo[0] && blo.y <= hi[1] && bhi.y >= lo[1] {
+                top = top.max(bhi.z);
+            }
+        }
+        top
+    }
+
+    /// Names of the bodies standing (directly or through others) on body `name`, bottom first.
+    pub fn resting_on(&self, name: &str) -> Vec<String> {
+        self.body_index(name)
+            .map(|bi| {
+                self.stack_above(bi)
+                    .into_iter()
+                    .map(|j| self.bodies[j].name.clone())
+                    .collect()
+            })
+            .unwrap_or_default()
+    }
+
+    /// The body that stopped the body held by `arm` at the last step (contact stop), if any.
+    pub fn arm_blocked_by(&self, arm: usize) -> Option<&str> {
+        self.arms.get(arm).and_then(|a| a.blocked_by.as_deref())
     }
 
     /// Moves the body held by `ai` rigidly with its TCP.
@@ -1246,6 +1364,18 @@ impl World {
     /// Where body `bi` would come to rest if let go at `pose` (tilt removed, yaw kept); `ignore`
     /// lists bodies that are not obstacles.
     fn settle_probe(&self, bi: usize, pose: &Isometry3<f64>, ignore: &[usize]) -> Settle {
+        self.settle_probe_among(bi, pose, ignore, false)
+    }
+
+    /// [`World::settle_probe`]; with `held_obstacles`, bodies held by a gripper are obstacles
+    /// too (a dragged block must not fall through a carried one).
+    fn settle_probe_among(
+        &self,
+        bi: usize,
+        pose: &Isometry3<f64>,
+        ignore: &[usize],
+        held_obstacles: bool,
+    ) -> Settle {
         let b = &self.bodies[bi];
         let lift = 0.005;
         let start = Isometry3::from_parts(
@@ -1257,7 +1387,7 @@ impl World {
         let down = Vector3::new(0.0, 0.0, -1.0);
         let mut best: Option<(f64, usize)> = None;
         for (j, o) in self.bodies.iter().enumerate() {
-            if j == bi || o.lost || ignore.contains(&j) || self.is_held(j) {
+            if j == bi || o.lost || ignore.contains(&j) || (!held_obstacles && self.is_held(j)) {
                 continue;
             }
             for (bp, bc) in &b.parts {
@@ -1314,6 +1444,27 @@ impl World {
         Settle::On {
             support: j,
             drop: pose.translation.z - rest.translation.z,
+        }
+    }
+
+    /// Why a dragged body may not come to rest on body `support`, if it may not: a body held by
+    /// a gripper, the hook, or a block in a scene whose vocabulary has no `on` (the scene graph
+    /// could not say where it is, and lifting the block below would leave it in the air).
+    fn support_refusal(&self, support: usize) -> Option<String> {
+        let s = &self.bodies[support];
+        if self.is_held(support) {
+            return Some(format!(
+                "it would land on {}, which a gripper holds",
+                s.name
+            ));
+        }
+        match s.kind {
+            BodyKind::Hook => Some(format!("it would rest on the hook {}", s.name)),
+            BodyKind::Block if !self.predicates.iter().any(|p| p == "on") => Some(format!(
+                "it would rest on the block {} and this scene cannot stack blocks (no `on` predicate)",
+                s.name
+            )),
+            _ => None,
         }
     }
 
@@ -1424,9 +1575,12 @@ impl World {
                 )));
             }
         }
-        let settle = trial.settle_probe(bi, &pose, &above);
+        let settle = trial.settle_probe_among(bi, &pose, &above, true);
         let support = match settle {
             Settle::On { support, drop } => {
+                if let Some(why) = trial.support_refusal(support) {
+                    return Err(refuse(why));
+                }
                 trial.bodies[bi].pose.translation.z -= drop;
                 support
             }
@@ -1458,8 +1612,16 @@ impl World {
         let mut events = Vec::new();
         for &j in &above {
             let p = trial.bodies[j].pose;
-            match trial.settle_probe(j, &p, &[]) {
-                Settle::On { drop, .. } => trial.bodies[j].pose.translation.z -= drop,
+            match trial.settle_probe_among(j, &p, &[], true) {
+                Settle::On { support, drop } => {
+                    if let Some(why) = trial.support_refusal(support) {
+                        return Err(refuse(format!(
+                            "{} standing on it would settle badly: {why}",
+                            trial.bodies[j].name
+                        )));
+                    }
+                    trial.bodies[j].pose.translation.z -= drop
+                }
                 Settle::Falls(reason) => trial.make_lost(j, reason, &mut events),
                 Settle::Blocked(k) => {
                     return Err(refuse(format!(

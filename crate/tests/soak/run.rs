@@ -4,7 +4,7 @@
 use logic_lfd::experiments::soak::{soak, SoakParams};
 
 #[test]
-fn soak_episodes_never_panic_never_half_apply_and_only_adopt_valid_plans() {
+fn a_small_soak_is_clean() {
     let p = SoakParams {
         episodes: 8,
         seed: 2026,
@@ -24,4 +24,8 @@ fn soak_episodes_never_panic_never_half_apply_and_only_adopt_valid_plans() {
         + r.budget_exhausted
         + r.unexplained_failures;
     assert_eq!(stated, r.episodes, "{r:?}");
+    // And every guarantee holds: no invariant violation, replays identical, no unexplained end.
+    assert_eq!(r.invariant_violations, 0, "{:#?}", r.findings);
+    assert_eq!(r.replay_mismatches, 0, "{:#?}", r.findings);
+    assert!(r.is_clean(), "{:#?}", r.findings);
 }

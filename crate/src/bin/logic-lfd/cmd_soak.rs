@@ -9,7 +9,7 @@
 
 use std::process::ExitCode;
 
-use logic_lfd::experiments::soak::{soak, SoakParams, SoakReport};
+use logic_lfd::experiments::soak::{soak_with, SoakParams, SoakReport};
 
 use crate::exit;
 
@@ -25,6 +25,14 @@ pub struct Args {
     /// Most disturbances per episode (uniform in 0..=K, at random ticks of the first 25 s).
     #[arg(long, default_value_t = 6)]
     max_disturbances: usize,
+    /// Index of the first episode (re-run episode E of a soak alone: `--first-episode E
+    /// --episodes 1`).
+    #[arg(long, default_value_t = 0)]
+    first_episode: usize,
+    /// Save the episode JSON of every episode with a finding to this directory
+    /// (`soak-<seed>-<episode>.json`; re-run it with `logic-lfd run --replay`).
+    #[arg(long)]
+    save_findings: Option<std::path::PathBuf>,
     /// Skip the replay-identity check of every episode (halves the run time).
     #[arg(long)]
     no_replay: bool,
@@ -40,9 +48,26 @@ pub fn run(args: Args) -> ExitCode {
         seed: args.seed,
         max_disturbances: args.max_disturbances,
         check_replay: !args.no_replay,
+        first_episode: args.first_episode,
         ..SoakParams::default()
     };
-    let report = match soak(&params) {
+    if let Some(dir) = &args.save_findings {
+        if let Err(e) = std::fs::create_dir_all(dir) {
+            eprintln!("soak: cannot create {}: {e}", dir.display());
+            return ExitCode::from(exit::BAD_INPUT);
+        }
+    }
+    let report = soak_with(&params, |e, ep, json| {
+        if let Some(dir) = &args.save_findings {
+            if !ep.findings.is_empty() {
+                let name = dir.join(format!("soak-{}-{e}.json", args.seed));
+                if let Err(err) = std::fs::write(&name, json) {
+                    eprintln!("soak: cannot save {}: {err}", name.display());
+                }
+            }
+        }
+    });
+    let report = match report {
         Ok(r) => r,
         Err(e) => {
             eprintln!("soak: {e}");

@@ -5,6 +5,7 @@
 
 mod cmd_bench;
 mod cmd_demo;
+mod cmd_fuzz;
 mod cmd_lqt;
 mod cmd_plan;
 mod cmd_run;
@@ -55,6 +56,8 @@ enum Command {
     Demo(cmd_demo::Args),
     /// Random closed-loop episodes with random disturbances, checking every guarantee.
     Soak(cmd_soak::Args),
+    /// Mutation fuzzing of an input parser (same mutators and checks as the CI property tests).
+    Fuzz(cmd_fuzz::Args),
 }
 
 /// A closed stdout (`logic-lfd plan … | head`) ends the process quietly, as Unix tools do,
@@ -98,5 +101,6 @@ fn main() -> ExitCode {
         Command::Run(args) => cmd_run::run(args),
         Command::Demo(args) => cmd_demo::run(args),
         Command::Soak(args) => cmd_soak::run(args),
+        Command::Fuzz(args) => cmd_fuzz::run(args),
     }
 }
