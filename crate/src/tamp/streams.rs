@@ -22,8 +22,9 @@
 //! `lfd::exec`: approach from above, the gripper event, the retreat up) is sampled every
 //! `path_step` (1.5 cm). At each sample the arm's joints come from damped-least-squares IK
 //! warm-started at the previous sample *without restarts* — what the simulator's joint tracker
-//! can follow; a sample it cannot reach that way fails the motion (the arm would lag behind its
-//! command). The arm's link capsules and the carried body (at `tcp · G`) are tested with parry
+//! can follow: between via-points it may lag behind the path (the links are checked where the
+//! tracker leaves them), at a via-point it must converge (the executor fails an action whose
+//! arm cannot reach its via-point). The arm's link capsules and the carried body (at `tcp · G`) are tested with parry
 //! against every other body (tables, shelf, free blocks, the hook, bodies carried by other arms),
 //! shrunk by `contact_slack` so resting contacts do not count. Arms do not collide with each
 //! other in the simulator (the demonstrated hand-over has one gripper above the other), so
@@ -66,6 +67,8 @@ pub struct StreamParams {
     pub path_step: f64,
     /// IK iterations per path sample (warm start, no restarts: the joint tracker's view).
     pub path_ik_iterations: usize,
+    /// IK iterations at a via-point (the tracker's settle time; warm start, no restarts).
+    pub settle_ik_iterations: usize,
     /// Shapes are shrunk by this before collision tests, so touching faces do not count (m).
     pub contact_slack: f64,
     /// Free space kept around a placed body (m).
@@ -81,6 +84,7 @@ impl Default for StreamParams {
             pull_lift: 0.08,
             path_step: 0.015,
             path_ik_iterations: 30,
+            settle_ik_iterations: 300,
             contact_slack: 0.002,
             clearance: 0.008,
         }
@@ -150,6 +154,7 @@ pub struct StreamBinder<'w> {
     rng: Pcg64Mcg,
     params: StreamParams,
     track_ik: IkParams,
+    settle_ik: IkParams,
     /// Placement per action of the last successfully bound skeleton (`None`: nothing to bind).
     pub bindings: Vec<Option<Placement>>,
     /// Certifications (IK + collision tests of a candidate) done so far.
@@ -216,7 +221,12 @@ impl<'w> StreamBinder<'w> {
             restarts: 0,
             ..world.params().planning_ik.clone()
         };
+        let settle_ik = IkParams {
+            max_iterations: params.settle_ik_iterations,
+            ..track_ik.clone()
+        };
         StreamBinder {
+            settle_ik,
             world,
             fixed,
             local,
@@ -370,6 +380,7 @@ impl<'w> StreamBinder<'w> {
         let mut q = geo.q[arm];
         let mut from = geo.tcp[arm];
         for to in via {
+            let q_from = q;
             let len = (to.translation.vector - from.translation.vector).norm();
             let n = ((len / self.params.path_step).ceil() as usize).max(1);
             for k in 1..=n {
@@ -378,12 +389,23 @@ impl<'w> StreamBinder<'w> {
                 let r = from.rotation.slerp(&to.rotation, s);
                 let tcp = Isometry3::from_parts(Translation3::from(p), r);
                 self.stats.path_samples += 1;
-                q = match panda::inverse_kinematics(&base, &tcp, &q, &self.track_ik) {
+                // Between via-points the tracker may lag behind the command (the links are
+                // checked where it leaves them); at a via-point it has the settle time to
+                // converge (no restarts either way).
+                let end = k == n;
+                let ik = if end { &self.settle_ik } else { &self.track_ik };
+                q = match panda::inverse_kinematics(&base, &tcp, &q, ik) {
                     Ok(sol) => sol.joints,
-                    Err(_) => {
-                        self.stats.rejected_ik += 1;
-                        return Err(Reject::Ik);
-                    }
+                    Err(e) if !end => e.best_joints,
+                    // A straight line is not the skill's path: the tracker may also come in
+                    // from where the segment started. Either way without restarts.
+                    Err(_) => match panda::inverse_kinematics(&base, &tcp, &q_from, ik) {
+                        Ok(sol) => sol.joints,
+                        Err(_) => {
+                            self.stats.rejected_ik += 1;
+                            return Err(Reject::Ik);
+                        }
+                    },
                 };
                 if self.sample_hits(arm, &q, &tcp, &load, &obstacles) {
                     self.stats.rejected_collision += 1;
@@ -634,8 +656,13 @@ impl<'w> StreamBinder<'w> {
         true
     }
 
-    /// The support surfaces a release onto `facts` may use: (x-range, y-range, top z).
+    /// The support surfaces a release adding `adds` may use: (x-range, y-range, top z). A region
+    /// (`(at x p)`) narrows the table it lies on: then only the region is used.
     fn surfaces(&self, adds: &[String], body: &str) -> Vec<([f64; 2], [f64; 2], f64)> {
+        let regions = self.region_surfaces(adds, body);
+        if !regions.is_empty() {
+            return regions;
+        }
         let mut out = vec![];
         for f in adds {
             let (p, a) = fact_args(f);
@@ -653,6 +680,18 @@ impl<'w> StreamBinder<'w> {
                         out.push(([lo.x, hi.x], [lo.y, hi.y], hi.z));
                     }
                 }
+            }
+        }
+        out
+    }
+
+    /// The regions `(at body p)` of `adds`, as surfaces.
+    fn region_surfaces(&self, adds: &[String], body: &str) -> Vec<([f64; 2], [f64; 2], f64)> {
+        let mut out = vec![];
+        for f in adds {
+            let (p, a) = fact_args(f);
+            if a.first() != Some(&body) {
+                continue;
             }
             if p == "at" && a.len() == 2 {
                 if let Some(r) = self.regions.iter().find(|r| r.name == a[1]) {
