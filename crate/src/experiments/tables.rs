@@ -193,14 +193,29 @@ pub const MAX_DRAWS: usize = 16;
 /// Why no method could solve a task from `world` (`None`: it is feasible). The rule, the same for
 /// every method and benchmark: every block and hook rests on a support (the simulator's
 /// invariants hold), and every block can be grasped from above — grasp pose and its approach pose
-/// 10 cm above reachable by some arm's IK — or, where the scene has a hook, pulled: the hook is
-/// graspable and some arm's pull stroke (the executor's, to `PULL_TARGET_RADIUS`) is reachable
-/// at its contact and pulled poses.
+/// 10 cm above reachable by some arm's IK, and, where the domain has `(inreach r x)`, inside r's
+/// reach annulus — or, where the scene has a hook, pulled: the hook is graspable and some arm's
+/// pull stroke (the executor's, to `PULL_TARGET_RADIUS`) is reachable at its contact and pulled
+/// poses and leaves the block inside the annulus (a pull only brings a block nearer: a block
+/// inside the annulus' inner radius can never be picked).
 pub fn infeasible(world: &World) -> Option<String> {
     if let Err(v) = world.check_invariants() {
         return Some(format!("the world breaks its invariants: {v:?}"));
     }
     let arms = world.arm_names().len();
+    let snap = world.snapshot();
+    // Where the domain has `(inreach r x)`, a block is only picked inside r's reach annulus.
+    let annulus = snap.predicates.iter().any(|p| p == "inreach");
+    let in_annulus = |a: usize, p: &Vector3<f64>| {
+        !annulus
+            || match (snap.arms.get(a), world.arm_base(a)) {
+                (Some(arm), Some(b)) => {
+                    let d = libm::hypot(p.x - b.translation.x, p.y - b.translation.y);
+                    d >= arm.reach.min_radius && d <= arm.reach.max_radius
+                }
+                _ => false,
+            }
+    };
     let reachable = |arm: usize, tcp: &Isometry3<f64>| {
         world.reachable(arm, tcp).is_ok()
             && world
@@ -214,10 +229,12 @@ pub fn infeasible(world: &World) -> Option<String> {
                 .is_ok()
     };
     let graspable = |body: &str| {
-        (0..arms).any(|a| grasp_pose(world, a, body).is_some_and(|g| reachable(a, &g)))
+        (0..arms).any(|a| {
+            grasp_pose(world, a, body)
+                .is_some_and(|g| in_annulus(a, &g.translation.vector) && reachable(a, &g))
+        })
     };
-    let hooks: Vec<String> = world
-        .snapshot()
+    let hooks: Vec<String> = snap
         .bodies
         .iter()
         .filter(|b| b.kind == BodyKind::Hook && !b.lost)
@@ -243,7 +260,11 @@ pub fn infeasible(world: &World) -> Option<String> {
                 };
                 let grip = g.inverse() * hp;
                 let (contact, pulled) = pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS);
-                reachable(a, &(contact * grip.inverse()))
+                // A pull only brings a block nearer: it must end inside the annulus.
+                let moved = bp.translation.vector
+                    + (pulled.translation.vector - contact.translation.vector);
+                in_annulus(a, &moved)
+                    && reachable(a, &(contact * grip.inverse()))
                     && reachable(a, &(pulled * grip.inverse()))
             })
         })

@@ -759,30 +759,43 @@ impl<'w> StreamBinder<'w> {
         let (lo, _) = self.world.body_aabb(&body)?;
         let lift = self.world.body_pose(&body)?.translation.z - lo.z;
         let is_block = self.world.body_kind(&body) == Some(BodyKind::Block);
-        for n in 0..=self.params.placement_samples {
-            let (x, y, yaw, top) = if n == 0 {
-                let Some((x, y, yaw)) = hint else { continue };
-                let Some(&(_, _, top)) = surfaces
-                    .iter()
-                    .find(|(xr, yr, _)| xr[0] <= x && x <= xr[1] && yr[0] <= y && y <= yr[1])
-                else {
-                    continue;
-                };
-                (x, y, yaw, top)
+        // Candidates: the hint, then uniform samples ordered by horizontal distance from where
+        // the arm carries the body now (short transfers first: long sweeps across the workspace
+        // are where the joint tracker can get stuck).
+        let mut candidates: Vec<(usize, f64, f64, f64, f64)> = vec![];
+        if let Some((x, y, yaw)) = hint {
+            if let Some(&(_, _, top)) = surfaces
+                .iter()
+                .find(|(xr, yr, _)| xr[0] <= x && x <= xr[1] && yr[0] <= y && y <= yr[1])
+            {
+                candidates.push((0, x, y, yaw, top));
+            }
+        }
+        let mut drawn = vec![];
+        for n in 1..=self.params.placement_samples {
+            let (xr, yr, top) = surfaces[self.rng.random_range(0..surfaces.len())];
+            if xr[1] - xr[0] <= 2.0 * margin || yr[1] - yr[0] <= 2.0 * margin {
+                continue;
+            }
+            let x = self.rng.random_range(xr[0] + margin..xr[1] - margin);
+            let y = self.rng.random_range(yr[0] + margin..yr[1] - margin);
+            let yaw = if self.rng.random_bool(0.5) {
+                0.0
             } else {
-                let (xr, yr, top) = surfaces[self.rng.random_range(0..surfaces.len())];
-                if xr[1] - xr[0] <= 2.0 * margin || yr[1] - yr[0] <= 2.0 * margin {
-                    continue;
-                }
-                let x = self.rng.random_range(xr[0] + margin..xr[1] - margin);
-                let y = self.rng.random_range(yr[0] + margin..yr[1] - margin);
-                let yaw = if self.rng.random_bool(0.5) {
-                    0.0
-                } else {
-                    std::f64::consts::FRAC_PI_2
-                };
-                (x, y, yaw, top)
+                std::f64::consts::FRAC_PI_2
             };
+            drawn.push((n, x, y, yaw, top));
+        }
+        let at = geo
+            .poses
+            .get(&body)
+            .map(|p| p.translation.vector)
+            .unwrap_or_default();
+        drawn.sort_by(|a, b| {
+            libm::hypot(a.1 - at.x, a.2 - at.y).total_cmp(&libm::hypot(b.1 - at.x, b.2 - at.y))
+        });
+        candidates.extend(drawn);
+        for (n, x, y, yaw, top) in candidates {
             if is_block && !self.in_annulus(arm, x, y) {
                 continue;
             }
