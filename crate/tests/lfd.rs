@@ -59,12 +59,12 @@ fn episode(b: BenchmarkId, level: Level, method: Method, mode: Mode, seed: u64) 
         let objs = objects(&s);
         s.tick_once(&NoClock);
         if let Err(v) = s.world().check_invariants() {
-            // A blindly executed baseline may knock blocks over: that is its failure. Known
-            // limitation of our TAMP baseline (README): its skeletons may carry a body through
-            // another one (no swept-volume check of carried bodies: the hook past the shelf in B2,
-            // a block held by one arm above the hand-over spot the other arm uses in B3). Blocks
-            // must still never be lost or left unsupported. Logic-LfD and RLDS keep every
-            // invariant, except that the carried hook may sweep through the shelf's edge.
+            // A blindly executed baseline may knock blocks over: that is its failure. TAMP's
+            // motions are certified along a straight-line model of the skills' paths (arm links
+            // and carried body every 1.5 cm), which the learned skills do not follow exactly: a
+            // carried block may still graze another (B3 L4 seed 3: b–e 6 mm). Blocks must
+            // never be lost or left unsupported. Logic-LfD and RLDS keep every invariant, except
+            // that the carried hook may sweep through the shelf's edge.
             let carried_graze = v
                 .iter()
                 .all(|x| matches!(x, Violation::Interpenetration { .. }));
@@ -230,23 +230,19 @@ fn a_user_drag_is_logged_and_replayed() {
 
 #[test]
 fn prioritised_mode_never_executes_more_actions_than_paper_mode() {
-    for seed in [1, 2, 3] {
-        for level in [Level::L3, Level::L4] {
-            let p = episode(BenchmarkId::B1, level, Method::LogicLfd, Mode::Paper, seed);
-            let q = episode(
-                BenchmarkId::B1,
-                level,
-                Method::LogicLfd,
-                Mode::Prioritised,
-                seed,
-            );
-            assert!(p.success && q.success);
-            assert!(
-                q.actions <= p.actions,
-                "seed {seed} {level:?}: prioritised {} > paper {}",
-                q.actions,
-                p.actions
-            );
+    for b in BenchmarkId::ALL {
+        for seed in [1, 2, 3] {
+            for level in [Level::L2, Level::L3, Level::L4] {
+                let p = episode(b, level, Method::LogicLfd, Mode::Paper, seed);
+                let q = episode(b, level, Method::LogicLfd, Mode::Prioritised, seed);
+                assert!(p.success && q.success, "{b:?} seed {seed} {level:?}");
+                assert!(
+                    q.actions <= p.actions,
+                    "{b:?} seed {seed} {level:?}: prioritised {} > paper {}",
+                    q.actions,
+                    p.actions
+                );
+            }
         }
     }
 }

@@ -10,4 +10,5 @@ mod recorder;
 mod search;
 mod sim;
 mod soak;
+mod tamp;
 mod validate;

@@ -3,9 +3,15 @@
 
 use serde::{Deserialize, Serialize};
 
+use nalgebra::{Isometry3, Translation3, Vector3};
+
 use crate::lfd::session::{mix, BenchmarkId, SessionError, SessionParams};
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
+use crate::sim::demo::{pull_hook_poses, PULL_TARGET_RADIUS};
+use crate::sim::geometry::grasp_pose;
+use crate::sim::snapshot::BodyKind;
+use crate::sim::World;
 
 use super::episode::{run_episode, EpisodeSpec, Level};
 
@@ -144,6 +150,19 @@ pub struct Table1 {
     pub seed: u64,
     /// Cells.
     pub cells: Vec<Table1Cell>,
+    /// Tasks whose first draw was infeasible ([`infeasible`]) and were redrawn.
+    pub redrawn: Vec<Redraw>,
+}
+
+/// A Table I task whose initial state was redrawn.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Redraw {
+    /// Benchmark.
+    pub benchmark: BenchmarkId,
+    /// Task index.
+    pub task: usize,
+    /// Draws made (the last one is used).
+    pub draws: usize,
 }
 
 fn reason_kind(r: &crate::lfd::control::FailReason) -> String {
@@ -168,18 +187,148 @@ pub const TABLE1_METHODS: [(Method, Mode); 4] = [
     (Method::LogicLfd, Mode::Prioritised),
 ];
 
-/// Runs Table I: `tasks` initial states per benchmark from `scene_for(benchmark, level, seed)`,
-/// levels L1..L4 in turn; every method runs the closed loop from each state.
+/// Draws of a Table I initial state before the task is reported as infeasible.
+pub const MAX_DRAWS: usize = 16;
+
+/// Why no method could solve a task from `world` (`None`: it is feasible). The rule, the same for
+/// every method and benchmark: every block and hook rests on a support (the simulator's
+/// invariants hold), and every block can be grasped from above — grasp pose and its approach pose
+/// 10 cm above reachable by some arm's IK, and, where the domain has `(inreach r x)`, inside r's
+/// reach annulus — or, where the scene has a hook, pulled: the hook is graspable and some arm's
+/// pull stroke (the executor's, to `PULL_TARGET_RADIUS`) is reachable at its contact and pulled
+/// poses and leaves the block inside the annulus (a pull only brings a block nearer: a block
+/// inside the annulus' inner radius can never be picked).
+pub fn infeasible(world: &World) -> Option<String> {
+    if let Err(v) = world.check_invariants() {
+        return Some(format!("the world breaks its invariants: {v:?}"));
+    }
+    let arms = world.arm_names().len();
+    let snap = world.snapshot();
+    // Where the domain has `(inreach r x)`, a block is only picked inside r's reach annulus.
+    let annulus = snap.predicates.iter().any(|p| p == "inreach");
+    let in_annulus = |a: usize, p: &Vector3<f64>| {
+        !annulus
+            || match (snap.arms.get(a), world.arm_base(a)) {
+                (Some(arm), Some(b)) => {
+                    let d = libm::hypot(p.x - b.translation.x, p.y - b.translation.y);
+                    d >= arm.reach.min_radius && d <= arm.reach.max_radius
+                }
+                _ => false,
+            }
+    };
+    let reachable = |arm: usize, tcp: &Isometry3<f64>| {
+        world.reachable(arm, tcp).is_ok()
+            && world
+                .reachable(
+                    arm,
+                    &Isometry3::from_parts(
+                        Translation3::from(tcp.translation.vector + Vector3::z() * 0.10),
+                        tcp.rotation,
+                    ),
+                )
+                .is_ok()
+    };
+    let graspable = |body: &str| {
+        (0..arms).any(|a| {
+            grasp_pose(world, a, body)
+                .is_some_and(|g| in_annulus(a, &g.translation.vector) && reachable(a, &g))
+        })
+    };
+    let hooks: Vec<String> = snap
+        .bodies
+        .iter()
+        .filter(|b| b.kind == BodyKind::Hook && !b.lost)
+        .map(|b| b.name.clone())
+        .collect();
+    for h in &hooks {
+        if !graspable(h) {
+            return Some(format!("the hook {h} cannot be grasped"));
+        }
+    }
+    let pullable = |body: &str| {
+        let Some(bp) = world.body_pose(body) else {
+            return false;
+        };
+        hooks.iter().any(|h| {
+            (0..arms).any(|a| {
+                let (Some(base), Some(hp), Some(g)) = (
+                    world.arm_base(a),
+                    world.body_pose(h),
+                    grasp_pose(world, a, h),
+                ) else {
+                    return false;
+                };
+                let grip = g.inverse() * hp;
+                let (contact, pulled) = pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS);
+                // A pull only brings a block nearer: it must end inside the annulus.
+                let moved = bp.translation.vector
+                    + (pulled.translation.vector - contact.translation.vector);
+                in_annulus(a, &moved)
+                    && reachable(a, &(contact * grip.inverse()))
+                    && reachable(a, &(pulled * grip.inverse()))
+            })
+        })
+    };
+    for b in world.block_names() {
+        if world.is_lost(b) {
+            return Some(format!("block {b} is lost"));
+        }
+        if !graspable(b) && !pullable(b) {
+            return Some(format!(
+                "block {b} can be neither grasped nor pulled into reach"
+            ));
+        }
+    }
+    None
+}
+
+/// The initial scene of Table I task `index` of benchmark `b` at `level`: the first feasible
+/// ([`infeasible`]) of up to [`MAX_DRAWS`] draws, draw `d` from seed `mix(task_seed, d)` (draw 0:
+/// `task_seed` itself). Returns the scene JSON and the draw used; an error names the task when
+/// every draw is infeasible (tasks are never dropped silently).
+pub fn table1_scene(
+    b: BenchmarkId,
+    level: Level,
+    task_seed: u64,
+) -> Result<(String, usize), SessionError> {
+    let mut why = String::new();
+    for draw in 0..MAX_DRAWS {
+        let seed = if draw == 0 {
+            task_seed
+        } else {
+            mix(task_seed, draw as u64)
+        };
+        let scene = super::tasks::initial_scene(b, level, seed)?;
+        let world = World::from_json(&scene)?;
+        match infeasible(&world) {
+            None => return Ok((scene, draw)),
+            Some(w) => why = w,
+        }
+    }
+    Err(SessionError::Json(format!(
+        "{} {} task seed {task_seed}: no feasible initial state in {MAX_DRAWS} draws ({why})",
+        b.as_str(),
+        level.as_str()
+    )))
+}
+
+/// The seed of Table I task `index` of benchmark `b` in a run seeded `seed`.
+pub fn table1_task_seed(b: BenchmarkId, index: usize, seed: u64) -> u64 {
+    mix(seed, (b as u64) << 32 | index as u64)
+}
+
+/// Runs Table I: `tasks` initial states per benchmark ([`table1_scene`]), levels L1..L4 in
+/// turn; every method runs the closed loop from each state.
 pub fn table1(
     benchmarks: &[BenchmarkId],
     tasks: usize,
     seed: u64,
     params: SessionParams,
     clock: &dyn Clock,
-    scene_for: &dyn Fn(BenchmarkId, Level, u64) -> Result<String, SessionError>,
     progress: &mut dyn FnMut(&str),
 ) -> Result<Table1, SessionError> {
     let mut cells = vec![];
+    let mut redrawn = vec![];
     for &b in benchmarks {
         let mut row: Vec<Table1Cell> = TABLE1_METHODS
             .iter()
@@ -196,8 +345,15 @@ pub fn table1(
             .collect();
         for i in 0..tasks {
             let level = Level::ALL[i % 4];
-            let task_seed = mix(seed, (b as u64) << 32 | i as u64);
-            let scene = scene_for(b, level, task_seed)?;
+            let task_seed = table1_task_seed(b, i, seed);
+            let (scene, draw) = table1_scene(b, level, task_seed)?;
+            if draw > 0 {
+                redrawn.push(Redraw {
+                    benchmark: b,
+                    task: i,
+                    draws: draw + 1,
+                });
+            }
             for cell in &mut row {
                 let spec = EpisodeSpec {
                     benchmark: b,
@@ -223,7 +379,12 @@ pub fn table1(
         }
         cells.extend(row);
     }
-    Ok(Table1 { tasks, seed, cells })
+    Ok(Table1 {
+        tasks,
+        seed,
+        cells,
+        redrawn,
+    })
 }
 
 fn fmt_ms(v: &[f64]) -> String {
@@ -241,6 +402,20 @@ impl Table1 {
             "Table I — generalisation over {} random initial states per benchmark (levels L1–L4 in turn), seed {}.\n\n",
             self.tasks, self.seed
         ));
+        if self.redrawn.is_empty() {
+            out.push_str(&format!(
+                "Every first draw was feasible (rule: `experiments::tables::infeasible`, up to {MAX_DRAWS} draws).\n\n"
+            ));
+        } else {
+            out.push_str(&format!(
+                "Redrawn as infeasible (rule: `experiments::tables::infeasible`, up to {MAX_DRAWS} draws): {}.\n\n",
+                self.redrawn
+                    .iter()
+                    .map(|r| format!("{} task {} ({} draws)", r.benchmark.as_str().to_uppercase(), r.task, r.draws))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
         out.push_str("| method | benchmark | success (ours) | success (paper) | first-plan time, ms (ours: mean ± sd, median) | planning time, s (paper) | failures (ours) |\n");
         out.push_str("|---|---|---|---|---|---|---|\n");
         for c in &self.cells {

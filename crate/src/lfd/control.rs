@@ -24,7 +24,7 @@ use serde::{Deserialize, Serialize};
 use crate::plan::{Clock, SearchConfig, State, Task};
 
 use super::demo::{DemoTrace, MultiGoalSpec};
-use super::logic::{plan_logic_lfd, replay, Mode};
+use super::logic::{plan_logic_lfd_avoiding, replay, Mode};
 use super::{LfdError, Method};
 
 /// Builds the grounded task for the current world: objects (name, PDDL type) and facts S_C.
@@ -38,6 +38,9 @@ pub trait Binder {
     /// Binds `ops` (operator indices of `task`) executed from the current world. Actions from
     /// `demo_from` on come from the demonstration and may reuse its parameters.
     fn bind(&mut self, task: &Task, ops: &[usize], demo_from: usize) -> Result<(), usize>;
+
+    /// Draws more samples per parameter from now on (a retry after a failed binding).
+    fn widen(&mut self) {}
 }
 
 /// Why an episode failed (asserted by the tests, shown by the page).
@@ -129,7 +132,9 @@ pub struct ControlParams {
     pub search: SearchConfig,
     /// Maximum replans in an episode before giving up.
     pub max_replans: usize,
-    /// Skeletons tried per replan when binding fails (TAMP / Logic-LfD).
+    /// Skeletons tried per replan when binding fails (TAMP / Logic-LfD): the first and up to
+    /// `max_skeletons − 1` retries, each with the failed action banned at the state where it
+    /// failed and more samples per parameter.
     pub max_skeletons: usize,
 }
 
@@ -143,7 +148,7 @@ impl Default for ControlParams {
                 time_limit_secs: None,
             },
             max_replans: 40,
-            max_skeletons: 8,
+            max_skeletons: 4,
         }
     }
 }
@@ -547,16 +552,31 @@ impl Controller {
         binder: &mut dyn Binder,
         clock: &dyn Clock,
     ) -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
-        let mut task = self.task.clone();
-        for _ in 0..self.params.max_skeletons {
-            let spec = MultiGoalSpec::new(&task, &self.trace);
-            let Ok(p) = plan_logic_lfd(&task, &spec, s, self.mode, &self.params.search, clock)
-            else {
+        let mut banned = BannedTask::new(&self.task);
+        for _ in 0..self.params.max_skeletons.max(1) {
+            let Ok(p) = plan_logic_lfd_avoiding(
+                &self.task,
+                &self.spec,
+                s,
+                self.mode,
+                &self.params.search,
+                clock,
+                (!banned.is_empty()).then_some(&banned),
+            ) else {
                 break;
             };
-            match binder.bind(&task, &p.ops, p.prefix_len) {
+            match binder.bind(&self.task, &p.ops, p.prefix_len) {
                 Ok(()) => return Ok((p.ops, p.k, p.prefix_len)),
-                Err(i) => forbid(&mut task, p.ops[i]),
+                Err(i) if i < p.prefix_len => {
+                    // A new action could not be bound where the plan puts it: ban it there,
+                    // and sample more.
+                    if let Ok(at) = replay(&self.task, s, &p.ops[..i]) {
+                        banned.ban(p.ops[i], &at);
+                    }
+                    binder.widen();
+                }
+                // A placement of the demonstration's suffix: more samples.
+                Err(_) => binder.widen(),
             }
         }
         // No demonstration state can be joined with bindable actions: plan to G from scratch
@@ -592,7 +612,7 @@ fn unreachable_linear() -> Result<(Vec<usize>, Option<usize>, usize), FailReason
     })
 }
 
-/// Makes operator `o` inapplicable (a skeleton whose binding failed is not proposed again).
+/// Makes operator `o` inapplicable everywhere.
 pub(crate) fn forbid(task: &mut Task, o: usize) {
     let op = &mut task.operators[o];
     if let Some(&f) = op.pre.first() {
@@ -601,5 +621,82 @@ pub(crate) fn forbid(task: &mut Task, o: usize) {
         }
     } else {
         op.pre_neg.extend(0..task.facts.len() as u32);
+    }
+}
+
+/// A task in which some operators are banned at some states — where their continuous parameters
+/// could not be bound — for the searches of one replan (the retries of PDDLStream's loop).
+///
+/// Banning operator `o` at state `s` keeps `o` everywhere else: `o` is replaced by copies, each
+/// with one more precondition that tells a state from `s` (a fact of `s` that `o` does not
+/// require must be false, or a fact outside `s` must be true), so `o` applies exactly where
+/// `pre(o)` holds and the state is not `s`. A second ban of the same operator (at another state)
+/// bans it everywhere. Plans found on [`BannedTask::task`] map back to the original operators
+/// with [`BannedTask::original`].
+#[derive(Clone, Debug)]
+pub struct BannedTask {
+    /// The task with the bans.
+    pub task: Task,
+    /// Original operator of every operator of `task`.
+    origin: Vec<usize>,
+    /// Original operators banned so far (at one state, or everywhere).
+    banned: Vec<usize>,
+}
+
+impl BannedTask {
+    /// No bans yet.
+    pub fn new(task: &Task) -> Self {
+        BannedTask {
+            origin: (0..task.operators.len()).collect(),
+            task: task.clone(),
+            banned: vec![],
+        }
+    }
+
+    /// Whether nothing is banned.
+    pub fn is_empty(&self) -> bool {
+        self.banned.is_empty()
+    }
+
+    /// Bans original operator `o` at state `s` (see the type's documentation).
+    pub fn ban(&mut self, o: usize, s: &State) {
+        if o >= self.task.operators.len() || self.origin.get(o) != Some(&o) {
+            return;
+        }
+        if self.banned.contains(&o) {
+            for i in 0..self.task.operators.len() {
+                if self.origin[i] == o {
+                    forbid(&mut self.task, i);
+                }
+            }
+            return;
+        }
+        self.banned.push(o);
+        let op = self.task.operators[o].clone();
+        forbid(&mut self.task, o);
+        let n = self.task.facts.len() as u32;
+        for f in 0..n {
+            let mut copy = op.clone();
+            if s.contains(f) {
+                if op.pre.contains(&f) || op.pre_neg.contains(&f) {
+                    continue;
+                }
+                copy.pre_neg.push(f);
+            } else {
+                if op.pre_neg.contains(&f) || op.pre.contains(&f) {
+                    continue;
+                }
+                copy.pre.push(f);
+            }
+            self.task.operators.push(copy);
+            self.origin.push(o);
+        }
+    }
+
+    /// The original operators of a plan found on [`BannedTask::task`].
+    pub fn original(&self, ops: &[usize]) -> Vec<usize> {
+        ops.iter()
+            .map(|&o| self.origin.get(o).copied().unwrap_or(o))
+            .collect()
     }
 }

@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::plan::{self, Clock, MultiGoalMode, SearchConfig, SearchOutcome, State, Task};
 
+use super::control::BannedTask;
 use super::demo::MultiGoalSpec;
 use super::LfdError;
 
@@ -131,6 +132,21 @@ pub fn plan_logic_lfd(
     config: &SearchConfig,
     clock: &dyn Clock,
 ) -> Result<LfdPlan, LfdError> {
+    plan_logic_lfd_avoiding(task, spec, s, mode, config, clock, None)
+}
+
+/// [`plan_logic_lfd`] whose multi-goal search runs on `banned` if given (the task with operators banned
+/// at the states where their binding failed); the demo suffix and the merged plan are checked on
+/// `task` itself, and the plan is in `task`'s operators.
+pub fn plan_logic_lfd_avoiding(
+    task: &Task,
+    spec: &MultiGoalSpec,
+    s: &State,
+    mode: Mode,
+    config: &SearchConfig,
+    clock: &dyn Clock,
+    banned: Option<&BannedTask>,
+) -> Result<LfdPlan, LfdError> {
     if task.goal.holds(s) {
         return Ok(LfdPlan {
             ops: vec![],
@@ -155,10 +171,14 @@ pub fn plan_logic_lfd(
         Mode::Paper => MultiGoalMode::FirstReached,
         Mode::Prioritised => MultiGoalMode::Prioritised,
     };
-    let found = plan::search_multi_goal(task, s, &spec.goals, search_mode, config, clock);
+    let search_task = banned.map_or(task, |b| &b.task);
+    let found = plan::search_multi_goal(search_task, s, &spec.goals, search_mode, config, clock);
     let expanded = found.stats.expanded;
     let (prefix, k) = match (&found.outcome, found.goal_index) {
-        (SearchOutcome::Plan(p), Some(k)) => (p.operators.clone(), k),
+        (SearchOutcome::Plan(p), Some(k)) => (
+            banned.map_or_else(|| p.operators.clone(), |b| b.original(&p.operators)),
+            k,
+        ),
         (SearchOutcome::BudgetExhausted { which }, _) => {
             return Err(LfdError::NoPlan(format!("{which} exhausted")))
         }

@@ -727,10 +727,16 @@ impl Session {
         let facts = facts_of(&self.world);
         let objects = objects_of(&self.world);
         let before = self.controller.replans().len();
+        // The streams certify the executor's motions: same approach and lift heights.
+        let streams = StreamParams {
+            approach_height: self.params.exec.approach_height,
+            lift_height: self.params.exec.lift_height,
+            ..self.params.streams
+        };
         let mut binder = StreamBinder::new(
             &self.world,
             mix(self.options.seed, before as u64 + 1),
-            self.params.streams,
+            streams,
         )
         .with_hints(&self.hints);
         let decision =

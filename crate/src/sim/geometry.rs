@@ -25,18 +25,7 @@ pub(crate) type ArmDrawing = (
 /// Capsules of the links (base to hand) and the two finger boxes of an arm, world frame.
 pub(crate) fn arm_drawing(a: &Arm) -> ArmDrawing {
     let f: ArmFrames = panda::forward_frames(&a.base, &a.joints);
-    let o = |i: usize| f.frames[i].p;
-    let hand = &f.frames[9];
-    let hp = |y: f64, z: f64| hand.p + hand.r * Vector3::new(0.0, y, z);
-    let links = vec![
-        (o(0), o(1), 0.075),
-        (o(2), o(3), 0.065),
-        (o(3), o(4), 0.06),
-        (o(4), o(5), 0.06),
-        (o(5), o(7), 0.055),
-        (o(7), o(8), 0.05),
-        (hp(-0.08, 0.05), hp(0.08, 0.05), 0.035),
-    ];
+    let links = links_of(&f);
     let tcp = f.tcp.to_iso();
     let half = Vector3::new(0.01, 0.006, 0.0225);
     let fingers = [-1.0, 1.0]
@@ -50,6 +39,36 @@ pub(crate) fn arm_drawing(a: &Arm) -> ArmDrawing {
         })
         .collect();
     (links, fingers)
+}
+
+/// The link capsules of a chain's frames (base to hand), world frame.
+fn links_of(f: &ArmFrames) -> Vec<(Vector3<f64>, Vector3<f64>, f64)> {
+    let o = |i: usize| f.frames[i].p;
+    let hand = &f.frames[9];
+    let hp = |y: f64, z: f64| hand.p + hand.r * Vector3::new(0.0, y, z);
+    vec![
+        (o(0), o(1), 0.075),
+        (o(2), o(3), 0.065),
+        (o(3), o(4), 0.06),
+        (o(4), o(5), 0.06),
+        (o(5), o(7), 0.055),
+        (o(7), o(8), 0.05),
+        (hp(-0.08, 0.05), hp(0.08, 0.05), 0.035),
+    ]
+}
+
+/// The link capsules `(a, b, radius)` of arm `arm` at joint angles `q` (world frame, base link
+/// first, hand last), without moving the arm: what a planner checks along a candidate motion.
+/// Empty for an unknown arm.
+pub fn link_capsules(
+    world: &World,
+    arm: usize,
+    q: &[f64; panda::DOF],
+) -> Vec<(Vector3<f64>, Vector3<f64>, f64)> {
+    match world.arm_base(arm) {
+        Some(base) => links_of(&panda::forward_frames(&base, q)),
+        None => vec![],
+    }
 }
 
 /// Wraps an angle to (−π, π].
@@ -81,7 +100,18 @@ fn yaw_from_base(world: &World, arm: usize, p: &Vector3<f64>) -> f64 {
 /// The TCP pose with which arm `arm` grasps the block or hook called `body` from above (see the
 /// module docs), or `None` for an unknown body or a fixed one.
 pub fn grasp_pose(world: &World, arm: usize, body: &str) -> Option<Isometry3<f64>> {
-    let pose = world.body_pose(body)?;
+    grasp_pose_at(world, arm, body, &world.body_pose(body)?)
+}
+
+/// The TCP pose with which arm `arm` would grasp `body` from above if the body were at `pose`
+/// (the convention of [`grasp_pose`]); `None` for an unknown or fixed body.
+pub fn grasp_pose_at(
+    world: &World,
+    arm: usize,
+    body: &str,
+    pose: &Isometry3<f64>,
+) -> Option<Isometry3<f64>> {
+    let pose = *pose;
     match world.body_kind(body)? {
         BodyKind::Block => {
             let p = pose.translation.vector;

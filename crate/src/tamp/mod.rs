@@ -2,12 +2,14 @@
 //! streams, retry (PDDLStream's lazy idea, our own code).
 //!
 //! ```text
-//!   repeat up to max_skeletons:
-//!     π ← Search(task \ forbidden, S_C → G)          (the action skeleton)
-//!     bind π: for each action, draw samples from its stream (grasp, placement on table/shelf/
-//!             block, hook pose for a pull, hand-over pose) until one is certified
-//!             (collision-free with parry, reachable by IK) — or report the first failing action
-//!     success → π with its bindings; failure at a_i → forbid a_i, next skeleton
+//!   repeat up to max_skeletons (the first try and its retries):
+//!     π ← Search(task with bans, S_C → G)            (the action skeleton)
+//!     bind π: roll the geometry forward; for each action draw samples from its stream (grasp,
+//!             placement on table/shelf/block, pull stroke, hand-over spot) until one is
+//!             certified (collision-free along its motion with parry, trackable by IK) — or
+//!             report the first failing action a_i
+//!     success → π with its bindings
+//!     failure at a_i → ban a_i at the state where it failed (not everywhere), more samples
 //! ```
 //!
 //! This is what Logic-LfD uses to bind the actions it adds, and the "plan from scratch" baseline
@@ -15,7 +17,8 @@
 
 pub mod streams;
 
-use crate::lfd::control::{forbid, Binder};
+use crate::lfd::control::{BannedTask, Binder};
+use crate::lfd::logic::replay;
 use crate::plan::{search, Clock, SearchConfig, SearchOutcome, State, Task};
 
 /// Why TAMP found no plan.
@@ -45,11 +48,14 @@ pub fn plan_from_scratch(
 ) -> Result<Vec<usize>, TampError> {
     let mut t = task.clone();
     t.init = s.clone();
+    let mut banned = BannedTask::new(&t);
     let mut last = String::new();
+    let mut tries = 0;
     for tried in 0..max_skeletons.max(1) {
-        let r = search(&t, config, clock);
+        tries = tried + 1;
+        let r = search(&banned.task, config, clock);
         let ops = match r.outcome {
-            SearchOutcome::Plan(p) => p.operators,
+            SearchOutcome::Plan(p) => banned.original(&p.operators),
             SearchOutcome::Unsolvable if tried == 0 => {
                 return Err(TampError::NoSkeleton("the goal is unreachable".into()))
             }
@@ -62,12 +68,15 @@ pub fn plan_from_scratch(
             Ok(()) => return Ok(ops),
             Err(i) => {
                 last = t.operators[ops[i]].name.clone();
-                forbid(&mut t, ops[i]);
+                if let Ok(at) = replay(&t, s, &ops[..i]) {
+                    banned.ban(ops[i], &at);
+                }
+                binder.widen();
             }
         }
     }
     Err(TampError::Unbindable {
-        skeletons: max_skeletons,
+        skeletons: tries,
         action: last,
     })
 }

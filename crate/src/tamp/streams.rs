@@ -1,17 +1,34 @@
 //! Streams: samplers of an action's continuous parameters, each sample certified before use.
 //!
-//! For a skeleton a_1..a_n the binder rolls the geometric state forward (body poses, what each
-//! arm holds) and, per action,
+//! For a skeleton a_1..a_n the binder rolls the geometric state forward (body poses, each arm's
+//! TCP pose and joint angles, what each arm holds and with which grasp) and, per action,
 //!
 //! ```text
 //!   grasp x by r:        g = top grasp of x (yaw ∈ yaw_x + k·π/2, closest to the arm's heading)
-//!                        certify IK(r, g) and IK(r, g + h·ẑ)               (reachable, approach)
-//!   release x on y:      p = x centred on y's top;  certify IK and  x@p ∩ others = ∅  (parry)
+//!                        certify the motion  tcp → g + h·ẑ → g → g + l·ẑ
+//!   release x on y:      p = x centred on y's top, tcp(p) = p · G⁻¹ (G: the held grasp)
+//!                        certify  x@p ∩ others = ∅  and the motion  tcp → tcp(p) + h·ẑ → tcp(p) → up
 //!   release x on a surface (table / shelf / region R):
 //!                        sample (u, v) ~ U(top face ∩ R ∩ reach annulus of r), yaw ~ U{0, π/2}
-//!                        certify x@p ∩ others = ∅, IK(r, tcp(p)), IK(r, tcp(p) + h·ẑ)
-//!   pull x with hook:    certify the stroke's via-points are reachable; x moves towards r
+//!                        certify as above; hand-over spots also graspable by every other arm
+//!   pull x with hook:    (contact, pulled) = sim::demo::pull_hook_poses(base, x, PULL_TARGET_RADIUS)
+//!                        (the executor's own stroke); certify the stroke's motion; predict x's
+//!                        new pose by a parry shape cast of the hook along the stroke
+//!                        (x moves by d·(1 − toi)), then cast x along its push: it may hit nothing
+//!                        and must end on the table inside r's reach annulus
 //! ```
+//!
+//! **Certifying a motion.** The TCP path through the via-points (the executor's phases,
+//! `lfd::exec`: approach from above, the gripper event, the retreat up) is sampled every
+//! `path_step` (1.5 cm). At each sample the arm's joints come from damped-least-squares IK
+//! warm-started at the previous sample *without restarts* — what the simulator's joint tracker
+//! can follow: between via-points it may lag behind the path (the links are checked where the
+//! tracker leaves them), at a via-point it must converge (the executor fails an action whose
+//! arm cannot reach its via-point). The arm's link capsules and the carried body (at `tcp · G`) are tested with parry
+//! against every other body (tables, shelf, free blocks, the hook, bodies carried by other arms),
+//! shrunk by `contact_slack` so resting contacts do not count. Arms do not collide with each
+//! other in the simulator (the demonstrated hand-over has one gripper above the other), so
+//! arm–arm contact is not tested.
 //!
 //! A skeleton fails at the first action for which no sample (within the budget) is certified.
 //! Actions from the demonstration's suffix (Logic-LfD) skip certification: their motion comes from
@@ -19,15 +36,18 @@
 
 use std::collections::BTreeMap;
 
-use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::query;
-use parry3d_f64::shape::Cuboid;
+use parry3d_f64::shape::{Capsule, Cuboid, Shape};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
 use crate::lfd::control::Binder;
 use crate::lfd::exec::{classify, fact_args, ActionKind, Placement};
 use crate::plan::Task;
+use crate::sim::demo::{pull_hook_poses, PULL_TARGET_RADIUS};
+use crate::sim::geometry::{grasp_pose_at, link_capsules};
+use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
 
@@ -36,8 +56,19 @@ use crate::sim::World;
 pub struct StreamParams {
     /// Samples drawn per surface placement before the action is declared unbindable.
     pub placement_samples: usize,
-    /// Height of the approach pose checked above grasps and placements (m).
+    /// Height of the approach pose above grasps and placements, and of the retreat after a
+    /// release (m); the session keeps it equal to the executor's.
     pub approach_height: f64,
+    /// Height the held body is lifted to after a grasp (m); kept equal to the executor's.
+    pub lift_height: f64,
+    /// Height of the hook above its contact and pulled poses at the ends of a stroke (m).
+    pub pull_lift: f64,
+    /// Spacing of the samples along a certified TCP path (m).
+    pub path_step: f64,
+    /// IK iterations per path sample (warm start, no restarts: the joint tracker's view).
+    pub path_ik_iterations: usize,
+    /// IK iterations at a via-point (the tracker's settle time; warm start, no restarts).
+    pub settle_ik_iterations: usize,
     /// Shapes are shrunk by this before collision tests, so touching faces do not count (m).
     pub contact_slack: f64,
     /// Free space kept around a placed body (m).
@@ -49,6 +80,11 @@ impl Default for StreamParams {
         StreamParams {
             placement_samples: 48,
             approach_height: 0.10,
+            lift_height: 0.12,
+            pull_lift: 0.08,
+            path_step: 0.015,
+            path_ik_iterations: 30,
+            settle_ik_iterations: 300,
             contact_slack: 0.002,
             clearance: 0.008,
         }
@@ -58,27 +94,102 @@ impl Default for StreamParams {
 /// A fixed body: name, kind and its boxes in the world.
 type FixedBody = (String, BodyKind, Vec<(Isometry3<f64>, Cuboid)>);
 
+/// Why a candidate was not certified (counted in [`StreamStats`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Reject {
+    /// The IK tracker cannot follow the path (or the pose is out of reach).
+    Ik,
+    /// A link or the carried body hits something along the path.
+    Collision,
+}
+
+/// Counters of a binder's work (for reports and tests).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StreamStats {
+    /// Path samples checked (IK + collision tests).
+    pub path_samples: usize,
+    /// Candidates rejected because the arm cannot track the path.
+    pub rejected_ik: usize,
+    /// Candidates rejected for a collision along the path or at the placement.
+    pub rejected_collision: usize,
+    /// Pulls rejected by the shape-cast prediction.
+    pub rejected_pull: usize,
+}
+
+/// An obstacle of one certification: a box (shrunk by the contact slack) and its world AABB.
+struct Obstacle {
+    iso: Isometry3<f64>,
+    shape: Cuboid,
+    lo: Vector3<f64>,
+    hi: Vector3<f64>,
+}
+
+/// The rolled-forward geometric state of a skeleton.
+#[derive(Clone, Debug)]
+struct Geo {
+    /// Every movable body (held ones where they are carried).
+    poses: BTreeMap<String, Isometry3<f64>>,
+    /// Arm → (held body, its pose in the TCP frame).
+    held: BTreeMap<usize, (String, Isometry3<f64>)>,
+    /// TCP pose per arm.
+    tcp: Vec<Isometry3<f64>>,
+    /// Joint angles per arm.
+    q: Vec<[f64; DOF]>,
+}
+
+impl Geo {
+    fn is_held(&self, body: &str) -> bool {
+        self.held.values().any(|(b, _)| b == body)
+    }
+}
+
 /// Binds skeletons against a world with certified samples; remembers the last bindings.
 pub struct StreamBinder<'w> {
     world: &'w World,
     fixed: Vec<FixedBody>,
+    /// Boxes of every movable body in its own frame.
+    local: BTreeMap<String, Vec<(Isometry3<f64>, Cuboid)>>,
     regions: Vec<crate::sim::snapshot::RegionSnapshot>,
     reach: Vec<crate::sim::snapshot::ReachSnapshot>,
-    hooks: Vec<String>,
     rng: Pcg64Mcg,
     params: StreamParams,
+    track_ik: IkParams,
+    settle_ik: IkParams,
     /// Placement per action of the last successfully bound skeleton (`None`: nothing to bind).
     pub bindings: Vec<Option<Placement>>,
-    /// Certifications (IK + collision tests) done so far.
+    /// Certifications (IK + collision tests of a candidate) done so far.
     pub certifications: usize,
+    /// What the certifications did.
+    pub stats: StreamStats,
+    /// Poses of the movable bodies after the last successfully bound skeleton (predicted).
+    predicted: BTreeMap<String, Isometry3<f64>>,
     /// Placements the demonstration used, by action: `(x, y, yaw)` of the resting pose.
     hints: BTreeMap<String, (f64, f64, f64)>,
 }
 
-#[derive(Clone, Debug)]
-struct Geo {
-    poses: BTreeMap<String, Isometry3<f64>>,
-    held: BTreeMap<usize, String>,
+fn up(iso: &Isometry3<f64>, dz: f64) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::from(iso.translation.vector + Vector3::z() * dz),
+        iso.rotation,
+    )
+}
+
+/// World AABB of a box at a pose.
+fn box_aabb(iso: &Isometry3<f64>, c: &Cuboid) -> (Vector3<f64>, Vector3<f64>) {
+    let r = iso.rotation.to_rotation_matrix();
+    let m = r.matrix().abs();
+    let ext = m * c.half_extents;
+    let t = iso.translation.vector;
+    (t - ext, t + ext)
+}
+
+fn overlaps(lo: &Vector3<f64>, hi: &Vector3<f64>, o: &Obstacle) -> bool {
+    lo.x <= o.hi.x
+        && hi.x >= o.lo.x
+        && lo.y <= o.hi.y
+        && hi.y >= o.lo.y
+        && lo.z <= o.hi.z
+        && hi.z >= o.lo.z
 }
 
 impl<'w> StreamBinder<'w> {
@@ -91,21 +202,43 @@ impl<'w> StreamBinder<'w> {
             .filter(|b| matches!(b.kind, BodyKind::Table | BodyKind::Shelf))
             .map(|b| (b.name.clone(), b.kind, world.body_shapes(&b.name)))
             .collect();
+        let local = snap
+            .bodies
+            .iter()
+            .filter(|b| matches!(b.kind, BodyKind::Block | BodyKind::Hook) && !b.lost)
+            .filter_map(|b| {
+                let cur = world.body_pose(&b.name)?;
+                let parts = world
+                    .body_shapes(&b.name)
+                    .into_iter()
+                    .map(|(iso, c)| (cur.inverse() * iso, c))
+                    .collect();
+                Some((b.name.clone(), parts))
+            })
+            .collect();
+        let track_ik = IkParams {
+            max_iterations: params.path_ik_iterations,
+            restarts: 0,
+            ..world.params().planning_ik.clone()
+        };
+        let settle_ik = IkParams {
+            max_iterations: params.settle_ik_iterations,
+            ..track_ik.clone()
+        };
         StreamBinder {
+            settle_ik,
             world,
             fixed,
+            local,
             regions: snap.regions.clone(),
             reach: snap.arms.iter().map(|a| a.reach.clone()).collect(),
-            hooks: snap
-                .bodies
-                .iter()
-                .filter(|b| b.kind == BodyKind::Hook)
-                .map(|b| b.name.clone())
-                .collect(),
             rng: Pcg64Mcg::seed_from_u64(seed),
             params,
+            track_ik,
             bindings: vec![],
             certifications: 0,
+            stats: StreamStats::default(),
+            predicted: BTreeMap::new(),
             hints: BTreeMap::new(),
         }
     }
@@ -116,26 +249,40 @@ impl<'w> StreamBinder<'w> {
         self
     }
 
+    /// The parameters in use.
+    pub fn params(&self) -> &StreamParams {
+        &self.params
+    }
+
+    /// Where the last successfully bound skeleton leaves `body` (a block or the hook).
+    pub fn predicted_pose(&self, body: &str) -> Option<Isometry3<f64>> {
+        self.predicted.get(body).copied()
+    }
+
     fn geo(&self) -> Geo {
-        let snap_bodies = self.world.block_names();
         let mut poses = BTreeMap::new();
-        for b in snap_bodies {
-            if let Some(p) = self.world.body_pose(b) {
-                poses.insert(b.to_string(), p);
-            }
-        }
-        for name in &self.hooks {
+        for name in self.local.keys() {
             if let Some(p) = self.world.body_pose(name) {
                 poses.insert(name.clone(), p);
             }
         }
+        let n = self.world.arm_names().len();
         let mut held = BTreeMap::new();
-        for (i, _) in self.world.arm_names().iter().enumerate() {
-            if let Some(h) = self.world.held_by(i) {
-                held.insert(i, h.to_string());
+        for a in 0..n {
+            if let (Some(h), Some(g)) = (self.world.held_by(a), self.world.grasp_transform(a)) {
+                held.insert(a, (h.to_string(), g));
             }
         }
-        Geo { poses, held }
+        Geo {
+            poses,
+            held,
+            tcp: (0..n)
+                .map(|a| self.world.tcp_pose(a).unwrap_or_else(Isometry3::identity))
+                .collect(),
+            q: (0..n)
+                .map(|a| self.world.joints(a).unwrap_or(panda::READY))
+                .collect(),
+        }
     }
 
     fn half_extents(&self, body: &str) -> Vector3<f64> {
@@ -147,99 +294,375 @@ impl<'w> StreamBinder<'w> {
         }
     }
 
-    /// Whether `body` at `pose` is free of every other body in `geo` and of the fixed bodies
-    /// (touching faces allowed).
-    fn collision_free(&mut self, geo: &Geo, body: &str, pose: &Isometry3<f64>) -> bool {
+    /// The boxes of movable `body` at `pose`.
+    fn parts_at(&self, body: &str, pose: &Isometry3<f64>) -> Vec<(Isometry3<f64>, Cuboid)> {
+        self.local
+            .get(body)
+            .map(|v| v.iter().map(|(off, c)| (pose * off, *c)).collect())
+            .unwrap_or_default()
+    }
+
+    fn shrink(&self, c: &Cuboid) -> Cuboid {
+        let h = c.half_extents;
+        Cuboid::new((h - Vector3::repeat(self.params.contact_slack)).sup(&(h * 0.5)))
+    }
+
+    /// Everything arm `arm` may not touch in `geo`: fixed bodies and movable bodies other than
+    /// `exclude` and the arm's own load (bodies carried by other arms included). The arms
+    /// themselves do not collide with each other in the simulator (nor in the demonstration's
+    /// hand-over), so they are not obstacles.
+    fn obstacles(&self, geo: &Geo, arm: usize, exclude: &[&str]) -> Vec<Obstacle> {
+        let mut out = vec![];
+        for (_, _, parts) in &self.fixed {
+            for (iso, c) in parts {
+                let shape = self.shrink(c);
+                let (lo, hi) = box_aabb(iso, &shape);
+                out.push(Obstacle {
+                    iso: *iso,
+                    shape,
+                    lo,
+                    hi,
+                });
+            }
+        }
+        let mine = geo.held.get(&arm).map(|(b, _)| b.as_str());
+        for (name, pose) in &geo.poses {
+            if Some(name.as_str()) == mine || exclude.contains(&name.as_str()) {
+                continue;
+            }
+            for (iso, c) in self.parts_at(name, pose) {
+                let shape = self.shrink(&c);
+                let (lo, hi) = box_aabb(&iso, &shape);
+                out.push(Obstacle { iso, shape, lo, hi });
+            }
+        }
+        out
+    }
+
+    fn shape_hits(
+        &self,
+        iso: &Isometry3<f64>,
+        shape: &dyn Shape,
+        lo: &Vector3<f64>,
+        hi: &Vector3<f64>,
+        obstacles: &[Obstacle],
+    ) -> bool {
+        obstacles.iter().any(|o| {
+            overlaps(lo, hi, o)
+                && query::intersection_test(iso, shape, &o.iso, &o.shape).unwrap_or(true)
+        })
+    }
+
+    /// Certifies the TCP path through `via` for arm `arm` carrying what `geo` says it carries:
+    /// returns the joints at the end, or why not. `exclude`: bodies the motion may touch.
+    fn certify_path(
+        &mut self,
+        geo: &Geo,
+        arm: usize,
+        via: &[Isometry3<f64>],
+        exclude: &[&str],
+    ) -> Result<[f64; DOF], Reject> {
+        self.certifications += 1;
+        let Some(base) = self.world.arm_base(arm) else {
+            return Err(Reject::Ik);
+        };
+        let obstacles = self.obstacles(geo, arm, exclude);
+        let load: Vec<(Isometry3<f64>, Cuboid)> = geo
+            .held
+            .get(&arm)
+            .map(|(b, g)| {
+                self.local
+                    .get(b)
+                    .map(|v| v.iter().map(|(off, c)| (g * off, self.shrink(c))).collect())
+                    .unwrap_or_default()
+            })
+            .unwrap_or_default();
+        let mut q = geo.q[arm];
+        let mut from = geo.tcp[arm];
+        for to in via {
+            let q_from = q;
+            let len = (to.translation.vector - from.translation.vector).norm();
+            let n = ((len / self.params.path_step).ceil() as usize).max(1);
+            for k in 1..=n {
+                let s = k as f64 / n as f64;
+                let p = from.translation.vector.lerp(&to.translation.vector, s);
+                let r = from.rotation.slerp(&to.rotation, s);
+                let tcp = Isometry3::from_parts(Translation3::from(p), r);
+                self.stats.path_samples += 1;
+                // Between via-points the tracker may lag behind the command (the links are
+                // checked where it leaves them); at a via-point it has the settle time to
+                // converge (no restarts either way).
+                let end = k == n;
+                let ik = if end { &self.settle_ik } else { &self.track_ik };
+                q = match panda::inverse_kinematics(&base, &tcp, &q, ik) {
+                    Ok(sol) => sol.joints,
+                    Err(e) if !end => e.best_joints,
+                    // A straight line is not the skill's path: the tracker may also come in
+                    // from where the segment started. Either way without restarts.
+                    Err(_) => match panda::inverse_kinematics(&base, &tcp, &q_from, ik) {
+                        Ok(sol) => sol.joints,
+                        Err(_) => {
+                            self.stats.rejected_ik += 1;
+                            return Err(Reject::Ik);
+                        }
+                    },
+                };
+                if self.sample_hits(arm, &q, &tcp, &load, &obstacles) {
+                    self.stats.rejected_collision += 1;
+                    return Err(Reject::Collision);
+                }
+            }
+            from = *to;
+        }
+        Ok(q)
+    }
+
+    /// Whether the arm at joints `q` (TCP `tcp`, carrying `load` in the TCP frame) hits anything.
+    fn sample_hits(
+        &self,
+        arm: usize,
+        q: &[f64; DOF],
+        tcp: &Isometry3<f64>,
+        load: &[(Isometry3<f64>, Cuboid)],
+        obstacles: &[Obstacle],
+    ) -> bool {
+        // The base link stands on the table: it is never tested.
+        for (a, b, r) in link_capsules(self.world, arm, q).into_iter().skip(1) {
+            let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
+            let lo = a.inf(&b) - Vector3::repeat(r);
+            let hi = a.sup(&b) + Vector3::repeat(r);
+            if self.shape_hits(&Isometry3::identity(), &cap, &lo, &hi, obstacles) {
+                return true;
+            }
+        }
+        for (off, c) in load {
+            let iso = tcp * off;
+            let (lo, hi) = box_aabb(&iso, c);
+            if self.shape_hits(&iso, c, &lo, &hi, obstacles) {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Whether `body` resting at `pose` keeps `clearance` from the other free blocks and does not
+    /// overlap anything else (touching faces allowed).
+    fn placement_free(&mut self, geo: &Geo, body: &str, pose: &Isometry3<f64>) -> bool {
         self.certifications += 1;
         let slack = Vector3::repeat(self.params.contact_slack);
         let grow = Vector3::new(self.params.clearance, self.params.clearance, 0.0);
-        // The moving body's boxes, relative to its frame, placed at `pose`.
-        let cur = self.world.body_pose(body).unwrap_or(*pose);
-        let mine: Vec<(Isometry3<f64>, Vector3<f64>)> = self
-            .world
-            .body_shapes(body)
-            .into_iter()
-            .map(|(iso, c)| (pose * cur.inverse() * iso, c.half_extents))
-            .collect();
-        for (my_iso, h) in &mine {
+        for (iso, c) in self.parts_at(body, pose) {
+            let h = c.half_extents;
             let me = Cuboid::new((h - slack).sup(&(h * 0.5)));
             let grown = Cuboid::new((h + grow - slack).sup(&(h * 0.5)));
-            if !self.part_free(geo, body, my_iso, &me, &grown) {
+            for (name, p) in &geo.poses {
+                if name == body || geo.is_held(name) {
+                    continue;
+                }
+                let test_shape = if self.world.body_kind(name) == Some(BodyKind::Block) {
+                    &grown
+                } else {
+                    &me
+                };
+                for (oiso, oc) in self.parts_at(name, p) {
+                    let other = self.shrink(&oc);
+                    if query::intersection_test(&iso, test_shape, &oiso, &other).unwrap_or(true) {
+                        return false;
+                    }
+                }
+            }
+            for (_, _, parts) in &self.fixed {
+                for (fiso, fc) in parts {
+                    if query::intersection_test(&iso, &me, fiso, fc).unwrap_or(true) {
+                        return false;
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    /// Certifies `arm` grasping `body` (approach from above, close, lift) and rolls `geo` on.
+    fn grasp(&mut self, geo: &mut Geo, arm: usize, body: &str, certify: bool) -> bool {
+        let Some(pose) = geo.poses.get(body).copied() else {
+            return false;
+        };
+        let Some(tcp) = grasp_pose_at(self.world, arm, body, &pose) else {
+            return false;
+        };
+        let lifted = up(&tcp, self.params.lift_height);
+        if certify {
+            let via = [up(&tcp, self.params.approach_height), tcp];
+            let Ok(q) = self.certify_path(geo, arm, &via, &[body]) else {
+                return false;
+            };
+            let mut after = geo.clone();
+            after.tcp[arm] = tcp;
+            after.q[arm] = q;
+            after
+                .held
+                .insert(arm, (body.to_string(), tcp.inverse() * pose));
+            let Ok(q) = self.certify_path(&after, arm, &[lifted], &[]) else {
+                return false;
+            };
+            geo.q[arm] = q;
+        } else if let Ok(sol) = self.world.reachable(arm, &lifted) {
+            geo.q[arm] = sol.joints;
+        }
+        geo.tcp[arm] = lifted;
+        geo.held
+            .insert(arm, (body.to_string(), tcp.inverse() * pose));
+        geo.poses
+            .insert(body.to_string(), up(&pose, self.params.lift_height));
+        true
+    }
+
+    /// Certifies `arm` putting its load down with the body at `pose` (approach from above,
+    /// open, retreat up) and rolls `geo` on.
+    fn release(&mut self, geo: &mut Geo, arm: usize, pose: &Isometry3<f64>, certify: bool) -> bool {
+        let Some((body, g)) = geo.held.get(&arm).cloned() else {
+            return false;
+        };
+        let tcp = pose * g.inverse();
+        let retreat = up(&tcp, self.params.approach_height);
+        if certify {
+            let via = [up(&tcp, self.params.approach_height), tcp];
+            let Ok(_) = self.certify_path(geo, arm, &via, &[]) else {
+                return false;
+            };
+            let mut after = geo.clone();
+            after.held.remove(&arm);
+            after.poses.insert(body.clone(), *pose);
+            after.tcp[arm] = tcp;
+            let Ok(q) = self.certify_path(&after, arm, &[retreat], &[&body]) else {
+                return false;
+            };
+            geo.q[arm] = q;
+        } else if let Ok(sol) = self.world.reachable(arm, &retreat) {
+            geo.q[arm] = sol.joints;
+        }
+        geo.held.remove(&arm);
+        geo.poses.insert(body, *pose);
+        geo.tcp[arm] = retreat;
+        true
+    }
+
+    /// The pose a pull stroke of `arm` leaves `body` at (shape cast of the carried hook along
+    /// the executor's stroke, then of the block along its push), after certifying the stroke.
+    fn pull(&mut self, geo: &mut Geo, arm: usize, body: &str, certify: bool) -> bool {
+        let Some(bp) = geo.poses.get(body).copied() else {
+            return false;
+        };
+        let Some((hook, g)) = geo.held.get(&arm).cloned() else {
+            return false;
+        };
+        let Some(base) = self.world.arm_base(arm) else {
+            return false;
+        };
+        let (contact, pulled) = pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS);
+        let tc = contact * g.inverse();
+        let tp = pulled * g.inverse();
+        let d = pulled.translation.vector - contact.translation.vector;
+        // When does the blade meet the block along the stroke?
+        let opts = query::ShapeCastOptions {
+            max_time_of_impact: 1.0,
+            target_distance: 0.0,
+            stop_at_penetration: false,
+            compute_impact_geometry_on_penetration: false,
+        };
+        let mut toi = f64::INFINITY;
+        for (hiso, hc) in self.parts_at(&hook, &contact) {
+            for (biso, bc) in self.parts_at(body, &bp) {
+                if let Ok(Some(hit)) =
+                    query::cast_shapes(&hiso, &d, &hc, &biso, &Vector3::zeros(), &bc, opts)
+                {
+                    toi = toi.min(hit.time_of_impact);
+                }
+            }
+        }
+        if toi > 1.0 {
+            self.stats.rejected_pull += 1;
+            return false;
+        }
+        let push = Vector3::new(d.x, d.y, 0.0) * (1.0 - toi);
+        let moved = Isometry3::from_parts(
+            Translation3::from(bp.translation.vector + push),
+            bp.rotation,
+        );
+        if certify {
+            // The block's own sweep may hit nothing but the hook.
+            let others: Vec<Obstacle> = {
+                let obs = self.obstacles(geo, arm, &[body, hook.as_str()]);
+                obs.into_iter()
+                    .filter(|o| {
+                        // Its support (the table top it slides on) is not in the way.
+                        o.hi.z > bp.translation.z - self.half_extents(body).z + 0.005
+                    })
+                    .collect()
+            };
+            for (biso, bc) in self.parts_at(body, &bp) {
+                let shape = self.shrink(&bc);
+                for o in &others {
+                    if let Ok(Some(hit)) = query::cast_shapes(
+                        &biso,
+                        &push,
+                        &shape,
+                        &o.iso,
+                        &Vector3::zeros(),
+                        &o.shape,
+                        opts,
+                    ) {
+                        if hit.time_of_impact <= 1.0 {
+                            self.stats.rejected_pull += 1;
+                            return false;
+                        }
+                    }
+                }
+            }
+            let p = moved.translation.vector;
+            let on_table = self.fixed.iter().any(|(n, k, _)| {
+                *k == BodyKind::Table
+                    && self.world.body_aabb(n).is_some_and(|(lo, hi)| {
+                        lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y
+                    })
+            });
+            if !on_table || !self.in_annulus(arm, p.x, p.y) {
+                self.stats.rejected_pull += 1;
                 return false;
             }
+            let via = [up(&tc, self.params.pull_lift), tc];
+            let Ok(q) = self.certify_path(geo, arm, &via, &[]) else {
+                return false;
+            };
+            let mut stroke = geo.clone();
+            stroke.tcp[arm] = tc;
+            stroke.q[arm] = q;
+            let Ok(q) = self.certify_path(&stroke, arm, &[tp], &[body]) else {
+                return false;
+            };
+            let mut after = stroke;
+            after.tcp[arm] = tp;
+            after.q[arm] = q;
+            after.poses.insert(body.to_string(), moved);
+            let Ok(q) = self.certify_path(&after, arm, &[up(&tp, self.params.pull_lift)], &[])
+            else {
+                return false;
+            };
+            geo.q[arm] = q;
         }
+        geo.tcp[arm] = up(&tp, self.params.pull_lift);
+        geo.poses.insert(hook.clone(), geo.tcp[arm] * g);
+        geo.poses.insert(body.to_string(), moved);
         true
     }
 
-    fn part_free(
-        &self,
-        geo: &Geo,
-        body: &str,
-        pose: &Isometry3<f64>,
-        me: &Cuboid,
-        grown: &Cuboid,
-    ) -> bool {
-        for (name, p) in &geo.poses {
-            if name == body || geo.held.values().any(|v| v == name) {
-                continue;
-            }
-            for (off, c) in self.world.body_shapes(name) {
-                // body_shapes is at the body's current pose; move it to the rolled-forward pose.
-                let cur = self.world.body_pose(name).unwrap_or(*p);
-                let iso = p * cur.inverse() * off;
-                let other = Cuboid::new(
-                    c.half_extents
-                        - Vector3::repeat(self.params.contact_slack).inf(&(c.half_extents * 0.5)),
-                );
-                let test_shape = if self.world.body_kind(name) == Some(BodyKind::Block) {
-                    grown
-                } else {
-                    me
-                };
-                if query::intersection_test(pose, test_shape, &iso, &other).unwrap_or(true) {
-                    return false;
-                }
-            }
-        }
-        for (_, _, parts) in &self.fixed {
-            for (iso, c) in parts {
-                if query::intersection_test(pose, me, iso, c).unwrap_or(true) {
-                    return false;
-                }
-            }
-        }
-        true
-    }
-
-    fn reachable(&mut self, arm: usize, tcp: &Isometry3<f64>) -> bool {
-        self.certifications += 1;
-        let above = Isometry3::from_parts(
-            Translation3::from(tcp.translation.vector + Vector3::z() * self.params.approach_height),
-            tcp.rotation,
-        );
-        self.world.reachable(arm, tcp).is_ok() && self.world.reachable(arm, &above).is_ok()
-    }
-
-    fn top_grasp(&self, arm: usize, pose: &Isometry3<f64>) -> Isometry3<f64> {
-        let p = pose.translation.vector;
-        let base = self
-            .world
-            .arm_base(arm)
-            .map(|b| b.translation.vector)
-            .unwrap_or_default();
-        let heading = libm::atan2(p.y - base.y, p.x - base.x);
-        let (_, _, yaw) = pose.rotation.euler_angles();
-        let step = std::f64::consts::FRAC_PI_2;
-        let k = ((heading - yaw) / step).round();
-        let g = yaw + k * step;
-        Isometry3::from_parts(
-            Translation3::from(p),
-            crate::sim::panda::down_orientation(g),
-        )
-    }
-
-    /// The support surfaces a release onto `facts` may use: (x-range, y-range, top z).
+    /// The support surfaces a release adding `adds` may use: (x-range, y-range, top z). A region
+    /// (`(at x p)`) narrows the table it lies on: then only the region is used.
     fn surfaces(&self, adds: &[String], body: &str) -> Vec<([f64; 2], [f64; 2], f64)> {
+        let regions = self.region_surfaces(adds, body);
+        if !regions.is_empty() {
+            return regions;
+        }
         let mut out = vec![];
         for f in adds {
             let (p, a) = fact_args(f);
@@ -257,6 +680,18 @@ impl<'w> StreamBinder<'w> {
                         out.push(([lo.x, hi.x], [lo.y, hi.y], hi.z));
                     }
                 }
+            }
+        }
+        out
+    }
+
+    /// The regions `(at body p)` of `adds`, as surfaces.
+    fn region_surfaces(&self, adds: &[String], body: &str) -> Vec<([f64; 2], [f64; 2], f64)> {
+        let mut out = vec![];
+        for f in adds {
+            let (p, a) = fact_args(f);
+            if a.first() != Some(&body) {
+                continue;
             }
             if p == "at" && a.len() == 2 {
                 if let Some(r) = self.regions.iter().find(|r| r.name == a[1]) {
@@ -302,51 +737,65 @@ impl<'w> StreamBinder<'w> {
         }
     }
 
-    /// A certified resting pose for `body` on one of `surfaces`: the demonstration's `hint`
-    /// first, then uniform samples. Certified: inside the placing arm's reach annulus,
-    /// collision-free, reachable (with approach) by the placing arm and by every other arm whose
-    /// annulus contains it (hand-over spots must be graspable from the other side).
+    /// A certified resting pose for the body `arm` holds on one of `surfaces`: the
+    /// demonstration's `hint` first, then uniform samples. Certified: inside the placing arm's
+    /// reach annulus, collision-free, the release motion certified (when `certify`), and
+    /// graspable by every other arm whose annulus contains it (hand-over spots).
     fn sample_surface(
         &mut self,
-        geo: &Geo,
+        geo: &mut Geo,
         arm: usize,
-        body: &str,
         surfaces: &[([f64; 2], [f64; 2], f64)],
         hint: Option<(f64, f64, f64)>,
-    ) -> Option<(Placement, Isometry3<f64>)> {
+        certify: bool,
+    ) -> Option<Placement> {
+        let body = geo.held.get(&arm)?.0.clone();
         if surfaces.is_empty() {
             return None;
         }
-        let h = self.half_extents(body);
+        let h = self.half_extents(&body);
         let margin = h.x.max(h.y) + 0.01;
         // Height of the body's frame above its lowest point (the hook's frame is not centred).
-        let (lo, _) = self.world.body_aabb(body)?;
-        let lift = self.world.body_pose(body)?.translation.z - lo.z;
-        let is_block = self.world.body_kind(body) == Some(BodyKind::Block);
-        for n in 0..=self.params.placement_samples {
-            let (x, y, yaw, top) = if n == 0 {
-                let Some((x, y, yaw)) = hint else { continue };
-                let Some(&(_, _, top)) = surfaces
-                    .iter()
-                    .find(|(xr, yr, _)| xr[0] <= x && x <= xr[1] && yr[0] <= y && y <= yr[1])
-                else {
-                    continue;
-                };
-                (x, y, yaw, top)
+        let (lo, _) = self.world.body_aabb(&body)?;
+        let lift = self.world.body_pose(&body)?.translation.z - lo.z;
+        let is_block = self.world.body_kind(&body) == Some(BodyKind::Block);
+        // Candidates: the hint, then uniform samples ordered by horizontal distance from where
+        // the arm carries the body now (short transfers first: long sweeps across the workspace
+        // are where the joint tracker can get stuck).
+        let mut candidates: Vec<(usize, f64, f64, f64, f64)> = vec![];
+        if let Some((x, y, yaw)) = hint {
+            if let Some(&(_, _, top)) = surfaces
+                .iter()
+                .find(|(xr, yr, _)| xr[0] <= x && x <= xr[1] && yr[0] <= y && y <= yr[1])
+            {
+                candidates.push((0, x, y, yaw, top));
+            }
+        }
+        let mut drawn = vec![];
+        for n in 1..=self.params.placement_samples {
+            let (xr, yr, top) = surfaces[self.rng.random_range(0..surfaces.len())];
+            if xr[1] - xr[0] <= 2.0 * margin || yr[1] - yr[0] <= 2.0 * margin {
+                continue;
+            }
+            let x = self.rng.random_range(xr[0] + margin..xr[1] - margin);
+            let y = self.rng.random_range(yr[0] + margin..yr[1] - margin);
+            let yaw = if self.rng.random_bool(0.5) {
+                0.0
             } else {
-                let (xr, yr, top) = surfaces[self.rng.random_range(0..surfaces.len())];
-                if xr[1] - xr[0] <= 2.0 * margin || yr[1] - yr[0] <= 2.0 * margin {
-                    continue;
-                }
-                let x = self.rng.random_range(xr[0] + margin..xr[1] - margin);
-                let y = self.rng.random_range(yr[0] + margin..yr[1] - margin);
-                let yaw = if self.rng.random_bool(0.5) {
-                    0.0
-                } else {
-                    std::f64::consts::FRAC_PI_2
-                };
-                (x, y, yaw, top)
+                std::f64::consts::FRAC_PI_2
             };
+            drawn.push((n, x, y, yaw, top));
+        }
+        let at = geo
+            .poses
+            .get(&body)
+            .map(|p| p.translation.vector)
+            .unwrap_or_default();
+        drawn.sort_by(|a, b| {
+            libm::hypot(a.1 - at.x, a.2 - at.y).total_cmp(&libm::hypot(b.1 - at.x, b.2 - at.y))
+        });
+        candidates.extend(drawn);
+        for (n, x, y, yaw, top) in candidates {
             if is_block && !self.in_annulus(arm, x, y) {
                 continue;
             }
@@ -354,11 +803,12 @@ impl<'w> StreamBinder<'w> {
                 Translation3::new(x, y, top + lift),
                 UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
             );
-            if !self.collision_free(geo, body, &pose) {
+            if !self.placement_free(geo, &body, &pose) {
+                self.stats.rejected_collision += 1;
                 continue;
             }
-            // The carried hook is not routed around obstacles: sampled hook spots keep clear of
-            // shelves and stay where the arm carried it in the demonstration (near its hint).
+            // The carried hook keeps clear of shelves and stays where the arm carried it in the
+            // demonstration (near its hint).
             if !is_block && n > 0 {
                 let near_hint = hint.is_some_and(|(hx, hy, _)| libm::hypot(x - hx, y - hy) < 0.15);
                 if self.near_shelf(x, y, 0.12) || (hint.is_some() && !near_hint) {
@@ -366,21 +816,30 @@ impl<'w> StreamBinder<'w> {
                 }
             }
             if is_block {
-                let tcp = self.top_grasp(arm, &pose);
-                if !self.reachable(arm, &tcp) {
-                    continue;
-                }
+                // Hand-over spots must be graspable from the other side.
                 let others: Vec<usize> = (0..self.reach.len())
                     .filter(|&a| a != arm && self.in_annulus(a, x, y))
                     .collect();
-                if others.iter().any(|&a| {
-                    let g = self.top_grasp(a, &pose);
-                    !self.reachable(a, &g)
-                }) {
+                let graspable = others.iter().all(|&a| {
+                    grasp_pose_at(self.world, a, &body, &pose).is_some_and(|g| {
+                        self.world.reachable(a, &g).is_ok()
+                            && self
+                                .world
+                                .reachable(a, &up(&g, self.params.approach_height))
+                                .is_ok()
+                    })
+                });
+                if !graspable {
+                    self.stats.rejected_ik += 1;
                     continue;
                 }
             }
-            return Some((Placement::At { x, y, yaw }, pose));
+            let mut next = geo.clone();
+            if !self.release(&mut next, arm, &pose, certify) {
+                continue;
+            }
+            *geo = next;
+            return Some(Placement::At { x, y, yaw });
         }
         None
     }
@@ -399,16 +858,9 @@ impl Binder for StreamBinder<'_> {
             };
             match kind {
                 ActionKind::Grasp { arm, body } => {
-                    let Some(pose) = geo.poses.get(&body).copied() else {
+                    if !self.grasp(&mut geo, arm, &body, certify) {
                         return Err(i);
-                    };
-                    if certify {
-                        let g = self.top_grasp(arm, &pose);
-                        if !self.reachable(arm, &g) {
-                            return Err(i);
-                        }
                     }
-                    geo.held.insert(arm, body);
                     out.push(None);
                 }
                 ActionKind::Release {
@@ -425,14 +877,9 @@ impl Binder for StreamBinder<'_> {
                         Translation3::from(py.translation.vector + Vector3::z() * (hy.z + hb.z)),
                         py.rotation,
                     );
-                    if certify {
-                        let tcp = self.top_grasp(arm, &pose);
-                        if !self.reachable(arm, &tcp) {
-                            return Err(i);
-                        }
+                    if !self.release(&mut geo, arm, &pose, certify) {
+                        return Err(i);
                     }
-                    geo.held.remove(&arm);
-                    geo.poses.insert(body, pose);
                     out.push(Some(Placement::OnBlock(y)));
                 }
                 ActionKind::Release { arm, body, .. } => {
@@ -442,51 +889,28 @@ impl Binder for StreamBinder<'_> {
                         .map(|&f| task.facts[f as usize].clone())
                         .collect();
                     let surfaces = self.surfaces(&adds, &body);
-                    geo.held.remove(&arm);
                     let hint = self.hints.get(&op.name).copied();
-                    let Some((placement, pose)) =
-                        self.sample_surface(&geo, arm, &body, &surfaces, hint)
+                    let Some(placement) =
+                        self.sample_surface(&mut geo, arm, &surfaces, hint, certify)
                     else {
                         return Err(i);
                     };
-                    geo.poses.insert(body, pose);
                     out.push(Some(placement));
                 }
                 ActionKind::Pull { arm, body, .. } => {
-                    let Some(pose) = geo.poses.get(&body).copied() else {
+                    if !self.pull(&mut geo, arm, &body, certify) {
                         return Err(i);
-                    };
-                    let base = self
-                        .world
-                        .arm_base(arm)
-                        .map(|b| b.translation.vector)
-                        .unwrap_or_default();
-                    let p = pose.translation.vector;
-                    let mut d = Vector3::new(p.x - base.x, p.y - base.y, 0.0);
-                    let r = d.norm().max(1e-6);
-                    d /= r;
-                    let pulled = p - d * 0.25;
-                    if certify {
-                        let g = self.top_grasp(
-                            arm,
-                            &Isometry3::from_parts(
-                                Translation3::from(pulled),
-                                UnitQuaternion::identity(),
-                            ),
-                        );
-                        if !self.reachable(arm, &g) {
-                            return Err(i);
-                        }
                     }
-                    geo.poses.insert(
-                        body,
-                        Isometry3::from_parts(Translation3::from(pulled), pose.rotation),
-                    );
                     out.push(None);
                 }
             }
         }
         self.bindings = out;
+        self.predicted = geo.poses;
         Ok(())
+    }
+
+    fn widen(&mut self) {
+        self.params.placement_samples *= 2;
     }
 }

@@ -1,10 +1,10 @@
-//! `logic-lfd bench table1 [--tasks 100] [--seed S] [--markdown|--json]` and
+//! `logic-lfd bench table1 [--tasks 100] [--seed S] [--markdown|--json] [--task-scene I]` and
 //! `logic-lfd bench table2 [--trials 10] [--seed S] [--markdown|--json]`: the paper's Tables I
 //! and II with our numbers beside the paper's (planning times by the wall clock; run in release).
 
 use std::process::ExitCode;
 
-use logic_lfd::experiments::tables::{table1, table2};
+use logic_lfd::experiments::tables::{table1, table1_scene, table1_task_seed, table2};
 use logic_lfd::experiments::Level;
 use logic_lfd::lfd::session::{BenchmarkId, SessionError, SessionParams};
 
@@ -29,6 +29,10 @@ pub struct Table1Args {
     /// Print JSON (every cell with its raw numbers).
     #[arg(long)]
     json: bool,
+    /// Print the initial scene JSON of task I of the first benchmark instead (stderr: its level,
+    /// seed and draw; replay it with `logic-lfd run --scene FILE --seed SEED --method …`).
+    #[arg(long, value_name = "I")]
+    task_scene: Option<usize>,
 }
 
 /// Arguments of `bench table2`.
@@ -64,10 +68,6 @@ fn progress(line: &str) {
     eprintln!("{line}");
 }
 
-fn scene_for(b: BenchmarkId, level: Level, seed: u64) -> Result<String, SessionError> {
-    logic_lfd::experiments::tasks::initial_scene(b, level, seed)
-}
-
 /// `bench table1`.
 pub fn run_table1(a: Table1Args) -> ExitCode {
     let bs = match benchmarks(&a.benchmarks) {
@@ -77,6 +77,29 @@ pub fn run_table1(a: Table1Args) -> ExitCode {
             return ExitCode::from(exit::BAD_INPUT);
         }
     };
+    if let Some(i) = a.task_scene {
+        let Some(&b) = bs.first() else {
+            eprintln!("--benchmarks: none given");
+            return ExitCode::from(exit::BAD_INPUT);
+        };
+        let level = Level::ALL[i % 4];
+        let seed = table1_task_seed(b, i, a.seed);
+        return match table1_scene(b, level, seed) {
+            Ok((scene, draw)) => {
+                eprintln!(
+                    "{} task {i}: level {}, episode seed {seed}, draw {draw}",
+                    b.as_str(),
+                    level.as_str()
+                );
+                println!("{scene}");
+                ExitCode::from(exit::OK)
+            }
+            Err(e) => {
+                eprintln!("{e}");
+                ExitCode::from(exit::BAD_INPUT)
+            }
+        };
+    }
     let clock = WallClock::start();
     let mut p = progress;
     let result = table1(
@@ -85,7 +108,6 @@ pub fn run_table1(a: Table1Args) -> ExitCode {
         a.seed,
         SessionParams::default(),
         &clock,
-        &scene_for,
         &mut p,
     );
     report(
