@@ -2,7 +2,7 @@
 // All computation happens in the worker (client.ts ↔ worker.ts through protocol.ts).
 import './style.css';
 import type { Frame, SessionOptions } from 'logic-lfd';
-import { WorkerClient } from './client';
+import { SearchRunner, WorkerClient } from './client';
 import { View } from './view';
 import type { EditorPanel } from './editor';
 import { Charts } from './charts';
@@ -191,11 +191,15 @@ let autoResume = false;
 const charts = new Charts(chartsPanel);
 // The PDDL editor (CodeMirror) is loaded on first use: the page becomes interactive sooner.
 let editorPromise: Promise<EditorPanel> | null = null;
+const search = new SearchRunner();
 function getEditor(): Promise<EditorPanel> {
-  editorPromise ??= import('./editor').then(({ EditorPanel }) => {
+  editorPromise ??= import('./editor').then(({ EditorPanel, PLAN_TIME_LIMIT_MS }) => {
+    // The editor's searches run in a worker of their own (terminated on cancel or timeout): a
+    // pathological problem never stops the robot's worker nor freezes the page.
     const e = new EditorPanel({
-      plan: (domain, problem, o) => client.call('plan', { domain, problem, options: o }),
-      check: (domain, problem) => client.call('check', { domain, problem }),
+      plan: (domain, problem, o) => search.call('plan', { domain, problem, options: o }, PLAN_TIME_LIMIT_MS + 5000),
+      check: (domain, problem) => search.call('check', { domain, problem }, 10_000),
+      cancel: () => search.cancel('cancelled'),
     });
     editorHost.append(e.root);
     return e;
