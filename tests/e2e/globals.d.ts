@@ -10,6 +10,8 @@ declare global {
       stepTimes: () => number[];
       replans: () => [number, number][];
       setPddl: (domain: string, problem: string) => Promise<void>;
+      renderMs: () => number;
+      lastCancel: () => { clickedAt: number; appliedAt: number; repliedAt: number } | null;
       loadedAt: number;
     };
   }

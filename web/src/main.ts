@@ -431,7 +431,15 @@ speedSel.onchange = () => {
   guard(() => client.call('speed', { speed }));
 };
 levelBtns.forEach((b) => (b.onclick = () => void inject(b.dataset.level as Level)));
-cancelBtn.onclick = () => guard(async () => render(await client.call('cancel', {})));
+/** Times of the last cancel (ms since the epoch, `performance.timeOrigin` based), for the tests. */
+let lastCancel: { clickedAt: number; appliedAt: number; repliedAt: number } | null = null;
+cancelBtn.onclick = () =>
+  guard(async () => {
+    const clickedAt = performance.timeOrigin + performance.now();
+    const r = await client.call('cancel', {});
+    render(r.frame);
+    lastCancel = { clickedAt, appliedAt: r.appliedAt, repliedAt: performance.timeOrigin + performance.now() };
+  });
 saveBtn.onclick = () => guard(save);
 async function save(): Promise<void> {
   const json = await client.call('scene', {});
@@ -522,6 +530,7 @@ declare global {
       replans: () => [number, number][];
       setPddl: (domain: string, problem: string) => Promise<void>;
       renderMs: () => number;
+      lastCancel: () => { clickedAt: number; appliedAt: number; repliedAt: number } | null;
       loadedAt: number;
     };
   }
@@ -538,6 +547,7 @@ window.lfd = {
     (await getEditor()).setTexts(domain, problem);
   },
   renderMs: () => view.renderMs,
+  lastCancel: () => lastCancel,
   loadedAt: 0,
 };
 

@@ -30,7 +30,8 @@ export interface Api {
   perturb: { args: { body: string; position: Vec3 }; result: DropOutcome };
   inject: { args: { level: Level }; result: InjectOutcome };
   reset: { args: { seed: number }; result: Frame };
-  cancel: { args: Record<string, never>; result: Frame };
+  /** `appliedAt`: when the worker dropped the plan (ms, `performance.timeOrigin + performance.now()`). */
+  cancel: { args: Record<string, never>; result: { frame: Frame; appliedAt: number } };
   episode: { args: Record<string, never>; result: string };
   scene: { args: Record<string, never>; result: string };
 }

@@ -112,7 +112,8 @@ const handlers: Handlers = {
   cancel: () => {
     const s = need();
     s.cancel();
-    return s.frame();
+    const appliedAt = performance.timeOrigin + performance.now();
+    return { frame: s.frame(), appliedAt };
   },
   episode: () => need().episodeJson(),
   scene: () => need().sceneJson(),
