@@ -12,6 +12,7 @@ declare global {
       setPddl: (domain: string, problem: string) => Promise<void>;
       renderMs: () => number;
       lastCancel: () => { clickedAt: number; appliedAt: number; repliedAt: number } | null;
+      memory: () => Promise<{ wasmBytes: number; geometries: number; textures: number }>;
       loadedAt: number;
     };
   }

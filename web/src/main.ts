@@ -531,6 +531,7 @@ declare global {
       setPddl: (domain: string, problem: string) => Promise<void>;
       renderMs: () => number;
       lastCancel: () => { clickedAt: number; appliedAt: number; repliedAt: number } | null;
+      memory: () => Promise<{ wasmBytes: number; geometries: number; textures: number }>;
       loadedAt: number;
     };
   }
@@ -548,6 +549,7 @@ window.lfd = {
   },
   renderMs: () => view.renderMs,
   lastCancel: () => lastCancel,
+  memory: async () => ({ ...(await client.call('memory', {})), ...view.renderer.info.memory }),
   loadedAt: 0,
 };
 
