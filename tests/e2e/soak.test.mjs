@@ -1,12 +1,13 @@
 // Page soak (issue 8, item 5): SOAK_CYCLES (default 1000) perturb-and-replan cycles through the
 // page's own UI — the L1–L4 buttons and real mouse drags of blocks — while the robot runs at 2×,
-// switching benchmark every 25 cycles and resetting whenever an episode ends. Memory is measured
-// after SOAK_WARMUP (default 100) cycles, so first-use allocations (wasm heap, shader programs, the
-// benchmarks' meshes) are not counted as growth, and again at the end, both times in the same state
-// (B1 just opened, paused, garbage collected): main-thread JS heap (CDP Runtime.getHeapUsage after
-// HeapProfiler.collectGarbage), the worker's wasm memory, three.js geometries/textures alive, DOM
-// nodes and listeners. Asserts zero console errors and uncaught exceptions, no geometry/texture
-// leak, and growth ≤ 10 % (SOAK_MAX_GROWTH).
+// switching benchmark every 25 cycles and resetting whenever an episode ends, with the Charts tab
+// open (uPlot redraws every frame). Memory is measured after SOAK_WARMUP (default 100) cycles, so
+// first-use allocations (wasm heap, shader programs, the benchmarks' meshes) are not counted as
+// growth, and again at the end, both times in the same state (B1 just opened, paused, garbage
+// collected): main-thread JS heap (CDP Runtime.getHeapUsage after HeapProfiler.collectGarbage), the
+// worker's wasm memory, three.js geometries/textures alive, DOM nodes and listeners. Asserts zero
+// console errors and uncaught exceptions, no geometry/texture leak, and growth ≤ 10 %
+// (SOAK_MAX_GROWTH).
 import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { launch, openApp, serve } from './harness.mjs';
@@ -116,6 +117,11 @@ async function measure(page, cdp) {
 test(`page soak: ${CYCLES} perturb-and-replan cycles, memory flat after ${WARMUP} warm-up cycles`, { timeout: 3_600_000 }, async () => {
   // A smaller window than the other tests: software WebGL draws every frame on the CPU.
   const { page, errors } = await openApp(browser, server, '?benchmark=b1&seed=1&speed=2', { width: 960, height: 600 });
+  // uPlot is not part of the first load; the Charts tab fetches it, and the soak draws the charts.
+  const scripts = await page.evaluate(() => performance.getEntriesByType('resource').map((e) => e.name));
+  assert.ok(!scripts.some((u) => /uPlot/i.test(u)), `uPlot loaded at first paint: ${scripts.join(' ')}`);
+  await page.click('#tab-charts');
+  await page.waitForSelector('#chart-replan .uplot, #chart-ee .uplot', { timeout: 15000 });
   const cdp = await page.context().newCDPSession(page);
   await cdp.send('HeapProfiler.enable');
   const stats = { missed: 0, accepted: 0, refused: 0, drags: 0, injections: 0, replans: 0, episodes: 0, done: 0, failed: 0 };
