@@ -12,7 +12,9 @@ import { after, before, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { launch, openApp, serve } from './harness.mjs';
 
-const CYCLES = Number(process.env.SOAK_CYCLES ?? 1000);
+// CI (CI=true, `.ci/run`) runs 200 cycles unless SOAK_CYCLES says otherwise: 1000 take 3–10 min
+// on the shared 2-core machine; the README reports a 1000-cycle run.
+const CYCLES = Number(process.env.SOAK_CYCLES ?? (process.env.CI ? 200 : 1000));
 const WARMUP = Number(process.env.SOAK_WARMUP ?? 100);
 const MAX_GROWTH = Number(process.env.SOAK_MAX_GROWTH ?? 0.1);
 const BENCHMARKS = ['b1', 'b2', 'b3'];
@@ -126,6 +128,8 @@ test(`page soak: ${CYCLES} perturb-and-replan cycles, memory flat after ${WARMUP
   await cdp.send('HeapProfiler.enable');
   const stats = { missed: 0, accepted: 0, refused: 0, drags: 0, injections: 0, replans: 0, episodes: 0, done: 0, failed: 0 };
   let warm = null;
+  /** Why episodes ended without success (under a disturbance every cycle, most do). */
+  const reasons = new Map();
   const t0 = Date.now();
   let tMain = t0;
   let benchmark = 'b1';
@@ -144,6 +148,8 @@ test(`page soak: ${CYCLES} perturb-and-replan cycles, memory flat after ${WARMUP
     if (f.status.kind === 'done' || f.status.kind === 'failed') {
       stats.episodes++;
       stats[f.status.kind]++;
+      const why = f.status.message.replace(/\b[a-z]\b|\d+(\.\d+)?/g, '·').slice(0, 90);
+      reasons.set(why, (reasons.get(why) ?? 0) + 1);
       await openBenchmark(page, benchmark);
       f = await page.evaluate(() => window.lfd.frame());
     }
@@ -215,6 +221,7 @@ test(`page soak: ${CYCLES} perturb-and-replan cycles, memory flat after ${WARMUP
       `geometries ${warm.geometries} → ${end.geometries}, textures ${warm.textures} → ${end.textures}, ` +
       `DOM nodes ${warm.nodes} → ${end.nodes}, listeners ${warm.listeners} → ${end.listeners}`,
   );
+  if (reasons.size) console.log(`soak: episodes that failed, by reason: ${[...reasons].map(([r, n]) => `${n}× ${r}`).join('; ')}`);
   assert.deepEqual(errors, []);
   assert.ok(stats.accepted > CYCLES / 4, `only ${stats.accepted} perturbations were accepted`);
   assert.ok(stats.replans > 0, 'no replan during the soak');
