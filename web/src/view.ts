@@ -86,7 +86,8 @@ function isSoftwareRenderer(): boolean {
 function disposeObject(o: THREE.Object3D, shared: ReadonlySet<unknown> = new Set()): void {
   o.traverse((c) => {
     const m = c as THREE.Mesh | THREE.Line | THREE.Sprite;
-    if ('geometry' in m && m.geometry && !shared.has(m.geometry)) m.geometry.dispose();
+    // (Every Sprite shares one module-level geometry inside three.js: never dispose it.)
+    if (!(c instanceof THREE.Sprite) && 'geometry' in m && m.geometry && !shared.has(m.geometry)) m.geometry.dispose();
     if (!('material' in m) || !m.material) return;
     const mats = new Set(Array.isArray(m.material) ? m.material : [m.material]);
     for (const mat of mats) {
