@@ -215,13 +215,19 @@ test(`page soak: ${CYCLES} perturb-and-replan cycles, memory flat after ${WARMUP
         { timeout: 30000, polling: 10 },
       );
       a = await h.jsonValue();
+      await h.dispose();
     }
     if (/refused/i.test(text)) stats.refused++;
     else stats.accepted++;
     if (a.replans > before.replans) stats.replans += a.replans - before.replans;
     if (process.env.SOAK_TRACE && i % 50 === 0) {
       const m = await page.evaluate(() => window.lfd.memory());
-      console.log(`cycle ${i}: wasm ${(m.wasmBytes / 1e6).toFixed(2)} MB, ${((Date.now() - t0) / 1000).toFixed(0)} s`);
+      let heap = '';
+      if (i % 200 === 0) {
+        for (let g = 0; g < 3; g++) await cdp.send('HeapProfiler.collectGarbage');
+        heap = `, JS heap after GC ${((await cdp.send('Runtime.getHeapUsage')).usedSize / 1e6).toFixed(2)} MB`;
+      }
+      console.log(`cycle ${i}: wasm ${(m.wasmBytes / 1e6).toFixed(2)} MB${heap}, ${((Date.now() - t0) / 1000).toFixed(0)} s`);
     }
     assert.deepEqual(errors, [], `cycle ${i}`);
   }
