@@ -36,8 +36,9 @@ async function sizes() {
     rows.push({ file: f.slice(dist.length + 1), raw: b.length, gz: g });
     raw += b.length;
     gz += g;
-    // The PDDL editor (CodeMirror) is a separate chunk fetched when its tab first opens.
-    if (/\/editor-[^/]*\.js$/.test(f)) lazyGz += g;
+    // The PDDL editor (CodeMirror) and the charts (uPlot, its JS and CSS) are separate chunks
+    // fetched when their tab first opens.
+    if (/\/(editor-[^/]*\.js|uPlot[^/]*\.(js|css))$/.test(f)) lazyGz += g;
   }
   return { raw, gz, lazyGz, rows };
 }

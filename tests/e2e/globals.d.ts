@@ -10,6 +10,9 @@ declare global {
       stepTimes: () => number[];
       replans: () => [number, number][];
       setPddl: (domain: string, problem: string) => Promise<void>;
+      renderMs: () => number;
+      lastCancel: () => { clickedAt: number; appliedAt: number; repliedAt: number } | null;
+      memory: () => Promise<{ wasmBytes: number; geometries: number; textures: number }>;
       loadedAt: number;
     };
   }

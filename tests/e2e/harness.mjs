@@ -72,8 +72,8 @@ export async function openPage(browser, url, { width = 1440, height = 900 } = {}
 }
 
 /** Opens the page with URL parameters and waits until the worker is ready and the first frame drawn. */
-export async function openApp(browser, server, query = '') {
-  const r = await openPage(browser, `${server.url}${query}`);
+export async function openApp(browser, server, query = '', viewport = undefined) {
+  const r = await openPage(browser, `${server.url}${query}`, viewport);
   await r.page.waitForSelector('#app[data-ready="true"]', { timeout: 30000 });
   return r;
 }

@@ -1,13 +1,27 @@
 // Two small uPlot charts: the time of each replan (ms) and the end-effector trajectory (m).
-import uPlot from 'uplot';
-import 'uplot/dist/uPlot.min.css';
+// The data is recorded from the first frame; uPlot itself (and its CSS) is loaded on the first
+// draw, i.e. when the Charts tab is opened, so it is not part of the page's first load.
+import type uPlot from 'uplot';
 import type { Frame } from 'logic-lfd';
+
+type UPlot = typeof uPlot;
+let uPlotModule: Promise<UPlot> | null = null;
+function loadUPlot(): Promise<UPlot> {
+  uPlotModule ??= Promise.all([import('uplot'), import('uplot/dist/uPlot.min.css')]).then(([m]) => m.default);
+  return uPlotModule;
+}
+
+/** Replans kept for the chart (oldest dropped first). */
+const MAX_REPLANS = 2000;
+/** The charts redraw at most this often (ms): drawing 3 000 points per series on a 2-D canvas at
+ * 60 Hz costs more than the whole 3-D view on a machine without a GPU. */
+const REDRAW_MS = 100;
 
 const axis = { stroke: '#8b949e', grid: { stroke: '#21262d', width: 1 }, ticks: { stroke: '#30363d', width: 1 } };
 
-function chart(host: HTMLElement, title: string, xLabel: string, yLabel: string, series: uPlot.Series[]): uPlot {
+function chart(UPlot: UPlot, host: HTMLElement, title: string, xLabel: string, yLabel: string, series: uPlot.Series[]): uPlot {
   const data = [[], ...series.slice(1).map(() => [])] as unknown as uPlot.AlignedData;
-  return new uPlot(
+  return new UPlot(
     {
       title,
       width: Math.max(200, host.clientWidth),
@@ -28,14 +42,18 @@ function chart(host: HTMLElement, title: string, xLabel: string, yLabel: string,
 
 export class Charts {
   readonly root: HTMLElement;
-  private readonly replanChart: uPlot;
-  private readonly eeChart: uPlot;
+  private replanChart: uPlot | null = null;
+  private eeChart: uPlot | null = null;
+  private loading = false;
+  private readonly hosts: [HTMLElement, HTMLElement];
   private replanX: number[] = [];
   private replanY: number[] = [];
   private lastReplanKey = '';
   private ee: number[][] = [[], [], [], [], [], [], []];
   private lastT = -1;
   private dirty = false;
+  private lastDraw = -Infinity;
+  private redrawTimer = 0;
 
   constructor(root: HTMLElement) {
     this.root = root;
@@ -47,11 +65,18 @@ export class Charts {
     a.setAttribute('aria-label', 'Replanning time per replan, milliseconds');
     b.setAttribute('aria-label', 'End-effector position and target of the first arm over time');
     root.append(a, b);
-    this.replanChart = chart(a, 'Replanning time', 'simulated time (s)', 'ms', [
+    this.hosts = [a, b];
+  }
+
+  /** Loads uPlot and makes the two charts (once). */
+  private async create(): Promise<void> {
+    const UPlot = await loadUPlot();
+    const [a, b] = this.hosts;
+    this.replanChart = chart(UPlot, a, 'Replanning time', 'simulated time (s)', 'ms', [
       {},
       { label: 'replan (ms)', stroke: '#ffb224', width: 0, paths: () => null, points: { show: true, size: 7, fill: '#ffb224' } },
     ]);
-    this.eeChart = chart(b, 'End-effector trajectory (arm 1)', 'simulated time (s)', 'm', [
+    this.eeChart = chart(UPlot, b, 'End-effector trajectory (arm 1)', 'simulated time (s)', 'm', [
       {},
       { label: 'x', stroke: '#e5484d', width: 1.5 },
       { label: 'y', stroke: '#46a758', width: 1.5 },
@@ -60,13 +85,15 @@ export class Charts {
       { label: 'y*', stroke: '#46a75880', width: 1, dash: [4, 4] },
       { label: 'z*', stroke: '#3e63dd80', width: 1, dash: [4, 4] },
     ]);
-    new ResizeObserver(() => this.resize()).observe(root);
+    new ResizeObserver(() => this.resize()).observe(this.root);
+    this.dirty = true;
+    this.draw();
   }
 
   private resize(): void {
     const w = Math.max(200, this.root.clientWidth - 8);
-    this.replanChart.setSize({ width: w, height: 170 });
-    this.eeChart.setSize({ width: w, height: 190 });
+    this.replanChart?.setSize({ width: w, height: 170 });
+    this.eeChart?.setSize({ width: w, height: 190 });
   }
 
   reset(): void {
@@ -75,8 +102,8 @@ export class Charts {
     this.lastReplanKey = '';
     this.ee = [[], [], [], [], [], [], []];
     this.lastT = -1;
-    this.replanChart.setData([[], []]);
-    this.eeChart.setData(this.ee as uPlot.AlignedData);
+    this.replanChart?.setData([[], []]);
+    this.eeChart?.setData(this.ee as uPlot.AlignedData);
   }
 
   push(f: Frame): void {
@@ -88,6 +115,10 @@ export class Charts {
         this.lastReplanKey = key;
         this.replanX.push(r.tick * (f.world.dt || 0.01));
         this.replanY.push(r.time_ms);
+        if (this.replanX.length > MAX_REPLANS) {
+          this.replanX.shift();
+          this.replanY.shift();
+        }
         this.dirty = true;
       }
     }
@@ -103,7 +134,27 @@ export class Charts {
 
   /** Redraws when new data arrived (called at most once per animation frame by the page). */
   draw(): void {
+    if (!this.replanChart || !this.eeChart) {
+      if (!this.loading) {
+        this.loading = true;
+        this.create().catch((e: unknown) => {
+          this.loading = false;
+          this.root.append(`Could not load the charts: ${e instanceof Error ? e.message : String(e)}`);
+        });
+      }
+      return;
+    }
     if (!this.dirty) return;
+    const wait = this.lastDraw + REDRAW_MS - performance.now();
+    if (wait > 0) {
+      // Draw the latest data when the interval is over, even if no frame comes by then.
+      this.redrawTimer ||= window.setTimeout(() => {
+        this.redrawTimer = 0;
+        if (!this.root.hidden) this.draw();
+      }, wait);
+      return;
+    }
+    this.lastDraw = performance.now();
     this.dirty = false;
     this.replanChart.setData([this.replanX, this.replanY]);
     this.eeChart.setData(this.ee as uPlot.AlignedData);

@@ -1,6 +1,14 @@
 // The page's side of the protocol: typed promises over postMessage.
 import type { Api, ApiKind, FromWorker, ToWorker } from './protocol';
 
+/** A request that was cancelled (or timed out) before the worker answered. */
+export class CancelledError extends Error {
+  constructor(message: string) {
+    super(message);
+    this.name = 'CancelledError';
+  }
+}
+
 export class WorkerClient {
   private readonly worker: Worker;
   private nextId = 1;
@@ -41,5 +49,55 @@ export class WorkerClient {
       this.pending.set(id, { resolve: resolve as (v: unknown) => void, reject });
       this.worker.postMessage({ kind, id, args } as ToWorker);
     });
+  }
+
+  /** Whether a request is waiting for its reply. */
+  get busy(): boolean {
+    return this.pending.size > 0;
+  }
+
+  /** Stops the worker at once (even in the middle of a computation); pending calls reject. */
+  terminate(message: string): void {
+    this.worker.terminate();
+    for (const p of this.pending.values()) p.reject(new CancelledError(message));
+    this.pending.clear();
+  }
+}
+
+/**
+ * Runs the PDDL editor's requests (plan, check) in a worker of their own, so that a pathological
+ * problem typed into the editor never blocks the session's worker or the page: a request that
+ * runs longer than its time limit, or that the user cancels, terminates that worker (wasm cannot
+ * be interrupted from outside any other way); the next request starts a fresh one.
+ */
+export class SearchRunner {
+  private client: WorkerClient | null = null;
+  private timers = new Set<number>();
+
+  /** Sends `kind` to the search worker; rejects with `CancelledError` after `timeoutMs`. */
+  call<K extends ApiKind>(kind: K, args: Api[K]['args'], timeoutMs: number): Promise<Api[K]['result']> {
+    const client = (this.client ??= new WorkerClient(() => {}));
+    const timer = window.setTimeout(() => {
+      if (this.client === client) this.cancel(`stopped after ${(timeoutMs / 1000).toFixed(0)} s: the search took too long`);
+    }, timeoutMs);
+    this.timers.add(timer);
+    return client.call(kind, args).finally(() => {
+      clearTimeout(timer);
+      this.timers.delete(timer);
+    });
+  }
+
+  /** Whether a request is running. */
+  get busy(): boolean {
+    return this.client?.busy ?? false;
+  }
+
+  /** Terminates the search worker (pending requests reject with `message`). */
+  cancel(message = 'cancelled'): void {
+    const c = this.client;
+    this.client = null;
+    for (const t of this.timers) clearTimeout(t);
+    this.timers.clear();
+    c?.terminate(message);
   }
 }

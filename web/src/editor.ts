@@ -71,9 +71,15 @@ const theme = EditorView.theme(
 export type Which = 'domain' | 'problem';
 
 export interface EditorPanelOptions {
+  /** Plans in a worker that `cancel` can stop; rejects with a `CancelledError` when stopped. */
   plan: (domain: string, problem: string, options: PlanOptions) => Promise<PlanOutcome>;
   check: (domain: string, problem: string) => Promise<Diagnostic[]>;
+  /** Stops a running `plan` (and `check`) at once. */
+  cancel: () => void;
 }
+
+/** The planner's own time limit (ms); the worker running it is terminated a little after. */
+export const PLAN_TIME_LIMIT_MS = 20_000;
 
 function offsetOf(doc: EditorState['doc'], line: number, col: number): number {
   const l = doc.line(Math.min(Math.max(1, line), doc.lines));
@@ -91,6 +97,8 @@ export class EditorPanel {
   private readonly search: HTMLSelectElement;
   private readonly heuristic: HTMLSelectElement;
   private readonly planButton: HTMLButtonElement;
+  private readonly cancelButton: HTMLButtonElement;
+  private planning = false;
   private lastPlan: Extract<PlanOutcome, { ok: true }> | null = null;
   private selected = 0;
   private lintTimer = 0;
@@ -137,6 +145,8 @@ export class EditorPanel {
     );
     this.planButton = el('button', { class: 'primary', id: 'pddl-plan', 'aria-label': 'Plan the problem' }, 'Plan');
     this.planButton.onclick = () => void this.runPlan();
+    this.cancelButton = el('button', { id: 'pddl-cancel', 'aria-label': 'Stop the running search', title: 'Stop the running search', hidden: '' }, 'Cancel');
+    this.cancelButton.onclick = () => this.opts.cancel();
     this.errorList = el('ul', { class: 'diagnostics', id: 'pddl-errors', 'aria-live': 'polite' });
     this.output = el('ol', { class: 'plan-list', id: 'pddl-plan-list', 'aria-label': 'Plan found by the planner' });
     this.stateView = el('div', { class: 'state-view', id: 'pddl-state', 'aria-live': 'polite' });
@@ -147,7 +157,7 @@ export class EditorPanel {
     this.root = el(
       'section',
       { class: 'editor-panel', 'aria-label': 'PDDL editor' },
-      el('div', { class: 'editor-tabs', role: 'tablist' }, this.tabs.domain, this.tabs.problem, el('span', { class: 'grow' }), this.search, this.heuristic, this.planButton),
+      el('div', { class: 'editor-tabs', role: 'tablist' }, this.tabs.domain, this.tabs.problem, el('span', { class: 'grow' }), this.search, this.heuristic, this.planButton, this.cancelButton),
       el('div', { class: 'editor-body' }, this.hosts.domain, this.hosts.problem),
       this.errorList,
       el('div', { class: 'plan-out' }, el('div', { class: 'plan-col' }, this.output), el('div', { class: 'state-col' }, el('div', { class: 'stepper' }, prev, next), this.stateView)),
@@ -185,9 +195,12 @@ export class EditorPanel {
 
   /** Parses and grounds both texts as the user types; shows the located errors. */
   private async check(): Promise<void> {
+    // A running search owns the worker; its outcome shows the diagnostics anyway.
+    if (this.planning) return;
     try {
       this.showDiagnostics(await this.opts.check(this.text('domain'), this.text('problem')));
     } catch (e) {
+      if ((e as Error).name === 'CancelledError' && this.planning) return;
       this.errorList.replaceChildren(el('li', { class: 'diagnostic' }, (e as Error).message));
     }
   }
@@ -226,12 +239,19 @@ export class EditorPanel {
   }
 
   async runPlan(): Promise<void> {
+    if (this.planning) return;
+    this.planning = true;
+    clearTimeout(this.lintTimer);
     this.planButton.disabled = true;
     this.planButton.textContent = 'Planning…';
+    this.cancelButton.hidden = false;
+    this.output.replaceChildren(el('li', { class: 'muted' }, 'Planning… (Cancel stops the search)'));
+    this.stateView.replaceChildren();
     try {
       const out = await this.opts.plan(this.text('domain'), this.text('problem'), {
         search: this.search.value,
         heuristic: this.heuristic.value,
+        time_limit_ms: PLAN_TIME_LIMIT_MS,
       });
       if (!out.ok) {
         this.lastPlan = null;
@@ -252,10 +272,15 @@ export class EditorPanel {
       });
       this.selectState(0);
     } catch (e) {
-      this.output.replaceChildren(el('li', { class: 'muted' }, (e as Error).message));
+      this.lastPlan = null;
+      const err = e as Error;
+      const text = err.name === 'CancelledError' ? `Search ${err.message}.` : err.message;
+      this.output.replaceChildren(el('li', { class: 'muted', id: 'pddl-stopped' }, text));
     } finally {
+      this.planning = false;
       this.planButton.disabled = false;
       this.planButton.textContent = 'Plan';
+      this.cancelButton.hidden = true;
     }
   }
 

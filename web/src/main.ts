@@ -2,7 +2,7 @@
 // All computation happens in the worker (client.ts ↔ worker.ts through protocol.ts).
 import './style.css';
 import type { Frame, SessionOptions } from 'logic-lfd';
-import { WorkerClient } from './client';
+import { SearchRunner, WorkerClient } from './client';
 import { View } from './view';
 import type { EditorPanel } from './editor';
 import { Charts } from './charts';
@@ -191,11 +191,15 @@ let autoResume = false;
 const charts = new Charts(chartsPanel);
 // The PDDL editor (CodeMirror) is loaded on first use: the page becomes interactive sooner.
 let editorPromise: Promise<EditorPanel> | null = null;
+const search = new SearchRunner();
 function getEditor(): Promise<EditorPanel> {
-  editorPromise ??= import('./editor').then(({ EditorPanel }) => {
+  editorPromise ??= import('./editor').then(({ EditorPanel, PLAN_TIME_LIMIT_MS }) => {
+    // The editor's searches run in a worker of their own (terminated on cancel or timeout): a
+    // pathological problem never stops the robot's worker nor freezes the page.
     const e = new EditorPanel({
-      plan: (domain, problem, o) => client.call('plan', { domain, problem, options: o }),
-      check: (domain, problem) => client.call('check', { domain, problem }),
+      plan: (domain, problem, o) => search.call('plan', { domain, problem, options: o }, PLAN_TIME_LIMIT_MS + 5000),
+      check: (domain, problem) => search.call('check', { domain, problem }, 10_000),
+      cancel: () => search.cancel('cancelled'),
     });
     editorHost.append(e.root);
     return e;
@@ -427,7 +431,15 @@ speedSel.onchange = () => {
   guard(() => client.call('speed', { speed }));
 };
 levelBtns.forEach((b) => (b.onclick = () => void inject(b.dataset.level as Level)));
-cancelBtn.onclick = () => guard(async () => render(await client.call('cancel', {})));
+/** Times of the last cancel (ms since the epoch, `performance.timeOrigin` based), for the tests. */
+let lastCancel: { clickedAt: number; appliedAt: number; repliedAt: number } | null = null;
+cancelBtn.onclick = () =>
+  guard(async () => {
+    const clickedAt = performance.timeOrigin + performance.now();
+    const r = await client.call('cancel', {});
+    render(r.frame);
+    lastCancel = { clickedAt, appliedAt: r.appliedAt, repliedAt: performance.timeOrigin + performance.now() };
+  });
 saveBtn.onclick = () => guard(save);
 async function save(): Promise<void> {
   const json = await client.call('scene', {});
@@ -518,6 +530,8 @@ declare global {
       replans: () => [number, number][];
       setPddl: (domain: string, problem: string) => Promise<void>;
       renderMs: () => number;
+      lastCancel: () => { clickedAt: number; appliedAt: number; repliedAt: number } | null;
+      memory: () => Promise<{ wasmBytes: number; geometries: number; textures: number }>;
       loadedAt: number;
     };
   }
@@ -534,6 +548,8 @@ window.lfd = {
     (await getEditor()).setTexts(domain, problem);
   },
   renderMs: () => view.renderMs,
+  lastCancel: () => lastCancel,
+  memory: async () => ({ ...(await client.call('memory', {})), ...view.renderer.info.memory }),
   loadedAt: 0,
 };
 

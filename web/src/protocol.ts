@@ -30,8 +30,11 @@ export interface Api {
   perturb: { args: { body: string; position: Vec3 }; result: DropOutcome };
   inject: { args: { level: Level }; result: InjectOutcome };
   reset: { args: { seed: number }; result: Frame };
-  cancel: { args: Record<string, never>; result: Frame };
+  /** `appliedAt`: when the worker dropped the plan (ms, `performance.timeOrigin + performance.now()`). */
+  cancel: { args: Record<string, never>; result: { frame: Frame; appliedAt: number } };
   episode: { args: Record<string, never>; result: string };
+  /** The worker's wasm linear memory (bytes; it grows, never shrinks), for the page soak test. */
+  memory: { args: Record<string, never>; result: { wasmBytes: number } };
   scene: { args: Record<string, never>; result: string };
 }
 

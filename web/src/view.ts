@@ -78,6 +78,27 @@ function isSoftwareRenderer(): boolean {
   }
 }
 
+/**
+ * Frees the GPU resources of an object and its children (geometries, materials, their textures),
+ * except those in `shared`, which outlive it. three.js keeps them until `dispose()` is called, so
+ * every mesh the view drops goes through here (the page soak test checks the memory stays flat).
+ */
+function disposeObject(o: THREE.Object3D, shared: ReadonlySet<unknown> = new Set()): void {
+  o.traverse((c) => {
+    const m = c as THREE.Mesh | THREE.Line | THREE.Sprite;
+    // (Every Sprite shares one module-level geometry inside three.js: never dispose it.)
+    if (!(c instanceof THREE.Sprite) && 'geometry' in m && m.geometry && !shared.has(m.geometry)) m.geometry.dispose();
+    if (!('material' in m) || !m.material) return;
+    const mats = new Set(Array.isArray(m.material) ? m.material : [m.material]);
+    for (const mat of mats) {
+      if (shared.has(mat)) continue;
+      const map = (mat as THREE.MeshStandardMaterial).map;
+      if (map) map.dispose();
+      mat.dispose();
+    }
+  });
+}
+
 function luminance(hex: string): number {
   const c = new THREE.Color(hex);
   return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
@@ -264,7 +285,7 @@ export class View {
       let e = this.bodies.get(b.name);
       const key = JSON.stringify(b.shape) + b.color;
       if (!e || e.shapeKey !== key) {
-        if (e) this.scene.remove(e.object);
+        if (e) this.dropObject(e.object);
         e = this.makeBody(b, key);
         this.bodies.set(b.name, e);
         this.scene.add(e.object);
@@ -284,24 +305,30 @@ export class View {
     }
     for (const [name, e] of this.bodies) {
       if (!seen.has(name)) {
-        this.scene.remove(e.object);
+        this.dropObject(e.object);
         this.bodies.delete(name);
       }
     }
     if (fresh) this.drawRegions(s);
     s.arms.forEach((a, i) => this.updateArm(i, a));
-    while (this.arms.length > s.arms.length) this.scene.remove(this.arms.pop()!.group);
+    while (this.arms.length > s.arms.length) this.dropObject(this.arms.pop()!.group);
     this.updateTargets(ee ?? []);
     if (fresh) this.frameCamera(s);
     this.dirty = true;
   }
 
+  /** Removes an object from the scene and frees what only it uses. */
+  private dropObject(o: THREE.Object3D): void {
+    o.removeFromParent();
+    disposeObject(o, this.shared);
+  }
+
   private clearScene(): void {
-    for (const e of this.bodies.values()) this.scene.remove(e.object);
+    for (const e of this.bodies.values()) this.dropObject(e.object);
     this.bodies.clear();
-    for (const a of this.arms) this.scene.remove(a.group);
+    for (const a of this.arms) this.dropObject(a.group);
     this.arms.length = 0;
-    this.regions.clear();
+    this.clearRegions();
     this.clearTrail();
     this.cancelDrag();
   }
@@ -356,8 +383,12 @@ export class View {
     return { object: group, kind: b.kind, shapeKey: key, halfZ };
   }
 
+  private clearRegions(): void {
+    for (const c of [...this.regions.children]) this.dropObject(c);
+  }
+
   private drawRegions(s: WorldSnapshot): void {
-    this.regions.clear();
+    this.clearRegions();
     for (const r of s.regions) {
       const w = r.max[0] - r.min[0];
       const h = r.max[1] - r.min[1];
@@ -398,7 +429,7 @@ export class View {
       const key = `${c.radius.toFixed(4)}:${len.toFixed(4)}`;
       let m = e.links[j];
       if (!m || e.linkKeys[j] !== key) {
-        if (m) e.group.remove(m);
+        if (m) this.dropObject(m);
         m = new THREE.Mesh(new THREE.CapsuleGeometry(c.radius, Math.max(len, 1e-4), 6, 16), j % 2 ? this.linkMaterial : this.linkMaterial);
         m.castShadow = true;
         m.receiveShadow = true;
@@ -424,6 +455,14 @@ export class View {
 
   private readonly targetGeometry = new THREE.SphereGeometry(0.012, 12, 8);
   private readonly targetMaterial = new THREE.MeshBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.9 });
+  /** Geometries and materials shared by many meshes: never disposed with one of them. */
+  private readonly shared: ReadonlySet<unknown> = new Set<unknown>([
+    this.linkMaterial,
+    this.jointMaterial,
+    this.fingerMaterial,
+    this.targetGeometry,
+    this.targetMaterial,
+  ]);
 
   private updateTargets(ee: { arm: number; pos: number[]; target: number[] }[]): void {
     while (this.targets.children.length < ee.length) this.targets.add(new THREE.Mesh(this.targetGeometry, this.targetMaterial));
@@ -524,7 +563,7 @@ export class View {
     if (!d) return;
     this.renderer.domElement.releasePointerCapture(e.pointerId);
     this.drag = null;
-    this.scene.remove(d.ghost);
+    this.dropGhost(d.ghost);
     this.controls.enabled = true;
     this.renderer.domElement.style.cursor = '';
     if (d.target) {
@@ -534,9 +573,15 @@ export class View {
     if (this.snapshot) this.update(this.snapshot);
   }
 
+  /** The drag ghost borrows the block's geometry: only its own material is freed. */
+  private dropGhost(g: THREE.Mesh): void {
+    g.removeFromParent();
+    (g.material as THREE.Material).dispose();
+  }
+
   private cancelDrag(): void {
     if (!this.drag) return;
-    this.scene.remove(this.drag.ghost);
+    this.dropGhost(this.drag.ghost);
     this.drag = null;
     this.controls.enabled = true;
     if (this.snapshot) this.update(this.snapshot);

@@ -8,6 +8,7 @@ import type { Api, ApiKind, FromWorker, ToWorker } from './protocol';
 const post = (m: FromWorker) => (self as unknown as Worker).postMessage(m);
 
 let session: lfd.Session | null = null;
+let wasmMemory: WebAssembly.Memory | null = null;
 let playing = false;
 let speed = 1;
 let timer: ReturnType<typeof setTimeout> | null = null;
@@ -112,10 +113,12 @@ const handlers: Handlers = {
   cancel: () => {
     const s = need();
     s.cancel();
-    return s.frame();
+    const appliedAt = performance.timeOrigin + performance.now();
+    return { frame: s.frame(), appliedAt };
   },
   episode: () => need().episodeJson(),
   scene: () => need().sceneJson(),
+  memory: () => ({ wasmBytes: wasmMemory?.buffer.byteLength ?? 0 }),
 };
 
 function errorMessage(e: unknown): string {
@@ -146,7 +149,10 @@ async function handle(req: ToWorker): Promise<void> {
 }
 
 const ready = init().then(
-  () => post({ type: 'ready', version: lfd.version() }),
+  (wasm) => {
+    wasmMemory = wasm.memory;
+    post({ type: 'ready', version: lfd.version() });
+  },
   (e) => post({ type: 'fatal', message: `could not load the wasm module: ${errorMessage(e)}` }),
 );
 

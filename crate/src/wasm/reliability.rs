@@ -1,0 +1,102 @@
+//! Reliability exports: one closed-loop episode exactly as `logic-lfd run --json` prints it, so a
+//! node test can check that the same seed gives byte-identical episode JSON natively and in wasm.
+
+use super::{js_err, PerformanceClock};
+use crate::experiments::{run_episode, EpisodeSpec, Level};
+use crate::lfd::session::{BenchmarkId, SessionParams};
+use crate::lfd::{Method, Mode};
+use serde::Deserialize;
+use wasm_bindgen::prelude::*;
+
+/// Options of [`run_episode_json`], the flags of `logic-lfd run` (same names, same defaults).
+#[derive(Debug, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+struct EpisodeOptions {
+    /// `b1`, `b2` or `b3` (default `b1`).
+    benchmark: String,
+    /// `l1`..`l4` or `none` (default `none`).
+    level: String,
+    /// `logic-lfd`, `linear`, `rlds` or `tamp` (default `logic-lfd`).
+    method: String,
+    /// `paper` or `prioritised` (default `paper`).
+    mode: String,
+    /// Seed of every random choice (default 0).
+    seed: u64,
+    /// Initial scene JSON text (default: the benchmark's template scene).
+    scene: Option<String>,
+    /// Zero the wall-clock planning times (the only fields that differ from run to run).
+    canonical: bool,
+}
+
+impl Default for EpisodeOptions {
+    fn default() -> Self {
+        EpisodeOptions {
+            benchmark: "b1".into(),
+            level: "none".into(),
+            method: "logic-lfd".into(),
+            mode: "paper".into(),
+            seed: 0,
+            scene: None,
+            canonical: false,
+        }
+    }
+}
+
+fn spec_of(o: EpisodeOptions) -> Result<(EpisodeSpec, bool), String> {
+    let benchmark = BenchmarkId::parse(&o.benchmark).ok_or_else(|| {
+        format!(
+            "benchmark: unknown benchmark {:?} (b1, b2, b3)",
+            o.benchmark
+        )
+    })?;
+    let level = if o.level == "none" {
+        None
+    } else {
+        Some(
+            Level::parse(&o.level)
+                .ok_or_else(|| format!("level: unknown level {:?} (l1..l4, none)", o.level))?,
+        )
+    };
+    let method = Method::parse(&o.method).ok_or_else(|| {
+        format!(
+            "method: unknown method {:?} (logic-lfd, linear, rlds, tamp)",
+            o.method
+        )
+    })?;
+    let mode = Mode::parse(&o.mode)
+        .ok_or_else(|| format!("mode: unknown mode {:?} (paper, prioritised)", o.mode))?;
+    Ok((
+        EpisodeSpec {
+            benchmark,
+            level,
+            method,
+            mode,
+            seed: o.seed,
+            scene: o.scene,
+        },
+        o.canonical,
+    ))
+}
+
+/// Runs one closed-loop episode to its end and returns the report JSON, byte for byte what
+/// `logic-lfd run --benchmark … --level … --method … --mode … --seed N --json` prints (without
+/// its newline).
+///
+/// `options_json` is a JSON object with the CLI's flags: `{"benchmark":"b1","level":"l3",
+/// "method":"logic-lfd","mode":"paper","seed":7}`; all optional, unknown keys refused. With
+/// `"canonical": true` the wall-clock planning times (`planning_ms`, `log.replans[].time_ms`) are
+/// written as 0, so two runs anywhere give the same bytes. Rejects bad options or a bad scene with
+/// a message naming the field.
+#[wasm_bindgen(js_name = runEpisode)]
+pub fn run_episode_json(options_json: &str) -> Result<String, JsError> {
+    let o: EpisodeOptions =
+        serde_json::from_str(options_json).map_err(|e| js_err(format!("options: {e}")))?;
+    let (spec, canonical) = spec_of(o).map_err(|e| js_err(format!("options: {e}")))?;
+    let mut report =
+        run_episode(&spec, SessionParams::default(), &PerformanceClock).map_err(js_err)?;
+    if canonical {
+        report.planning_ms.iter_mut().for_each(|t| *t = 0.0);
+        report.log = report.log.canonical();
+    }
+    serde_json::to_string(&report).map_err(js_err)
+}
