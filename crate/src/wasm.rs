@@ -10,6 +10,8 @@ use serde::{Deserialize, Serialize};
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
 
+mod teach;
+
 #[wasm_bindgen]
 extern "C" {
     /// `performance.now()` (ms): exists in windows, workers and node ≥ 16.

@@ -2,7 +2,7 @@
 //! operator of the grounded task, segment the motion (see the module docs of [`super`]).
 
 use super::recording::{ArmRef, GripperPose, GripperState, HandMove, RawSample};
-use super::{RecorderError, RecorderEvent, RecorderParams, Segment, SkillFit, Taught, TaughtDemo};
+use super::{RecorderError, RecorderEvent, RecorderParams, Segment, Taught, TaughtDemo};
 use crate::pddl;
 use crate::plan::{self, State, Task};
 use crate::sim::benchmark::Benchmark;
