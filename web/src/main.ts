@@ -8,6 +8,7 @@ import type { EditorPanel } from './editor';
 import { Charts } from './charts';
 import { el } from './dom';
 import type { FromWorker, Level } from './protocol';
+import { TeachPanel } from './teach';
 
 type Benchmark = SessionOptions['benchmark'];
 type Method = SessionOptions['method'];
@@ -112,8 +113,10 @@ const runPanel = el(
 );
 const chartsPanel = el('div', { class: 'panel', id: 'panel-charts', role: 'tabpanel', hidden: '' });
 const editorHost = el('div', { class: 'panel panel-editor', id: 'panel-pddl', role: 'tabpanel', hidden: '' });
+const teachSlot = el('div', { class: 'panel', id: 'panel-teach', role: 'tabpanel', hidden: '' });
 const tabDefs: [string, string, HTMLElement][] = [
   ['run', 'Run', runPanel],
+  ['teach', 'Teach', teachSlot],
   ['charts', 'Charts', chartsPanel],
   ['pddl', 'PDDL', editorHost],
 ];
@@ -175,6 +178,7 @@ app.replaceChildren(header, el('main', { class: 'layout' }, stage, side), help);
 const client = new WorkerClient(onPush);
 const view = new View(stage, {
   onDrop: async ({ body, position }) => {
+    if (teach.active) return teach.drop({ body, position });
     const r = await client.call('perturb', { body, position });
     if (!r.ok) return r.reason;
     showNotice(r.message || `Moved ${body}`, 'info');
@@ -188,6 +192,31 @@ const view = new View(stage, {
   onNotice: (t, k) => showNotice(t, k),
 });
 let autoResume = false;
+const teach = new TeachPanel(teachSlot, {
+  client,
+  view,
+  stage,
+  benchmark: () => options.benchmark,
+  options: () => options,
+  notice: (t, k) => showNotice(t, k),
+  status: (kind, text) => {
+    status.className = `status ${kind}`;
+    status.dataset.kind = kind;
+    statusText.textContent = text;
+  },
+  pauseRun: async () => {
+    if (playing) await pause();
+  },
+  runTaught: async (f, autoplay) => {
+    setPlaying(false);
+    charts.reset();
+    view.clearTrail();
+    selectTab('run');
+    lastPanelKey = '';
+    render(f);
+    if (autoplay) await play();
+  },
+});
 const charts = new Charts(chartsPanel);
 // The PDDL editor (CodeMirror) is loaded on first use: the page becomes interactive sooner.
 let editorPromise: Promise<EditorPanel> | null = null;
@@ -211,6 +240,11 @@ function selectTab(id: string): void {
     tabBtns[i].classList.toggle('active', on);
     tabBtns[i].setAttribute('aria-selected', String(on));
   });
+  teach.setVisible(id === 'teach');
+  if (id !== 'teach' && frame && !pendingFrame) {
+    lastPanelKey = '';
+    render(frame);
+  }
   if (id === 'pddl') void loadEditor();
   if (id === 'charts') charts.draw();
 }
@@ -240,7 +274,7 @@ function onPush(m: FromWorker): void {
     statusText.textContent = m.message;
     return;
   }
-  if (m.type !== 'frame') return;
+  if (m.type !== 'frame' || teach.active) return;
   lastStepMs = m.timing.stepMs;
   stepTimes.push(m.timing.stepMs);
   if (stepTimes.length > 600) stepTimes.shift();
