@@ -516,7 +516,6 @@ fn taught_reverse_tower_runs_to_success_under_l3() {
 /// 3 mm of it.
 #[test]
 fn skills_learned_from_a_taught_demo_fit_the_recorded_motion() {
-    use logic_lfd::recorder::taught;
     let mut rec = Recorder::for_benchmark(Benchmark::B1).unwrap();
     rec.push(&drag("c", "b")).unwrap();
     rec.push(&drag("a", "c")).unwrap();
@@ -578,4 +577,53 @@ fn loading_a_taught_demo_checks_it() {
         .unwrap_err()
         .to_string()
         .contains("line 1"));
+}
+
+/// B3: a taught hand-over (b from the left table to the right one through the middle region) is
+/// a valid taught task: it loads, a random initial world can be drawn, and Logic-LfD runs it from
+/// that world to the taught goal.
+#[test]
+fn taught_b3_hand_over_runs_from_a_random_world() {
+    use logic_lfd::plan::NoClock;
+    use logic_lfd::recorder::taught::{self, TaughtRunOptions};
+    let mut rec = Recorder::for_benchmark(Benchmark::B3).unwrap();
+    for p in [[0.38, 0.0], [0.42, -0.62]] {
+        rec.push(&Edit::Drag {
+            body: "b".into(),
+            onto: None,
+            position: Some(p),
+            yaw: None,
+            arm: None,
+        })
+        .unwrap();
+    }
+    let t = rec.finish().unwrap();
+    let goal: Vec<String> = t
+        .demo
+        .goal
+        .iter()
+        .filter(|f| f.contains(" b "))
+        .cloned()
+        .collect();
+    assert!(!goal.is_empty(), "{:?}", t.demo.goal);
+    let mut demo = t.demo.clone();
+    demo.goal = goal.clone();
+    let json = serde_json::to_string(&demo).unwrap();
+    let (_, info) = taught::load(&json).unwrap();
+    assert_eq!(info.arms, ["left", "left", "right", "right"]);
+    let mut s = taught::session(
+        &json,
+        &TaughtRunOptions {
+            seed: 2,
+            random: true,
+            ..TaughtRunOptions::default()
+        },
+    )
+    .unwrap();
+    s.run_to_end(40_000, &NoClock);
+    assert_eq!(s.outcome(), Some(&Ok(())), "{:?}", s.log().result);
+    let facts = SceneGraph::from_world(s.world());
+    for g in &goal {
+        assert!(facts.contains(g), "{g}");
+    }
 }
