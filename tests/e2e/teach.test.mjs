@@ -28,7 +28,7 @@ async function blockPoints(page, name) {
   return page.evaluate((name) => {
     const b = window.lfdTeach.state().world.bodies.find((x) => x.name === name);
     const [x, y, z] = b.pose.position;
-    const hz = b.shape.half_extents[2];
+    const hz = b.shape.type === 'cuboid' ? b.shape.half_extents[2] : 0;
     return { centre: window.lfd.screenPosition(name), top: window.lfd.project([x, y, z + hz]) };
   }, name);
 }
