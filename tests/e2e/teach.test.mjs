@@ -5,7 +5,7 @@
 // change, and nothing is recorded; the gripper handle moves the arm.
 import { after, before, describe, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdir } from 'node:fs/promises';
+import { mkdir, readFile } from 'node:fs/promises';
 import { join } from 'node:path';
 import { finish, launch, openApp, screenshots, serve } from './harness.mjs';
 
@@ -45,6 +45,31 @@ async function dragOnto(page, body, onto) {
   await page.mouse.up();
 }
 
+/** Drags a part of the gripper handle so that the handle goes from world point `from` to `to`. */
+async function dragHandle(page, part, from, to) {
+  const lift = part === 'lift' ? 0.115 : 0;
+  const [a, b] = await page.evaluate(
+    ([f, t]) => [window.lfd.project(f), window.lfd.project(t)],
+    [
+      [from[0], from[1], from[2] + lift],
+      [to[0], to[1], to[2] + lift],
+    ],
+  );
+  await page.mouse.move(a.x, a.y);
+  await page.mouse.down();
+  for (let i = 1; i <= 10; i++) await page.mouse.move(a.x + ((b.x - a.x) * i) / 10, a.y + ((b.y - a.y) * i) / 10);
+  await page.mouse.up();
+  await page.waitForFunction(() => !window.lfdTeach.busy(), null, { timeout: 10000, polling: 20 });
+  return to;
+}
+
+const tcp = (page) => page.evaluate(() => window.lfdTeach.state().handles[0].position);
+const body = (page, name) =>
+  page.evaluate((name) => {
+    const b = window.lfdTeach.state().world.bodies.find((x) => x.name === name);
+    return { p: b.pose.position, hz: b.shape.type === 'cuboid' ? b.shape.half_extents[2] : 0 };
+  }, name);
+
 const segments = (page) => page.evaluate(() => window.lfdTeach.state()?.segments.map((s) => s.action) ?? []);
 const idle = (page, n) =>
   page.waitForFunction((n) => !window.lfdTeach.busy() && window.lfdTeach.state()?.segments.length === n, n, { timeout: 20000, polling: 50 });
@@ -83,6 +108,13 @@ describe('teach', () => {
     await page.waitForFunction(() => window.lfdTeach.info().goal.length === 2, null, { timeout: 5000 });
     assert.deepEqual((await page.evaluate(() => window.lfdTeach.info().goal)).sort(), ['(on a c)', '(on c b)']);
     await page.screenshot({ path: join(screenshots, 'teach-stopped.png') });
+    // Save the demo (a download) and load it back.
+    const [download] = await Promise.all([page.waitForEvent('download'), page.click('#teach-save')]);
+    const saved = JSON.parse(await readFile(await download.path(), 'utf8'));
+    assert.deepEqual(saved.goal.sort(), ['(on a c)', '(on c b)']);
+    assert.deepEqual(saved.actions.map((a) => a.action), ['(pick panda c)', '(stack panda c b)', '(pick panda a)', '(stack panda a c)']);
+    await page.setInputFiles('#panel-teach input[type=file]', { name: 'taught.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(saved)) });
+    await page.waitForFunction(() => /Loaded taught\.json: 4 actions/.test(document.querySelector('#teach-summary').textContent));
 
     // Run from a random initial world (seed 1); inject L3 once the robot has done an action.
     await page.click('#teach-run');
@@ -112,7 +144,7 @@ describe('teach', () => {
     await page.close();
   });
 
-  test('a teleport by hand is refused with its time and fact change; the gripper handle moves the arm', async () => {
+  test('a teleport by hand is refused with its time and fact change; the gripper handle picks and places; undo', async () => {
     const { page, errors } = await openApp(browser, server, '?benchmark=b1&autoplay=0');
     await page.click('#tab-teach');
     await page.click('#teach-record');
@@ -143,7 +175,34 @@ describe('teach', () => {
     const moved = Math.hypot(after[0] - before[0], after[1] - before[1]);
     assert.ok(moved > 0.03, `the arm moved ${moved} m`);
     assert.ok(Math.abs(after[2] - before[2]) < 0.01, 'the ball keeps the height');
+
+    // A pick and place with the handle alone: over c, down (blue arrow), G closes, up, over d,
+    // down onto d, G opens, up. The recorder sees (pick panda c) then (stack panda c d).
+    const c = await body(page, 'c');
+    const d = await body(page, 'd');
+    let at = await tcp(page);
+    at = await dragHandle(page, 'move', at, [c.p[0], c.p[1], at[2]]);
+    at = await dragHandle(page, 'lift', at, [c.p[0], c.p[1], c.p[2]]);
+    await page.keyboard.press('g');
+    await idle(page, 1);
+    assert.deepEqual(await segments(page), ['(pick panda c)']);
+    const high = d.p[2] + d.hz + 2 * c.hz + 0.12;
+    at = await dragHandle(page, 'lift', at, [c.p[0], c.p[1], high]);
+    at = await dragHandle(page, 'move', at, [d.p[0], d.p[1], high]);
+    at = await dragHandle(page, 'lift', at, [d.p[0], d.p[1], d.p[2] + d.hz + c.hz + 0.004]);
     await page.screenshot({ path: join(screenshots, 'teach-gripper.png') });
+    await page.keyboard.press('g');
+    await idle(page, 2);
+    at = await dragHandle(page, 'lift', at, [d.p[0], d.p[1], high]);
+    assert.deepEqual(await segments(page), ['(pick panda c)', '(stack panda c d)']);
+    assert.ok(await page.evaluate(() => window.lfdTeach.state().facts.includes('(on c d)')));
+
+    // Undo twice: back to the start, c on the table.
+    await page.click('#teach-undo');
+    await idle(page, 1);
+    await page.click('#teach-undo');
+    await idle(page, 0);
+    assert.ok(await page.evaluate(() => window.lfdTeach.state().facts.includes('(ontable c)')));
     assert.deepEqual(errors, []);
     await page.close();
   });
