@@ -432,6 +432,7 @@ async function inject(level: Level): Promise<void> {
 
 benchSel.onchange = () => {
   options.benchmark = benchSel.value as Benchmark;
+  teach.reset();
   void open();
 };
 methodSel.onchange = () => {
@@ -507,6 +508,8 @@ document.addEventListener('keydown', (e) => {
   if (e.key === 'Escape' && !help.hidden) return closeHelp();
   if (!help.hidden) return;
   const k = e.key.toLowerCase();
+  // While Teach mode owns the view, the run's keys would act on the hidden episode.
+  if (teach.active && ' nrc1234'.includes(k)) return;
   const act: Record<string, () => void> = {
     ' ': () => guard(() => (playing ? pause() : play())),
     n: () => stepBtn.click(),

@@ -169,6 +169,22 @@ export class TeachPanel {
     if (on) this.host.status('idle', this.statusText());
   }
 
+  /** Ends any recording (the workcell changed); a loaded or taught demo is kept for Run. */
+  reset(): void {
+    if (!this.state) return;
+    this.state = null;
+    if (!this.loaded) {
+      this.demoJson = null;
+      this.info = null;
+    }
+    this.newSegments.clear();
+    this.pending = null;
+    this.clearError();
+    this.handle.show(false);
+    void this.host.client.call('teachClose', {}).catch(() => {});
+    this.refresh();
+  }
+
   /** A block dropped in the view while Teach mode is active; resolves to a refusal or null. */
   async drop(d: DropRequest): Promise<string | null> {
     const s = this.state;
