@@ -627,3 +627,45 @@ fn taught_b3_hand_over_runs_from_a_random_world() {
         assert!(facts.contains(g), "{g}");
     }
 }
+
+/// A pick and place taught in gripper mode the way the page's handle does it (the handle jumps
+/// to a few poses, the arm follows by IK at its joint-speed limits, G closes and opens) is
+/// segmented into (pick panda c), (stack panda c d), and the skills learned from it fit its
+/// motion within 3 mm RMS. Regression: when the arm jumped to each commanded pose at its joint
+/// speed limits (no interpolation), these fits were 20–410 mm.
+#[test]
+fn gripper_mode_pick_and_place_is_segmented_and_learned() {
+    let mut rec = Recorder::for_benchmark(Benchmark::B1).unwrap();
+    let (c, yaw) = grasp_yaw(rec.world(), "c");
+    let (d, _) = grasp_yaw(rec.world(), "d");
+    let high = 0.25;
+    let on_d = d[2] + 0.06 + 0.004;
+    for (p, g, secs) in [
+        ([c[0], c[1], high], GripperState::Open, 1.5),
+        (c, GripperState::Open, 1.0),
+        (c, GripperState::Closed, 0.5),
+        ([c[0], c[1], high], GripperState::Closed, 1.0),
+        ([d[0], d[1], high], GripperState::Closed, 1.5),
+        ([d[0], d[1], on_d], GripperState::Closed, 1.0),
+        ([d[0], d[1], on_d], GripperState::Open, 0.5),
+        ([d[0], d[1], high], GripperState::Open, 1.0),
+    ] {
+        rec.push(&gripper(p, yaw, g, secs)).unwrap();
+    }
+    let actions: Vec<String> = rec.segments().iter().map(|s| s.action.clone()).collect();
+    assert_eq!(actions, ["(pick panda c)", "(stack panda c d)"]);
+    let taught = rec.finish().unwrap();
+    for f in &taught.skills {
+        eprintln!(
+            "{:32} T = {:4}  rms {:6.2} mm  goal {:6.2} mm",
+            f.action,
+            f.steps,
+            f.rms_error * 1e3,
+            f.goal_error * 1e3
+        );
+    }
+    assert_eq!(taught.skills.len(), 4);
+    for f in &taught.skills {
+        assert!(f.rms_error < 0.003 && f.goal_error < 0.003, "{f:?}");
+    }
+}
