@@ -154,6 +154,7 @@ const help = el(
           ['P', 'open the PDDL editor'],
           ['?', 'this help; Esc closes it'],
           ['mouse', 'left-drag a block to move it; drag elsewhere to orbit; wheel to zoom'],
+          ['G', 'Teach tab, gripper mode: close / open the gripper'],
         ] as [string, string][]
       ).map(([k, v]) => el('tr', {}, el('th', {}, el('kbd', {}, k)), el('td', {}, v))),
     ),
