@@ -11,6 +11,7 @@ use tsify::Tsify;
 use wasm_bindgen::prelude::*;
 
 pub mod reliability;
+mod teach;
 
 #[wasm_bindgen]
 extern "C" {

@@ -8,6 +8,7 @@ import type { EditorPanel } from './editor';
 import { Charts } from './charts';
 import { el } from './dom';
 import type { FromWorker, Level } from './protocol';
+import { TeachPanel } from './teach';
 
 type Benchmark = SessionOptions['benchmark'];
 type Method = SessionOptions['method'];
@@ -112,8 +113,10 @@ const runPanel = el(
 );
 const chartsPanel = el('div', { class: 'panel', id: 'panel-charts', role: 'tabpanel', hidden: '' });
 const editorHost = el('div', { class: 'panel panel-editor', id: 'panel-pddl', role: 'tabpanel', hidden: '' });
+const teachSlot = el('div', { class: 'panel', id: 'panel-teach', role: 'tabpanel', hidden: '' });
 const tabDefs: [string, string, HTMLElement][] = [
   ['run', 'Run', runPanel],
+  ['teach', 'Teach', teachSlot],
   ['charts', 'Charts', chartsPanel],
   ['pddl', 'PDDL', editorHost],
 ];
@@ -151,6 +154,7 @@ const help = el(
           ['P', 'open the PDDL editor'],
           ['?', 'this help; Esc closes it'],
           ['mouse', 'left-drag a block to move it; drag elsewhere to orbit; wheel to zoom'],
+          ['G', 'Teach tab, gripper mode: close / open the gripper'],
         ] as [string, string][]
       ).map(([k, v]) => el('tr', {}, el('th', {}, el('kbd', {}, k)), el('td', {}, v))),
     ),
@@ -175,6 +179,7 @@ app.replaceChildren(header, el('main', { class: 'layout' }, stage, side), help);
 const client = new WorkerClient(onPush);
 const view = new View(stage, {
   onDrop: async ({ body, position }) => {
+    if (teach.active) return teach.drop({ body, position });
     const r = await client.call('perturb', { body, position });
     if (!r.ok) return r.reason;
     showNotice(r.message || `Moved ${body}`, 'info');
@@ -188,6 +193,31 @@ const view = new View(stage, {
   onNotice: (t, k) => showNotice(t, k),
 });
 let autoResume = false;
+const teach = new TeachPanel(teachSlot, {
+  client,
+  view,
+  stage,
+  benchmark: () => options.benchmark,
+  options: () => options,
+  notice: (t, k) => showNotice(t, k),
+  status: (kind, text) => {
+    status.className = `status ${kind}`;
+    status.dataset.kind = kind;
+    statusText.textContent = text;
+  },
+  pauseRun: async () => {
+    if (playing) await pause();
+  },
+  runTaught: async (f, autoplay) => {
+    setPlaying(false);
+    charts.reset();
+    view.clearTrail();
+    selectTab('run');
+    lastPanelKey = '';
+    render(f);
+    if (autoplay) await play();
+  },
+});
 const charts = new Charts(chartsPanel);
 // The PDDL editor (CodeMirror) is loaded on first use: the page becomes interactive sooner.
 let editorPromise: Promise<EditorPanel> | null = null;
@@ -215,6 +245,11 @@ function selectTab(id: string): void {
     tabBtns[i].classList.toggle('active', on);
     tabBtns[i].setAttribute('aria-selected', String(on));
   });
+  teach.setVisible(id === 'teach');
+  if (id !== 'teach' && frame && !pendingFrame) {
+    lastPanelKey = '';
+    render(frame);
+  }
   if (id === 'pddl') void loadEditor();
   if (id === 'charts') charts.draw();
 }
@@ -244,7 +279,7 @@ function onPush(m: FromWorker): void {
     statusText.textContent = m.message;
     return;
   }
-  if (m.type !== 'frame') return;
+  if (m.type !== 'frame' || teach.active) return;
   lastStepMs = m.timing.stepMs;
   stepTimes.push(m.timing.stepMs);
   if (stepTimes.length > 600) stepTimes.shift();
@@ -402,6 +437,7 @@ async function inject(level: Level): Promise<void> {
 
 benchSel.onchange = () => {
   options.benchmark = benchSel.value as Benchmark;
+  teach.reset();
   void open();
 };
 methodSel.onchange = () => {
@@ -485,6 +521,8 @@ document.addEventListener('keydown', (e) => {
   if (e.key === 'Escape' && !help.hidden) return closeHelp();
   if (!help.hidden) return;
   const k = e.key.toLowerCase();
+  // While Teach mode owns the view, the run's keys would act on the hidden episode.
+  if (teach.active && ' nrc1234'.includes(k)) return;
   const act: Record<string, () => void> = {
     ' ': () => guard(() => (playing ? pause() : play())),
     n: () => stepBtn.click(),

@@ -2,6 +2,7 @@
 // module and the Session. Requests carry an `id`; the worker answers each with exactly one `reply`
 // of the same id. While a session plays, the worker pushes `frame` messages on its own.
 import type { BenchmarkInfo, Diagnostic, Frame, PlanOptions, PlanOutcome, SessionOptions } from 'logic-lfd';
+import type { TeachApi } from './teach-protocol';
 
 export type Level = 'l1' | 'l2' | 'l3' | 'l4';
 export type Vec3 = [number, number, number];
@@ -16,7 +17,7 @@ export interface InjectOutcome {
 }
 
 /** Every request the page can make: its arguments and the value its reply carries. */
-export interface Api {
+export interface Api extends TeachApi {
   version: { args: Record<string, never>; result: string };
   plan: { args: { domain: string; problem: string; options: PlanOptions }; result: PlanOutcome };
   check: { args: { domain: string; problem: string }; result: Diagnostic[] };

@@ -4,6 +4,7 @@
 import init, * as lfd from 'logic-lfd';
 import type { Frame } from 'logic-lfd';
 import type { Api, ApiKind, FromWorker, ToWorker } from './protocol';
+import { teachHandlers } from './teach-worker';
 
 const post = (m: FromWorker) => (self as unknown as Worker).postMessage(m);
 
@@ -119,6 +120,7 @@ const handlers: Handlers = {
   episode: () => need().episodeJson(),
   scene: () => need().sceneJson(),
   memory: () => ({ wasmBytes: wasmMemory?.buffer.byteLength ?? 0 }),
+  ...teachHandlers(replace),
 };
 
 function errorMessage(e: unknown): string {

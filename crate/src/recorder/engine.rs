@@ -2,8 +2,7 @@
 //! operator of the grounded task, segment the motion (see the module docs of [`super`]).
 
 use super::recording::{ArmRef, GripperPose, GripperState, HandMove, RawSample};
-use super::{RecorderError, RecorderEvent, RecorderParams, Segment, SkillFit, Taught, TaughtDemo};
-use crate::lqt::{Skill, SkillParams};
+use super::{RecorderError, RecorderEvent, RecorderParams, Segment, Taught, TaughtDemo};
 use crate::pddl;
 use crate::plan::{self, State, Task};
 use crate::sim::benchmark::Benchmark;
@@ -35,6 +34,21 @@ impl Default for RecorderOptions {
             params: RecorderParams::default(),
         }
     }
+}
+
+/// One arm's gripper as the page's handle shows it.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct GripperHandle {
+    /// Arm name.
+    pub arm: String,
+    /// TCP position, world frame (m).
+    pub position: [f64; 3],
+    /// Gripper yaw about world `z` (rad).
+    pub yaw: f64,
+    /// Commanded gripper state.
+    pub gripper: GripperState,
+    /// The body held, if any.
+    pub holding: Option<String>,
 }
 
 /// What kind of gripper event caused an action.
@@ -617,6 +631,39 @@ impl Recorder {
 
     // ------------------------------------------------------------------ queries for the page
 
+    /// The taught goal, if one was set ([`Recorder::set_goal`]).
+    pub fn goal(&self) -> Option<&[String]> {
+        self.goal.as_deref()
+    }
+
+    /// Number of accepted samples.
+    pub fn sample_count(&self) -> usize {
+        self.edits.len()
+    }
+
+    /// Where every arm's gripper is now (what the page's gripper handles show), in arm order.
+    pub fn handles(&self) -> Vec<GripperHandle> {
+        let names = self.world.arm_names();
+        (0..names.len())
+            .map(|a| {
+                let tcp = self.world.tcp_pose(a).unwrap_or_else(Isometry3::identity);
+                let p = tcp.translation.vector;
+                GripperHandle {
+                    arm: names[a].to_string(),
+                    position: [p.x, p.y, p.z],
+                    yaw: gripper_yaw(&tcp.rotation),
+                    gripper: GripperState::from_command(
+                        self.world
+                            .arm_command(a)
+                            .map(|c| c.1)
+                            .unwrap_or(GripperCommand::Open),
+                    ),
+                    holding: self.world.held_by(a).map(str::to_string),
+                }
+            })
+            .collect()
+    }
+
     /// The recognised actions so far, with their sample ranges (the last one's end is provisional).
     pub fn segments(&self) -> Vec<Segment> {
         (0..self.actions.len()).map(|i| self.segment(i)).collect()
@@ -778,10 +825,16 @@ impl Recorder {
             }
         };
         if let Some(k) = (e + 1..e2).find(|&k| pos(k, a.arm).z >= z0 + self.params.lift_height) {
+            // The end of the lift: the first local minimum of the speed once the speed has come
+            // down from its peak (the lift height is often reached while still accelerating; a
+            // cut there leaves both neighbours starting or ending at full speed).
+            let mut peak = (e + 1..=k).map(speed).fold(0.0, f64::max);
             for k2 in k..e2 - 1 {
-                if speed(k2) <= speed(k2 + 1) {
+                let v = speed(k2);
+                if v < peak && v <= speed(k2 + 1) {
                     return k2;
                 }
+                peak = peak.max(v);
             }
             return e2 - 1;
         }
@@ -932,20 +985,17 @@ impl Recorder {
             .map(|i| self.demo_action(i))
             .collect::<Result<Vec<_>, _>>()?;
         let dt = self.world.dt();
-        let skills = if self.params.learn_skills {
-            actions
-                .iter()
-                .map(|a| fit_skill(a, dt))
-                .collect::<Result<Vec<_>, _>>()?
-        } else {
-            vec![]
-        };
         let demo = Demonstration {
             benchmark: self.initial.name.clone(),
             seed: self.seed,
             dt,
             frame_convention: FRAME_CONVENTION.to_string(),
             actions,
+        };
+        let skills = if self.params.learn_skills {
+            super::taught::skill_fits(&demo)?
+        } else {
+            vec![]
         };
         Ok(Taught {
             demo: TaughtDemo {
@@ -966,47 +1016,6 @@ const FRAME_CONVENTION: &str =
 anchor frame (anchor centre + its yaw about world z; pick/unstack/pull: the object at the action's \
 start; place/place-on-shelf/stack: the carried object's resting pose at the action's end), every \
 10 ms; gripper pointing straight down; yaw relative to the anchor's yaw";
-
-/// Learns an LQT-CP skill from one action's samples and measures how well it reproduces them.
-fn fit_skill(a: &DemoAction, dt: f64) -> Result<SkillFit, RecorderError> {
-    let pts: Vec<Point3<f64>> = a
-        .samples
-        .iter()
-        .map(|s| Point3::new(s[0], s[1], s[2]))
-        .collect();
-    if pts.len() < 3 {
-        return Ok(SkillFit {
-            action: a.action.clone(),
-            steps: pts.len(),
-            rms_error: 0.0,
-            goal_error: 0.0,
-        });
-    }
-    let err = |e: crate::lqt::LqtError| {
-        RecorderError::Refused(format!(
-            "{}: learning its LQT-CP skill failed: {e}",
-            a.action
-        ))
-    };
-    let skill = Skill::learn(&pts, dt, SkillParams::default()).map_err(err)?;
-    let tr = skill
-        .plan(&pts[0], &Isometry3::identity(), &[])
-        .map_err(err)?;
-    let n = pts.len().min(tr.positions.len());
-    let sq: f64 = (0..n)
-        .map(|k| (tr.positions[k] - pts[k]).norm_squared())
-        .sum();
-    let goal_error = match (tr.positions.last(), pts.last()) {
-        (Some(p), Some(q)) => (p - q).norm(),
-        _ => 0.0,
-    };
-    Ok(SkillFit {
-        action: a.action.clone(),
-        steps: pts.len(),
-        rms_error: (sq / n.max(1) as f64).sqrt(),
-        goal_error,
-    })
-}
 
 fn atom_text(domain: &pddl::Domain, a: &pddl::Atom) -> String {
     let mut s = format!("({}", domain.predicates[a.predicate].name.text);

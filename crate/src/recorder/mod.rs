@@ -32,18 +32,22 @@
 //! Action `a_k` happens at step `e_k` (its fact change) and is carried out by arm `r_k` (its first
 //! argument that names an arm). The samples between two actions are split at a boundary
 //! `b_k ∈ [e_k, e_{k+1})`:
-//! * same arm: the first local minimum of the TCP speed after the TCP has risen
-//!   [`RecorderParams::lift_height`] above its height at `e_k` (the end of the lift after a grasp or a
-//!   release); without such a lift, the highest TCP point in between;
+//! * same arm: the end of the lift after a grasp or a release — once the TCP has risen
+//!   [`RecorderParams::lift_height`] above its height at `e_k`, the first local minimum of its speed
+//!   after the speed has come down from its peak (not the first sample where the speed rises: the
+//!   lift height is often passed while still accelerating, and a cut there starts the next action
+//!   at full speed, which no skill learned from it can fit); without such a lift, the highest TCP
+//!   point in between;
 //! * different arms: where `r_k` stops moving, or just before `r_{k+1}` starts if that is earlier.
 //!
 //! Action `k` owns the samples `(b_{k−1}, b_k]` of its arm (the first from the recording's start,
 //! the last to its end), expressed in the frame of its *anchor* object exactly as
 //! [`crate::sim::demo`] documents (pick/unstack/pull: the object at the action's start; placing
 //! actions: the carried object's resting pose at the action's end), with its gripper commands and
-//! key points (`grasp`, `release`, `contact`, `pulled`). An LQT-CP skill is learned from every
-//! action's motion ([`crate::lqt::Skill::learn`]) and its reproduction error reported
-//! ([`SkillFit`]).
+//! key points (`grasp`, `release`, `contact`, `pulled`). The LQT-CP skills the loop will use are
+//! learned from every action's motion — its approach (to the grasp or release) and its retreat
+//! ([`crate::lqt::Skill::learn`], [`taught::skill_fits`]) — and their reproduction errors reported
+//! ([`SkillFit`]): within about 2 mm RMS for taught B1 demos, as for the scripted ones.
 //!
 //! Nothing is saved half-made: an edit that fails leaves the recorder exactly as before it, and
 //! [`Recorder::finish`] either returns a complete demonstration or an error.
@@ -51,8 +55,9 @@
 mod engine;
 pub mod recording;
 pub mod synth;
+pub mod taught;
 
-pub use engine::{Recorder, RecorderOptions};
+pub use engine::{GripperHandle, Recorder, RecorderOptions};
 pub use recording::{ArmRef, GripperPose, RawRecording, RawSample, RecordingScene};
 
 use crate::sim::demo::Demonstration;
@@ -73,7 +78,7 @@ pub struct RecorderParams {
     pub still_per_step: f64,
     /// Most simulator steps one recording may take (bounds the work on hostile input).
     pub max_steps: usize,
-    /// Learn an LQT-CP skill from each action's motion and report its fit ([`SkillFit`]).
+    /// Learn the LQT-CP skills from each action's motion and report their fit ([`SkillFit`]).
     pub learn_skills: bool,
 }
 
@@ -210,7 +215,8 @@ pub struct Taught {
     pub demo: TaughtDemo,
     /// L_0..L_N (fluents, sorted), derived by applying the actions.
     pub states: Vec<Vec<String>>,
-    /// One fit per action (empty when [`RecorderParams::learn_skills`] is off).
+    /// One fit per skill the loop learns from the demo — the approach and the retreat of every
+    /// action ([`taught::skill_fits`]); empty when [`RecorderParams::learn_skills`] is off.
     pub skills: Vec<SkillFit>,
 }
 

@@ -64,8 +64,9 @@ pub enum Edit {
         /// The sample.
         sample: RawSample,
     },
-    /// Gripper mode without time stamps: command `arm` to `position`/`yaw` and `gripper`, then
-    /// let the world run for `duration` seconds (at least one step).
+    /// Gripper mode without time stamps: move `arm`'s gripper from where it is to
+    /// `position`/`yaw` along a minimum-jerk path lasting `duration` seconds (at least one step),
+    /// with the gripper `gripper` throughout.
     Gripper {
         /// The arm.
         arm: ArmRef,
@@ -139,16 +140,43 @@ impl Recorder {
                 duration,
             } => {
                 let t0 = self.time();
-                let n = ((duration / self.world().dt()).round().max(1.0)) as usize;
+                let dt = self.world().dt();
+                let n = ((duration / dt).round().max(1.0)) as usize;
+                // From where the gripper is now to the commanded pose along a minimum-jerk path
+                // (the handle gives where to go; a jump would make the arm move at its joint
+                // speed limits, a motion no skill reproduces well).
+                let from = arm
+                    .resolve(self.world())
+                    .and_then(|a| self.world().tcp_pose(a))
+                    .map(|p| {
+                        let v = p.translation.vector;
+                        ([v.x, v.y, v.z], super::engine::gripper_yaw(&p.rotation))
+                    });
                 let samples: Vec<RawSample> = (0..n)
-                    .map(|k| RawSample::Gripper {
-                        t: t0 + k as f64 * self.world().dt(),
-                        arm: arm.clone(),
-                        pose: super::recording::GripperPose {
-                            position: *position,
-                            yaw: *yaw,
-                        },
-                        gripper: *gripper,
+                    .map(|k| {
+                        let (p, y) = match from {
+                            Some((p0, y0)) => {
+                                let s = min_jerk((k + 1) as f64 / n as f64);
+                                (
+                                    [
+                                        p0[0] + (position[0] - p0[0]) * s,
+                                        p0[1] + (position[1] - p0[1]) * s,
+                                        p0[2] + (position[2] - p0[2]) * s,
+                                    ],
+                                    y0 + geometry::wrap(*yaw - y0) * s,
+                                )
+                            }
+                            None => (*position, *yaw),
+                        };
+                        RawSample::Gripper {
+                            t: t0 + k as f64 * dt,
+                            arm: arm.clone(),
+                            pose: super::recording::GripperPose {
+                                position: p,
+                                yaw: y,
+                            },
+                            gripper: *gripper,
+                        }
                     })
                     .collect();
                 self.push_samples(&samples)

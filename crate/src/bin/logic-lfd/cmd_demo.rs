@@ -112,21 +112,24 @@ fn segment(a: SegmentArgs) -> ExitCode {
                 taught.states.len()
             );
             for (i, act) in taught.demo.demo.actions.iter().enumerate() {
-                match taught.skills.get(i) {
-                    Some(f) => println!(
-                        "  {:2} {:<32} {:4} samples, LQT-CP skill rms {:.1} mm, goal {:.1} mm",
-                        i + 1,
-                        act.action,
-                        act.samples.len(),
+                println!(
+                    "  {:2} {:<32} {:4} samples",
+                    i + 1,
+                    act.action,
+                    act.samples.len()
+                );
+                for f in taught
+                    .skills
+                    .iter()
+                    .filter(|f| f.action.starts_with(&act.action))
+                {
+                    let part = f.action[act.action.len()..].trim();
+                    println!(
+                        "       {part:<9} LQT-CP skill: {:4} steps, rms {:.2} mm, goal {:.2} mm",
+                        f.steps,
                         f.rms_error * 1000.0,
                         f.goal_error * 1000.0
-                    ),
-                    None => println!(
-                        "  {:2} {:<32} {:4} samples",
-                        i + 1,
-                        act.action,
-                        act.samples.len()
-                    ),
+                    );
                 }
             }
             println!("  goal: {}", taught.demo.goal.join(" "));

@@ -1,0 +1,423 @@
+//! From a taught demonstration to a closed-loop [`Session`]: the glue between the recorder and the
+//! reactive loop (what the page's "Run" does after teaching, and `Session.fromTaught` in wasm).
+//!
+//! A taught `demo.json` ([`TaughtDemo`]) carries, beside the benchmark demo fields, its initial
+//! world `scene`, `L_0` and the goal `G`. The task it defines is
+//!
+//! ```text
+//!   domain    the domain of the benchmark whose world the scene is (B1, B2 or B3)
+//!   problem   objects of the scene,  :init = L_0 ∪ static facts,  :goal = G
+//!   demo      a_1..a_N of the recording  →  L_0..L_N  (derived, as for every demo)
+//!   skills    learned from the recorded motions (object-centric LQT-CP, `lfd::skill`)
+//! ```
+//!
+//! and a session runs it from any initial world of the same benchmark: the taught scene, a scene
+//! the user arranged, or a seeded random one ([`random_scene`]). Loading checks everything before
+//! anything is used ([`load`]): the JSON shape (with the key path), the scene, every action's
+//! applicability in turn (`L_k` derived again) and `G ⊆ L_N`.
+
+use serde::{Deserialize, Serialize};
+
+use super::{RecorderError, SkillFit, TaughtDemo};
+use crate::lfd::demo::DemoTrace;
+use crate::lfd::model::DomainModel;
+use crate::lfd::session::{
+    mix, BenchmarkId, BenchmarkSources, Session, SessionOptions, SessionParams, SkillKind,
+};
+use crate::lfd::{Method, Mode, TaskBuilder as _};
+use crate::lqt::{Skill, SkillParams};
+use crate::sim::demo::Demonstration;
+use crate::sim::{SceneGraph, World};
+use nalgebra::{Isometry3, Point3};
+
+/// A loaded and checked taught demonstration, as the page lists it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TaughtInfo {
+    /// `b1`, `b2` or `b3`: the benchmark whose world and domain the demonstration uses.
+    pub benchmark: BenchmarkId,
+    /// a_1..a_N.
+    pub actions: Vec<String>,
+    /// The arm of each action.
+    pub arms: Vec<String>,
+    /// L_0..L_N (fluents, sorted).
+    pub states: Vec<Vec<String>>,
+    /// The taught goal G.
+    pub goal: Vec<String>,
+}
+
+/// How a taught task is run (JSON: every key optional).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TaughtRunOptions {
+    /// `logic-lfd` (default), `linear`, `rlds` or `tamp`.
+    pub method: Method,
+    /// `paper` (default) or `prioritised`.
+    pub mode: Mode,
+    /// Seed of the episode (and of the random initial world).
+    pub seed: u64,
+    /// `lqt` (default) or `dmp`.
+    pub skill: SkillKind,
+    /// The initial world as scene JSON (a world the user arranged); default: the taught scene.
+    pub scene: Option<String>,
+    /// Start from a seeded random arrangement of the taught scene instead ([`random_scene`]).
+    pub random: bool,
+}
+
+fn refused(m: impl Into<String>) -> RecorderError {
+    RecorderError::Refused(m.into())
+}
+
+/// Parses a taught `demo.json` (errors name the line and column, or the key).
+pub fn parse(demo_json: &str) -> Result<TaughtDemo, RecorderError> {
+    let v: serde_json::Value =
+        serde_json::from_str(demo_json).map_err(|e| RecorderError::Input {
+            path: format!("line {} column {}", e.line(), e.column()),
+            message: e.to_string(),
+        })?;
+    for key in ["actions", "scene", "goal", "initial_facts"] {
+        if v.get(key).is_none() {
+            return Err(RecorderError::Input {
+                path: key.into(),
+                message: if key == "actions" {
+                    "missing".into()
+                } else {
+                    "missing: this is not a taught demonstration (teach one in the page, or \
+                     `logic-lfd demo segment` a recording)"
+                        .into()
+                },
+            });
+        }
+    }
+    serde_json::from_value(v).map_err(|e| RecorderError::Input {
+        path: "demo".into(),
+        message: e.to_string(),
+    })
+}
+
+/// The benchmark whose world (by the scene's name) a taught demo uses.
+pub fn benchmark_of(t: &TaughtDemo) -> Result<BenchmarkId, RecorderError> {
+    BenchmarkId::parse(&t.scene.name).ok_or_else(|| {
+        refused(format!(
+            "the demonstration's world `{}` is none of the benchmarks b1, b2, b3: a taught task runs \
+             in a benchmark's workcell",
+            t.scene.name
+        ))
+    })
+}
+
+/// The files of the taught task: the benchmark's domain, a problem with the taught scene's objects,
+/// `L_0` (plus static facts) and the goal `G`, the taught scene and the demo itself.
+pub fn sources(t: &TaughtDemo, demo_json: &str) -> Result<BenchmarkSources, RecorderError> {
+    if t.goal.is_empty() {
+        return Err(RecorderError::Input {
+            path: "goal".into(),
+            message: "empty: a taught task needs at least one goal fact".into(),
+        });
+    }
+    sources_with_goal(t, demo_json, &t.goal)
+}
+
+/// [`sources`] with another goal (empty: `(and)`, for checking the demo before its goal).
+fn sources_with_goal(
+    t: &TaughtDemo,
+    demo_json: &str,
+    goal: &[String],
+) -> Result<BenchmarkSources, RecorderError> {
+    let b = benchmark_of(t)?;
+    let files = b
+        .sources()
+        .map_err(|e| RecorderError::Model(e.to_string()))?;
+    let domain = crate::pddl::parse_domain(&files.domain, "domain.pddl")
+        .map_err(|e| RecorderError::Model(e.to_string()))?;
+    let world = World::from_snapshot(&t.scene).map_err(|e| RecorderError::Input {
+        path: format!("scene.{}", e.path),
+        message: e.message,
+    })?;
+    let mut objects = String::new();
+    for o in SceneGraph::objects(&world) {
+        if domain.type_index(&o.kind).is_some() {
+            objects.push_str(&format!(" {} - {}", o.name, o.kind));
+        }
+    }
+    let statics: Vec<String> = b
+        .sim()
+        .static_facts()
+        .iter()
+        .map(|f| f.to_string())
+        .collect();
+    let problem = format!(
+        "(define (problem taught) (:domain {})\n  (:objects{})\n  (:init {} {})\n  (:goal (and {})))\n",
+        domain.name.text,
+        objects,
+        t.initial_facts.join(" "),
+        statics.join(" "),
+        goal.join(" ")
+    );
+    let scene = serde_json::to_string(&t.scene).map_err(|e| RecorderError::Model(e.to_string()))?;
+    Ok(BenchmarkSources {
+        dir: files.dir,
+        domain: files.domain,
+        problem,
+        scene,
+        demo: demo_json.to_string(),
+    })
+}
+
+/// The domain model and demonstration trace of a taught task (its `L_0..L_N`).
+fn model_and_trace(
+    files: &BenchmarkSources,
+    actions: &[String],
+) -> Result<(DomainModel, World, DemoTrace), RecorderError> {
+    let world = World::from_json(&files.scene).map_err(|e| RecorderError::Input {
+        path: format!("scene.{}", e.path),
+        message: e.message,
+    })?;
+    let model = DomainModel::new(
+        &files.domain,
+        &format!("domains/{}/domain.pddl", files.dir),
+        &files.problem,
+        "taught-problem.pddl",
+        &world.snapshot().predicates,
+    )
+    .map_err(|e| RecorderError::Model(e.to_string()))?;
+    let objects: Vec<(String, String)> = SceneGraph::objects(&world)
+        .into_iter()
+        .map(|o| (o.name, o.kind))
+        .collect();
+    let facts = SceneGraph::from_world(&world).to_strings();
+    let task = model
+        .build(&objects, &facts)
+        .map_err(|e| RecorderError::Model(e.to_string()))?;
+    let trace = DemoTrace::derive(&task, actions).map_err(|e| RecorderError::Input {
+        path: "actions".into(),
+        message: e.to_string(),
+    })?;
+    Ok((model, world, trace))
+}
+
+/// Checks a taught `demo.json` completely and lists it: every action applies in turn from the
+/// scene's facts (`L_0` must be the scene's facts), and the goal holds in `L_N`.
+pub fn load(demo_json: &str) -> Result<(TaughtDemo, TaughtInfo), RecorderError> {
+    let t = parse(demo_json)?;
+    let benchmark = benchmark_of(&t)?;
+    // The actions are checked first (on the task without a goal), then the goal.
+    let files = sources_with_goal(&t, demo_json, &[])?;
+    let actions: Vec<String> = t.demo.actions.iter().map(|a| a.action.clone()).collect();
+    if actions.is_empty() {
+        return Err(RecorderError::Input {
+            path: "actions".into(),
+            message: "empty: nothing was demonstrated".into(),
+        });
+    }
+    let (_, world, trace) = model_and_trace(&files, &actions)?;
+    let mut scene_facts = SceneGraph::from_world(&world).to_strings();
+    scene_facts.sort();
+    let mut l0 = t.initial_facts.clone();
+    l0.sort();
+    if scene_facts != l0 {
+        return Err(RecorderError::Input {
+            path: "initial_facts".into(),
+            message: format!(
+                "not the facts of the scene ({})",
+                super::change_text(
+                    &l0.iter()
+                        .filter(|f| !scene_facts.contains(f))
+                        .cloned()
+                        .collect::<Vec<_>>(),
+                    &scene_facts
+                        .iter()
+                        .filter(|f| !l0.contains(f))
+                        .cloned()
+                        .collect::<Vec<_>>()
+                )
+            ),
+        });
+    }
+    let states: Vec<Vec<String>> = trace
+        .states
+        .iter()
+        .map(|s| s.iter().cloned().collect())
+        .collect();
+    let last = states.last().cloned().unwrap_or_default();
+    let statics: Vec<String> = benchmark
+        .sim()
+        .static_facts()
+        .iter()
+        .map(|f| f.to_string())
+        .collect();
+    for (i, g) in t.goal.iter().enumerate() {
+        if !last.contains(g) && !statics.contains(g) {
+            return Err(RecorderError::Input {
+                path: format!("goal[{i}]"),
+                message: format!("{g} does not hold at the end of the demonstration"),
+            });
+        }
+    }
+    if t.goal.is_empty() {
+        return Err(RecorderError::Input {
+            path: "goal".into(),
+            message: "empty: a taught task needs at least one goal fact".into(),
+        });
+    }
+    let info = TaughtInfo {
+        benchmark,
+        actions: trace.actions.clone(),
+        arms: t.demo.actions.iter().map(|a| a.arm.clone()).collect(),
+        states,
+        goal: t.goal.clone(),
+    };
+    Ok((t, info))
+}
+
+/// A seeded random initial world for a taught task: the taught scene after an unseen-state
+/// change (L3, else L2) and a motion-level spread (L1), each drawn from `seed`. Same seed, same
+/// world.
+pub fn random_scene(demo_json: &str, seed: u64) -> Result<String, RecorderError> {
+    let (t, info) = load(demo_json)?;
+    let files = sources(&t, demo_json)?;
+    let (_, template, trace) = model_and_trace(&files, &info.actions)?;
+    let mut last = String::new();
+    for attempt in 0..8u64 {
+        let s = mix(seed, attempt);
+        let mut w = template.clone();
+        let changed = ["l3", "l2"].iter().any(|level| {
+            match crate::lfd::disturb::inject(&mut w, level, &trace, &[], s) {
+                Ok(_) => true,
+                Err(e) => {
+                    last = e;
+                    false
+                }
+            }
+        });
+        if changed {
+            let _ = crate::lfd::disturb::inject(&mut w, "l1", &trace, &[], mix(s, 1));
+            return serde_json::to_string(&w.snapshot())
+                .map_err(|e| RecorderError::Model(e.to_string()));
+        }
+    }
+    Err(refused(format!(
+        "no random initial world could be drawn from the taught scene: {last}"
+    )))
+}
+
+/// A closed-loop session running the taught task (see the module docs).
+pub fn session(demo_json: &str, options: &TaughtRunOptions) -> Result<Session, RecorderError> {
+    let (t, _) = load(demo_json)?;
+    let files = sources(&t, demo_json)?;
+    let scene = match (&options.scene, options.random) {
+        (Some(_), true) => {
+            return Err(RecorderError::Input {
+                path: "options".into(),
+                message: "give either `scene` or `random`, not both".into(),
+            })
+        }
+        (Some(s), false) => Some(s.clone()),
+        (None, true) => Some(random_scene(demo_json, options.seed)?),
+        (None, false) => None,
+    };
+    if let Some(s) = &scene {
+        let w = World::from_json(s).map_err(|e| RecorderError::Input {
+            path: format!("scene.{}", e.path),
+            message: e.message,
+        })?;
+        if w.name() != t.scene.name {
+            return Err(RecorderError::Input {
+                path: "scene.name".into(),
+                message: format!(
+                    "the world `{}` is not the taught task's world `{}`",
+                    w.name(),
+                    t.scene.name
+                ),
+            });
+        }
+    }
+    let opts = SessionOptions {
+        benchmark: benchmark_of(&t)?,
+        method: options.method,
+        mode: options.mode,
+        seed: options.seed,
+        skill: options.skill,
+    };
+    Session::with_sources(
+        opts,
+        &files,
+        scene.as_deref(),
+        Some(demo_json),
+        SessionParams::default(),
+    )
+    .map_err(|e| RecorderError::Model(e.to_string()))
+}
+
+/// Re-runs the episode log of a taught session (its `demo_json` is the taught demo) exactly.
+pub fn replay(episode_json: &str) -> Result<Session, RecorderError> {
+    let v: serde_json::Value =
+        serde_json::from_str(episode_json).map_err(|e| RecorderError::Input {
+            path: format!("line {} column {}", e.line(), e.column()),
+            message: e.to_string(),
+        })?;
+    let demo = v
+        .get("demo_json")
+        .and_then(|d| d.as_str())
+        .ok_or_else(|| RecorderError::Input {
+            path: "demo_json".into(),
+            message: "missing: not the episode of a taught task".into(),
+        })?;
+    let (t, _) = load(demo)?;
+    let files = sources(&t, demo)?;
+    Session::replay_with_sources(&files, episode_json)
+        .map_err(|e| RecorderError::Model(e.to_string()))
+}
+
+/// How well the skills the loop learns from a taught demo reproduce the recorded motions: every
+/// action is split at its gripper event into the approach (start → grasp/release) and the retreat
+/// (→ end), as [`crate::lfd::skill::SkillLibrary`] does, an LQT-CP skill is learned from each part
+/// (object-centric samples) and planned from the part's first sample. One fit per part, named
+/// `(action) approach` / `(action) retreat`.
+pub fn skill_fits(demo: &Demonstration) -> Result<Vec<SkillFit>, RecorderError> {
+    let mut out = vec![];
+    for a in &demo.actions {
+        let pts: Vec<Point3<f64>> = a
+            .samples
+            .iter()
+            .map(|s| Point3::new(s[0], s[1], s[2]))
+            .collect();
+        let Some(split) = a
+            .gripper
+            .iter()
+            .find(|g| g.step > 0 && g.step < pts.len())
+            .map(|g| g.step)
+        else {
+            continue;
+        };
+        for (part, seg) in [("approach", &pts[..=split]), ("retreat", &pts[split..])] {
+            if seg.len() < 8 {
+                continue;
+            }
+            let err = |e: crate::lqt::LqtError| {
+                refused(format!(
+                    "{} {part}: learning its LQT-CP skill failed: {e}",
+                    a.action
+                ))
+            };
+            let skill = Skill::learn(seg, demo.dt, SkillParams::default()).map_err(err)?;
+            let tr = skill
+                .plan(&seg[0], &Isometry3::identity(), &[])
+                .map_err(err)?;
+            let n = seg.len().min(tr.positions.len());
+            let sq: f64 = (0..n)
+                .map(|k| (tr.positions[k] - seg[k]).norm_squared())
+                .sum();
+            let goal_error = match (tr.positions.last(), seg.last()) {
+                (Some(p), Some(q)) => (p - q).norm(),
+                _ => 0.0,
+            };
+            out.push(SkillFit {
+                action: format!("{} {part}", a.action),
+                steps: seg.len(),
+                rms_error: (sq / n.max(1) as f64).sqrt(),
+                goal_error,
+            });
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,345 @@
+//! WebAssembly bindings of the demonstration recorder (`Teacher`) and of taught tasks
+//! (`Session.fromTaught`, `taughtInfo`): the page's Teach mode. Plain data crosses the boundary;
+//! a recording the model cannot explain comes back as data (`ok: false` with the time and the
+//! unexplained fact change), never as a half-applied edit.
+
+use super::{js_err, seed_of, to_js, WasmSession};
+use crate::recorder::synth::Edit;
+use crate::recorder::taught::{self, TaughtRunOptions};
+use crate::recorder::{GripperHandle, Recorder, RecorderError, RecorderEvent, Segment, SkillFit};
+use crate::sim::benchmark::Benchmark;
+use serde::Serialize;
+use wasm_bindgen::prelude::*;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS_TEACH: &'static str = r#"
+/** One recognised action of a recording. */
+export interface Segment {
+  index: number; action: string; arm: string; t_start: number; t_event: number; t_end: number;
+  added: string[]; removed: string[];
+}
+/** One arm's gripper (the page's handle). */
+export interface GripperHandle {
+  arm: string; position: [number, number, number]; yaw: number; gripper: "open" | "closed"; holding?: string | null;
+}
+/** An edit of the recording: a gripper command held for `duration` s (gripper mode), a block
+ * carried by the robot to a block or a place (quick mode), a hook pull (B2), a hand move. */
+export type TeachEdit =
+  | { edit: "gripper"; arm: number | string; position: [number, number, number]; yaw: number; gripper: "open" | "closed"; duration?: number }
+  | { edit: "drag"; body: string; onto?: string | null; position?: [number, number] | null; yaw?: number | null; arm?: number | string | null }
+  | { edit: "pull"; body: string; hook?: string | null; arm?: number | string | null }
+  | { edit: "move"; body: string; position: [number, number, number] };
+/** Everything the Teach panel shows. */
+export interface TeachState {
+  t: number; benchmark: string; segments: Segment[]; states: string[][]; facts: string[];
+  world: WorldSnapshot; handles: GripperHandle[]; goal?: string[] | null; steps: number;
+}
+/** Why an edit or the end of a recording was refused. */
+export interface TeachError {
+  kind: "input" | "model" | "unexplained" | "physics" | "refused";
+  message: string; t?: number | null; added: string[]; removed: string[];
+}
+/** The result of an edit: the new state, or the refusal (the recording is unchanged). */
+export type TeachResult =
+  | { ok: true; state: TeachState; new_segments: Segment[]; world_events: unknown[]; removed?: Segment | null }
+  | { ok: false; state: TeachState; error: TeachError };
+/** How well an LQT-CP skill learned from a recorded motion reproduces it (m). */
+export interface SkillFit { action: string; steps: number; rms_error: number; goal_error: number; }
+/** A checked taught demonstration. */
+export interface TaughtInfo { benchmark: "b1" | "b2" | "b3"; actions: string[]; arms: string[]; states: string[][]; goal: string[]; }
+/** The end of a recording: the demo.json text, its listing and the skill fits. */
+export type TeachFinish =
+  | { ok: true; demo_json: string; info: TaughtInfo; skills: SkillFit[] }
+  | { ok: false; error: TeachError };
+/** How a taught task runs; every key optional. */
+export interface TaughtRunOptions {
+  method?: "logic-lfd" | "linear" | "rlds" | "tamp"; mode?: "paper" | "prioritised"; seed?: number;
+  skill?: "lqt" | "dmp"; scene?: string | null; random?: boolean;
+}
+"#;
+
+#[derive(Serialize)]
+struct TeachState {
+    t: f64,
+    benchmark: String,
+    segments: Vec<Segment>,
+    states: Vec<Vec<String>>,
+    facts: Vec<String>,
+    world: crate::sim::snapshot::WorldSnapshot,
+    handles: Vec<GripperHandle>,
+    goal: Option<Vec<String>>,
+    steps: usize,
+}
+
+#[derive(Serialize)]
+struct TeachError {
+    kind: &'static str,
+    message: String,
+    t: Option<f64>,
+    added: Vec<String>,
+    removed: Vec<String>,
+}
+
+#[derive(Serialize)]
+#[serde(untagged)]
+enum TeachResult {
+    Ok {
+        ok: bool,
+        state: TeachState,
+        new_segments: Vec<Segment>,
+        world_events: Vec<crate::sim::WorldEvent>,
+        removed: Option<Segment>,
+    },
+    Err {
+        ok: bool,
+        state: TeachState,
+        error: TeachError,
+    },
+}
+
+#[derive(Serialize)]
+#[serde(untagged)]
+enum TeachFinish {
+    Ok {
+        ok: bool,
+        demo_json: String,
+        info: taught::TaughtInfo,
+        skills: Vec<SkillFit>,
+    },
+    Err {
+        ok: bool,
+        error: TeachError,
+    },
+}
+
+fn teach_error(e: &RecorderError) -> TeachError {
+    let (kind, t, added, removed) = match e {
+        RecorderError::Input { .. } => ("input", None, vec![], vec![]),
+        RecorderError::Model(_) => ("model", None, vec![], vec![]),
+        RecorderError::Unexplained {
+            t, added, removed, ..
+        } => ("unexplained", Some(*t), added.clone(), removed.clone()),
+        RecorderError::Physics { t, .. } => ("physics", Some(*t), vec![], vec![]),
+        RecorderError::Refused(_) => ("refused", None, vec![], vec![]),
+    };
+    TeachError {
+        kind,
+        message: e.to_string(),
+        t,
+        added,
+        removed,
+    }
+}
+
+/// A demonstration being recorded in one of the benchmark workcells (the page's Teach mode).
+#[wasm_bindgen]
+pub struct Teacher {
+    inner: Recorder,
+    benchmark: Benchmark,
+}
+
+impl Teacher {
+    fn state(&self) -> TeachState {
+        TeachState {
+            t: self.inner.time(),
+            benchmark: self.benchmark.id().to_string(),
+            segments: self.inner.segments(),
+            states: self.inner.demo_states(),
+            facts: self.inner.facts().to_vec(),
+            world: self.inner.world().snapshot(),
+            handles: self.inner.handles(),
+            goal: self.inner.goal().map(<[String]>::to_vec),
+            steps: self.inner.sample_count(),
+        }
+    }
+
+    fn result(
+        &self,
+        r: Result<RecorderEvent, RecorderError>,
+        removed: Option<Segment>,
+    ) -> TeachResult {
+        match r {
+            Ok(ev) => TeachResult::Ok {
+                ok: true,
+                state: self.state(),
+                new_segments: ev.new_segments,
+                world_events: ev.world_events,
+                removed,
+            },
+            Err(e) => TeachResult::Err {
+                ok: false,
+                state: self.state(),
+                error: teach_error(&e),
+            },
+        }
+    }
+}
+
+#[wasm_bindgen]
+impl Teacher {
+    /// A recorder on benchmark `b1`, `b2` or `b3`, starting from its template scene or from
+    /// `scene` (a `WorldSnapshot` JSON of that benchmark's world).
+    #[wasm_bindgen(constructor)]
+    pub fn new(benchmark: &str, scene: Option<String>) -> Result<Teacher, JsError> {
+        let b = Benchmark::parse(benchmark).ok_or_else(|| {
+            js_err(format!(
+                "unknown benchmark `{benchmark}` (expected b1, b2 or b3)"
+            ))
+        })?;
+        let snapshot = match scene {
+            None => b.scene_snapshot(),
+            Some(text) => {
+                let w = crate::sim::World::from_json(&text).map_err(js_err)?;
+                if w.name() != b.dir_name() {
+                    return Err(js_err(format!(
+                        "the scene is the world `{}`, not {}",
+                        w.name(),
+                        b.dir_name()
+                    )));
+                }
+                w.snapshot()
+            }
+        };
+        let inner = Recorder::new(
+            &snapshot,
+            b.domain_pddl(),
+            crate::recorder::RecorderOptions {
+                domain_file: format!("domains/{}/domain.pddl", b.dir_name()),
+                ..Default::default()
+            },
+        )
+        .map_err(js_err)?;
+        Ok(Teacher {
+            inner,
+            benchmark: b,
+        })
+    }
+
+    /// The current state (segments, demo states L0..Lk, facts, world, gripper handles).
+    #[wasm_bindgen(unchecked_return_type = "TeachState")]
+    pub fn current(&self) -> Result<JsValue, JsError> {
+        to_js(&self.state())
+    }
+
+    /// Applies one edit, all or nothing. A refused edit (bad data, a change the domain cannot
+    /// explain, a release in mid-air, …) comes back as `ok: false` with its time and fact change.
+    #[wasm_bindgen(unchecked_return_type = "TeachResult")]
+    pub fn push(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "TeachEdit")] edit: JsValue,
+    ) -> Result<JsValue, JsError> {
+        let v: serde_json::Value =
+            serde_wasm_bindgen::from_value(edit).map_err(|e| js_err(format!("edit: {e}")))?;
+        let r = match serde_json::from_value::<Edit>(v) {
+            Ok(edit) => self.inner.push(&edit),
+            Err(e) => Err(RecorderError::Input {
+                path: "edit".into(),
+                message: e.to_string(),
+            }),
+        };
+        to_js(&self.result(r, None))
+    }
+
+    /// Removes the last recognised action and rewinds the world to the end of the one before.
+    #[wasm_bindgen(unchecked_return_type = "TeachResult")]
+    pub fn undo(&mut self) -> Result<JsValue, JsError> {
+        let r = self.inner.undo_last_segment();
+        let out = match r {
+            Ok(removed) => self.result(
+                Ok(RecorderEvent {
+                    t: self.inner.time(),
+                    new_segments: vec![],
+                    world_events: vec![],
+                    facts: self.inner.facts().to_vec(),
+                }),
+                removed,
+            ),
+            Err(e) => self.result(Err(e), None),
+        };
+        to_js(&out)
+    }
+
+    /// Sets the taught goal (facts that must hold at the end; default: every fact of L_N).
+    #[wasm_bindgen(js_name = setGoal, unchecked_return_type = "TeachResult")]
+    pub fn set_goal(&mut self, goal: Vec<String>) -> Result<JsValue, JsError> {
+        let r = self.inner.set_goal(goal).map(|_| RecorderEvent {
+            t: self.inner.time(),
+            new_segments: vec![],
+            world_events: vec![],
+            facts: self.inner.facts().to_vec(),
+        });
+        to_js(&self.result(r, None))
+    }
+
+    /// Ends the recording: the taught `demo.json` (text), its listing and the skill fits, or why
+    /// not (nothing demonstrated, a block still held, a goal fact that does not hold).
+    #[wasm_bindgen(unchecked_return_type = "TeachFinish")]
+    pub fn finish(&self) -> Result<JsValue, JsError> {
+        let out = match self.inner.finish().and_then(|t| {
+            let json =
+                serde_json::to_string(&t.demo).map_err(|e| RecorderError::Model(e.to_string()))?;
+            let (_, info) = taught::load(&json)?;
+            Ok((json, info, t.skills))
+        }) {
+            Ok((demo_json, info, skills)) => TeachFinish::Ok {
+                ok: true,
+                demo_json,
+                info,
+                skills,
+            },
+            Err(e) => TeachFinish::Err {
+                ok: false,
+                error: teach_error(&e),
+            },
+        };
+        to_js(&out)
+    }
+
+    /// The raw recording so far (what `logic-lfd demo segment` reads).
+    #[wasm_bindgen(js_name = recordingJson)]
+    pub fn recording_json(&self) -> String {
+        self.inner.recording().to_json()
+    }
+}
+
+/// Checks a taught `demo.json` completely and lists its actions, states L0..LN and goal. Rejects
+/// with the key and what is wrong.
+#[wasm_bindgen(js_name = taughtInfo, unchecked_return_type = "TaughtInfo")]
+pub fn taught_info(demo_json: &str) -> Result<JsValue, JsError> {
+    let (_, info) = taught::load(demo_json).map_err(js_err)?;
+    to_js(&info)
+}
+
+/// A seeded random initial world (scene JSON) for a taught task.
+#[wasm_bindgen(js_name = taughtRandomScene)]
+pub fn taught_random_scene(demo_json: &str, seed: f64) -> Result<String, JsError> {
+    taught::random_scene(demo_json, seed_of(seed)?).map_err(js_err)
+}
+
+#[wasm_bindgen(js_class = Session)]
+impl WasmSession {
+    /// A session running a taught task (`demo.json` from `Teacher.finish`) from the taught scene,
+    /// a scene the user arranged (`options.scene`) or a seeded random one (`options.random`).
+    #[wasm_bindgen(js_name = fromTaught)]
+    pub fn from_taught(
+        demo_json: &str,
+        #[wasm_bindgen(unchecked_param_type = "TaughtRunOptions | undefined")] options: JsValue,
+    ) -> Result<WasmSession, JsError> {
+        let o: TaughtRunOptions = if options.is_undefined() || options.is_null() {
+            TaughtRunOptions::default()
+        } else {
+            let v: serde_json::Value = serde_wasm_bindgen::from_value(options)
+                .map_err(|e| js_err(format!("options: {e}")))?;
+            serde_json::from_value(v).map_err(|e| js_err(format!("options: {e}")))?
+        };
+        let inner = taught::session(demo_json, &o).map_err(js_err)?;
+        Ok(WasmSession { inner })
+    }
+
+    /// Re-runs the logged episode of a taught task (from `episodeJson()`) exactly.
+    #[wasm_bindgen(js_name = replayTaught)]
+    pub fn replay_taught(episode: &str) -> Result<WasmSession, JsError> {
+        let inner = taught::replay(episode).map_err(js_err)?;
+        Ok(WasmSession { inner })
+    }
+}

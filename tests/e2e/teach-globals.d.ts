@@ -1,0 +1,14 @@
+// The Teach mode's test hooks (web/src/teach.ts `window.lfdTeach`), as the browser tests see them.
+import type { TaughtInfo, TeachState } from '../../pkg/web/logic_lfd.js';
+
+declare global {
+  interface Window {
+    lfdTeach: {
+      state: () => TeachState | null;
+      info: () => TaughtInfo | null;
+      demoJson: () => string | null;
+      handle: (part: 'move' | 'lift' | 'turn') => { x: number; y: number };
+      busy: () => boolean;
+    };
+  }
+}

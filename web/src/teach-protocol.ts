@@ -1,0 +1,15 @@
+// The Teach mode's requests to the worker (merged into the page's `Api` in protocol.ts): a
+// `Teacher` (the demonstration recorder) lives in the same worker as the Session, and "Run"
+// replaces the Session by one running the taught task.
+import type { Frame, TaughtInfo, TaughtRunOptions, TeachEdit, TeachFinish, TeachResult, TeachState } from 'logic-lfd';
+
+export interface TeachApi {
+  teachStart: { args: { benchmark: 'b1' | 'b2' | 'b3'; scene?: string }; result: TeachState };
+  teachPush: { args: { edit: TeachEdit }; result: TeachResult };
+  teachUndo: { args: Record<string, never>; result: TeachResult };
+  teachFinish: { args: Record<string, never>; result: TeachFinish };
+  teachRecording: { args: Record<string, never>; result: string };
+  teachInfo: { args: { demoJson: string }; result: TaughtInfo };
+  teachRun: { args: { demoJson: string; options: TaughtRunOptions }; result: Frame };
+  teachClose: { args: Record<string, never>; result: null };
+}
