@@ -73,6 +73,9 @@ pub struct StreamParams {
     pub contact_slack: f64,
     /// Free space kept around a placed body (m).
     pub clearance: f64,
+    /// Free space kept around a carried body on its way to a placement's approach pose (m):
+    /// the learned skill's path deviates from the straight line the streams check.
+    pub transfer_margin: f64,
 }
 
 impl Default for StreamParams {
@@ -87,6 +90,7 @@ impl Default for StreamParams {
             settle_ik_iterations: 300,
             contact_slack: 0.002,
             clearance: 0.008,
+            transfer_margin: 0.015,
         }
     }
 }
@@ -361,6 +365,7 @@ impl<'w> StreamBinder<'w> {
         arm: usize,
         via: &[Isometry3<f64>],
         exclude: &[&str],
+        load_margin: f64,
     ) -> Result<[f64; DOF], Reject> {
         self.certifications += 1;
         let Some(base) = self.world.arm_base(arm) else {
@@ -373,7 +378,18 @@ impl<'w> StreamBinder<'w> {
             .map(|(b, g)| {
                 self.local
                     .get(b)
-                    .map(|v| v.iter().map(|(off, c)| (g * off, self.shrink(c))).collect())
+                    .map(|v| {
+                        v.iter()
+                            .map(|(off, c)| {
+                                let shape = if load_margin > 0.0 {
+                                    Cuboid::new(c.half_extents + Vector3::repeat(load_margin))
+                                } else {
+                                    self.shrink(c)
+                                };
+                                (g * off, shape)
+                            })
+                            .collect()
+                    })
                     .unwrap_or_default()
             })
             .unwrap_or_default();
@@ -493,7 +509,7 @@ impl<'w> StreamBinder<'w> {
         let lifted = up(&tcp, self.params.lift_height);
         if certify {
             let via = [up(&tcp, self.params.approach_height), tcp];
-            let Ok(q) = self.certify_path(geo, arm, &via, &[body]) else {
+            let Ok(q) = self.certify_path(geo, arm, &via, &[body], 0.0) else {
                 return false;
             };
             let mut after = geo.clone();
@@ -502,7 +518,7 @@ impl<'w> StreamBinder<'w> {
             after
                 .held
                 .insert(arm, (body.to_string(), tcp.inverse() * pose));
-            let Ok(q) = self.certify_path(&after, arm, &[lifted], &[]) else {
+            let Ok(q) = self.certify_path(&after, arm, &[lifted], &[], 0.0) else {
                 return false;
             };
             geo.q[arm] = q;
@@ -526,15 +542,25 @@ impl<'w> StreamBinder<'w> {
         let tcp = pose * g.inverse();
         let retreat = up(&tcp, self.params.approach_height);
         if certify {
-            let via = [up(&tcp, self.params.approach_height), tcp];
-            let Ok(_) = self.certify_path(geo, arm, &via, &[]) else {
+            // The transfer to the approach pose is where the learned skill cuts corners (its
+            // path is not the straight line checked here): the carried body keeps
+            // `transfer_margin` from everything on the way. The descent is checked as is.
+            let above = up(&tcp, self.params.approach_height);
+            let margin = self.params.transfer_margin;
+            let Ok(q_above) = self.certify_path(geo, arm, &[above], &[], margin) else {
+                return false;
+            };
+            let mut at_above = geo.clone();
+            at_above.tcp[arm] = above;
+            at_above.q[arm] = q_above;
+            let Ok(_) = self.certify_path(&at_above, arm, &[tcp], &[], 0.0) else {
                 return false;
             };
             let mut after = geo.clone();
             after.held.remove(&arm);
             after.poses.insert(body.clone(), *pose);
             after.tcp[arm] = tcp;
-            let Ok(q) = self.certify_path(&after, arm, &[retreat], &[&body]) else {
+            let Ok(q) = self.certify_path(&after, arm, &[retreat], &[&body], 0.0) else {
                 return false;
             };
             geo.q[arm] = q;
@@ -631,20 +657,20 @@ impl<'w> StreamBinder<'w> {
                 return false;
             }
             let via = [up(&tc, self.params.pull_lift), tc];
-            let Ok(q) = self.certify_path(geo, arm, &via, &[]) else {
+            let Ok(q) = self.certify_path(geo, arm, &via, &[], 0.0) else {
                 return false;
             };
             let mut stroke = geo.clone();
             stroke.tcp[arm] = tc;
             stroke.q[arm] = q;
-            let Ok(q) = self.certify_path(&stroke, arm, &[tp], &[body]) else {
+            let Ok(q) = self.certify_path(&stroke, arm, &[tp], &[body], 0.0) else {
                 return false;
             };
             let mut after = stroke;
             after.tcp[arm] = tp;
             after.q[arm] = q;
             after.poses.insert(body.to_string(), moved);
-            let Ok(q) = self.certify_path(&after, arm, &[up(&tp, self.params.pull_lift)], &[])
+            let Ok(q) = self.certify_path(&after, arm, &[up(&tp, self.params.pull_lift)], &[], 0.0)
             else {
                 return false;
             };
