@@ -253,7 +253,15 @@ test(`page soak: ${CYCLES} perturb-and-replan cycles, memory flat after ${WARMUP
   assert.ok(end.geometries <= warm.geometries, `three.js geometries leak: ${warm.geometries} → ${end.geometries}`);
   assert.ok(end.textures <= warm.textures, `three.js textures leak: ${warm.textures} → ${end.textures}`);
   assert.ok(growth('heap') <= MAX_GROWTH, `JS heap grew ${pct(growth('heap'))}`);
-  assert.ok(growth('wasm') <= MAX_GROWTH, `wasm memory grew ${pct(growth('wasm'))}`);
+  // Wasm linear memory is a high-water mark (64 KiB pages, never returned): one larger search
+  // late in a short run raises it once without any leak. So it may grow by MAX_GROWTH or by at
+  // most SOAK_WASM_SLACK bytes (default 1 MiB); a leak grows with the cycle count and exceeds both
+  // in the 1000-cycle run.
+  const wasmSlack = Number(process.env.SOAK_WASM_SLACK ?? 1 << 20);
+  assert.ok(
+    growth('wasm') <= MAX_GROWTH || end.wasm - warm.wasm <= wasmSlack,
+    `wasm memory grew ${pct(growth('wasm'))} (${((end.wasm - warm.wasm) / 1e6).toFixed(2)} MB)`,
+  );
   assert.ok(end.listeners <= warm.listeners * (1 + MAX_GROWTH), `event listeners ${warm.listeners} → ${end.listeners}`);
   await page.close();
 });
