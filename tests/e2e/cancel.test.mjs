@@ -2,23 +2,12 @@
 // 100 ms, and a pathological PDDL problem typed into the editor cannot freeze the page: its search
 // runs in a worker of its own, the page and the robot keep running meanwhile, and Cancel
 // terminates that worker at once. Times are measured inside the page (performance.now()).
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
-import { currentFrame, launch, openApp, serve } from './harness.mjs';
+import { currentFrame, openApp, useBrowser } from './harness.mjs';
 
-let server;
-let browser;
-
-before(async () => {
-  server = await serve();
-  browser = await launch();
-});
-
-after(async () => {
-  await browser?.close();
-  await server?.close();
-});
+const ctx = useBrowser();
 
 const ipc = (f) => readFile(new URL(`../../../shared/ipc/blocks/${f}`, import.meta.url), 'utf8');
 
@@ -40,7 +29,7 @@ const BOUND_MS = process.env.STRICT_TIMING === '1' ? 100 : 1000;
 
 describe('cancel', () => {
   test('Cancel stops the running plan within 100 ms', async () => {
-    const { page, errors } = await openApp(browser, server, '?benchmark=b1&seed=2');
+    const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=2');
     const applied = [];
     const replied = [];
     for (let round = 0; round < 5; round++) {
@@ -79,7 +68,7 @@ describe('cancel', () => {
   });
 
   test('a pathological PDDL problem does not freeze the page; Cancel stops its search at once', async () => {
-    const { page, errors } = await openApp(browser, server, '?benchmark=b1&seed=1');
+    const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=1');
     const domain = await ipc('domain.pddl');
     await page.evaluate(([d, p]) => window.lfd.setPddl(d, p), [domain, bigBlocks(60)]);
     await page.selectOption('#pddl-search', 'bfs');

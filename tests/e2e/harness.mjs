@@ -1,6 +1,8 @@
 // Shared set-up for the browser tests: a static server for web/dist (no dev server, so the test
 // sees exactly what `npm start` serves) and Debian's Chromium driven by playwright-core.
 import { createServer } from 'node:http';
+import { after, before } from 'node:test';
+import { mkdir } from 'node:fs/promises';
 import { readFile, stat } from 'node:fs/promises';
 import { extname, join, normalize } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -57,6 +59,25 @@ export async function launch() {
     executablePath: process.env.CHROMIUM_PATH ?? '/usr/bin/chromium',
     args: chromiumArgs,
   });
+}
+
+/**
+ * Registers the file's before/after hooks: one static server and one Chromium for the whole test
+ * file (and the screenshots folder when `screenshots` is set). Returns `{ server, browser }`,
+ * filled in once the `before` hook has run.
+ */
+export function useBrowser({ withScreenshots = false } = {}) {
+  const ctx = /** @type {{ server: any, browser: any }} */ ({ server: undefined, browser: undefined });
+  before(async () => {
+    ctx.server = await serve();
+    ctx.browser = await launch();
+    if (withScreenshots) await mkdir(screenshots, { recursive: true });
+  });
+  after(async () => {
+    await ctx.browser?.close();
+    await ctx.server?.close();
+  });
+  return ctx;
 }
 
 /** A new page that records console errors and uncaught exceptions into `errors`. */

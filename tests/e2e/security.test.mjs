@@ -2,24 +2,13 @@
 // source; hostile names in a permalink, a loaded scene JSON or the PDDL editor never run script
 // and are displayed as text. A payload "ran" if it set window.__pwned, opened a dialog, or added an
 // element (img, svg, script, iframe) to the document.
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFile, readdir } from 'node:fs/promises';
 import { join } from 'node:path';
-import { launch, openApp, root, serve } from './harness.mjs';
+import { openApp, root, useBrowser } from './harness.mjs';
 
-let server;
-let browser;
-
-before(async () => {
-  server = await serve();
-  browser = await launch();
-});
-
-after(async () => {
-  await browser?.close();
-  await server?.close();
-});
+const ctx = useBrowser();
 
 /** Classic injection payloads; each one that ran would set window.__pwned or open a dialog. */
 const PAYLOADS = [
@@ -34,7 +23,7 @@ const PAYLOADS = [
 
 /** Opens the app and records dialogs; `check()` asserts nothing ran. */
 async function openGuarded(query) {
-  const { page, errors } = await openApp(browser, server, query);
+  const { page, errors } = await openApp(ctx.browser, ctx.server, query);
   const dialogs = [];
   page.on('dialog', (d) => {
     dialogs.push(d.message());

@@ -1,26 +1,14 @@
 // Browser tests of the page (Debian Chromium, headless, WebGL through SwiftShader), driven with
 // real mouse and keyboard events against the production build in web/dist.
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdir, readFile } from 'node:fs/promises';
+import { readFile } from 'node:fs/promises';
 import { join } from 'node:path';
-import { currentFrame, finish, launch, openApp, screenshots, serve } from './harness.mjs';
+import { currentFrame, finish, openApp, screenshots, useBrowser } from './harness.mjs';
 
-let server;
-let browser;
+const ctx = useBrowser({ withScreenshots: true });
 
-before(async () => {
-  server = await serve();
-  browser = await launch();
-  await mkdir(screenshots, { recursive: true });
-});
-
-after(async () => {
-  await browser?.close();
-  await server?.close();
-});
-
-const open = (query = '') => openApp(browser, server, query);
+const open = (query = '') => openApp(ctx.browser, ctx.server, query);
 const frame = currentFrame;
 
 

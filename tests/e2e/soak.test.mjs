@@ -8,9 +8,9 @@
 // Runtime.getHeapUsage after HeapProfiler.collectGarbage), the worker's wasm memory, three.js
 // geometries/textures alive, DOM nodes and listeners. Asserts zero console errors and uncaught
 // exceptions, no geometry/texture leak, and growth ≤ 10 % (SOAK_MAX_GROWTH).
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { launch, openApp, serve } from './harness.mjs';
+import { openApp, useBrowser } from './harness.mjs';
 
 // CI (CI=true, `.ci/run`) runs 200 cycles unless SOAK_CYCLES says otherwise: 1000 take 3–10 min
 // on the shared 2-core machine; the README reports a 1000-cycle run.
@@ -19,18 +19,7 @@ const WARMUP = Number(process.env.SOAK_WARMUP ?? 100);
 const MAX_GROWTH = Number(process.env.SOAK_MAX_GROWTH ?? 0.1);
 const BENCHMARKS = ['b1', 'b2', 'b3'];
 
-let server;
-let browser;
-
-before(async () => {
-  server = await serve();
-  browser = await launch();
-});
-
-after(async () => {
-  await browser?.close();
-  await server?.close();
-});
+const ctx = useBrowser();
 
 /**
  * Waits until the page shows a notice again (the outcome of the action just taken); `null` if
@@ -125,7 +114,7 @@ async function measure(page, cdp) {
 
 test(`page soak: ${CYCLES} perturb-and-replan cycles, memory flat after ${WARMUP} warm-up cycles`, { timeout: 3_600_000 }, async () => {
   // A smaller window than the other tests: software WebGL draws every frame on the CPU.
-  const { page, errors } = await openApp(browser, server, '?benchmark=b1&seed=1&speed=2', { width: 960, height: 600 });
+  const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=1&speed=2', { width: 960, height: 600 });
   // uPlot is not part of the first load; the Charts tab fetches it, and the soak draws the charts.
   const scripts = await page.evaluate(() => performance.getEntriesByType('resource').map((e) => e.name));
   assert.ok(!scripts.some((u) => /uPlot/i.test(u)), `uPlot loaded at first paint: ${scripts.join(' ')}`);

@@ -3,25 +3,13 @@
 // stops, and runs the taught task with Logic-LfD from a random initial world under an L3
 // disturbance to "done". Also: a change the domain cannot explain is shown with its time and fact
 // change, and nothing is recorded; the gripper handle moves the arm.
-import { after, before, describe, test } from 'node:test';
+import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdir, readFile } from 'node:fs/promises';
+import { readFile } from 'node:fs/promises';
 import { join } from 'node:path';
-import { finish, launch, openApp, screenshots, serve } from './harness.mjs';
+import { finish, openApp, screenshots, useBrowser } from './harness.mjs';
 
-let server;
-let browser;
-
-before(async () => {
-  server = await serve();
-  browser = await launch();
-  await mkdir(screenshots, { recursive: true });
-});
-
-after(async () => {
-  await browser?.close();
-  await server?.close();
-});
+const ctx = useBrowser({ withScreenshots: true });
 
 /** Screen points of a block's centre and of the centre of its top face, in the teacher's world. */
 async function blockPoints(page, name) {
@@ -76,7 +64,7 @@ const idle = (page, n) =>
 
 describe('teach', () => {
   test('teach a on c on b with mouse drags, then run it from a random world under L3 to done', async () => {
-    const { page, errors } = await openApp(browser, server, '?benchmark=b1&autoplay=0&speed=2');
+    const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&autoplay=0&speed=2');
     await page.click('#tab-teach');
     await page.click('#teach-record');
     await page.waitForFunction(() => window.lfdTeach.state() !== null);
@@ -145,7 +133,7 @@ describe('teach', () => {
   });
 
   test('a teleport by hand is refused with its time and fact change; the gripper handle picks and places; undo', async () => {
-    const { page, errors } = await openApp(browser, server, '?benchmark=b1&autoplay=0');
+    const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&autoplay=0');
     await page.click('#tab-teach');
     await page.click('#teach-record');
     await page.waitForFunction(() => window.lfdTeach.state() !== null);

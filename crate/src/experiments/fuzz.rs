@@ -1240,14 +1240,7 @@ pub fn check_catching(target: Target, input: &str) -> Result<Verdict, (String, S
     match catch_unwind(AssertUnwindSafe(|| check(target, input))) {
         Ok(Ok(v)) => Ok(v),
         Ok(Err(m)) => Err(("guarantee".into(), m)),
-        Err(p) => {
-            let msg = p
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
-                .unwrap_or_default();
-            Err(("panic".into(), msg))
-        }
+        Err(p) => Err(("panic".into(), super::panic_message(p.as_ref()))),
     }
 }
 

@@ -17,4 +17,13 @@ pub mod tables;
 pub mod tasks;
 
 pub use episode::{run_episode, EpisodeReport, EpisodeSpec, Level};
+
+/// The message of a caught panic (`catch_unwind`'s payload): its `String` or `&str`, else empty.
+pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<String>()
+        .cloned()
+        .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+        .unwrap_or_default()
+}
 pub use tables::{table1, table2, Table1, Table2};

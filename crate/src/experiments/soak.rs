@@ -385,11 +385,7 @@ pub fn soak_with(
             Ok(Ok(())) => {}
             Ok(Err(msg)) => return Err(format!("episode {e}: {msg}")),
             Err(p) => {
-                let msg = p
-                    .downcast_ref::<String>()
-                    .cloned()
-                    .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
-                    .unwrap_or_default();
+                let msg = super::panic_message(p.as_ref());
                 ep.panics += 1;
                 ep.find(SoakFinding {
                     episode: e,

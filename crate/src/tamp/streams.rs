@@ -545,7 +545,7 @@ impl<'w> StreamBinder<'w> {
             // The transfer to the approach pose is where the learned skill cuts corners (its
             // path is not the straight line checked here): the carried body keeps
             // `transfer_margin` from everything on the way. The descent is checked as is.
-            let above = up(&tcp, self.params.approach_height);
+            let above = retreat; // the approach pose is also the retreat pose
             let margin = self.params.transfer_margin;
             let Ok(q_above) = self.certify_path(geo, arm, &[above], &[], margin) else {
                 return false;

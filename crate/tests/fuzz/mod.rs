@@ -53,11 +53,7 @@ pub(crate) fn runner(cases: u32, seed: u8) -> TestRunner {
 /// Runs `f`, turning a panic into a test failure that names the input.
 pub(crate) fn no_panic<T>(what: &str, f: impl FnOnce() -> T) -> Result<T, TestCaseError> {
     catch_unwind(AssertUnwindSafe(f)).map_err(|p| {
-        let msg = p
-            .downcast_ref::<String>()
-            .cloned()
-            .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
-            .unwrap_or_default();
+        let msg = logic_lfd::experiments::panic_message(p.as_ref());
         TestCaseError::fail(format!("{what}: panicked: {msg}"))
     })
 }
