@@ -141,6 +141,17 @@ pub struct Table1Cell {
     pub failures: Vec<(String, usize)>,
 }
 
+impl Table1Cell {
+    /// The method's row name: `linear`, `tamp`, `logic-lfd (paper)`, `logic-lfd (prioritised)`.
+    pub fn method_label(&self) -> String {
+        match (self.method, self.mode) {
+            (Method::LogicLfd, Mode::Prioritised) => "logic-lfd (prioritised)".to_string(),
+            (Method::LogicLfd, Mode::Paper) => "logic-lfd (paper)".to_string(),
+            (m, _) => m.as_str().to_string(),
+        }
+    }
+}
+
 /// Table I.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Table1 {
@@ -373,6 +384,12 @@ pub fn table1(
                     cell.actions.push(r.actions_executed);
                 } else if let Some(reason) = &r.reason {
                     count(&mut cell.failures, reason_kind(reason));
+                    progress(&format!(
+                        "table1 {} task {i} ({}) {}: failed: {reason}",
+                        b.as_str(),
+                        level.as_str(),
+                        cell.method_label()
+                    ));
                 }
             }
             progress(&format!("table1 {} task {}/{}", b.as_str(), i + 1, tasks));
@@ -425,11 +442,7 @@ impl Table1 {
                 _ => 2,
             };
             let (ps, pt) = PAPER_TABLE1[col].1[c.benchmark as usize];
-            let name = match (c.method, c.mode) {
-                (Method::LogicLfd, Mode::Prioritised) => "logic-lfd (prioritised)".to_string(),
-                (Method::LogicLfd, Mode::Paper) => "logic-lfd (paper)".to_string(),
-                (m, _) => m.as_str().to_string(),
-            };
+            let name = c.method_label();
             let ours_t = if c.method == Method::Linear {
                 "N/A (no planning)".to_string()
             } else {

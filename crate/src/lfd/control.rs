@@ -41,6 +41,11 @@ pub trait Binder {
 
     /// Draws more samples per parameter from now on (a retry after a failed binding).
     fn widen(&mut self) {}
+
+    /// Why the last candidate was rejected, in words (`None` if nothing was rejected).
+    fn last_rejection(&self) -> Option<String> {
+        None
+    }
 }
 
 /// Why an episode failed (asserted by the tests, shown by the page).

@@ -529,18 +529,7 @@ impl ActionExec {
                                 // A carried body whose path would sweep through another goes
                                 // up, over at a safe height, and down instead.
                                 if let Some(z) = self.transit_height(world, &via, &r) {
-                                    self.transit_at = Some(self.phase);
-                                    self.phases.splice(
-                                        self.phase..self.phase,
-                                        [
-                                            Phase::Move(Via::Rise { z }),
-                                            Phase::Move(Via::Over {
-                                                inner: Box::new(via.clone()),
-                                                z,
-                                            }),
-                                        ],
-                                    );
-                                    self.segment = None;
+                                    self.insert_transit(&via, z);
                                     return ExecStatus::Running;
                                 }
                                 self.segment = Some(r);
@@ -575,6 +564,18 @@ impl ActionExec {
                     ev.iter().find(|e| matches!(e, WorldEvent::Lost { .. }))
                 {
                     return ExecStatus::Failed(format!("{body} fell: {reason}"));
+                }
+                // The carried body met another on the way (tracking lag or a moved obstacle):
+                // go up, over at a safe height, and down instead, once per action.
+                if world.arm_blocked_by(self.arm).is_some()
+                    && self.transit_at.is_none()
+                    && !matches!(via, Via::Pull { .. } | Via::Rise { .. } | Via::Over { .. })
+                {
+                    let goal = seg.goal;
+                    if let Some(z) = safe_transit_z(world, self.arm, &goal) {
+                        self.insert_transit(&via, z);
+                        return ExecStatus::Running;
+                    }
                 }
                 seg.t += 1;
                 if seg.t >= seg.traj.len() {
@@ -711,17 +712,30 @@ impl ActionExec {
         if !collides {
             return None;
         }
-        let a = world.tcp_pose(self.arm)?.translation.vector;
-        let b = r.goal.translation.vector;
-        let m = 0.08;
-        let top = world.highest_top_in(
-            [a.x.min(b.x) - m, a.y.min(b.y) - m],
-            [a.x.max(b.x) + m, a.y.max(b.y) + m],
-            &held,
+        safe_transit_z(world, self.arm, &r.goal)
+    }
+
+    /// Inserts a transit (rise, over at height `z`) before the current phase; the phase itself
+    /// then descends straight (the learned approach's shape would swing the load back into
+    /// what the transit avoids).
+    fn insert_transit(&mut self, via: &Via, z: f64) {
+        self.transit_at = Some(self.phase);
+        if let Some(Phase::Move(Via::Grasp { skill, .. } | Via::Place { skill, .. })) =
+            self.phases.get_mut(self.phase)
+        {
+            *skill = false;
+        }
+        self.phases.splice(
+            self.phase..self.phase,
+            [
+                Phase::Move(Via::Rise { z }),
+                Phase::Move(Via::Over {
+                    inner: Box::new(via.clone()),
+                    z,
+                }),
+            ],
         );
-        let (lo, _) = world.body_aabb(&held)?;
-        let below_tcp = a.z - lo.z;
-        Some((top + 0.03 + below_tcp).max(a.z).max(b.z))
+        self.segment = None;
     }
 
     fn skill_name(&self, via: &Via) -> String {
@@ -864,4 +878,21 @@ fn pull_via(world: &World, arm: usize, body: &str, stage: u8) -> Result<Isometry
         2 => tp,
         _ => lift(tp),
     })
+}
+
+/// The TCP height of a safe transit of arm `arm`'s held body from where it is to `goal`: its
+/// bottom 3 cm above every top between them (never below either end).
+fn safe_transit_z(world: &World, arm: usize, goal: &Isometry3<f64>) -> Option<f64> {
+    let held = world.held_by(arm)?.to_string();
+    let a = world.tcp_pose(arm)?.translation.vector;
+    let b = goal.translation.vector;
+    let m = 0.08;
+    let top = world.highest_top_in(
+        [a.x.min(b.x) - m, a.y.min(b.y) - m],
+        [a.x.max(b.x) + m, a.y.max(b.y) + m],
+        &held,
+    );
+    let (lo, _) = world.body_aabb(&held)?;
+    let below_tcp = a.z - lo.z;
+    Some((top + 0.03 + below_tcp).max(a.z).max(b.z))
 }

@@ -28,12 +28,14 @@ pub enum TampError {
     #[error("no action skeleton: {0}")]
     NoSkeleton(String),
     /// Every skeleton tried had an action whose parameters no sample could certify.
-    #[error("{skeletons} skeletons tried; last failure: cannot bind {action}")]
+    #[error("{skeletons} skeletons tried; last failure: cannot bind {action}{}", why.as_ref().map(|w| format!(" ({w})")).unwrap_or_default())]
     Unbindable {
         /// Skeletons tried.
         skeletons: usize,
         /// The action that failed last.
         action: String,
+        /// Why its last candidate was rejected.
+        why: Option<String>,
     },
 }
 
@@ -78,5 +80,6 @@ pub fn plan_from_scratch(
     Err(TampError::Unbindable {
         skeletons: tries,
         action: last,
+        why: binder.last_rejection(),
     })
 }

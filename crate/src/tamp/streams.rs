@@ -76,6 +76,11 @@ pub struct StreamParams {
     /// Free space kept around a carried body on its way to a placement's approach pose (m):
     /// the learned skill's path deviates from the straight line the streams check.
     pub transfer_margin: f64,
+    /// Other certified spots tried per surface placement when a later action of the skeleton
+    /// cannot be bound (backtracking).
+    pub max_alternatives: usize,
+    /// Certifications one binding of a skeleton may spend on backtracking.
+    pub certification_budget: usize,
 }
 
 impl Default for StreamParams {
@@ -91,8 +96,15 @@ impl Default for StreamParams {
             contact_slack: 0.002,
             clearance: 0.008,
             transfer_margin: 0.015,
+            max_alternatives: 3,
+            certification_budget: 400,
         }
     }
+}
+
+/// A point in millimetres, for messages.
+fn fmt_point(p: &Vector3<f64>) -> String {
+    format!("({:.0}, {:.0}, {:.0}) mm", p.x * 1e3, p.y * 1e3, p.z * 1e3)
 }
 
 /// A fixed body: name, kind and its boxes in the world.
@@ -122,6 +134,7 @@ pub struct StreamStats {
 
 /// An obstacle of one certification: a box (shrunk by the contact slack) and its world AABB.
 struct Obstacle {
+    name: String,
     iso: Isometry3<f64>,
     shape: Cuboid,
     lo: Vector3<f64>,
@@ -163,6 +176,10 @@ pub struct StreamBinder<'w> {
     pub bindings: Vec<Option<Placement>>,
     /// Certifications (IK + collision tests of a candidate) done so far.
     pub certifications: usize,
+    /// Why the last rejected candidate was rejected, in words (for failure reports).
+    pub last_rejection: Option<String>,
+    /// Backtracking stops once `certifications` passes this (set per skeleton).
+    budget_end: usize,
     /// What the certifications did.
     pub stats: StreamStats,
     /// Poses of the movable bodies after the last successfully bound skeleton (predicted).
@@ -241,6 +258,8 @@ impl<'w> StreamBinder<'w> {
             track_ik,
             bindings: vec![],
             certifications: 0,
+            last_rejection: None,
+            budget_end: 0,
             stats: StreamStats::default(),
             predicted: BTreeMap::new(),
             hints: BTreeMap::new(),
@@ -317,11 +336,12 @@ impl<'w> StreamBinder<'w> {
     /// hand-over), so they are not obstacles.
     fn obstacles(&self, geo: &Geo, arm: usize, exclude: &[&str]) -> Vec<Obstacle> {
         let mut out = vec![];
-        for (_, _, parts) in &self.fixed {
+        for (name, _, parts) in &self.fixed {
             for (iso, c) in parts {
                 let shape = self.shrink(c);
                 let (lo, hi) = box_aabb(iso, &shape);
                 out.push(Obstacle {
+                    name: name.clone(),
                     iso: *iso,
                     shape,
                     lo,
@@ -337,24 +357,33 @@ impl<'w> StreamBinder<'w> {
             for (iso, c) in self.parts_at(name, pose) {
                 let shape = self.shrink(&c);
                 let (lo, hi) = box_aabb(&iso, &shape);
-                out.push(Obstacle { iso, shape, lo, hi });
+                out.push(Obstacle {
+                    name: name.clone(),
+                    iso,
+                    shape,
+                    lo,
+                    hi,
+                });
             }
         }
         out
     }
 
-    fn shape_hits(
+    fn shape_hits<'o>(
         &self,
         iso: &Isometry3<f64>,
         shape: &dyn Shape,
         lo: &Vector3<f64>,
         hi: &Vector3<f64>,
-        obstacles: &[Obstacle],
-    ) -> bool {
-        obstacles.iter().any(|o| {
-            overlaps(lo, hi, o)
-                && query::intersection_test(iso, shape, &o.iso, &o.shape).unwrap_or(true)
-        })
+        obstacles: &'o [Obstacle],
+    ) -> Option<&'o str> {
+        obstacles
+            .iter()
+            .find(|o| {
+                overlaps(lo, hi, o)
+                    && query::intersection_test(iso, shape, &o.iso, &o.shape).unwrap_or(true)
+            })
+            .map(|o| o.name.as_str())
     }
 
     /// Certifies the TCP path through `via` for arm `arm` carrying what `geo` says it carries:
@@ -419,11 +448,21 @@ impl<'w> StreamBinder<'w> {
                         Ok(sol) => sol.joints,
                         Err(_) => {
                             self.stats.rejected_ik += 1;
+                            self.last_rejection = Some(format!(
+                                "the {} arm cannot follow its path to {}",
+                                self.arm_name(arm),
+                                fmt_point(&tcp.translation.vector)
+                            ));
                             return Err(Reject::Ik);
                         }
                     },
                 };
-                if self.sample_hits(arm, &q, &tcp, &load, &obstacles) {
+                if let Some(hit) = self.sample_hits(arm, &q, &tcp, &load, &obstacles) {
+                    self.last_rejection = Some(format!(
+                        "{hit} with the {} arm's TCP at {}",
+                        self.arm_name(arm),
+                        fmt_point(&tcp.translation.vector)
+                    ));
                     self.stats.rejected_collision += 1;
                     return Err(Reject::Collision);
                 }
@@ -433,7 +472,7 @@ impl<'w> StreamBinder<'w> {
         Ok(q)
     }
 
-    /// Whether the arm at joints `q` (TCP `tcp`, carrying `load` in the TCP frame) hits anything.
+    /// What the arm at joints `q` (TCP `tcp`, carrying `load` in the TCP frame) hits, in words.
     fn sample_hits(
         &self,
         arm: usize,
@@ -441,24 +480,36 @@ impl<'w> StreamBinder<'w> {
         tcp: &Isometry3<f64>,
         load: &[(Isometry3<f64>, Cuboid)],
         obstacles: &[Obstacle],
-    ) -> bool {
+    ) -> Option<String> {
         // The base link stands on the table: it is never tested.
-        for (a, b, r) in link_capsules(self.world, arm, q).into_iter().skip(1) {
+        for (i, (a, b, r)) in link_capsules(self.world, arm, q)
+            .into_iter()
+            .enumerate()
+            .skip(1)
+        {
             let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
             let lo = a.inf(&b) - Vector3::repeat(r);
             let hi = a.sup(&b) + Vector3::repeat(r);
-            if self.shape_hits(&Isometry3::identity(), &cap, &lo, &hi, obstacles) {
-                return true;
+            if let Some(o) = self.shape_hits(&Isometry3::identity(), &cap, &lo, &hi, obstacles) {
+                return Some(format!("link {i} hits {o}"));
             }
         }
         for (off, c) in load {
             let iso = tcp * off;
             let (lo, hi) = box_aabb(&iso, c);
-            if self.shape_hits(&iso, c, &lo, &hi, obstacles) {
-                return true;
+            if let Some(o) = self.shape_hits(&iso, c, &lo, &hi, obstacles) {
+                return Some(format!("the carried body hits {o}"));
             }
         }
-        false
+        None
+    }
+
+    fn arm_name(&self, arm: usize) -> String {
+        self.world
+            .arm_names()
+            .get(arm)
+            .map(|s| s.to_string())
+            .unwrap_or_else(|| format!("#{arm}"))
     }
 
     /// Whether `body` resting at `pose` keeps `clearance` from the other free blocks and does not
@@ -763,32 +814,26 @@ impl<'w> StreamBinder<'w> {
         }
     }
 
-    /// A certified resting pose for the body `arm` holds on one of `surfaces`: the
-    /// demonstration's `hint` first, then uniform samples. Certified: inside the placing arm's
-    /// reach annulus, collision-free, the release motion certified (when `certify`), and
-    /// graspable by every other arm whose annulus contains it (hand-over spots).
-    fn sample_surface(
+    /// Candidate resting spots `(sample, x, y, yaw, top)` for the body `arm` holds on one of
+    /// `surfaces`: the demonstration's `hint` first (sample 0), then uniform samples ordered by
+    /// horizontal distance from where the arm carries the body now (short transfers first: long
+    /// sweeps across the workspace are where the joint tracker can get stuck).
+    fn surface_candidates(
         &mut self,
-        geo: &mut Geo,
+        geo: &Geo,
         arm: usize,
         surfaces: &[([f64; 2], [f64; 2], f64)],
         hint: Option<(f64, f64, f64)>,
-        certify: bool,
-    ) -> Option<Placement> {
-        let body = geo.held.get(&arm)?.0.clone();
+    ) -> Vec<Candidate> {
+        let Some(body) = geo.held.get(&arm).map(|h| h.0.clone()) else {
+            return vec![];
+        };
         if surfaces.is_empty() {
-            return None;
+            return vec![];
         }
         let h = self.half_extents(&body);
         let margin = h.x.max(h.y) + 0.01;
-        // Height of the body's frame above its lowest point (the hook's frame is not centred).
-        let (lo, _) = self.world.body_aabb(&body)?;
-        let lift = self.world.body_pose(&body)?.translation.z - lo.z;
-        let is_block = self.world.body_kind(&body) == Some(BodyKind::Block);
-        // Candidates: the hint, then uniform samples ordered by horizontal distance from where
-        // the arm carries the body now (short transfers first: long sweeps across the workspace
-        // are where the joint tracker can get stuck).
-        let mut candidates: Vec<(usize, f64, f64, f64, f64)> = vec![];
+        let mut candidates: Vec<Candidate> = vec![];
         if let Some((x, y, yaw)) = hint {
             if let Some(&(_, _, top)) = surfaces
                 .iter()
@@ -821,122 +866,184 @@ impl<'w> StreamBinder<'w> {
             libm::hypot(a.1 - at.x, a.2 - at.y).total_cmp(&libm::hypot(b.1 - at.x, b.2 - at.y))
         });
         candidates.extend(drawn);
-        for (n, x, y, yaw, top) in candidates {
-            if is_block && !self.in_annulus(arm, x, y) {
-                continue;
-            }
-            let pose = Isometry3::from_parts(
-                Translation3::new(x, y, top + lift),
-                UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
-            );
-            if !self.placement_free(geo, &body, &pose) {
-                self.stats.rejected_collision += 1;
-                continue;
-            }
-            // The carried hook keeps clear of shelves and stays where the arm carried it in the
-            // demonstration (near its hint).
-            if !is_block && n > 0 {
-                let near_hint = hint.is_some_and(|(hx, hy, _)| libm::hypot(x - hx, y - hy) < 0.15);
-                if self.near_shelf(x, y, 0.12) || (hint.is_some() && !near_hint) {
-                    continue;
-                }
-            }
-            if is_block {
-                // Hand-over spots must be graspable from the other side.
-                let others: Vec<usize> = (0..self.reach.len())
-                    .filter(|&a| a != arm && self.in_annulus(a, x, y))
-                    .collect();
-                let graspable = others.iter().all(|&a| {
-                    grasp_pose_at(self.world, a, &body, &pose).is_some_and(|g| {
-                        self.world.reachable(a, &g).is_ok()
-                            && self
-                                .world
-                                .reachable(a, &up(&g, self.params.approach_height))
-                                .is_ok()
-                    })
-                });
-                if !graspable {
-                    self.stats.rejected_ik += 1;
-                    continue;
-                }
-            }
-            let mut next = geo.clone();
-            if !self.release(&mut next, arm, &pose, certify) {
-                continue;
-            }
-            *geo = next;
-            return Some(Placement::At { x, y, yaw });
+        candidates
+    }
+
+    /// Certifies one candidate resting spot for the body `arm` holds: inside the placing arm's
+    /// reach annulus, collision-free, the release motion certified (when `certify`), and
+    /// graspable by every other arm whose annulus contains it (hand-over spots). Returns the
+    /// geometric state after the release.
+    fn try_surface(
+        &mut self,
+        geo: &Geo,
+        arm: usize,
+        (n, x, y, yaw, top): Candidate,
+        hint: Option<(f64, f64, f64)>,
+        certify: bool,
+    ) -> Option<Geo> {
+        let body = geo.held.get(&arm)?.0.clone();
+        // Height of the body's frame above its lowest point (the hook's frame is not centred).
+        let (lo, _) = self.world.body_aabb(&body)?;
+        let lift = self.world.body_pose(&body)?.translation.z - lo.z;
+        let is_block = self.world.body_kind(&body) == Some(BodyKind::Block);
+        if is_block && !self.in_annulus(arm, x, y) {
+            return None;
         }
-        None
+        let pose = Isometry3::from_parts(
+            Translation3::new(x, y, top + lift),
+            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
+        );
+        if !self.placement_free(geo, &body, &pose) {
+            self.stats.rejected_collision += 1;
+            return None;
+        }
+        // The carried hook keeps clear of shelves and stays where the arm carried it in the
+        // demonstration (near its hint).
+        if !is_block && n > 0 {
+            let near_hint = hint.is_some_and(|(hx, hy, _)| libm::hypot(x - hx, y - hy) < 0.15);
+            if self.near_shelf(x, y, 0.12) || (hint.is_some() && !near_hint) {
+                return None;
+            }
+        }
+        if is_block {
+            // Hand-over spots must be graspable from the other side.
+            let others: Vec<usize> = (0..self.reach.len())
+                .filter(|&a| a != arm && self.in_annulus(a, x, y))
+                .collect();
+            let graspable = others.iter().all(|&a| {
+                grasp_pose_at(self.world, a, &body, &pose).is_some_and(|g| {
+                    self.world.reachable(a, &g).is_ok()
+                        && self
+                            .world
+                            .reachable(a, &up(&g, self.params.approach_height))
+                            .is_ok()
+                })
+            });
+            if !graspable {
+                self.stats.rejected_ik += 1;
+                return None;
+            }
+        }
+        let mut next = geo.clone();
+        self.release(&mut next, arm, &pose, certify).then_some(next)
+    }
+
+    /// Binds `ops[i..]` from the geometric state `geo`, pushing one binding per action onto
+    /// `out`. Surface placements are choice points: when a later action cannot be bound, up to
+    /// `max_alternatives` other certified spots are tried (depth first) while the certification
+    /// budget lasts. Err: the index of the deepest action that could not be bound.
+    fn bind_from(
+        &mut self,
+        task: &Task,
+        ops: &[usize],
+        demo_from: usize,
+        i: usize,
+        mut geo: Geo,
+        out: &mut Vec<Option<Placement>>,
+    ) -> Result<Geo, usize> {
+        let Some(&o) = ops.get(i) else {
+            return Ok(geo);
+        };
+        let op = &task.operators[o];
+        let certify = i < demo_from;
+        let Some(kind) = classify(task, op, self.world) else {
+            out.push(None);
+            return self.bind_from(task, ops, demo_from, i + 1, geo, out);
+        };
+        let binding = match kind {
+            ActionKind::Grasp { arm, body } => {
+                if !self.grasp(&mut geo, arm, &body, certify) {
+                    return Err(i);
+                }
+                None
+            }
+            ActionKind::Release {
+                arm,
+                body,
+                placement: Some(Placement::OnBlock(y)),
+            } => {
+                let Some(py) = geo.poses.get(&y).copied() else {
+                    return Err(i);
+                };
+                let hy = self.half_extents(&y);
+                let hb = self.half_extents(&body);
+                let pose = Isometry3::from_parts(
+                    Translation3::from(py.translation.vector + Vector3::z() * (hy.z + hb.z)),
+                    py.rotation,
+                );
+                if !self.release(&mut geo, arm, &pose, certify) {
+                    return Err(i);
+                }
+                Some(Placement::OnBlock(y))
+            }
+            ActionKind::Release { arm, body, .. } => {
+                let adds: Vec<String> = op
+                    .add
+                    .iter()
+                    .map(|&f| task.facts[f as usize].clone())
+                    .collect();
+                let surfaces = self.surfaces(&adds, &body);
+                let hint = self.hints.get(&op.name).copied();
+                let candidates = self.surface_candidates(&geo, arm, &surfaces, hint);
+                let mut deepest = i;
+                let mut certified = 0;
+                for c in candidates {
+                    if certified > self.params.max_alternatives
+                        || self.certifications > self.budget_end
+                    {
+                        break;
+                    }
+                    let Some(next) = self.try_surface(&geo, arm, c, hint, certify) else {
+                        continue;
+                    };
+                    certified += 1;
+                    out.push(Some(Placement::At {
+                        x: c.1,
+                        y: c.2,
+                        yaw: c.3,
+                    }));
+                    match self.bind_from(task, ops, demo_from, i + 1, next, out) {
+                        Ok(end) => return Ok(end),
+                        Err(j) => {
+                            deepest = deepest.max(j);
+                            out.truncate(i);
+                        }
+                    }
+                }
+                return Err(deepest);
+            }
+            ActionKind::Pull { arm, body, .. } => {
+                if !self.pull(&mut geo, arm, &body, certify) {
+                    return Err(i);
+                }
+                None
+            }
+        };
+        out.push(binding);
+        self.bind_from(task, ops, demo_from, i + 1, geo, out)
     }
 }
 
+/// A candidate resting spot: (sample index, 0 for the hint; x; y; yaw; top of the surface).
+type Candidate = (usize, f64, f64, f64, f64);
+
 impl Binder for StreamBinder<'_> {
     fn bind(&mut self, task: &Task, ops: &[usize], demo_from: usize) -> Result<(), usize> {
-        let mut geo = self.geo();
+        let geo = self.geo();
         let mut out = Vec::with_capacity(ops.len());
-        for (i, &o) in ops.iter().enumerate() {
-            let op = &task.operators[o];
-            let certify = i < demo_from;
-            let Some(kind) = classify(task, op, self.world) else {
-                out.push(None);
-                continue;
-            };
-            match kind {
-                ActionKind::Grasp { arm, body } => {
-                    if !self.grasp(&mut geo, arm, &body, certify) {
-                        return Err(i);
-                    }
-                    out.push(None);
-                }
-                ActionKind::Release {
-                    arm,
-                    body,
-                    placement: Some(Placement::OnBlock(y)),
-                } => {
-                    let Some(py) = geo.poses.get(&y).copied() else {
-                        return Err(i);
-                    };
-                    let hy = self.half_extents(&y);
-                    let hb = self.half_extents(&body);
-                    let pose = Isometry3::from_parts(
-                        Translation3::from(py.translation.vector + Vector3::z() * (hy.z + hb.z)),
-                        py.rotation,
-                    );
-                    if !self.release(&mut geo, arm, &pose, certify) {
-                        return Err(i);
-                    }
-                    out.push(Some(Placement::OnBlock(y)));
-                }
-                ActionKind::Release { arm, body, .. } => {
-                    let adds: Vec<String> = op
-                        .add
-                        .iter()
-                        .map(|&f| task.facts[f as usize].clone())
-                        .collect();
-                    let surfaces = self.surfaces(&adds, &body);
-                    let hint = self.hints.get(&op.name).copied();
-                    let Some(placement) =
-                        self.sample_surface(&mut geo, arm, &surfaces, hint, certify)
-                    else {
-                        return Err(i);
-                    };
-                    out.push(Some(placement));
-                }
-                ActionKind::Pull { arm, body, .. } => {
-                    if !self.pull(&mut geo, arm, &body, certify) {
-                        return Err(i);
-                    }
-                    out.push(None);
-                }
-            }
-        }
+        self.last_rejection = None;
+        self.budget_end = self.certifications + self.params.certification_budget;
+        let end = self.bind_from(task, ops, demo_from, 0, geo, &mut out)?;
         self.bindings = out;
-        self.predicted = geo.poses;
+        self.predicted = end.poses;
         Ok(())
     }
 
     fn widen(&mut self) {
         self.params.placement_samples *= 2;
+    }
+
+    fn last_rejection(&self) -> Option<String> {
+        self.last_rejection.clone()
     }
 }
