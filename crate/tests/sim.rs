@@ -793,3 +793,33 @@ fn a_block_released_over_nothing_is_lost_and_the_invariants_say_so() {
         "a lost has no facts"
     );
 }
+
+#[test]
+fn an_arm_commanded_through_the_table_stops_at_its_top() {
+    let mut w = Benchmark::B1.scene();
+    let g = geometry::grasp_pose(&w, 0, "a").unwrap();
+    // 25 cm below the table top, well inside the reach of the links.
+    let below = Isometry3::from_parts(Translation3::new(0.45, -0.3, -0.25), g.rotation);
+    let top = 0.0;
+    let mut stopped = false;
+    for _ in 0..400 {
+        w.command_arm(0, below, GripperCommand::Open).unwrap();
+        w.step();
+        w.check_invariants().unwrap();
+        let q = w.joints(0).unwrap();
+        for (i, (a, b, r)) in geometry::link_capsules(&w, 0, &q)
+            .into_iter()
+            .enumerate()
+            .skip(1)
+        {
+            let low = a.z.min(b.z) - r;
+            assert!(
+                low > top - 0.0101,
+                "link {i} reaches {low:.4} m, into the table"
+            );
+        }
+        stopped |= w.arm_blocked_by(0) == Some("table");
+    }
+    assert!(stopped, "the arm never reported the table in its way");
+    assert!(w.tcp_pose(0).unwrap().translation.z > -0.05);
+}

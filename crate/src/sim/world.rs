@@ -157,6 +157,10 @@ pub(crate) fn yaw_of(rot: &UnitQuaternion<f64>) -> f64 {
     libm::atan2(x.y, x.x)
 }
 
+/// How deep an arm link may press into a table or shelf before the arm stops (m): the link
+/// capsules are rounded stand-ins for the real links.
+const LINK_TOLERANCE: f64 = 0.01;
+
 /// One arm with its gripper.
 #[derive(Clone, Debug)]
 pub(crate) struct Arm {
@@ -1155,13 +1159,23 @@ impl World {
         let held = self.arms[ai].holding.map(|(bi, _)| bi);
         let depth_before = held.map_or(0.0, |bi| self.held_penetration(bi).0);
         let saved = held.map(|_| (self.arms[ai].joints, self.bodies.clone(), events.len()));
+        let before = self.arms[ai].joints;
         let a = &mut self.arms[ai];
         for k in 0..DOF {
             let max = panda::JOINT_VELOCITY[k] * dt;
             let d = (desired[k] - a.joints[k]).clamp(-max, max);
             a.joints[k] = (a.joints[k] + d).clamp(panda::JOINT_LOWER[k], panda::JOINT_UPPER[k]);
         }
-        let hook_before = a.holding.and_then(|(bi, _)| {
+        // The links stop at a table or shelf they would press into (deeper than
+        // LINK_TOLERANCE and deeper than before): the arm cannot reach through furniture.
+        let after = self.arms[ai].joints;
+        let (depth, with) = self.link_penetration(ai, &after);
+        if depth > LINK_TOLERANCE && depth > self.link_penetration(ai, &before).0 + 1e-9 {
+            self.arms[ai].joints = before;
+            self.arms[ai].blocked_by = with.map(|j| self.bodies[j].name.clone());
+            return;
+        }
+        let hook_before = self.arms[ai].holding.and_then(|(bi, _)| {
             (self.bodies[bi].kind == BodyKind::Hook).then_some((bi, self.bodies[bi].pose))
         });
         self.carry_held(ai);
@@ -1181,6 +1195,36 @@ impl World {
                 self.arms[ai].blocked_by = with.map(|j| self.bodies[j].name.clone());
             }
         }
+    }
+
+    /// Deepest overlap of arm `ai`'s link capsules at joints `q` (the base link excepted) with a
+    /// table or shelf, and which one.
+    fn link_penetration(&self, ai: usize, q: &[f64; DOF]) -> (f64, Option<usize>) {
+        let mut best = (0.0, None);
+        let caps = super::geometry::link_capsules(self, ai, q);
+        for (a, b, r) in caps.into_iter().skip(1) {
+            let lo = a.inf(&b) - Vector3::repeat(r);
+            let hi = a.sup(&b) + Vector3::repeat(r);
+            let cap = parry3d_f64::shape::Capsule::new(Point3::from(a), Point3::from(b), r);
+            for (j, body) in self.bodies.iter().enumerate() {
+                if body.lost || !matches!(body.kind, BodyKind::Table | BodyKind::Shelf) {
+                    continue;
+                }
+                let (blo, bhi) = body.aabb();
+                if (0..3).any(|i| lo[i] > bhi[i] || blo[i] > hi[i]) {
+                    continue;
+                }
+                for (iso, c) in body.world_parts() {
+                    if let Ok(Some(k)) = query::contact(&Isometry3::identity(), &cap, &iso, c, 0.0)
+                    {
+                        if -k.dist > best.0 {
+                            best = (-k.dist, Some(j));
+                        }
+                    }
+                }
+            }
+        }
+        best
     }
 
     /// Deepest overlap of body `bi` with any other body that is neither lost nor held, and with
