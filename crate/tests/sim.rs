@@ -823,3 +823,31 @@ fn an_arm_commanded_through_the_table_stops_at_its_top() {
     assert!(stopped, "the arm never reported the table in its way");
     assert!(w.tcp_pose(0).unwrap().translation.z > -0.05);
 }
+
+#[test]
+fn the_grasp_turns_a_quarter_when_a_neighbour_stands_in_the_hand_s_way() {
+    let w = Benchmark::B1.scene();
+    let a = w.body_pose("a").unwrap();
+    let g0 = geometry::grasp_pose(&w, 0, "a").unwrap();
+    let boxes = geometry::boxes_except(&w, &["a"]);
+    let clear = geometry::clear_grasp_at(&w, 0, "a", &a, &boxes, 0.1).unwrap();
+    assert_eq!(
+        clear, g0,
+        "nothing in the way: the grasp closest to the arm's heading"
+    );
+    // A block 2.5 cm from a along the fingers' closing axis.
+    let axis = g0.rotation * Vector3::y();
+    let p = a.translation.vector + axis * 0.085;
+    let mut w = w;
+    w.move_block("b", Vector3::new(p.x, p.y, 0.03)).unwrap();
+    let boxes = geometry::boxes_except(&w, &["a"]);
+    assert!(geometry::hand_hits(&g0, &boxes), "the hand would hit b");
+    let turned = geometry::clear_grasp_at(&w, 0, "a", &a, &boxes, 0.1).unwrap();
+    assert!(!geometry::hand_hits(&turned, &boxes));
+    let angle = (g0.rotation.inverse() * turned.rotation).angle();
+    assert!(
+        (angle - std::f64::consts::FRAC_PI_2).abs() < 1e-6,
+        "{angle}"
+    );
+    assert_eq!(turned.translation, g0.translation);
+}

@@ -21,7 +21,7 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
 use crate::plan::{Operator, Task};
 use crate::sim::geometry::{
-    grasp_pose, quarter_turn_for_arm, rest_pose, rest_pose_on, tcp_for_body_pose,
+    boxes_except, clear_grasp_at, quarter_turn_for_arm, rest_pose, rest_pose_on, tcp_for_body_pose,
 };
 use crate::sim::{GripperCommand, World, WorldEvent};
 
@@ -237,6 +237,8 @@ pub struct ActionExec {
     transit_at: Option<usize>,
     /// The body acted on is the hook (its skills are the `hook-…` ones).
     hook: bool,
+    /// The approach height (m): the grasp is chosen with the hand clear up to half of it.
+    approach_height: f64,
 }
 
 #[derive(Clone, Debug)]
@@ -420,6 +422,7 @@ impl ActionExec {
             event_frame: None,
             transit_at: None,
             hook,
+            approach_height: p.approach_height,
         }
     }
 
@@ -778,9 +781,13 @@ impl ActionExec {
         };
         match via {
             Via::Grasp { body, dz, .. } => {
-                let g = grasp_pose(world, self.arm, body)
-                    .ok_or_else(|| format!("{body} cannot be grasped"))?;
                 let bp = world.body_pose(body);
+                let g = bp
+                    .and_then(|at| {
+                        let boxes = boxes_except(world, &[body]);
+                        clear_grasp_at(world, self.arm, body, &at, &boxes, self.approach_height)
+                    })
+                    .ok_or_else(|| format!("{body} cannot be grasped"))?;
                 let at = bp.map(|q| q.translation.vector);
                 Ok((
                     up(g, *dz),

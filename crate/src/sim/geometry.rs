@@ -11,6 +11,7 @@ use super::panda::{self, ArmFrames};
 use super::snapshot::BodyKind;
 use super::world::{yaw_of, Arm, World};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use parry3d_f64::shape::{Capsule, Cuboid};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Where the hook is grasped, in the hook's own frame (near the end of the handle) (m).
@@ -53,8 +54,106 @@ fn links_of(f: &ArmFrames) -> Vec<(Vector3<f64>, Vector3<f64>, f64)> {
         (o(4), o(5), 0.06),
         (o(5), o(7), 0.055),
         (o(7), o(8), 0.05),
-        (hp(-0.08, 0.05), hp(0.08, 0.05), 0.035),
+        (
+            hp(-HAND_HALF_SPAN, HAND_HEIGHT),
+            hp(HAND_HALF_SPAN, HAND_HEIGHT),
+            HAND_RADIUS,
+        ),
     ]
+}
+
+/// The hand's capsule: half its span along the finger axis, its axis height above the hand
+/// frame, its radius (m).
+const HAND_HALF_SPAN: f64 = 0.08;
+const HAND_HEIGHT: f64 = 0.05;
+const HAND_RADIUS: f64 = 0.035;
+
+/// The hand's capsule `(a, b, radius)` (world frame) when the TCP is at `tcp`: the last of
+/// [`link_capsules`], without the rest of the arm.
+pub fn hand_capsule(tcp: &Isometry3<f64>) -> (Vector3<f64>, Vector3<f64>, f64) {
+    let p = |y: f64| (tcp * Point3::new(0.0, y, HAND_HEIGHT - panda::TCP_OFFSET)).coords;
+    (p(-HAND_HALF_SPAN), p(HAND_HALF_SPAN), HAND_RADIUS)
+}
+
+/// Whether the hand at `tcp` overlaps one of `boxes` (world poses and half extents).
+pub fn hand_hits(tcp: &Isometry3<f64>, boxes: &[(Isometry3<f64>, Cuboid)]) -> bool {
+    let (a, b, r) = hand_capsule(tcp);
+    let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
+    boxes.iter().any(|(iso, c)| {
+        parry3d_f64::query::intersection_test(&Isometry3::identity(), &cap, iso, c).unwrap_or(true)
+    })
+}
+
+/// The top grasps of block `body` at `pose` for arm `arm`, best first: the fingers close along
+/// one of its horizontal face normals (yaw ∈ yaw_x + k·π/2) that the gripper can span, ordered
+/// by closeness to the arm's heading (the first is [`grasp_pose_at`]'s). The hook has one.
+pub fn grasp_poses_at(
+    world: &World,
+    arm: usize,
+    body: &str,
+    pose: &Isometry3<f64>,
+) -> Vec<Isometry3<f64>> {
+    let Some(first) = grasp_pose_at(world, arm, body, pose) else {
+        return vec![];
+    };
+    if world.body_kind(body) != Some(BodyKind::Block) {
+        return vec![first];
+    }
+    let heading = yaw_from_base(world, arm, &pose.translation.vector);
+    let first_yaw = closest_yaw(yaw_of(&pose.rotation), FRAC_PI_2, heading);
+    let mut yaws: Vec<f64> = (0..4)
+        .map(|k| wrap(first_yaw + k as f64 * FRAC_PI_2))
+        .collect();
+    yaws.sort_by(|a, b| wrap(a - heading).abs().total_cmp(&wrap(b - heading).abs()));
+    // The fingers must span the block across the closing axis (the TCP's y).
+    let parts = world.body_shapes(body);
+    let cur = world.body_pose(body).unwrap_or(*pose);
+    yaws.into_iter()
+        .map(|yaw| Isometry3::from_parts(pose.translation, panda::down_orientation(yaw)))
+        .filter(|g| {
+            parts.iter().all(|(iso, c)| {
+                let local = g.inverse() * pose * cur.inverse() * iso;
+                let m = local.rotation.to_rotation_matrix().matrix().abs();
+                2.0 * (m * c.half_extents).y <= panda::GRIPPER_MAX_OPENING
+            })
+        })
+        .collect()
+}
+
+/// The grasp of block `body` at `pose` whose hand keeps clear of `boxes` at the grasp and
+/// halfway up its approach (`approach` m above): the first of [`grasp_poses_at`] that does,
+/// else the first. Both the executor (boxes: the world now) and the TAMP streams (boxes: the
+/// predicted world) choose with it, so they agree.
+pub fn clear_grasp_at(
+    world: &World,
+    arm: usize,
+    body: &str,
+    pose: &Isometry3<f64>,
+    boxes: &[(Isometry3<f64>, Cuboid)],
+    approach: f64,
+) -> Option<Isometry3<f64>> {
+    let all = grasp_poses_at(world, arm, body, pose);
+    let lift = |g: &Isometry3<f64>, dz: f64| {
+        Isometry3::from_parts(
+            Translation3::from(g.translation.vector + Vector3::z() * dz),
+            g.rotation,
+        )
+    };
+    all.iter()
+        .find(|g| !hand_hits(g, boxes) && !hand_hits(&lift(g, 0.5 * approach), boxes))
+        .or(all.first())
+        .copied()
+}
+
+/// The boxes of every body of `world` but `except` and the held ones (world frame).
+pub fn boxes_except(world: &World, except: &[&str]) -> Vec<(Isometry3<f64>, Cuboid)> {
+    let snap = world.snapshot();
+    snap.bodies
+        .iter()
+        .filter(|b| !b.lost && !except.contains(&b.name.as_str()))
+        .filter(|b| (0..world.arm_names().len()).all(|a| world.held_by(a) != Some(&b.name)))
+        .flat_map(|b| world.body_shapes(&b.name))
+        .collect()
 }
 
 /// The link capsules `(a, b, radius)` of arm `arm` at joint angles `q` (world frame, base link

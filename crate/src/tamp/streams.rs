@@ -46,7 +46,7 @@ use crate::lfd::control::Binder;
 use crate::lfd::exec::{classify, fact_args, ActionKind, Placement};
 use crate::plan::Task;
 use crate::sim::demo::{pull_hook_poses, PULL_TARGET_RADIUS};
-use crate::sim::geometry::{grasp_pose_at, link_capsules};
+use crate::sim::geometry::{clear_grasp_at, grasp_pose_at, link_capsules};
 use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
@@ -549,12 +549,36 @@ impl<'w> StreamBinder<'w> {
         true
     }
 
+    /// The boxes of every body in `geo` but `body` and the held ones, unshrunk (what the
+    /// executor's grasp choice sees in the world).
+    fn boxes_except(&self, geo: &Geo, body: &str) -> Vec<(Isometry3<f64>, Cuboid)> {
+        let mut out: Vec<(Isometry3<f64>, Cuboid)> = self
+            .fixed
+            .iter()
+            .flat_map(|(_, _, parts)| parts.iter().copied())
+            .collect();
+        for (name, pose) in &geo.poses {
+            if name != body && !geo.is_held(name) {
+                out.extend(self.parts_at(name, pose));
+            }
+        }
+        out
+    }
+
     /// Certifies `arm` grasping `body` (approach from above, close, lift) and rolls `geo` on.
     fn grasp(&mut self, geo: &mut Geo, arm: usize, body: &str, certify: bool) -> bool {
         let Some(pose) = geo.poses.get(body).copied() else {
             return false;
         };
-        let Some(tcp) = grasp_pose_at(self.world, arm, body, &pose) else {
+        let boxes = self.boxes_except(geo, body);
+        let Some(tcp) = clear_grasp_at(
+            self.world,
+            arm,
+            body,
+            &pose,
+            &boxes,
+            self.params.approach_height,
+        ) else {
             return false;
         };
         let lifted = up(&tcp, self.params.lift_height);
