@@ -851,3 +851,31 @@ fn the_grasp_turns_a_quarter_when_a_neighbour_stands_in_the_hand_s_way() {
     );
     assert_eq!(turned.translation, g0.translation);
 }
+
+#[test]
+fn a_turned_pull_stroke_brings_the_block_to_the_reach_radius_along_its_line() {
+    let base = Isometry3::identity();
+    let block = Isometry3::translation(0.9, 0.2, 0.03);
+    let reach = demo::PULL_TARGET_RADIUS;
+    let radial = demo::pull_hook_poses(&base, &block, reach);
+    let same = demo::pull_hook_poses_turned(&base, &block, reach, 0.0).unwrap();
+    assert!((radial.0.translation.vector - same.0.translation.vector).norm() < 1e-12);
+    assert!((radial.1.translation.vector - same.1.translation.vector).norm() < 1e-12);
+    for turn in [0.35, -0.35, 0.7, -0.7] {
+        let (contact, pulled) = demo::pull_hook_poses_turned(&base, &block, reach, turn).unwrap();
+        let stroke = pulled.translation.vector - contact.translation.vector;
+        let end = block.translation.vector + stroke;
+        let r = (end.x * end.x + end.y * end.y).sqrt();
+        assert!(
+            r <= reach && r > reach - 0.011,
+            "turn {turn}: ends at radius {r}"
+        );
+        // The hook is yawed along the turned line and strokes straight back along it.
+        let yaw = 0.2f64.atan2(0.9) + turn;
+        let x = contact.rotation * Vector3::x();
+        assert!((x.y.atan2(x.x) - yaw).abs() < 1e-9);
+        assert!(stroke.normalize().dot(&x) < -0.999_999);
+    }
+    // A line that never comes within reach of the base has no stroke.
+    assert!(demo::pull_hook_poses_turned(&base, &block, reach, 1.5).is_none());
+}

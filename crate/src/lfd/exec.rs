@@ -73,9 +73,11 @@ impl Default for ExecParams {
     }
 }
 
-/// Where a released body goes.
+/// What a stream bound for an action: where a released body goes, or how a pull strokes.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Placement {
+    /// A pull stroke turned by this angle (rad) from the line through the arm's base.
+    Stroke(f64),
     /// Centred on top of this block.
     OnBlock(String),
     /// Resting with its centre above `(x, y)` with yaw `yaw` (rad) on whatever is below.
@@ -116,6 +118,9 @@ pub enum ActionKind {
         hook: String,
         /// The body pulled.
         body: String,
+        /// The stroke's turn from the line through the arm's base (rad; 0 until bound by a
+        /// stream, see `sim::demo::pull_hook_poses_turned`).
+        turn: f64,
     },
 }
 
@@ -174,6 +179,7 @@ pub fn classify(task: &Task, op: &Operator, world: &World) -> Option<ActionKind>
             arm: world.arm_index(&arm)?,
             hook,
             body,
+            turn: 0.0,
         });
     }
     None
@@ -206,8 +212,9 @@ enum Via {
     /// Straight up by `dz` from where the TCP is (`skill`: the learned retreat of the action,
     /// in the frame recorded at the gripper event).
     Up { dz: f64, skill: bool },
-    /// A pull stroke: hook blade behind `body`, then dragged towards the base (`stage` 0 / 1).
-    Pull { body: String, stage: u8 },
+    /// A pull stroke: hook blade behind `body`, then dragged towards the base (`stage` 0..3),
+    /// the stroke turned by `turn` rad.
+    Pull { body: String, stage: u8, turn: f64 },
     /// Transit: straight up (or down) to TCP height `z`.
     Rise { z: f64 },
     /// Transit: above the goal of `inner`, at TCP height `z`.
@@ -383,26 +390,19 @@ impl ActionExec {
                     ],
                 )
             }
-            ActionKind::Pull { arm, body, .. } => (
+            ActionKind::Pull {
+                arm, body, turn, ..
+            } => (
                 *arm,
-                vec![
-                    Phase::Move(Via::Pull {
-                        body: body.clone(),
-                        stage: 0,
-                    }),
-                    Phase::Move(Via::Pull {
-                        body: body.clone(),
-                        stage: 1,
-                    }),
-                    Phase::Move(Via::Pull {
-                        body: body.clone(),
-                        stage: 2,
-                    }),
-                    Phase::Move(Via::Pull {
-                        body: body.clone(),
-                        stage: 3,
-                    }),
-                ],
+                (0..4)
+                    .map(|stage| {
+                        Phase::Move(Via::Pull {
+                            body: body.clone(),
+                            stage,
+                            turn: *turn,
+                        })
+                    })
+                    .collect(),
             ),
         };
         let gripper = world
@@ -820,8 +820,8 @@ impl ActionExec {
                 g.translation.vector.z = *z;
                 Ok((g, None, anchor))
             }
-            Via::Pull { body, stage } => {
-                let g = pull_via(world, self.arm, body, *stage)?;
+            Via::Pull { body, stage, turn } => {
+                let g = pull_via(world, self.arm, body, *stage, *turn)?;
                 let at = world.body_pose(body).map(|q| q.translation.vector);
                 Ok((
                     g,
@@ -858,19 +858,31 @@ pub(crate) fn placement_pose(
                 .ok_or_else(|| format!("no support under ({x:.3}, {y:.3})"))?;
             Ok((pose, None))
         }
+        Placement::Stroke(_) => Err(format!("a pull stroke is not a placement of {body}")),
     }
 }
 
 /// Via-points of a pull stroke (the simulator's hook geometry, `sim::demo::pull_hook_poses`):
 /// 0 above the contact pose (blade behind the block), 1 the contact pose, 2 the pulled pose
 /// (block at `PULL_TARGET_RADIUS` from the base), 3 lifted from there.
-fn pull_via(world: &World, arm: usize, body: &str, stage: u8) -> Result<Isometry3<f64>, String> {
+fn pull_via(
+    world: &World,
+    arm: usize,
+    body: &str,
+    stage: u8,
+    turn: f64,
+) -> Result<Isometry3<f64>, String> {
     let base = world.arm_base(arm).ok_or("no such arm")?;
     let bp = world
         .body_pose(body)
         .ok_or_else(|| format!("no body {body}"))?;
-    let (contact, pulled) =
-        crate::sim::demo::pull_hook_poses(&base, &bp, crate::sim::demo::PULL_TARGET_RADIUS);
+    let reach = crate::sim::demo::PULL_TARGET_RADIUS;
+    let (contact, pulled) = if turn == 0.0 {
+        crate::sim::demo::pull_hook_poses(&base, &bp, reach)
+    } else {
+        crate::sim::demo::pull_hook_poses_turned(&base, &bp, reach, turn)
+            .ok_or_else(|| format!("no stroke turned by {turn:.2} rad pulls {body} into reach"))?
+    };
     let lift = |iso: Isometry3<f64>| {
         Isometry3::from_parts(
             Translation3::from(iso.translation.vector + Vector3::z() * 0.08),

@@ -731,6 +731,7 @@ impl Session {
         let streams = StreamParams {
             approach_height: self.params.exec.approach_height,
             lift_height: self.params.exec.lift_height,
+            release_clearance: self.params.exec.release_clearance,
             ..self.params.streams
         };
         let mut binder = StreamBinder::new(
@@ -800,6 +801,11 @@ impl Session {
                     }));
                     return false;
                 };
+                if let ActionKind::Pull { turn, .. } = &mut kind {
+                    if let Some(Some(Placement::Stroke(t))) = self.bindings.get(index) {
+                        *turn = *t;
+                    }
+                }
                 if let ActionKind::Release { placement, .. } = &mut kind {
                     if placement.is_none() {
                         *placement = self.bindings.get(index).cloned().flatten();

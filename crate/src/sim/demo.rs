@@ -541,23 +541,46 @@ pub fn pull_hook_poses(
     block: &Isometry3<f64>,
     reach: f64,
 ) -> (Isometry3<f64>, Isometry3<f64>) {
+    // At turn 0 the stroke's line passes through the base: it always reaches the annulus.
+    pull_hook_poses_turned(base, block, reach, 0.0).unwrap_or((*block, *block))
+}
+
+/// Height of the hook's frame during a pull stroke (m): 6 mm of clearance, as the arm's
+/// tracking tilts the long hook by a few mm at the blade, and a blade that scrapes the table is
+/// stopped at contact (it was 3 mm: stopped strokes).
+const PULL_HOOK_Z: f64 = 0.016;
+
+/// A pull stroke turned by `turn` (rad, about `z`) from the line through the base: the hook is
+/// yawed along v = R_z(turn)·u (u: from the base to the block) and drags the block along −v
+/// until its centre is `reach` from the base (+1 cm), the contact pose as in
+/// [`pull_hook_poses`]; a block already within `reach` gets a 1 cm stroke. `None` when no
+/// point of that line is within `reach` of the base.
+pub fn pull_hook_poses_turned(
+    base: &Isometry3<f64>,
+    block: &Isometry3<f64>,
+    reach: f64,
+    turn: f64,
+) -> Option<(Isometry3<f64>, Isometry3<f64>)> {
     let b = block.translation.vector;
     let o = base.translation.vector;
-    let d = Vector3::new(b.x - o.x, b.y - o.y, 0.0);
-    let r = d.norm().max(1e-9);
-    let u = d / r; // away from the base
-    let yaw = libm::atan2(u.y, u.x);
+    let w = Vector3::new(b.x - o.x, b.y - o.y, 0.0);
+    let yaw = libm::atan2(w.y, w.x) + turn;
     let rot = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw);
-    // Block centre in the hook frame: 1 cm gap to the blade's inner face (x = 0.18), mid-blade.
+    let v = rot * Vector3::x(); // away from the base, turned
+                                // Block centre in the hook frame: 1 cm gap to the blade's inner face (x = 0.18), mid-blade.
     let local = Vector3::new(0.18 - 0.01 - 0.5 * BLOCK_SIZE, 0.08, 0.0);
     let mut origin = b - rot * local;
-    // 6 mm of clearance: the arm's tracking tilts the long hook by a few mm at the blade, and
-    // a blade that scrapes the table is stopped at contact (it was 3 mm: stopped strokes).
-    origin.z = 0.016;
+    origin.z = PULL_HOOK_Z;
+    // |w − v·s| = reach along the stroke: s = w·v − √(reach² − |w|² + (w·v)²).
+    let along = w.dot(&v);
+    let disc = reach * reach - w.norm_squared() + along * along;
+    if disc < 0.0 {
+        return None;
+    }
+    let dist = (along - libm::sqrt(disc)).max(0.0) + 0.01;
     let contact = Isometry3::from_parts(Translation3::from(origin), rot);
-    let dist = (r - reach).max(0.0) + 0.01;
-    let pulled = Isometry3::from_parts(Translation3::from(origin - u * dist), rot);
-    (contact, pulled)
+    let pulled = Isometry3::from_parts(Translation3::from(origin - v * dist), rot);
+    Some((contact, pulled))
 }
 
 /// The expert's action list for a benchmark's template task.

@@ -45,7 +45,7 @@ use rand_pcg::Pcg64Mcg;
 use crate::lfd::control::Binder;
 use crate::lfd::exec::{classify, fact_args, ActionKind, Placement};
 use crate::plan::Task;
-use crate::sim::demo::{pull_hook_poses, PULL_TARGET_RADIUS};
+use crate::sim::demo::{pull_hook_poses, pull_hook_poses_turned, PULL_TARGET_RADIUS};
 use crate::sim::geometry::{clear_grasp_at, grasp_pose_at, link_capsules};
 use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
@@ -73,6 +73,9 @@ pub struct StreamParams {
     pub contact_slack: f64,
     /// Free space kept around a placed body (m).
     pub clearance: f64,
+    /// Height above its rest pose at which a released body is let go (m); kept equal to the
+    /// executor's.
+    pub release_clearance: f64,
     /// Free space kept around a carried body on its way to a placement's approach pose (m):
     /// the learned skill's path deviates from the straight line the streams check.
     pub transfer_margin: f64,
@@ -95,6 +98,7 @@ impl Default for StreamParams {
             settle_ik_iterations: 300,
             contact_slack: 0.002,
             clearance: 0.008,
+            release_clearance: 0.003,
             transfer_margin: 0.015,
             max_alternatives: 3,
             certification_budget: 400,
@@ -106,6 +110,10 @@ impl Default for StreamParams {
 fn fmt_point(p: &Vector3<f64>) -> String {
     format!("({:.0}, {:.0}, {:.0}) mm", p.x * 1e3, p.y * 1e3, p.z * 1e3)
 }
+
+/// A part of a carried body: its pose in the TCP frame, its box grown by the transfer margin,
+/// its box shrunk by the contact slack.
+type LoadPart = (Isometry3<f64>, Cuboid, Cuboid);
 
 /// A fixed body: name, kind and its boxes in the world.
 type FixedBody = (String, BodyKind, Vec<(Isometry3<f64>, Cuboid)>);
@@ -135,6 +143,9 @@ pub struct StreamStats {
 /// An obstacle of one certification: a box (shrunk by the contact slack) and its world AABB.
 struct Obstacle {
     name: String,
+    /// A table: the carried body's transfer margin does not apply to it (a load on its way
+    /// from a low pose would otherwise start inside the margin).
+    support: bool,
     iso: Isometry3<f64>,
     shape: Cuboid,
     lo: Vector3<f64>,
@@ -336,12 +347,13 @@ impl<'w> StreamBinder<'w> {
     /// hand-over), so they are not obstacles.
     fn obstacles(&self, geo: &Geo, arm: usize, exclude: &[&str]) -> Vec<Obstacle> {
         let mut out = vec![];
-        for (name, _, parts) in &self.fixed {
+        for (name, kind, parts) in &self.fixed {
             for (iso, c) in parts {
                 let shape = self.shrink(c);
                 let (lo, hi) = box_aabb(iso, &shape);
                 out.push(Obstacle {
                     name: name.clone(),
+                    support: *kind == BodyKind::Table,
                     iso: *iso,
                     shape,
                     lo,
@@ -359,6 +371,7 @@ impl<'w> StreamBinder<'w> {
                 let (lo, hi) = box_aabb(&iso, &shape);
                 out.push(Obstacle {
                     name: name.clone(),
+                    support: false,
                     iso,
                     shape,
                     lo,
@@ -401,7 +414,8 @@ impl<'w> StreamBinder<'w> {
             return Err(Reject::Ik);
         };
         let obstacles = self.obstacles(geo, arm, exclude);
-        let load: Vec<(Isometry3<f64>, Cuboid)> = geo
+        // Each part of the load: its pose in the TCP frame, grown by the margin, as it is.
+        let load: Vec<LoadPart> = geo
             .held
             .get(&arm)
             .map(|(b, g)| {
@@ -410,12 +424,13 @@ impl<'w> StreamBinder<'w> {
                     .map(|v| {
                         v.iter()
                             .map(|(off, c)| {
-                                let shape = if load_margin > 0.0 {
+                                let plain = self.shrink(c);
+                                let wide = if load_margin > 0.0 {
                                     Cuboid::new(c.half_extents + Vector3::repeat(load_margin))
                                 } else {
-                                    self.shrink(c)
+                                    plain
                                 };
-                                (g * off, shape)
+                                (g * off, wide, plain)
                             })
                             .collect()
                     })
@@ -478,7 +493,7 @@ impl<'w> StreamBinder<'w> {
         arm: usize,
         q: &[f64; DOF],
         tcp: &Isometry3<f64>,
-        load: &[(Isometry3<f64>, Cuboid)],
+        load: &[LoadPart],
         obstacles: &[Obstacle],
     ) -> Option<String> {
         // The base link stands on the table: it is never tested.
@@ -494,11 +509,16 @@ impl<'w> StreamBinder<'w> {
                 return Some(format!("link {i} hits {o}"));
             }
         }
-        for (off, c) in load {
+        for (off, wide, plain) in load {
             let iso = tcp * off;
-            let (lo, hi) = box_aabb(&iso, c);
-            if let Some(o) = self.shape_hits(&iso, c, &lo, &hi, obstacles) {
-                return Some(format!("the carried body hits {o}"));
+            let (lo, hi) = box_aabb(&iso, wide);
+            let hit = obstacles.iter().find(|o| {
+                let c = if o.support { plain } else { wide };
+                overlaps(&lo, &hi, o)
+                    && query::intersection_test(&iso, c, &o.iso, &o.shape).unwrap_or(true)
+            });
+            if let Some(o) = hit {
+                return Some(format!("the carried body hits {}", o.name));
             }
         }
         None
@@ -628,13 +648,15 @@ impl<'w> StreamBinder<'w> {
             let mut at_above = geo.clone();
             at_above.tcp[arm] = above;
             at_above.q[arm] = q_above;
-            let Ok(_) = self.certify_path(&at_above, arm, &[tcp], &[], 0.0) else {
+            // The executor opens the gripper `release_clearance` above the rest pose.
+            let drop = up(&tcp, self.params.release_clearance);
+            let Ok(_) = self.certify_path(&at_above, arm, &[drop], &[], 0.0) else {
                 return false;
             };
             let mut after = geo.clone();
             after.held.remove(&arm);
             after.poses.insert(body.clone(), *pose);
-            after.tcp[arm] = tcp;
+            after.tcp[arm] = drop;
             let Ok(q) = self.certify_path(&after, arm, &[retreat], &[&body], 0.0) else {
                 return false;
             };
@@ -650,7 +672,29 @@ impl<'w> StreamBinder<'w> {
 
     /// The pose a pull stroke of `arm` leaves `body` at (shape cast of the carried hook along
     /// the executor's stroke, then of the block along its push), after certifying the stroke.
-    fn pull(&mut self, geo: &mut Geo, arm: usize, body: &str, certify: bool) -> bool {
+    /// Tries the radial stroke, then strokes turned by ±PULL_TURNS (certified ones only):
+    /// the turn of the first that passes, the geometric state rolled on.
+    fn pull(&mut self, geo: &mut Geo, arm: usize, body: &str, certify: bool) -> Option<f64> {
+        let turns: &[f64] = if certify {
+            &PULL_TURNS
+        } else {
+            &PULL_TURNS[..1]
+        };
+        turns
+            .iter()
+            .copied()
+            .find(|&turn| self.pull_turned(geo, arm, body, certify, turn))
+    }
+
+    /// One pull stroke turned by `turn` (see [`pull_hook_poses_turned`]).
+    fn pull_turned(
+        &mut self,
+        geo: &mut Geo,
+        arm: usize,
+        body: &str,
+        certify: bool,
+        turn: f64,
+    ) -> bool {
         let Some(bp) = geo.poses.get(body).copied() else {
             return false;
         };
@@ -660,7 +704,14 @@ impl<'w> StreamBinder<'w> {
         let Some(base) = self.world.arm_base(arm) else {
             return false;
         };
-        let (contact, pulled) = pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS);
+        let (contact, pulled) = if turn == 0.0 {
+            pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS)
+        } else {
+            match pull_hook_poses_turned(&base, &bp, PULL_TARGET_RADIUS, turn) {
+                Some(p) => p,
+                None => return false,
+            }
+        };
         let tc = contact * g.inverse();
         let tp = pulled * g.inverse();
         let d = pulled.translation.vector - contact.translation.vector;
@@ -683,6 +734,7 @@ impl<'w> StreamBinder<'w> {
         }
         if toi > 1.0 {
             self.stats.rejected_pull += 1;
+            self.last_rejection = Some(format!("the hook's stroke misses {body}"));
             return false;
         }
         let push = Vector3::new(d.x, d.y, 0.0) * (1.0 - toi);
@@ -715,6 +767,8 @@ impl<'w> StreamBinder<'w> {
                     ) {
                         if hit.time_of_impact <= 1.0 {
                             self.stats.rejected_pull += 1;
+                            self.last_rejection =
+                                Some(format!("the stroke would push {body} into {}", o.name));
                             return false;
                         }
                     }
@@ -729,6 +783,10 @@ impl<'w> StreamBinder<'w> {
             });
             if !on_table || !self.in_annulus(arm, p.x, p.y) {
                 self.stats.rejected_pull += 1;
+                self.last_rejection = Some(format!(
+                    "the stroke would leave {body} off the table or out of the {} arm's reach",
+                    self.arm_name(arm)
+                ));
                 return false;
             }
             let via = [up(&tc, self.params.pull_lift), tc];
@@ -889,6 +947,13 @@ impl<'w> StreamBinder<'w> {
         drawn.sort_by(|a, b| {
             libm::hypot(a.1 - at.x, a.2 - at.y).total_cmp(&libm::hypot(b.1 - at.x, b.2 - at.y))
         });
+        // The hook goes back near where the demonstration left it first (spots within
+        // HOOK_HINT_RADIUS of its hint), anywhere else after.
+        if self.world.body_kind(&body) != Some(BodyKind::Block) {
+            if let Some((hx, hy, _)) = hint {
+                drawn.sort_by_key(|c| libm::hypot(c.1 - hx, c.2 - hy) >= HOOK_HINT_RADIUS);
+            }
+        }
         candidates.extend(drawn);
         candidates
     }
@@ -921,11 +986,12 @@ impl<'w> StreamBinder<'w> {
             self.stats.rejected_collision += 1;
             return None;
         }
-        // The carried hook keeps clear of shelves and stays where the arm carried it in the
-        // demonstration (near its hint).
+        // The carried hook keeps clear of shelves and, unless its motion is certified, stays
+        // near where the demonstration left it.
         if !is_block && n > 0 {
-            let near_hint = hint.is_some_and(|(hx, hy, _)| libm::hypot(x - hx, y - hy) < 0.15);
-            if self.near_shelf(x, y, 0.12) || (hint.is_some() && !near_hint) {
+            let far =
+                hint.is_some_and(|(hx, hy, _)| libm::hypot(x - hx, y - hy) >= HOOK_HINT_RADIUS);
+            if self.near_shelf(x, y, 0.12) || (far && !certify) {
                 return None;
             }
         }
@@ -1037,16 +1103,22 @@ impl<'w> StreamBinder<'w> {
                 return Err(deepest);
             }
             ActionKind::Pull { arm, body, .. } => {
-                if !self.pull(&mut geo, arm, &body, certify) {
+                let Some(turn) = self.pull(&mut geo, arm, &body, certify) else {
                     return Err(i);
-                }
-                None
+                };
+                Some(Placement::Stroke(turn))
             }
         };
         out.push(binding);
         self.bind_from(task, ops, demo_from, i + 1, geo, out)
     }
 }
+
+/// Turns of the pull strokes tried, in order (rad): the radial stroke, then ±20°, ±40°.
+const PULL_TURNS: [f64; 5] = [0.0, 0.35, -0.35, 0.7, -0.7];
+
+/// Radius around the demonstrated hook placement whose spots are tried first (m).
+const HOOK_HINT_RADIUS: f64 = 0.15;
 
 /// A candidate resting spot: (sample index, 0 for the hint; x; y; yaw; top of the surface).
 type Candidate = (usize, f64, f64, f64, f64);
