@@ -572,7 +572,7 @@ impl ActionExec {
                 // go up, over at a safe height, and down instead, once per action.
                 if world.arm_blocked_by(self.arm).is_some()
                     && self.transit_at.is_none()
-                    && !matches!(via, Via::Pull { .. } | Via::Rise { .. } | Via::Over { .. })
+                    && !no_transit(&via)
                 {
                     let goal = seg.goal;
                     if let Some(z) = safe_transit_z(world, self.arm, &goal) {
@@ -695,9 +695,7 @@ impl ActionExec {
     /// between start and goal); `None` when the path is clear, nothing is carried, the via is a
     /// pull stroke or a transit itself, or a transit was already inserted for this phase.
     fn transit_height(&self, world: &World, via: &Via, r: &Running) -> Option<f64> {
-        if matches!(via, Via::Pull { .. } | Via::Rise { .. } | Via::Over { .. })
-            || self.transit_at.is_some()
-        {
+        if no_transit(via) || self.transit_at.is_some() {
             return None;
         }
         let held = world.held_by(self.arm)?.to_string();
@@ -899,19 +897,30 @@ fn pull_via(
     })
 }
 
+/// Whether a segment to `via` must not be replaced by a transit: the hook's stroke itself (from
+/// its contact pose on), and transits.
+fn no_transit(via: &Via) -> bool {
+    matches!(via, Via::Rise { .. } | Via::Over { .. })
+        || matches!(via, Via::Pull { stage, .. } if *stage > 0)
+}
+
 /// The TCP height of a safe transit of arm `arm`'s held body from where it is to `goal`: its
-/// bottom 3 cm above every top between them (never below either end).
+/// bottom 3 cm above every top between them, "between" widened by the held body's reach around
+/// the TCP (never below either end).
 fn safe_transit_z(world: &World, arm: usize, goal: &Isometry3<f64>) -> Option<f64> {
     let held = world.held_by(arm)?.to_string();
     let a = world.tcp_pose(arm)?.translation.vector;
     let b = goal.translation.vector;
-    let m = 0.08;
+    let (lo, hi) = world.body_aabb(&held)?;
+    let extent = [lo.x - a.x, hi.x - a.x, lo.y - a.y, hi.y - a.y]
+        .iter()
+        .fold(0.0f64, |m, d| m.max(d.abs()));
+    let m = (extent + 0.02).max(0.08);
     let top = world.highest_top_in(
         [a.x.min(b.x) - m, a.y.min(b.y) - m],
         [a.x.max(b.x) + m, a.y.max(b.y) + m],
         &held,
     );
-    let (lo, _) = world.body_aabb(&held)?;
     let below_tcp = a.z - lo.z;
     Some((top + 0.03 + below_tcp).max(a.z).max(b.z))
 }
