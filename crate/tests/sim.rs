@@ -871,9 +871,9 @@ fn a_turned_pull_stroke_brings_the_block_to_the_reach_radius_along_its_line() {
             "turn {turn}: ends at radius {r}"
         );
         // The hook is yawed along the turned line and strokes straight back along it.
-        let yaw = 0.2f64.atan2(0.9) + turn;
+        let yaw = libm::atan2(0.2, 0.9) + turn;
         let x = contact.rotation * Vector3::x();
-        assert!((x.y.atan2(x.x) - yaw).abs() < 1e-9);
+        assert!((libm::atan2(x.y, x.x) - yaw).abs() < 1e-9);
         assert!(stroke.normalize().dot(&x) < -0.999_999);
     }
     // A line that never comes within reach of the base has no stroke.
