@@ -879,3 +879,68 @@ fn a_turned_pull_stroke_brings_the_block_to_the_reach_radius_along_its_line() {
     // A line that never comes within reach of the base has no stroke.
     assert!(demo::pull_hook_poses_turned(&base, &block, reach, 1.5).is_none());
 }
+
+#[test]
+fn the_hook_stops_rather_than_push_a_block_into_another() {
+    let mut w = Benchmark::B2.scene();
+    let g = geometry::grasp_pose(&w, 0, "hook").unwrap();
+    let sol = w.reachable(0, &g).unwrap();
+    w.set_joints(0, sol.joints).unwrap();
+    w.command_arm(0, g, GripperCommand::Close).unwrap();
+    w.step();
+    assert_eq!(w.held_by(0), Some("hook"));
+    let bp = w.body_pose("b").unwrap();
+    let base = w.arm_base(0).unwrap();
+    // Block a stands 15 cm in front of b, on the line b is pulled along.
+    let b = bp.translation.vector;
+    let u = Vector3::new(b.x, b.y, 0.0).normalize();
+    let in_front = b - u * 0.15;
+    w.move_block("a", Vector3::new(in_front.x, in_front.y, 0.03))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let (contact, pulled) = demo::pull_hook_poses(&base, &bp, 0.6);
+    let tc = geometry::tcp_for_body_pose(&w, 0, &contact);
+    let tp = geometry::tcp_for_body_pose(&w, 0, &pulled);
+    let sol = w.reachable(0, &tc).unwrap();
+    w.set_joints(0, sol.joints).unwrap();
+    w.check_invariants().unwrap();
+    let mut stopped = false;
+    for k in 1..=400 {
+        let s = (k as f64 / 300.0).min(1.0);
+        let p = tc.translation.vector.lerp(&tp.translation.vector, s);
+        w.command_arm(
+            0,
+            Isometry3::from_parts(Translation3::from(p), tc.rotation),
+            GripperCommand::Close,
+        )
+        .unwrap();
+        w.step();
+        w.check_invariants().unwrap();
+        stopped |= w.arm_blocked_by(0).is_some();
+    }
+    assert!(stopped, "the stroke was never stopped");
+    let a = w.body_pose("a").unwrap().translation.vector;
+    let b = w.body_pose("b").unwrap().translation.vector;
+    assert!((a - b).norm() > 0.058, "b was driven into a: {a} {b}");
+    assert!(!w.snapshot().bodies.iter().any(|x| x.lost));
+}
+
+#[test]
+fn release_check_says_when_letting_go_would_lose_the_load() {
+    let mut w = Benchmark::B1.scene();
+    assert_eq!(w.release_check(0), Ok(()), "nothing held");
+    let g = geometry::grasp_pose(&w, 0, "a").unwrap();
+    let sol = w.reachable(0, &g).unwrap();
+    w.set_joints(0, sol.joints).unwrap();
+    w.command_arm(0, g, GripperCommand::Close).unwrap();
+    w.step();
+    assert_eq!(w.held_by(0), Some("a"));
+    assert_eq!(w.release_check(0), Ok(()), "a rests where it was grasped");
+    // Over the floor, 10 cm beyond the table's far edge.
+    let (_, hi) = w.body_aabb("table").unwrap();
+    let out = Isometry3::from_parts(Translation3::new(0.4, hi.y + 0.1, 0.15), g.rotation);
+    let sol = w.reachable(0, &out).unwrap();
+    w.set_joints(0, sol.joints).unwrap();
+    let why = w.release_check(0).unwrap_err();
+    assert!(!why.is_empty());
+    assert_eq!(w.held_by(0), Some("a"), "the check lets go of nothing");
+}

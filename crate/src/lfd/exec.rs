@@ -452,6 +452,14 @@ impl ActionExec {
                 let Some(tcp) = world.tcp_pose(self.arm) else {
                     return ExecStatus::Failed("no such arm".into());
                 };
+                if self.wait == 0 && cmd == GripperCommand::Open {
+                    // Never let go of a load that would fall or end inside another body.
+                    if let (ActionKind::Release { body, .. }, Err(why)) =
+                        (&self.kind, world.release_check(self.arm))
+                    {
+                        return ExecStatus::Failed(format!("cannot release {body} here: {why}"));
+                    }
+                }
                 if self.wait == 0 {
                     // The retreat's frame: the grasped body where it was grasped; for a release
                     // the body's resting pose (recorded once it has settled, below).

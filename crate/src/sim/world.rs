@@ -1186,9 +1186,38 @@ impl World {
         if let (Some(bi), Some((joints, bodies, n_events))) = (held, saved) {
             let limit = 0.9 * self.params.penetration_tolerance;
             let (depth, with) = self.held_penetration(bi);
-            if depth > limit.max(depth_before + 1e-9) {
-                // The carried body would press into another: the arm stops at the contact
-                // (the step is undone, pushes included), as a compliant controller would.
+            let mut stop = (depth > limit.max(depth_before + 1e-9)).then_some(with);
+            if stop.is_none() {
+                // A block the carried hook pushed may not be driven into another body, nor off
+                // its support.
+                for e in &events[n_events..] {
+                    let (pushed, lost) = match e {
+                        WorldEvent::Pushed { body, .. } => (self.body_index(body), None),
+                        WorldEvent::Lost { body, .. } => (None, self.body_index(body)),
+                        _ => (None, None),
+                    };
+                    if let Some(j) = lost {
+                        stop = Some(Some(j));
+                        break;
+                    }
+                    if let Some(pi) = pushed {
+                        let (d, w) = self.held_penetration(pi);
+                        if d > limit {
+                            let now = std::mem::replace(&mut self.bodies, bodies.clone());
+                            let was = self.held_penetration(pi).0;
+                            self.bodies = now;
+                            if d > was + 1e-9 {
+                                stop = Some(w.or(Some(pi)));
+                                break;
+                            }
+                        }
+                    }
+                }
+            }
+            if let Some(with) = stop {
+                // The carried body would press into another (or push one into another or off
+                // its support): the arm stops at the contact (the step is undone, pushes
+                // included), as a compliant controller would.
                 self.arms[ai].joints = joints;
                 self.bodies = bodies;
                 events.truncate(n_events);
@@ -1519,6 +1548,20 @@ impl World {
             pose.translation,
             UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw),
         )
+    }
+
+    /// What opening arm `arm`'s gripper now would do to its load: `Err(why)` if the load would
+    /// fall or end inside another body (nothing held, or an unknown arm: `Ok`).
+    pub fn release_check(&self, arm: usize) -> Result<(), String> {
+        let Some((bi, _)) = self.arms.get(arm).and_then(|a| a.holding) else {
+            return Ok(());
+        };
+        let pose = Self::upright(&self.bodies[bi].pose);
+        match self.settle_probe(bi, &pose, &[]) {
+            Settle::On { .. } => Ok(()),
+            Settle::Falls(reason) => Err(reason),
+            Settle::Blocked(j) => Err(format!("it would be inside {}", self.bodies[j].name)),
+        }
     }
 
     fn release(&mut self, ai: usize, bi: usize, events: &mut Vec<WorldEvent>) {
