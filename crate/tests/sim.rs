@@ -446,14 +446,8 @@ fn committed_scene_json_files_match_the_builders() {
 
 #[test]
 fn the_hook_pushes_a_block_its_blade_sweeps_into() {
-    let mut w = Benchmark::B2.scene();
     // Hold the hook in place of the demo's contact pose behind b, then pull towards the base.
-    let g = geometry::grasp_pose(&w, 0, "hook").unwrap();
-    let sol = w.reachable(0, &g).unwrap();
-    w.set_joints(0, sol.joints).unwrap();
-    w.command_arm(0, g, GripperCommand::Close).unwrap();
-    w.step();
-    assert_eq!(w.held_by(0), Some("hook"));
+    let mut w = b2_holding_the_hook();
     let bp = w.body_pose("b").unwrap();
     let base = w.arm_base(0).unwrap();
     let (contact, pulled) = demo::pull_hook_poses(&base, &bp, 0.6);
@@ -465,18 +459,7 @@ fn the_hook_pushes_a_block_its_blade_sweeps_into() {
     w.check_invariants().unwrap();
     let before = w.body_pose("b").unwrap().translation.vector;
     let mut pushed = false;
-    for k in 1..=400 {
-        let s = (k as f64 / 300.0).min(1.0);
-        let p = tc.translation.vector.lerp(&tp.translation.vector, s);
-        w.command_arm(
-            0,
-            Isometry3::from_parts(Translation3::from(p), tc.rotation),
-            GripperCommand::Close,
-        )
-        .unwrap();
-        pushed |= !w.step().is_empty();
-        w.check_invariants().unwrap();
-    }
+    stroke(&mut w, &tc, &tp, |w, events| pushed |= !events.is_empty());
     assert!(pushed);
     let after = w.body_pose("b").unwrap().translation.vector;
     let r = |v: Vector3<f64>| libm::hypot(v.x, v.y);
@@ -882,13 +865,7 @@ fn a_turned_pull_stroke_brings_the_block_to_the_reach_radius_along_its_line() {
 
 #[test]
 fn the_hook_stops_rather_than_push_a_block_into_another() {
-    let mut w = Benchmark::B2.scene();
-    let g = geometry::grasp_pose(&w, 0, "hook").unwrap();
-    let sol = w.reachable(0, &g).unwrap();
-    w.set_joints(0, sol.joints).unwrap();
-    w.command_arm(0, g, GripperCommand::Close).unwrap();
-    w.step();
-    assert_eq!(w.held_by(0), Some("hook"));
+    let mut w = b2_holding_the_hook();
     let bp = w.body_pose("b").unwrap();
     let base = w.arm_base(0).unwrap();
     // Block a stands 15 cm in front of b, on the line b is pulled along.
@@ -904,19 +881,9 @@ fn the_hook_stops_rather_than_push_a_block_into_another() {
     w.set_joints(0, sol.joints).unwrap();
     w.check_invariants().unwrap();
     let mut stopped = false;
-    for k in 1..=400 {
-        let s = (k as f64 / 300.0).min(1.0);
-        let p = tc.translation.vector.lerp(&tp.translation.vector, s);
-        w.command_arm(
-            0,
-            Isometry3::from_parts(Translation3::from(p), tc.rotation),
-            GripperCommand::Close,
-        )
-        .unwrap();
-        w.step();
-        w.check_invariants().unwrap();
-        stopped |= w.arm_blocked_by(0).is_some();
-    }
+    stroke(&mut w, &tc, &tp, |w, _| {
+        stopped |= w.arm_blocked_by(0).is_some()
+    });
     assert!(stopped, "the stroke was never stopped");
     let a = w.body_pose("a").unwrap().translation.vector;
     let b = w.body_pose("b").unwrap().translation.vector;
@@ -943,4 +910,39 @@ fn release_check_says_when_letting_go_would_lose_the_load() {
     let why = w.release_check(0).unwrap_err();
     assert!(!why.is_empty());
     assert_eq!(w.held_by(0), Some("a"), "the check lets go of nothing");
+}
+
+/// B2 with the arm holding the hook at its grasp.
+fn b2_holding_the_hook() -> World {
+    let mut w = Benchmark::B2.scene();
+    let g = geometry::grasp_pose(&w, 0, "hook").unwrap();
+    let sol = w.reachable(0, &g).unwrap();
+    w.set_joints(0, sol.joints).unwrap();
+    w.command_arm(0, g, GripperCommand::Close).unwrap();
+    w.step();
+    assert_eq!(w.held_by(0), Some("hook"));
+    w
+}
+
+/// Drives the TCP from `tc` to `tp` in a straight line over 300 ticks (100 more to settle),
+/// checking the invariants after every step; `each` sees the world and the step's events.
+fn stroke(
+    w: &mut World,
+    tc: &Isometry3<f64>,
+    tp: &Isometry3<f64>,
+    mut each: impl FnMut(&World, &[logic_lfd::sim::WorldEvent]),
+) {
+    for k in 1..=400 {
+        let s = (k as f64 / 300.0).min(1.0);
+        let p = tc.translation.vector.lerp(&tp.translation.vector, s);
+        w.command_arm(
+            0,
+            Isometry3::from_parts(Translation3::from(p), tc.rotation),
+            GripperCommand::Close,
+        )
+        .unwrap();
+        let events = w.step();
+        w.check_invariants().unwrap();
+        each(w, &events);
+    }
 }
