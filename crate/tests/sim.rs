@@ -229,13 +229,7 @@ fn scene_graph_reports_on_ontable_clear_from_geometry() {
 
 #[test]
 fn scene_graph_reports_holding_and_handempty() {
-    let mut w = Benchmark::B1.scene();
-    let g = geometry::grasp_pose(&w, 0, "a").unwrap();
-    let sol = w.reachable(0, &g).unwrap();
-    w.set_joints(0, sol.joints).unwrap();
-    w.command_arm(0, g, GripperCommand::Close).unwrap();
-    w.step();
-    assert_eq!(w.held_by(0), Some("a"));
+    let (mut w, g) = holding(Benchmark::B1, "a");
     let f = facts(&w);
     assert!(f.contains(&"(holding panda a)".to_string()), "{f:?}");
     assert!(!f.contains(&"(handempty panda)".to_string()));
@@ -447,19 +441,13 @@ fn committed_scene_json_files_match_the_builders() {
 #[test]
 fn the_hook_pushes_a_block_its_blade_sweeps_into() {
     // Hold the hook in place of the demo's contact pose behind b, then pull towards the base.
-    let mut w = b2_holding_the_hook();
+    let (mut w, _) = holding(Benchmark::B2, "hook");
     let bp = w.body_pose("b").unwrap();
-    let base = w.arm_base(0).unwrap();
-    let (contact, pulled) = demo::pull_hook_poses(&base, &bp, 0.6);
-    let tc = geometry::tcp_for_body_pose(&w, 0, &contact);
-    let tp = geometry::tcp_for_body_pose(&w, 0, &pulled);
     // Teleport to the contact pose (lifted first so nothing is swept on the way).
-    let sol = w.reachable(0, &tc).unwrap();
-    w.set_joints(0, sol.joints).unwrap();
-    w.check_invariants().unwrap();
+    let (tc, tp) = at_stroke_start(&mut w, &bp);
     let before = w.body_pose("b").unwrap().translation.vector;
     let mut pushed = false;
-    stroke(&mut w, &tc, &tp, |w, events| pushed |= !events.is_empty());
+    stroke(&mut w, &tc, &tp, |_, events| pushed |= !events.is_empty());
     assert!(pushed);
     let after = w.body_pose("b").unwrap().translation.vector;
     let r = |v: Vector3<f64>| libm::hypot(v.x, v.y);
@@ -865,21 +853,15 @@ fn a_turned_pull_stroke_brings_the_block_to_the_reach_radius_along_its_line() {
 
 #[test]
 fn the_hook_stops_rather_than_push_a_block_into_another() {
-    let mut w = b2_holding_the_hook();
+    let (mut w, _) = holding(Benchmark::B2, "hook");
     let bp = w.body_pose("b").unwrap();
-    let base = w.arm_base(0).unwrap();
     // Block a stands 15 cm in front of b, on the line b is pulled along.
     let b = bp.translation.vector;
     let u = Vector3::new(b.x, b.y, 0.0).normalize();
     let in_front = b - u * 0.15;
     w.move_block("a", Vector3::new(in_front.x, in_front.y, 0.03))
         .unwrap_or_else(|e| panic!("{e}"));
-    let (contact, pulled) = demo::pull_hook_poses(&base, &bp, 0.6);
-    let tc = geometry::tcp_for_body_pose(&w, 0, &contact);
-    let tp = geometry::tcp_for_body_pose(&w, 0, &pulled);
-    let sol = w.reachable(0, &tc).unwrap();
-    w.set_joints(0, sol.joints).unwrap();
-    w.check_invariants().unwrap();
+    let (tc, tp) = at_stroke_start(&mut w, &bp);
     let mut stopped = false;
     stroke(&mut w, &tc, &tp, |w, _| {
         stopped |= w.arm_blocked_by(0).is_some()
@@ -893,14 +875,12 @@ fn the_hook_stops_rather_than_push_a_block_into_another() {
 
 #[test]
 fn release_check_says_when_letting_go_would_lose_the_load() {
-    let mut w = Benchmark::B1.scene();
-    assert_eq!(w.release_check(0), Ok(()), "nothing held");
-    let g = geometry::grasp_pose(&w, 0, "a").unwrap();
-    let sol = w.reachable(0, &g).unwrap();
-    w.set_joints(0, sol.joints).unwrap();
-    w.command_arm(0, g, GripperCommand::Close).unwrap();
-    w.step();
-    assert_eq!(w.held_by(0), Some("a"));
+    assert_eq!(
+        Benchmark::B1.scene().release_check(0),
+        Ok(()),
+        "nothing held"
+    );
+    let (mut w, g) = holding(Benchmark::B1, "a");
     assert_eq!(w.release_check(0), Ok(()), "a rests where it was grasped");
     // Over the floor, 10 cm beyond the table's far edge.
     let (_, hi) = w.body_aabb("table").unwrap();
@@ -912,16 +892,16 @@ fn release_check_says_when_letting_go_would_lose_the_load() {
     assert_eq!(w.held_by(0), Some("a"), "the check lets go of nothing");
 }
 
-/// B2 with the arm holding the hook at its grasp.
-fn b2_holding_the_hook() -> World {
-    let mut w = Benchmark::B2.scene();
-    let g = geometry::grasp_pose(&w, 0, "hook").unwrap();
+/// Benchmark `b`'s template scene with arm 0 holding `body` at its grasp (returned too).
+fn holding(b: Benchmark, body: &str) -> (World, Isometry3<f64>) {
+    let mut w = b.scene();
+    let g = geometry::grasp_pose(&w, 0, body).unwrap();
     let sol = w.reachable(0, &g).unwrap();
     w.set_joints(0, sol.joints).unwrap();
     w.command_arm(0, g, GripperCommand::Close).unwrap();
     w.step();
-    assert_eq!(w.held_by(0), Some("hook"));
-    w
+    assert_eq!(w.held_by(0), Some(body));
+    (w, g)
 }
 
 /// Drives the TCP from `tc` to `tp` in a straight line over 300 ticks (100 more to settle),
@@ -945,4 +925,17 @@ fn stroke(
         w.check_invariants().unwrap();
         each(w, &events);
     }
+}
+
+/// Puts arm 0 (holding the hook) at the contact pose of the pull stroke of a block at `bp`;
+/// returns the TCP poses at contact and pulled.
+fn at_stroke_start(w: &mut World, bp: &Isometry3<f64>) -> (Isometry3<f64>, Isometry3<f64>) {
+    let base = w.arm_base(0).unwrap();
+    let (contact, pulled) = demo::pull_hook_poses(&base, bp, 0.6);
+    let tc = geometry::tcp_for_body_pose(w, 0, &contact);
+    let tp = geometry::tcp_for_body_pose(w, 0, &pulled);
+    let sol = w.reachable(0, &tc).unwrap();
+    w.set_joints(0, sol.joints).unwrap();
+    w.check_invariants().unwrap();
+    (tc, tp)
 }
