@@ -21,7 +21,8 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
 use crate::plan::{Operator, Task};
 use crate::sim::geometry::{
-    boxes_except, clear_grasp_at, quarter_turn_for_arm, rest_pose, rest_pose_on, tcp_for_body_pose,
+    boxes_except, clear_grasp_at, quarter_turn_for_arm, raised, rest_pose, rest_pose_on,
+    tcp_for_body_pose,
 };
 use crate::sim::{GripperCommand, World, WorldEvent};
 
@@ -779,12 +780,6 @@ impl ActionExec {
         ),
         String,
     > {
-        let up = |iso: Isometry3<f64>, dz: f64| {
-            Isometry3::from_parts(
-                Translation3::from(iso.translation.vector + Vector3::z() * dz),
-                iso.rotation,
-            )
-        };
         match via {
             Via::Grasp { body, dz, .. } => {
                 let bp = world.body_pose(body);
@@ -796,7 +791,7 @@ impl ActionExec {
                     .ok_or_else(|| format!("{body} cannot be grasped"))?;
                 let at = bp.map(|q| q.translation.vector);
                 Ok((
-                    up(g, *dz),
+                    raised(&g, *dz),
                     bp.map(|q| anchor_frame(&q)),
                     at.map(|a| (body.clone(), a)),
                 ))
@@ -809,7 +804,7 @@ impl ActionExec {
                 let (pose, anchor) = placement_pose(world, &body, placement)?;
                 let pose = quarter_turn_for_arm(world, self.arm, &body, &pose);
                 let tcp = tcp_for_body_pose(world, self.arm, &pose);
-                Ok((up(tcp, *dz), Some(anchor_frame(&pose)), anchor))
+                Ok((raised(&tcp, *dz), Some(anchor_frame(&pose)), anchor))
             }
             Via::Up { dz, .. } => {
                 let mut g = *start;
@@ -889,12 +884,7 @@ fn pull_via(
         crate::sim::demo::pull_hook_poses_turned(&base, &bp, reach, turn)
             .ok_or_else(|| format!("no stroke turned by {turn:.2} rad pulls {body} into reach"))?
     };
-    let lift = |iso: Isometry3<f64>| {
-        Isometry3::from_parts(
-            Translation3::from(iso.translation.vector + Vector3::z() * 0.08),
-            iso.rotation,
-        )
-    };
+    let lift = |iso: Isometry3<f64>| raised(&iso, 0.08);
     let tc = tcp_for_body_pose(world, arm, &contact);
     let tp = tcp_for_body_pose(world, arm, &pulled);
     Ok(match stage {

@@ -133,27 +133,33 @@ pub fn clear_grasp_at(
     approach: f64,
 ) -> Option<Isometry3<f64>> {
     let all = grasp_poses_at(world, arm, body, pose);
-    let lift = |g: &Isometry3<f64>, dz: f64| {
-        Isometry3::from_parts(
-            Translation3::from(g.translation.vector + Vector3::z() * dz),
-            g.rotation,
-        )
-    };
     all.iter()
-        .find(|g| !hand_hits(g, boxes) && !hand_hits(&lift(g, 0.5 * approach), boxes))
+        .find(|g| !hand_hits(g, boxes) && !hand_hits(&raised(g, 0.5 * approach), boxes))
         .or(all.first())
         .copied()
 }
 
 /// The boxes of every body of `world` but `except` and the held ones (world frame).
 pub fn boxes_except(world: &World, except: &[&str]) -> Vec<(Isometry3<f64>, Cuboid)> {
-    let snap = world.snapshot();
-    snap.bodies
+    let held: Vec<&str> = (0..world.arm_names().len())
+        .filter_map(|a| world.held_by(a))
+        .collect();
+    world
+        .bodies
         .iter()
-        .filter(|b| !b.lost && !except.contains(&b.name.as_str()))
-        .filter(|b| (0..world.arm_names().len()).all(|a| world.held_by(a) != Some(&b.name)))
-        .flat_map(|b| world.body_shapes(&b.name))
+        .filter(|b| {
+            !b.lost && !except.contains(&b.name.as_str()) && !held.contains(&b.name.as_str())
+        })
+        .flat_map(|b| b.world_parts().map(|(iso, c)| (iso, *c)))
         .collect()
+}
+
+/// `iso` moved up by `dz` along world `z` (orientation kept).
+pub(crate) fn raised(iso: &Isometry3<f64>, dz: f64) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::from(iso.translation.vector + Vector3::z() * dz),
+        iso.rotation,
+    )
 }
 
 /// The link capsules `(a, b, radius)` of arm `arm` at joint angles `q` (world frame, base link

@@ -1183,7 +1183,7 @@ impl World {
             self.hook_push(hi, &before, events);
         }
         self.arms[ai].blocked_by = None;
-        if let (Some(bi), Some((joints, bodies, n_events))) = (held, saved) {
+        if let (Some(bi), Some((joints, mut bodies, n_events))) = (held, saved) {
             let limit = 0.9 * self.params.penetration_tolerance;
             let (depth, with) = self.held_penetration(bi);
             let mut stop = (depth > limit.max(depth_before + 1e-9)).then_some(with);
@@ -1203,9 +1203,10 @@ impl World {
                     if let Some(pi) = pushed {
                         let (d, w) = self.held_penetration(pi);
                         if d > limit {
-                            let now = std::mem::replace(&mut self.bodies, bodies.clone());
+                            // Its depth before this step (the saved bodies, swapped in).
+                            std::mem::swap(&mut self.bodies, &mut bodies);
                             let was = self.held_penetration(pi).0;
-                            self.bodies = now;
+                            std::mem::swap(&mut self.bodies, &mut bodies);
                             if d > was + 1e-9 {
                                 stop = Some(w.or(Some(pi)));
                                 break;

@@ -46,7 +46,7 @@ use crate::lfd::control::Binder;
 use crate::lfd::exec::{classify, fact_args, ActionKind, Placement};
 use crate::plan::Task;
 use crate::sim::demo::{pull_hook_poses, pull_hook_poses_turned, PULL_TARGET_RADIUS};
-use crate::sim::geometry::{clear_grasp_at, grasp_pose_at, link_capsules};
+use crate::sim::geometry::{clear_grasp_at, grasp_pose_at, link_capsules, raised};
 use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
@@ -197,13 +197,6 @@ pub struct StreamBinder<'w> {
     predicted: BTreeMap<String, Isometry3<f64>>,
     /// Placements the demonstration used, by action: `(x, y, yaw)` of the resting pose.
     hints: BTreeMap<String, (f64, f64, f64)>,
-}
-
-fn up(iso: &Isometry3<f64>, dz: f64) -> Isometry3<f64> {
-    Isometry3::from_parts(
-        Translation3::from(iso.translation.vector + Vector3::z() * dz),
-        iso.rotation,
-    )
 }
 
 /// World AABB of a box at a pose.
@@ -601,9 +594,9 @@ impl<'w> StreamBinder<'w> {
         ) else {
             return false;
         };
-        let lifted = up(&tcp, self.params.lift_height);
+        let lifted = raised(&tcp, self.params.lift_height);
         if certify {
-            let via = [up(&tcp, self.params.approach_height), tcp];
+            let via = [raised(&tcp, self.params.approach_height), tcp];
             let Ok(q) = self.certify_path(geo, arm, &via, &[body], 0.0) else {
                 return false;
             };
@@ -624,7 +617,7 @@ impl<'w> StreamBinder<'w> {
         geo.held
             .insert(arm, (body.to_string(), tcp.inverse() * pose));
         geo.poses
-            .insert(body.to_string(), up(&pose, self.params.lift_height));
+            .insert(body.to_string(), raised(&pose, self.params.lift_height));
         true
     }
 
@@ -635,7 +628,7 @@ impl<'w> StreamBinder<'w> {
             return false;
         };
         let tcp = pose * g.inverse();
-        let retreat = up(&tcp, self.params.approach_height);
+        let retreat = raised(&tcp, self.params.approach_height);
         if certify {
             // The transfer to the approach pose is where the learned skill cuts corners (its
             // path is not the straight line checked here): the carried body keeps
@@ -649,7 +642,7 @@ impl<'w> StreamBinder<'w> {
             at_above.tcp[arm] = above;
             at_above.q[arm] = q_above;
             // The executor opens the gripper `release_clearance` above the rest pose.
-            let drop = up(&tcp, self.params.release_clearance);
+            let drop = raised(&tcp, self.params.release_clearance);
             let Ok(_) = self.certify_path(&at_above, arm, &[drop], &[], 0.0) else {
                 return false;
             };
@@ -789,7 +782,7 @@ impl<'w> StreamBinder<'w> {
                 ));
                 return false;
             }
-            let via = [up(&tc, self.params.pull_lift), tc];
+            let via = [raised(&tc, self.params.pull_lift), tc];
             let Ok(q) = self.certify_path(geo, arm, &via, &[], 0.0) else {
                 return false;
             };
@@ -803,13 +796,14 @@ impl<'w> StreamBinder<'w> {
             after.tcp[arm] = tp;
             after.q[arm] = q;
             after.poses.insert(body.to_string(), moved);
-            let Ok(q) = self.certify_path(&after, arm, &[up(&tp, self.params.pull_lift)], &[], 0.0)
+            let Ok(q) =
+                self.certify_path(&after, arm, &[raised(&tp, self.params.pull_lift)], &[], 0.0)
             else {
                 return false;
             };
             geo.q[arm] = q;
         }
-        geo.tcp[arm] = up(&tp, self.params.pull_lift);
+        geo.tcp[arm] = raised(&tp, self.params.pull_lift);
         geo.poses.insert(hook.clone(), geo.tcp[arm] * g);
         geo.poses.insert(body.to_string(), moved);
         true
@@ -1005,7 +999,7 @@ impl<'w> StreamBinder<'w> {
                     self.world.reachable(a, &g).is_ok()
                         && self
                             .world
-                            .reachable(a, &up(&g, self.params.approach_height))
+                            .reachable(a, &raised(&g, self.params.approach_height))
                             .is_ok()
                 })
             });
