@@ -558,6 +558,7 @@ impl Controller {
         clock: &dyn Clock,
     ) -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
         let mut banned = BannedTask::new(&self.task);
+        let mut first_k = 0;
         for _ in 0..self.params.max_skeletons.max(1) {
             let Ok(p) = plan_logic_lfd_avoiding(
                 &self.task,
@@ -567,6 +568,7 @@ impl Controller {
                 &self.params.search,
                 clock,
                 (!banned.is_empty()).then_some(&banned),
+                first_k,
             ) else {
                 break;
             };
@@ -580,8 +582,14 @@ impl Controller {
                     }
                     binder.widen();
                 }
-                // A placement of the demonstration's suffix: more samples.
-                Err(_) => binder.widen(),
+                // An action of the demonstration's suffix, a_{k+1+(i−prefix)}: join the
+                // demonstration after it (the search plans that step itself, with certified
+                // actions), and sample more.
+                Err(i) => {
+                    let k = p.k.unwrap_or(self.spec.len());
+                    first_k = first_k.max(k + 1 + (i - p.prefix_len));
+                    binder.widen();
+                }
             }
         }
         // No demonstration state can be joined with bindable actions: plan to G from scratch

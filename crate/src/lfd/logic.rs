@@ -132,12 +132,15 @@ pub fn plan_logic_lfd(
     config: &SearchConfig,
     clock: &dyn Clock,
 ) -> Result<LfdPlan, LfdError> {
-    plan_logic_lfd_avoiding(task, spec, s, mode, config, clock, None)
+    plan_logic_lfd_avoiding(task, spec, s, mode, config, clock, None, 0)
 }
 
 /// [`plan_logic_lfd`] whose multi-goal search runs on `banned` if given (the task with operators banned
-/// at the states where their binding failed); the demo suffix and the merged plan are checked on
-/// `task` itself, and the plan is in `task`'s operators.
+/// at the states where their binding failed) and joins the demonstration at L_`first_k` or later
+/// only (an action a_j of the suffix could not be bound: `first_k` = j, so the search plans past
+/// it with actions of its own); the demo suffix and the merged plan are checked on `task` itself,
+/// and the plan is in `task`'s operators.
+#[allow(clippy::too_many_arguments)]
 pub fn plan_logic_lfd_avoiding(
     task: &Task,
     spec: &MultiGoalSpec,
@@ -146,6 +149,7 @@ pub fn plan_logic_lfd_avoiding(
     config: &SearchConfig,
     clock: &dyn Clock,
     banned: Option<&BannedTask>,
+    first_k: usize,
 ) -> Result<LfdPlan, LfdError> {
     if task.goal.holds(s) {
         return Ok(LfdPlan {
@@ -156,7 +160,7 @@ pub fn plan_logic_lfd_avoiding(
             expanded: 0,
         });
     }
-    if let Some(k) = logic_in(spec, s) {
+    if let Some(k) = logic_in(spec, s).filter(|&k| k >= first_k) {
         if let Some(ops) = merge_suffix(task, spec, s, &[], k) {
             return Ok(LfdPlan {
                 ops,
@@ -172,7 +176,17 @@ pub fn plan_logic_lfd_avoiding(
         Mode::Prioritised => MultiGoalMode::Prioritised,
     };
     let search_task = banned.map_or(task, |b| &b.task);
-    let found = plan::search_multi_goal(search_task, s, &spec.goals, search_mode, config, clock);
+    let goals: std::borrow::Cow<[plan::Goal]> = if first_k == 0 {
+        std::borrow::Cow::Borrowed(&spec.goals)
+    } else {
+        // L_0..L_{first_k − 1} are no goals (no alternatives: never reached); G stays one.
+        let mut g = spec.goals.clone();
+        for goal in g.iter_mut().take(first_k.min(spec.len() + 1)) {
+            goal.alternatives.clear();
+        }
+        std::borrow::Cow::Owned(g)
+    };
+    let found = plan::search_multi_goal(search_task, s, &goals, search_mode, config, clock);
     let expanded = found.stats.expanded;
     let (prefix, k) = match (&found.outcome, found.goal_index) {
         (SearchOutcome::Plan(p), Some(k)) => (

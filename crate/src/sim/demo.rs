@@ -529,8 +529,10 @@ fn perform(
 }
 
 /// Distance from the arm's base axis (m) to which the expert pulls a block with the hook: inside
-/// the reach annulus, and far enough out that the hand holding the hook stays reachable.
-pub const PULL_TARGET_RADIUS: f64 = 0.60;
+/// the reach annulus, and far enough out that the hand holding the hook (31 cm behind the block)
+/// stays clear of the base, where the folded arm tilts the hook into the table (0.60: stopped
+/// strokes).
+pub const PULL_TARGET_RADIUS: f64 = 0.64;
 
 /// Hook poses for pulling the block at `block` towards the arm based at `base` until its centre
 /// is `reach` metres from the base axis: `(contact, pulled)`. At `contact` the hook lies 6 mm above
@@ -545,10 +547,11 @@ pub fn pull_hook_poses(
     pull_hook_poses_turned(base, block, reach, 0.0).unwrap_or((*block, *block))
 }
 
-/// Height of the hook's frame during a pull stroke (m): 6 mm of clearance, as the arm's
-/// tracking tilts the long hook by a few mm at the blade, and a blade that scrapes the table is
-/// stopped at contact (it was 3 mm: stopped strokes).
-const PULL_HOOK_Z: f64 = 0.016;
+/// Height of the hook's frame during a pull stroke (m): 12 mm of clearance, as the arm's
+/// tracking tilts the long hook by a few mm at the blade (more with the hand close to the base),
+/// and a blade that scrapes the table is stopped at contact (3 and 6 mm: stopped strokes). The
+/// blade (z 12–32 mm) still meets a 6 cm block below its middle.
+const PULL_HOOK_Z: f64 = 0.022;
 
 /// A pull stroke turned by `turn` (rad, about `z`) from the line through the base: the hook is
 /// yawed along v = R_z(turn)·u (u: from the base to the block) and drags the block along −v

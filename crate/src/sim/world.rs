@@ -1374,10 +1374,15 @@ impl World {
                     }
                 }
             }
-            if toi > 1.0 {
-                continue;
-            }
-            let push = horiz * (1.0 - toi);
+            let mut push = if toi > 1.0 {
+                Vector3::zeros()
+            } else {
+                horiz * (1.0 - toi)
+            };
+            // The hook also turns a little as the arm tracks its stroke, which a translation
+            // alone does not cover: a blade still inside the block after the push drives it
+            // further along the contact's (horizontal) normal.
+            push += self.hook_overlap_push(hi, bi, &push);
             if push.norm() < 1e-12 {
                 continue;
             }
@@ -1399,6 +1404,32 @@ impl World {
                 }
             }
         }
+    }
+
+    /// How far block `bi`, already moved by `push`, must move further so that the hook `hi` (at
+    /// its pose) no longer overlaps it sideways: the horizontal part of the deepest contact's
+    /// normal times its depth (zero when they do not overlap, or the contact is vertical: a hook
+    /// resting on a block does not push it).
+    fn hook_overlap_push(&self, hi: usize, bi: usize, push: &Vector3<f64>) -> Vector3<f64> {
+        let shift = Isometry3::translation(push.x, push.y, push.z);
+        let mut best = Vector3::zeros();
+        for (hiso, hc) in self.bodies[hi].world_parts() {
+            for (biso, bc) in self.bodies[bi].world_parts() {
+                let Ok(Some(k)) = query::contact(&hiso, hc, &(shift * biso), bc, 0.0) else {
+                    continue;
+                };
+                let n = k.normal1.into_inner();
+                let side = Vector3::new(n.x, n.y, 0.0);
+                if k.dist >= 0.0 || side.norm() < 0.7 {
+                    continue;
+                }
+                let step = side.normalize() * (-k.dist + 1e-4);
+                if step.norm() > best.norm() {
+                    best = step;
+                }
+            }
+        }
+        best
     }
 
     /// Blocks resting (transitively) on body `bi`, bottom to top.

@@ -33,6 +33,7 @@
 //! A skeleton fails at the first action for which no sample (within the budget) is certified.
 //! Actions from the demonstration's suffix (Logic-LfD) skip certification: their motion comes from
 //! the demonstrated skills re-targeted to the objects, only their surface placements are sampled.
+//! Pulls are the exception: their stroke is computed, not demonstrated, so it is certified.
 
 use std::collections::BTreeMap;
 
@@ -430,6 +431,10 @@ impl<'w> StreamBinder<'w> {
                     .unwrap_or_default()
             })
             .unwrap_or_default();
+        // A load that starts in contact (a hook stopped against a block, a body just set down)
+        // may leave that contact: against what it touches at the start it may only get
+        // shallower, as in the simulator's contact stop.
+        let start = self.start_contacts(&geo.tcp[arm], &load, &obstacles);
         let mut q = geo.q[arm];
         let mut from = geo.tcp[arm];
         for to in via {
@@ -465,7 +470,7 @@ impl<'w> StreamBinder<'w> {
                         }
                     },
                 };
-                if let Some(hit) = self.sample_hits(arm, &q, &tcp, &load, &obstacles) {
+                if let Some(hit) = self.sample_hits(arm, &q, &tcp, &load, &obstacles, &start) {
                     self.last_rejection = Some(format!(
                         "{hit} with the {} arm's TCP at {}",
                         self.arm_name(arm),
@@ -480,7 +485,32 @@ impl<'w> StreamBinder<'w> {
         Ok(q)
     }
 
+    /// Penetration depth of each (load part, obstacle) pair that overlaps with the TCP at `tcp`.
+    fn start_contacts(
+        &self,
+        tcp: &Isometry3<f64>,
+        load: &[LoadPart],
+        obstacles: &[Obstacle],
+    ) -> StartContacts {
+        let mut out = StartContacts::new();
+        for (pi, (off, wide, plain)) in load.iter().enumerate() {
+            let iso = tcp * off;
+            let (lo, hi) = box_aabb(&iso, wide);
+            for (oi, o) in obstacles.iter().enumerate() {
+                let c = if o.support { plain } else { wide };
+                if overlaps(&lo, &hi, o) {
+                    if let Some(d) = load_depth(&iso, c, o) {
+                        out.insert((pi, oi), d);
+                    }
+                }
+            }
+        }
+        out
+    }
+
     /// What the arm at joints `q` (TCP `tcp`, carrying `load` in the TCP frame) hits, in words.
+    /// `start`: contacts of the load at the start of the path, allowed as long as they get no
+    /// deeper.
     fn sample_hits(
         &self,
         arm: usize,
@@ -488,6 +518,7 @@ impl<'w> StreamBinder<'w> {
         tcp: &Isometry3<f64>,
         load: &[LoadPart],
         obstacles: &[Obstacle],
+        start: &StartContacts,
     ) -> Option<String> {
         // The base link stands on the table: it is never tested.
         for (i, (a, b, r)) in link_capsules(self.world, arm, q)
@@ -502,15 +533,18 @@ impl<'w> StreamBinder<'w> {
                 return Some(format!("link {i} hits {o}"));
             }
         }
-        for (off, wide, plain) in load {
+        for (pi, (off, wide, plain)) in load.iter().enumerate() {
             let iso = tcp * off;
             let (lo, hi) = box_aabb(&iso, wide);
-            let hit = obstacles.iter().find(|o| {
+            let hit = obstacles.iter().enumerate().find(|(oi, o)| {
                 let c = if o.support { plain } else { wide };
                 overlaps(&lo, &hi, o)
-                    && query::intersection_test(&iso, c, &o.iso, &o.shape).unwrap_or(true)
+                    && match start.get(&(pi, *oi)) {
+                        Some(&d0) => load_depth(&iso, c, o).is_some_and(|d| d > d0 + 1e-4),
+                        None => query::intersection_test(&iso, c, &o.iso, &o.shape).unwrap_or(true),
+                    }
             });
-            if let Some(o) = hit {
+            if let Some((_, o)) = hit {
                 return Some(format!("the carried body hits {}", o.name));
             }
         }
@@ -1029,11 +1063,13 @@ impl<'w> StreamBinder<'w> {
             return Ok(geo);
         };
         let op = &task.operators[o];
-        let certify = i < demo_from;
         let Some(kind) = classify(task, op, self.world) else {
             out.push(None);
             return self.bind_from(task, ops, demo_from, i + 1, geo, out);
         };
+        // A pull is certified even in the demonstration's suffix: its stroke is computed from
+        // the block's pose, not demonstrated, and the 40 cm hook sweeps past other blocks.
+        let certify = i < demo_from || matches!(kind, ActionKind::Pull { .. });
         let binding = match kind {
             ActionKind::Grasp { arm, body } => {
                 if !self.grasp(&mut geo, arm, &body, certify) {
@@ -1105,6 +1141,17 @@ impl<'w> StreamBinder<'w> {
         };
         out.push(binding);
         self.bind_from(task, ops, demo_from, i + 1, geo, out)
+    }
+}
+
+/// Penetration depth at the start of a path per (load part, obstacle) pair in contact there.
+type StartContacts = BTreeMap<(usize, usize), f64>;
+
+/// How deep load part `c` at `iso` is inside obstacle `o` (m), if they overlap.
+fn load_depth(iso: &Isometry3<f64>, c: &Cuboid, o: &Obstacle) -> Option<f64> {
+    match query::contact(iso, c, &o.iso, &o.shape, 0.0) {
+        Ok(Some(k)) if k.dist < 0.0 => Some(-k.dist),
+        _ => None,
     }
 }
 
