@@ -81,10 +81,28 @@ fn banning_an_action_at_one_state_keeps_it_applicable_everywhere_else() {
     assert_ne!(ops[0], pick_c);
     let end = replay(&task, &s0, &ops).unwrap();
     assert!(task.goal.holds(&end));
-    // A second ban of the same action (another state) bans it everywhere.
+    // A second ban (another state) keeps it out of both states, and only there.
+    let s2 = replay(
+        &task,
+        &s0,
+        &[op(&task, "(pick panda b)"), op(&task, "(stack panda b a)")],
+    )
+    .unwrap();
+    assert!(task.operators[pick_c].applicable(&s2));
     banned.ban(pick_c, &s1);
     assert_eq!(applicable_copies(&banned, pick_c, &s1), 0);
     assert_eq!(applicable_copies(&banned, pick_c, &s0), 0);
+    assert!(applicable_copies(&banned, pick_c, &s2) >= 1);
+    let r = search(&banned.task, &cfg, &NoClock);
+    let ops = banned.original(&r.outcome.plan().expect("a plan").operators);
+    let end = replay(&task, &s0, &ops).unwrap();
+    assert!(task.goal.holds(&end));
+    // One ban more than STATE_BANS bans it everywhere.
+    assert_eq!(logic_lfd::lfd::control::STATE_BANS, 2);
+    banned.ban(pick_c, &s2);
+    for s in [&s0, &s1, &s2] {
+        assert_eq!(applicable_copies(&banned, pick_c, s), 0);
+    }
 }
 
 #[test]

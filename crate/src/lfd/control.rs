@@ -17,7 +17,7 @@
 //!
 //! Every replan is logged with its reason, planning time (caller's clock), matched k and plan.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 use serde::{Deserialize, Serialize};
 
@@ -640,35 +640,43 @@ pub(crate) fn forbid(task: &mut Task, o: usize) {
 /// A task in which some operators are banned at some states — where their continuous parameters
 /// could not be bound — for the searches of one replan (the retries of PDDLStream's loop).
 ///
-/// Banning operator `o` at state `s` keeps `o` everywhere else: `o` is replaced by copies, each
-/// with one more precondition that tells a state from `s` (a fact of `s` that `o` does not
-/// require must be false, or a fact outside `s` must be true), so `o` applies exactly where
-/// `pre(o)` holds and the state is not `s`. A second ban of the same operator (at another state)
-/// bans it everywhere. Plans found on [`BannedTask::task`] map back to the original operators
-/// with [`BannedTask::original`].
+/// Banning operator `o` at state `s` keeps `o` everywhere else: every copy of `o` that applies
+/// at `s` is replaced by copies, each with one more precondition that tells a state from `s` (a
+/// fact of `s` that `o` does not require must be false, or a fact outside `s` must be true), so
+/// `o` applies exactly where `pre(o)` holds and the state is none of the banned ones. After
+/// [`STATE_BANS`] bans of the same operator, the next one bans it everywhere. Plans found on
+/// [`BannedTask::task`] map back to the original operators with [`BannedTask::original`].
 #[derive(Clone, Debug)]
 pub struct BannedTask {
     /// The task with the bans.
     pub task: Task,
     /// Original operator of every operator of `task`.
     origin: Vec<usize>,
-    /// Original operators banned so far (at one state, or everywhere).
-    banned: Vec<usize>,
+    /// Operators of `task` made inapplicable (split into copies, or banned everywhere).
+    dead: Vec<bool>,
+    /// Bans so far per original operator.
+    bans: BTreeMap<usize, usize>,
 }
+
+/// Bans of one operator at single states before the next bans it everywhere (an action that
+/// could not be bound at two states, e.g. a pull stroke blocked in two arrangements, may still
+/// bind in a third: the block in the way moved elsewhere first).
+pub const STATE_BANS: usize = 2;
 
 impl BannedTask {
     /// No bans yet.
     pub fn new(task: &Task) -> Self {
         BannedTask {
             origin: (0..task.operators.len()).collect(),
+            dead: vec![false; task.operators.len()],
             task: task.clone(),
-            banned: vec![],
+            bans: BTreeMap::new(),
         }
     }
 
     /// Whether nothing is banned.
     pub fn is_empty(&self) -> bool {
-        self.banned.is_empty()
+        self.bans.is_empty()
     }
 
     /// Bans original operator `o` at state `s` (see the type's documentation).
@@ -676,33 +684,43 @@ impl BannedTask {
         if o >= self.task.operators.len() || self.origin.get(o) != Some(&o) {
             return;
         }
-        if self.banned.contains(&o) {
-            for i in 0..self.task.operators.len() {
-                if self.origin[i] == o {
-                    forbid(&mut self.task, i);
-                }
+        let count = self.bans.entry(o).or_insert(0);
+        *count += 1;
+        let everywhere = *count > STATE_BANS;
+        let live: Vec<usize> = (0..self.task.operators.len())
+            .filter(|&i| self.origin[i] == o && !self.dead[i])
+            .collect();
+        for i in live {
+            if everywhere {
+                forbid(&mut self.task, i);
+                self.dead[i] = true;
+            } else if self.task.operators[i].applicable(s) {
+                self.split(i, s);
             }
-            return;
         }
-        self.banned.push(o);
-        let op = self.task.operators[o].clone();
-        forbid(&mut self.task, o);
+    }
+
+    /// Replaces operator `i` by copies that do not apply at `s` (one per fact telling a state
+    /// from `s`).
+    fn split(&mut self, i: usize, s: &State) {
+        let op = self.task.operators[i].clone();
+        let o = self.origin[i];
+        forbid(&mut self.task, i);
+        self.dead[i] = true;
         let n = self.task.facts.len() as u32;
         for f in 0..n {
             let mut copy = op.clone();
+            if op.pre.contains(&f) || op.pre_neg.contains(&f) {
+                continue;
+            }
             if s.contains(f) {
-                if op.pre.contains(&f) || op.pre_neg.contains(&f) {
-                    continue;
-                }
                 copy.pre_neg.push(f);
             } else {
-                if op.pre_neg.contains(&f) || op.pre.contains(&f) {
-                    continue;
-                }
                 copy.pre.push(f);
             }
             self.task.operators.push(copy);
             self.origin.push(o);
+            self.dead.push(false);
         }
     }
 
