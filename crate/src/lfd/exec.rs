@@ -22,7 +22,7 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use crate::plan::{Operator, Task};
 use crate::sim::geometry::{
     boxes_except, clear_grasp_at, quarter_turn_for_arm, raised, rest_pose, rest_pose_on,
-    tcp_for_body_pose,
+    rise_first, tcp_for_body_pose,
 };
 use crate::sim::{GripperCommand, World, WorldEvent};
 
@@ -406,6 +406,17 @@ impl ActionExec {
                     .collect(),
             ),
         };
+        // An empty hand left down among bodies (the last action was interrupted at its
+        // gripper event) first rises straight up, clear of them.
+        let mut phases = phases;
+        if let Some(up) = rise_first(world, arm, p.approach_height) {
+            phases.insert(
+                0,
+                Phase::Move(Via::Rise {
+                    z: up.translation.z,
+                }),
+            );
+        }
         let gripper = world
             .arm_command(arm)
             .map(|c| c.1)

@@ -84,6 +84,28 @@ pub fn hand_hits(tcp: &Isometry3<f64>, boxes: &[(Isometry3<f64>, Cuboid)]) -> bo
     })
 }
 
+/// Where arm `arm` rises to before its next action when its empty hand is down among bodies
+/// (an action interrupted right after a release, or before a grasp closed): its TCP moved
+/// straight up by `dz`, if the hand, grown by 1 cm, overlaps a body other than a table. Both
+/// the executor and the TAMP streams start from it, so they agree.
+pub fn rise_first(world: &World, arm: usize, dz: f64) -> Option<Isometry3<f64>> {
+    if world.held_by(arm).is_some() {
+        return None;
+    }
+    let tcp = world.tcp_pose(arm)?;
+    let (a, b, r) = hand_capsule(&tcp);
+    let cap = Capsule::new(Point3::from(a), Point3::from(b), r + 0.01);
+    let down_among = world.bodies.iter().any(|body| {
+        !body.lost
+            && body.kind != BodyKind::Table
+            && body.world_parts().any(|(iso, c)| {
+                parry3d_f64::query::intersection_test(&Isometry3::identity(), &cap, &iso, c)
+                    .unwrap_or(true)
+            })
+    });
+    down_among.then(|| raised(&tcp, dz))
+}
+
 /// The top grasps of block `body` at `pose` for arm `arm`, best first: the fingers close along
 /// one of its horizontal face normals (yaw ∈ yaw_x + k·π/2) that the gripper can span, ordered
 /// by closeness to the arm's heading (the first is [`grasp_pose_at`]'s). The hook has one.

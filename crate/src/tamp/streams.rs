@@ -47,7 +47,7 @@ use crate::lfd::control::Binder;
 use crate::lfd::exec::{classify, fact_args, ActionKind, Placement};
 use crate::plan::Task;
 use crate::sim::demo::{pull_hook_poses, pull_hook_poses_turned, PULL_TARGET_RADIUS};
-use crate::sim::geometry::{clear_grasp_at, grasp_pose_at, link_capsules, raised};
+use crate::sim::geometry::{clear_grasp_at, grasp_pose_at, link_capsules, raised, rise_first};
 use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
@@ -376,23 +376,6 @@ impl<'w> StreamBinder<'w> {
         out
     }
 
-    fn shape_hits<'o>(
-        &self,
-        iso: &Isometry3<f64>,
-        shape: &dyn Shape,
-        lo: &Vector3<f64>,
-        hi: &Vector3<f64>,
-        obstacles: &'o [Obstacle],
-    ) -> Option<&'o str> {
-        obstacles
-            .iter()
-            .find(|o| {
-                overlaps(lo, hi, o)
-                    && query::intersection_test(iso, shape, &o.iso, &o.shape).unwrap_or(true)
-            })
-            .map(|o| o.name.as_str())
-    }
-
     /// Certifies the TCP path through `via` for arm `arm` carrying what `geo` says it carries:
     /// returns the joints at the end, or why not. `exclude`: bodies the motion may touch.
     fn certify_path(
@@ -431,10 +414,10 @@ impl<'w> StreamBinder<'w> {
                     .unwrap_or_default()
             })
             .unwrap_or_default();
-        // A load that starts in contact (a hook stopped against a block, a body just set down)
-        // may leave that contact: against what it touches at the start it may only get
-        // shallower, as in the simulator's contact stop.
-        let start = self.start_contacts(&geo.tcp[arm], &load, &obstacles);
+        // An arm or load that starts in contact (a hook stopped against a block, a wrist
+        // stopped at the table) may leave that contact: against what it touches at the start it
+        // may only get shallower, as in the simulator's contact stops.
+        let start = self.start_contacts(arm, &geo.q[arm], &geo.tcp[arm], &load, &obstacles);
         let mut q = geo.q[arm];
         let mut from = geo.tcp[arm];
         for to in via {
@@ -485,22 +468,41 @@ impl<'w> StreamBinder<'w> {
         Ok(q)
     }
 
-    /// Penetration depth of each (load part, obstacle) pair that overlaps with the TCP at `tcp`.
+    /// Penetration depth of each (link, obstacle) and (load part, obstacle) pair that overlaps
+    /// with the arm at joints `q` (TCP `tcp`).
     fn start_contacts(
         &self,
+        arm: usize,
+        q: &[f64; DOF],
         tcp: &Isometry3<f64>,
         load: &[LoadPart],
         obstacles: &[Obstacle],
     ) -> StartContacts {
-        let mut out = StartContacts::new();
+        let mut out = StartContacts::default();
+        for (li, (a, b, r)) in link_capsules(self.world, arm, q)
+            .into_iter()
+            .enumerate()
+            .skip(1)
+        {
+            let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
+            let lo = a.inf(&b) - Vector3::repeat(r);
+            let hi = a.sup(&b) + Vector3::repeat(r);
+            for (oi, o) in obstacles.iter().enumerate() {
+                if overlaps(&lo, &hi, o) {
+                    if let Some(d) = depth_in(&Isometry3::identity(), &cap, o) {
+                        out.links.insert((li, oi), d);
+                    }
+                }
+            }
+        }
         for (pi, (off, wide, plain)) in load.iter().enumerate() {
             let iso = tcp * off;
             let (lo, hi) = box_aabb(&iso, wide);
             for (oi, o) in obstacles.iter().enumerate() {
                 let c = if o.support { plain } else { wide };
                 if overlaps(&lo, &hi, o) {
-                    if let Some(d) = load_depth(&iso, c, o) {
-                        out.insert((pi, oi), d);
+                    if let Some(d) = depth_in(&iso, c, o) {
+                        out.load.insert((pi, oi), d);
                     }
                 }
             }
@@ -529,8 +531,20 @@ impl<'w> StreamBinder<'w> {
             let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
             let lo = a.inf(&b) - Vector3::repeat(r);
             let hi = a.sup(&b) + Vector3::repeat(r);
-            if let Some(o) = self.shape_hits(&Isometry3::identity(), &cap, &lo, &hi, obstacles) {
-                return Some(format!("link {i} hits {o}"));
+            let hit = obstacles.iter().enumerate().find(|(oi, o)| {
+                overlaps(&lo, &hi, o)
+                    && start.links.get(&(i, *oi)).map_or_else(
+                        || {
+                            query::intersection_test(&Isometry3::identity(), &cap, &o.iso, &o.shape)
+                                .unwrap_or(true)
+                        },
+                        |&d0| {
+                            depth_in(&Isometry3::identity(), &cap, o).is_some_and(|d| d > d0 + 1e-4)
+                        },
+                    )
+            });
+            if let Some((_, o)) = hit {
+                return Some(format!("link {i} hits {}", o.name));
             }
         }
         for (pi, (off, wide, plain)) in load.iter().enumerate() {
@@ -539,8 +553,8 @@ impl<'w> StreamBinder<'w> {
             let hit = obstacles.iter().enumerate().find(|(oi, o)| {
                 let c = if o.support { plain } else { wide };
                 overlaps(&lo, &hi, o)
-                    && match start.get(&(pi, *oi)) {
-                        Some(&d0) => load_depth(&iso, c, o).is_some_and(|d| d > d0 + 1e-4),
+                    && match start.load.get(&(pi, *oi)) {
+                        Some(&d0) => depth_in(&iso, c, o).is_some_and(|d| d > d0 + 1e-4),
                         None => query::intersection_test(&iso, c, &o.iso, &o.shape).unwrap_or(true),
                     }
             });
@@ -1144,11 +1158,16 @@ impl<'w> StreamBinder<'w> {
     }
 }
 
-/// Penetration depth at the start of a path per (load part, obstacle) pair in contact there.
-type StartContacts = BTreeMap<(usize, usize), f64>;
+/// Contacts at the start of a certified path, which the path may leave but not deepen:
+/// penetration depth per (link index, obstacle index) and per (load part, obstacle index).
+#[derive(Default)]
+struct StartContacts {
+    links: BTreeMap<(usize, usize), f64>,
+    load: BTreeMap<(usize, usize), f64>,
+}
 
-/// How deep load part `c` at `iso` is inside obstacle `o` (m), if they overlap.
-fn load_depth(iso: &Isometry3<f64>, c: &Cuboid, o: &Obstacle) -> Option<f64> {
+/// How deep shape `c` at `iso` is inside obstacle `o` (m), if they overlap.
+fn depth_in(iso: &Isometry3<f64>, c: &dyn Shape, o: &Obstacle) -> Option<f64> {
     match query::contact(iso, c, &o.iso, &o.shape, 0.0) {
         Ok(Some(k)) if k.dist < 0.0 => Some(-k.dist),
         _ => None,
@@ -1166,7 +1185,16 @@ type Candidate = (usize, f64, f64, f64, f64);
 
 impl Binder for StreamBinder<'_> {
     fn bind(&mut self, task: &Task, ops: &[usize], demo_from: usize) -> Result<(), usize> {
-        let geo = self.geo();
+        let mut geo = self.geo();
+        // An empty hand down among bodies rises first (as the executor's next action does).
+        for arm in 0..geo.tcp.len() {
+            if let Some(up) = rise_first(self.world, arm, self.params.approach_height) {
+                if let Ok(q) = self.certify_path(&geo, arm, &[up], &[], 0.0) {
+                    geo.q[arm] = q;
+                }
+                geo.tcp[arm] = up;
+            }
+        }
         let mut out = Vec::with_capacity(ops.len());
         self.last_rejection = None;
         self.budget_end = self.certifications + self.params.certification_budget;
