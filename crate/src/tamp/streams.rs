@@ -442,15 +442,31 @@ impl<'w> StreamBinder<'w> {
                     // from where the segment started. Either way without restarts.
                     Err(_) => match panda::inverse_kinematics(&base, &tcp, &q_from, ik) {
                         Ok(sol) => sol.joints,
-                        Err(_) => {
-                            self.stats.rejected_ik += 1;
-                            self.last_rejection = Some(format!(
-                                "the {} arm cannot follow its path to {}",
-                                self.arm_name(arm),
-                                fmt_point(&tcp.translation.vector)
-                            ));
-                            return Err(Reject::Ik);
-                        }
+                        // The executor's joint-space recovery: the planning IK (with restarts)
+                        // from where the tracker stalled, then a straight joint-space move.
+                        Err(_) => match self
+                            .joint_recovery(arm, &base, &tcp, &q, &load, &obstacles, &start)
+                        {
+                            Some(Ok(qg)) => qg,
+                            Some(Err(hit)) => {
+                                self.last_rejection = Some(format!(
+                                    "{hit} on the {} arm's joint-space move to {}",
+                                    self.arm_name(arm),
+                                    fmt_point(&tcp.translation.vector)
+                                ));
+                                self.stats.rejected_collision += 1;
+                                return Err(Reject::Collision);
+                            }
+                            None => {
+                                self.stats.rejected_ik += 1;
+                                self.last_rejection = Some(format!(
+                                    "the {} arm cannot follow its path to {}",
+                                    self.arm_name(arm),
+                                    fmt_point(&tcp.translation.vector)
+                                ));
+                                return Err(Reject::Ik);
+                            }
+                        },
                     },
                 };
                 if let Some(hit) = self.sample_hits(arm, &q, &tcp, &load, &obstacles, &start) {
@@ -466,6 +482,43 @@ impl<'w> StreamBinder<'w> {
             from = *to;
         }
         Ok(q)
+    }
+
+    /// The executor's joint-space recovery from joints `q` to the TCP pose `goal`
+    /// (`lfd::exec`: planning IK with restarts, then a straight move in joint space): `None`
+    /// if the planning IK finds no solution, else the goal joints or what the move hits.
+    #[allow(clippy::too_many_arguments)]
+    fn joint_recovery(
+        &mut self,
+        arm: usize,
+        base: &Isometry3<f64>,
+        goal: &Isometry3<f64>,
+        q: &[f64; DOF],
+        load: &[LoadPart],
+        obstacles: &[Obstacle],
+        start: &StartContacts,
+    ) -> Option<Result<[f64; DOF], String>> {
+        let sol =
+            panda::inverse_kinematics(base, goal, q, &self.world.params().planning_ik).ok()?;
+        let span = q
+            .iter()
+            .zip(&sol.joints)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        let n = ((span / JOINT_STEP).ceil() as usize).max(1);
+        for k in 1..=n {
+            let s = k as f64 / n as f64;
+            let mut qk = *q;
+            for (j, v) in qk.iter_mut().enumerate() {
+                *v += s * (sol.joints[j] - q[j]);
+            }
+            self.stats.path_samples += 1;
+            let tcp = panda::forward_kinematics(base, &qk);
+            if let Some(hit) = self.sample_hits(arm, &qk, &tcp, load, obstacles, start) {
+                return Some(Err(hit));
+            }
+        }
+        Some(Ok(sol.joints))
     }
 
     /// Penetration depth of each (link, obstacle) and (load part, obstacle) pair that overlaps
@@ -1173,6 +1226,9 @@ fn depth_in(iso: &Isometry3<f64>, c: &dyn Shape, o: &Obstacle) -> Option<f64> {
         _ => None,
     }
 }
+
+/// Largest joint step between the samples of a certified joint-space move (rad).
+const JOINT_STEP: f64 = 0.05;
 
 /// Turns of the pull strokes tried, in order (rad): the radial stroke, then ±20°, ±40°.
 const PULL_TURNS: [f64; 5] = [0.0, 0.35, -0.35, 0.7, -0.7];
