@@ -6,7 +6,7 @@ use logic_lfd::sim::geometry;
 use logic_lfd::sim::panda::{self, IkParams};
 use logic_lfd::sim::snapshot::WorldSnapshot;
 use logic_lfd::sim::{GripperCommand, SceneGraph, World};
-use nalgebra::{Isometry3, Translation3, Vector3};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
@@ -871,6 +871,50 @@ fn the_hook_stops_rather_than_push_a_block_into_another() {
     let b = w.body_pose("b").unwrap().translation.vector;
     assert!((a - b).norm() > 0.058, "b was driven into a: {a} {b}");
     assert!(!w.snapshot().bodies.iter().any(|x| x.lost));
+}
+
+#[test]
+fn a_hook_that_turns_during_its_stroke_pushes_the_block_instead_of_stopping() {
+    let (mut w, _) = holding(Benchmark::B2, "hook");
+    let bp = w.body_pose("b").unwrap();
+    let (tc, tp) = at_stroke_start(&mut w, &bp);
+    // The hand yaws by −3° over the stroke, as the arm's tracking does near its limits: the
+    // blade turns into b as well as dragging it (a translation alone would leave it inside).
+    let turned = tc.rotation * UnitQuaternion::from_axis_angle(&Vector3::z_axis(), -0.05);
+    let mut stopped = None;
+    for k in 1..=400 {
+        let s = (k as f64 / 300.0).min(1.0);
+        let p = tc.translation.vector.lerp(&tp.translation.vector, s);
+        let r = tc.rotation.slerp(&turned, s);
+        w.command_arm(
+            0,
+            Isometry3::from_parts(Translation3::from(p), r),
+            GripperCommand::Close,
+        )
+        .unwrap();
+        w.step();
+        w.check_invariants().unwrap();
+        stopped = stopped.or(w.arm_blocked_by(0).map(str::to_string));
+    }
+    assert_eq!(stopped, None, "the stroke was stopped");
+    assert!(facts(&w).contains(&"(inreach panda b)".to_string()));
+}
+
+#[test]
+fn an_empty_hand_left_around_a_block_rises_first() {
+    let (mut w, g) = holding(Benchmark::B1, "a");
+    assert_eq!(geometry::rise_first(&w, 0, 0.1), None, "the hand holds a");
+    w.command_arm(0, g, GripperCommand::Open).unwrap();
+    for _ in 0..40 {
+        w.step();
+    }
+    assert_eq!(w.held_by(0), None);
+    let up = geometry::rise_first(&w, 0, 0.1).expect("the open hand is around a");
+    let tcp = w.tcp_pose(0).unwrap();
+    assert!((up.translation.vector - tcp.translation.vector - Vector3::z() * 0.1).norm() < 1e-12);
+    let sol = w.reachable(0, &up).unwrap();
+    w.set_joints(0, sol.joints).unwrap();
+    assert_eq!(geometry::rise_first(&w, 0, 0.1), None, "10 cm above a");
 }
 
 #[test]
