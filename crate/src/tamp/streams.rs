@@ -521,6 +521,25 @@ impl<'w> StreamBinder<'w> {
         Some(Ok(sol.joints))
     }
 
+    /// The link capsules of arm `arm` at joints `q` with their index and world AABB; the base
+    /// link stands on the table and is never tested.
+    fn links(&self, arm: usize, q: &[f64; DOF]) -> Vec<LinkShape> {
+        link_capsules(self.world, arm, q)
+            .into_iter()
+            .enumerate()
+            .skip(1)
+            .map(|(i, (a, b, r))| {
+                let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
+                (
+                    i,
+                    cap,
+                    a.inf(&b) - Vector3::repeat(r),
+                    a.sup(&b) + Vector3::repeat(r),
+                )
+            })
+            .collect()
+    }
+
     /// Penetration depth of each (link, obstacle) and (load part, obstacle) pair that overlaps
     /// with the arm at joints `q` (TCP `tcp`).
     fn start_contacts(
@@ -532,14 +551,7 @@ impl<'w> StreamBinder<'w> {
         obstacles: &[Obstacle],
     ) -> StartContacts {
         let mut out = StartContacts::default();
-        for (li, (a, b, r)) in link_capsules(self.world, arm, q)
-            .into_iter()
-            .enumerate()
-            .skip(1)
-        {
-            let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
-            let lo = a.inf(&b) - Vector3::repeat(r);
-            let hi = a.sup(&b) + Vector3::repeat(r);
+        for (li, cap, lo, hi) in self.links(arm, q) {
             for (oi, o) in obstacles.iter().enumerate() {
                 if overlaps(&lo, &hi, o) {
                     if let Some(d) = depth_in(&Isometry3::identity(), &cap, o) {
@@ -575,25 +587,14 @@ impl<'w> StreamBinder<'w> {
         obstacles: &[Obstacle],
         start: &StartContacts,
     ) -> Option<String> {
-        // The base link stands on the table: it is never tested.
-        for (i, (a, b, r)) in link_capsules(self.world, arm, q)
-            .into_iter()
-            .enumerate()
-            .skip(1)
-        {
-            let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
-            let lo = a.inf(&b) - Vector3::repeat(r);
-            let hi = a.sup(&b) + Vector3::repeat(r);
+        for (i, cap, lo, hi) in self.links(arm, q) {
             let hit = obstacles.iter().enumerate().find(|(oi, o)| {
                 overlaps(&lo, &hi, o)
-                    && start.links.get(&(i, *oi)).map_or_else(
-                        || {
-                            query::intersection_test(&Isometry3::identity(), &cap, &o.iso, &o.shape)
-                                .unwrap_or(true)
-                        },
-                        |&d0| {
-                            depth_in(&Isometry3::identity(), &cap, o).is_some_and(|d| d > d0 + 1e-4)
-                        },
+                    && hits(
+                        &Isometry3::identity(),
+                        &cap,
+                        o,
+                        start.links.get(&(i, *oi)).copied(),
                     )
             });
             if let Some((_, o)) = hit {
@@ -605,11 +606,7 @@ impl<'w> StreamBinder<'w> {
             let (lo, hi) = box_aabb(&iso, wide);
             let hit = obstacles.iter().enumerate().find(|(oi, o)| {
                 let c = if o.support { plain } else { wide };
-                overlaps(&lo, &hi, o)
-                    && match start.load.get(&(pi, *oi)) {
-                        Some(&d0) => depth_in(&iso, c, o).is_some_and(|d| d > d0 + 1e-4),
-                        None => query::intersection_test(&iso, c, &o.iso, &o.shape).unwrap_or(true),
-                    }
+                overlaps(&lo, &hi, o) && hits(&iso, c, o, start.load.get(&(pi, *oi)).copied())
             });
             if let Some((_, o)) = hit {
                 return Some(format!("the carried body hits {}", o.name));
@@ -1217,6 +1214,18 @@ impl<'w> StreamBinder<'w> {
 struct StartContacts {
     links: BTreeMap<(usize, usize), f64>,
     load: BTreeMap<(usize, usize), f64>,
+}
+
+/// A link capsule: its index, the capsule and its world AABB.
+type LinkShape = (usize, Capsule, Vector3<f64>, Vector3<f64>);
+
+/// Whether shape `c` at `iso` hits obstacle `o`: overlaps it, or, when it started the path
+/// `start_depth` deep inside, is now deeper.
+fn hits(iso: &Isometry3<f64>, c: &dyn Shape, o: &Obstacle, start_depth: Option<f64>) -> bool {
+    match start_depth {
+        Some(d0) => depth_in(iso, c, o).is_some_and(|d| d > d0 + 1e-4),
+        None => query::intersection_test(iso, c, &o.iso, &o.shape).unwrap_or(true),
+    }
 }
 
 /// How deep shape `c` at `iso` is inside obstacle `o` (m), if they overlap.
