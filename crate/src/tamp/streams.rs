@@ -449,13 +449,11 @@ impl<'w> StreamBinder<'w> {
                         {
                             Some(Ok(qg)) => qg,
                             Some(Err(hit)) => {
-                                self.last_rejection = Some(format!(
+                                return Err(self.collision(format!(
                                     "{hit} on the {} arm's joint-space move to {}",
                                     self.arm_name(arm),
                                     fmt_point(&tcp.translation.vector)
-                                ));
-                                self.stats.rejected_collision += 1;
-                                return Err(Reject::Collision);
+                                )));
                             }
                             None => {
                                 self.stats.rejected_ik += 1;
@@ -470,18 +468,23 @@ impl<'w> StreamBinder<'w> {
                     },
                 };
                 if let Some(hit) = self.sample_hits(arm, &q, &tcp, &load, &obstacles, &start) {
-                    self.last_rejection = Some(format!(
+                    return Err(self.collision(format!(
                         "{hit} with the {} arm's TCP at {}",
                         self.arm_name(arm),
                         fmt_point(&tcp.translation.vector)
-                    ));
-                    self.stats.rejected_collision += 1;
-                    return Err(Reject::Collision);
+                    )));
                 }
             }
             from = *to;
         }
         Ok(q)
+    }
+
+    /// Records a collision rejection and why.
+    fn collision(&mut self, why: String) -> Reject {
+        self.last_rejection = Some(why);
+        self.stats.rejected_collision += 1;
+        Reject::Collision
     }
 
     /// The executor's joint-space recovery from joints `q` to the TCP pose `goal`
