@@ -175,6 +175,9 @@ pub struct Controller {
     plan_k: Option<usize>,
     replans: Vec<Replan>,
     started: bool,
+    /// Why the next decision replans although the state is as predicted (an action failed:
+    /// its parameters are bound anew).
+    replan_because: Option<String>,
 }
 
 /// A task-level observation: S_C as a state of the current task.
@@ -232,6 +235,7 @@ impl Controller {
             plan_k: None,
             replans: vec![],
             started: false,
+            replan_because: None,
         }
     }
 
@@ -282,6 +286,13 @@ impl Controller {
         self.predicted.clear();
         self.cursor = 0;
         self.plan_k = None;
+    }
+
+    /// Makes the next decision replan, with `reason`, even if the state is as predicted: the
+    /// action at the cursor failed, and retrying it with the same bound parameters (an occupied
+    /// placement, a blocked stroke) would fail the same way.
+    pub fn replan_after_failure(&mut self, reason: String) {
+        self.replan_because = Some(reason);
     }
 
     /// Marks the action at the cursor as executed.
@@ -387,6 +398,8 @@ impl Controller {
         // Is the current plan still good?
         let reason = if !self.started {
             "start".to_string()
+        } else if let Some(r) = self.replan_because.take() {
+            r
         } else if regrounded {
             "new objects in the scene".to_string()
         } else if self.plan.is_empty() {

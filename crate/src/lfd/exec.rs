@@ -54,6 +54,9 @@ pub struct ExecParams {
     pub recovery_distance: f64,
     /// See `recovery_distance` (s).
     pub recovery_after: f64,
+    /// At a grasp the hand is "there" when also turned within this angle of the grasp's (rad);
+    /// a larger error after `recovery_after` also recovers in joint space.
+    pub orientation_tolerance: f64,
 }
 
 impl Default for ExecParams {
@@ -70,6 +73,7 @@ impl Default for ExecParams {
             release_clearance: 0.003,
             recovery_distance: 0.01,
             recovery_after: 0.25,
+            orientation_tolerance: 0.1,
         }
     }
 }
@@ -561,6 +565,12 @@ impl ActionExec {
                         }
                     }
                 }
+                // Only the grasp needs the hand turned as planned: the fingers must fit around
+                // the block (a release lands wherever the block is, turned or not).
+                let grasp_turn = matches!(
+                    self.phases.get(self.phase),
+                    Some(Phase::Move(Via::Grasp { dz, .. })) if *dz <= 0.0
+                );
                 let Some(seg) = self.segment.as_mut() else {
                     return ExecStatus::Failed("no segment".into());
                 };
@@ -604,7 +614,11 @@ impl ActionExec {
                 if seg.t >= seg.traj.len() {
                     let tcp = world.tcp_pose(self.arm).unwrap_or(seg.goal);
                     let err = (tcp.translation.vector - seg.traj.goal()).norm();
-                    if err <= p.reach_tolerance {
+                    // At a grasp the hand's turn matters too: a wrist stuck at its limit leaves
+                    // the fingers across a block's diagonal, where they do not fit around it.
+                    let turn_err = (seg.goal.rotation * tcp.rotation.inverse()).angle();
+                    let turned = !grasp_turn || turn_err <= p.orientation_tolerance;
+                    if err <= p.reach_tolerance && turned {
                         self.next_phase();
                     } else if let Some(q) = seg.joint_goal {
                         // Joint-space recovery: back to Cartesian tracking once there (or after
@@ -625,7 +639,7 @@ impl ActionExec {
                         // local minimum of the tracking IK after a large reconfiguration): move
                         // in joint space to the planning IK's solution, once per segment.
                         if !seg.recovered
-                            && err > p.recovery_distance
+                            && (err > p.recovery_distance || !turned)
                             && seg.lag as f64 * dt > p.recovery_after
                             && world.arm_blocked_by(self.arm).is_none()
                         {
@@ -641,6 +655,10 @@ impl ActionExec {
                                 Some(b) => format!(
                                     "the held body is stopped by {b} ({:.1} mm from the via-point)",
                                     err * 1e3
+                                ),
+                                None if !turned && err <= p.reach_tolerance => format!(
+                                    "the arm cannot turn its hand to the via-point ({:.0}° off)",
+                                    turn_err.to_degrees()
                                 ),
                                 None => format!(
                                     "the arm cannot reach its via-point ({:.1} mm away)",

@@ -689,6 +689,8 @@ impl Session {
                 if linear {
                     self.outcome = Some(Err(FailReason::ActionFailed { action, why }));
                 } else {
+                    self.controller
+                        .replan_after_failure(format!("{action} failed: {why}"));
                     self.failures_in_a_row += 1;
                     self.check_failures();
                 }
