@@ -420,4 +420,34 @@ mod tests {
         let opt = plan::search(&t, &cfg(), &plan::NoClock);
         assert_eq!(prio.ops.len(), opt.outcome.plan().unwrap().len());
     }
+
+    #[test]
+    fn a_first_k_makes_the_search_join_the_demo_after_a_failed_suffix_action() {
+        let (task, spec) = spec();
+        // At L_0 LogicIn gives the whole demo; with first_k = 2 (a_2 could not be bound) the
+        // search plans a_1 and a_2's step itself and joins at L_2 or later.
+        let s0 = task.init.clone();
+        assert_eq!(logic_in(&spec, &s0), Some(0));
+        for mode in [Mode::Paper, Mode::Prioritised] {
+            let p =
+                plan_logic_lfd_avoiding(&task, &spec, &s0, mode, &cfg(), &plan::NoClock, None, 2)
+                    .unwrap();
+            assert_eq!(p.source, PlanSource::MultiGoal, "{mode:?}");
+            let k = p.k.unwrap_or(spec.goal_index());
+            assert!(k >= 2, "{mode:?}: joined at {k}");
+            assert!(p.prefix_len >= 2);
+            let mid = replay(&task, &s0, &p.ops[..p.prefix_len]).unwrap();
+            if let Some(k) = p.k {
+                assert!(spec.states[k].as_ref().unwrap().holds(&mid));
+            }
+            let end = replay(&task, &s0, &p.ops).expect("merged plan applicable");
+            assert!(task.goal.holds(&end), "{mode:?}");
+            // Without it the suffix from L_0 is the plan.
+            let q =
+                plan_logic_lfd_avoiding(&task, &spec, &s0, mode, &cfg(), &plan::NoClock, None, 0)
+                    .unwrap();
+            assert_eq!(q.source, PlanSource::LogicIn);
+            assert_eq!(q.k, Some(0));
+        }
+    }
 }
