@@ -50,7 +50,8 @@ pub struct ExecParams {
     /// Clearance left under a released block (m).
     pub release_clearance: f64,
     /// A segment whose end lags by more than `recovery_distance` (m) for `recovery_after` (s)
-    /// recovers in joint space (planning IK) once.
+    /// recovers in joint space (planning IK) once. Equal to `reach_tolerance`: a tracker stuck a
+    /// few mm short (a wrist at its limit) recovers too (1 cm left such arms stuck).
     pub recovery_distance: f64,
     /// See `recovery_distance` (s).
     pub recovery_after: f64,
@@ -71,7 +72,7 @@ impl Default for ExecParams {
             gripper_time: 0.15,
             reanchor_tolerance: 0.005,
             release_clearance: 0.003,
-            recovery_distance: 0.01,
+            recovery_distance: 0.004,
             recovery_after: 0.25,
             orientation_tolerance: 0.1,
         }
