@@ -307,7 +307,7 @@ impl ActionExec {
             ActionKind::Pull { .. } => true,
         };
         let pre = if hook { "hook-" } else { "" };
-        let (arm, phases) = match &kind {
+        let (arm, mut phases) = match &kind {
             ActionKind::Grasp { arm, body } if skills.has(&format!("{pre}grasp-approach")) => (
                 *arm,
                 vec![
@@ -413,7 +413,6 @@ impl ActionExec {
         };
         // An empty hand left down among bodies (the last action was interrupted at its
         // gripper event) first rises straight up, clear of them.
-        let mut phases = phases;
         if let Some(up) = rise_first(world, arm, p.approach_height) {
             phases.insert(
                 0,

@@ -535,7 +535,7 @@ fn perform(
 pub const PULL_TARGET_RADIUS: f64 = 0.64;
 
 /// Hook poses for pulling the block at `block` towards the arm based at `base` until its centre
-/// is `reach` metres from the base axis: `(contact, pulled)`. At `contact` the hook lies 6 mm above
+/// is `reach` metres from the base axis: `(contact, pulled)`. At `contact` the hook lies 12 mm above
 /// the table with its blade 1 cm behind the block's far face and the block in the middle of the
 /// blade; `pulled` is `contact` moved straight towards the base.
 pub fn pull_hook_poses(

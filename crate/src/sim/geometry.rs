@@ -77,8 +77,13 @@ pub fn hand_capsule(tcp: &Isometry3<f64>) -> (Vector3<f64>, Vector3<f64>, f64) {
 
 /// Whether the hand at `tcp` overlaps one of `boxes` (world poses and half extents).
 pub fn hand_hits(tcp: &Isometry3<f64>, boxes: &[(Isometry3<f64>, Cuboid)]) -> bool {
+    hand_within(tcp, boxes, 0.0)
+}
+
+/// Whether the hand at `tcp`, grown by `margin`, overlaps one of `boxes`.
+fn hand_within(tcp: &Isometry3<f64>, boxes: &[(Isometry3<f64>, Cuboid)], margin: f64) -> bool {
     let (a, b, r) = hand_capsule(tcp);
-    let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
+    let cap = Capsule::new(Point3::from(a), Point3::from(b), r + margin);
     boxes.iter().any(|(iso, c)| {
         parry3d_f64::query::intersection_test(&Isometry3::identity(), &cap, iso, c).unwrap_or(true)
     })
@@ -93,17 +98,13 @@ pub fn rise_first(world: &World, arm: usize, dz: f64) -> Option<Isometry3<f64>> 
         return None;
     }
     let tcp = world.tcp_pose(arm)?;
-    let (a, b, r) = hand_capsule(&tcp);
-    let cap = Capsule::new(Point3::from(a), Point3::from(b), r + 0.01);
-    let down_among = world.bodies.iter().any(|body| {
-        !body.lost
-            && body.kind != BodyKind::Table
-            && body.world_parts().any(|(iso, c)| {
-                parry3d_f64::query::intersection_test(&Isometry3::identity(), &cap, &iso, c)
-                    .unwrap_or(true)
-            })
-    });
-    down_among.then(|| raised(&tcp, dz))
+    let around: Vec<(Isometry3<f64>, Cuboid)> = world
+        .bodies
+        .iter()
+        .filter(|body| !body.lost && body.kind != BodyKind::Table)
+        .flat_map(|body| body.world_parts().map(|(iso, c)| (iso, *c)))
+        .collect();
+    hand_within(&tcp, &around, 0.01).then(|| raised(&tcp, dz))
 }
 
 /// The top grasps of block `body` at `pose` for arm `arm`, best first: the fingers close along

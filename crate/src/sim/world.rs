@@ -1411,8 +1411,14 @@ impl World {
     /// normal times its depth (zero when they do not overlap, or the contact is vertical: a hook
     /// resting on a block does not push it).
     fn hook_overlap_push(&self, hi: usize, bi: usize, push: &Vector3<f64>) -> Vector3<f64> {
-        let shift = Isometry3::translation(push.x, push.y, push.z);
         let mut best = Vector3::zeros();
+        // Runs every step the hook is carried: apart (AABBs disjoint) means no overlap.
+        let (hlo, hhi) = self.bodies[hi].aabb();
+        let (blo, bhi) = self.bodies[bi].aabb();
+        if (0..3).any(|i| hlo[i] > bhi[i] + push[i] || blo[i] + push[i] > hhi[i]) {
+            return best;
+        }
+        let shift = Isometry3::translation(push.x, push.y, push.z);
         for (hiso, hc) in self.bodies[hi].world_parts() {
             for (biso, bc) in self.bodies[bi].world_parts() {
                 let Ok(Some(k)) = query::contact(&hiso, hc, &(shift * biso), bc, 0.0) else {

@@ -524,27 +524,53 @@ impl<'w> StreamBinder<'w> {
         Some(Ok(sol.joints))
     }
 
-    /// The link capsules of arm `arm` at joints `q` with their index and world AABB; the base
-    /// link stands on the table and is never tested.
-    fn links(&self, arm: usize, q: &[f64; DOF]) -> Vec<LinkShape> {
-        link_capsules(self.world, arm, q)
+    /// Every (part, obstacle) pair of arm `arm` at joints `q` (TCP `tcp`, carrying `load`) whose
+    /// world AABBs overlap, links first (the base link stands on the table and is never tested),
+    /// then the parts of the load (grown by its margin, except against a support), each part
+    /// with its obstacles in order.
+    fn overlapping_pairs(
+        &self,
+        arm: usize,
+        q: &[f64; DOF],
+        tcp: &Isometry3<f64>,
+        load: &[LoadPart],
+        obstacles: &[Obstacle],
+    ) -> Vec<(Part, usize, Isometry3<f64>, PartShape)> {
+        let mut out = vec![];
+        for (i, (a, b, r)) in link_capsules(self.world, arm, q)
             .into_iter()
             .enumerate()
             .skip(1)
-            .map(|(i, (a, b, r))| {
-                let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
-                (
-                    i,
-                    cap,
-                    a.inf(&b) - Vector3::repeat(r),
-                    a.sup(&b) + Vector3::repeat(r),
-                )
-            })
-            .collect()
+        {
+            let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
+            let lo = a.inf(&b) - Vector3::repeat(r);
+            let hi = a.sup(&b) + Vector3::repeat(r);
+            for (oi, o) in obstacles.iter().enumerate() {
+                if overlaps(&lo, &hi, o) {
+                    out.push((
+                        Part::Link(i),
+                        oi,
+                        Isometry3::identity(),
+                        PartShape::Capsule(cap),
+                    ));
+                }
+            }
+        }
+        for (pi, (off, wide, plain)) in load.iter().enumerate() {
+            let iso = tcp * off;
+            let (lo, hi) = box_aabb(&iso, wide);
+            for (oi, o) in obstacles.iter().enumerate() {
+                if overlaps(&lo, &hi, o) {
+                    let c = if o.support { plain } else { wide };
+                    out.push((Part::Load(pi), oi, iso, PartShape::Cuboid(*c)));
+                }
+            }
+        }
+        out
     }
 
-    /// Penetration depth of each (link, obstacle) and (load part, obstacle) pair that overlaps
-    /// with the arm at joints `q` (TCP `tcp`).
+    /// Penetration depth of each (part, obstacle) pair that overlaps with the arm at joints `q`
+    /// (TCP `tcp`, carrying `load`).
     fn start_contacts(
         &self,
         arm: usize,
@@ -553,34 +579,16 @@ impl<'w> StreamBinder<'w> {
         load: &[LoadPart],
         obstacles: &[Obstacle],
     ) -> StartContacts {
-        let mut out = StartContacts::default();
-        for (li, cap, lo, hi) in self.links(arm, q) {
-            for (oi, o) in obstacles.iter().enumerate() {
-                if overlaps(&lo, &hi, o) {
-                    if let Some(d) = depth_in(&Isometry3::identity(), &cap, o) {
-                        out.links.insert((li, oi), d);
-                    }
-                }
-            }
-        }
-        for (pi, (off, wide, plain)) in load.iter().enumerate() {
-            let iso = tcp * off;
-            let (lo, hi) = box_aabb(&iso, wide);
-            for (oi, o) in obstacles.iter().enumerate() {
-                let c = if o.support { plain } else { wide };
-                if overlaps(&lo, &hi, o) {
-                    if let Some(d) = depth_in(&iso, c, o) {
-                        out.load.insert((pi, oi), d);
-                    }
-                }
-            }
-        }
-        out
+        self.overlapping_pairs(arm, q, tcp, load, obstacles)
+            .into_iter()
+            .filter_map(|(part, oi, iso, shape)| {
+                depth_in(&iso, shape.as_shape(), &obstacles[oi]).map(|d| ((part, oi), d))
+            })
+            .collect()
     }
 
     /// What the arm at joints `q` (TCP `tcp`, carrying `load` in the TCP frame) hits, in words.
-    /// `start`: contacts of the load at the start of the path, allowed as long as they get no
-    /// deeper.
+    /// `start`: contacts at the start of the path, allowed as long as they get no deeper.
     fn sample_hits(
         &self,
         arm: usize,
@@ -590,32 +598,22 @@ impl<'w> StreamBinder<'w> {
         obstacles: &[Obstacle],
         start: &StartContacts,
     ) -> Option<String> {
-        for (i, cap, lo, hi) in self.links(arm, q) {
-            let hit = obstacles.iter().enumerate().find(|(oi, o)| {
-                overlaps(&lo, &hi, o)
-                    && hits(
-                        &Isometry3::identity(),
-                        &cap,
-                        o,
-                        start.links.get(&(i, *oi)).copied(),
-                    )
-            });
-            if let Some((_, o)) = hit {
-                return Some(format!("link {i} hits {}", o.name));
-            }
-        }
-        for (pi, (off, wide, plain)) in load.iter().enumerate() {
-            let iso = tcp * off;
-            let (lo, hi) = box_aabb(&iso, wide);
-            let hit = obstacles.iter().enumerate().find(|(oi, o)| {
-                let c = if o.support { plain } else { wide };
-                overlaps(&lo, &hi, o) && hits(&iso, c, o, start.load.get(&(pi, *oi)).copied())
-            });
-            if let Some((_, o)) = hit {
-                return Some(format!("the carried body hits {}", o.name));
-            }
-        }
-        None
+        let (part, oi, _, _) = self
+            .overlapping_pairs(arm, q, tcp, load, obstacles)
+            .into_iter()
+            .find(|(part, oi, iso, shape)| {
+                hits(
+                    iso,
+                    shape.as_shape(),
+                    &obstacles[*oi],
+                    start.get(&(*part, *oi)).copied(),
+                )
+            })?;
+        let o = &obstacles[oi].name;
+        Some(match part {
+            Part::Link(i) => format!("link {i} hits {o}"),
+            Part::Load(_) => format!("the carried body hits {o}"),
+        })
     }
 
     fn arm_name(&self, arm: usize) -> String {
@@ -1211,16 +1209,31 @@ impl<'w> StreamBinder<'w> {
     }
 }
 
-/// Contacts at the start of a certified path, which the path may leave but not deepen:
-/// penetration depth per (link index, obstacle index) and per (load part, obstacle index).
-#[derive(Default)]
-struct StartContacts {
-    links: BTreeMap<(usize, usize), f64>,
-    load: BTreeMap<(usize, usize), f64>,
+/// A part of an arm in a certification: one of its links (by index) or a part of its load.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Part {
+    Link(usize),
+    Load(usize),
 }
 
-/// A link capsule: its index, the capsule and its world AABB.
-type LinkShape = (usize, Capsule, Vector3<f64>, Vector3<f64>);
+/// The shape of a [`Part`]: a link's capsule or a load part's box.
+enum PartShape {
+    Capsule(Capsule),
+    Cuboid(Cuboid),
+}
+
+impl PartShape {
+    fn as_shape(&self) -> &dyn Shape {
+        match self {
+            PartShape::Capsule(c) => c,
+            PartShape::Cuboid(c) => c,
+        }
+    }
+}
+
+/// Contacts at the start of a certified path, which the path may leave but not deepen:
+/// penetration depth per (part, obstacle index).
+type StartContacts = BTreeMap<(Part, usize), f64>;
 
 /// Whether shape `c` at `iso` hits obstacle `o`: overlaps it, or, when it started the path
 /// `start_depth` deep inside, is now deeper.
