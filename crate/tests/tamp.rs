@@ -2,7 +2,7 @@
 //! the carried body), the pull stream's prediction against the executor, and TAMP from scratch.
 
 use logic_lfd::lfd::control::{BannedTask, Binder};
-use logic_lfd::lfd::exec::{classify, ActionExec, ExecParams, ExecStatus};
+use logic_lfd::lfd::exec::{classify, ActionExec, ActionKind, ExecParams, ExecStatus};
 use logic_lfd::lfd::logic::replay;
 use logic_lfd::lfd::model::DomainModel;
 use logic_lfd::lfd::session::{BenchmarkId, SkillKind};
@@ -10,6 +10,7 @@ use logic_lfd::lfd::skill::SkillLibrary;
 use logic_lfd::lfd::TaskBuilder;
 use logic_lfd::plan::{search, Algorithm, HeuristicKind, NoClock, SearchConfig, Task};
 use logic_lfd::sim::demo::PULL_TARGET_RADIUS;
+use logic_lfd::sim::geometry::hand_hits;
 use logic_lfd::sim::{SceneGraph, World};
 use logic_lfd::tamp::plan_from_scratch;
 use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
@@ -127,49 +128,150 @@ fn tamp_from_scratch_binds_every_benchmark_with_certified_motions() {
 }
 
 #[test]
-fn a_carried_block_is_not_swept_through_a_tower() {
+fn a_carried_block_crosses_a_tower_in_a_transit_that_the_executor_follows() {
     // a is picked at (0.40, −0.25) and put down at (0.30, 0.25): the straight transfer passes
-    // (0.35, 0.00). With a three-block tower there the demonstration-like placement is refused.
+    // (0.35, 0.00). With a three-block tower there the straight transfer is refused and the
+    // placement is certified with a transit above the tower, which the executor then flies.
     let hint = (0.30, 0.25, 0.0);
+    let ops_of = |task: &Task| [op(task, "(pick panda a)"), op(task, "(place panda a)")];
     let bind = |world: &World| {
         let (_, task) = model_and_task(BenchmarkId::B1, world);
-        let ops = [op(&task, "(pick panda a)"), op(&task, "(place panda a)")];
+        let ops = ops_of(&task);
         let hints = [("(place panda a)".to_string(), hint)]
             .into_iter()
             .collect();
         let mut binder = StreamBinder::new(world, 3, StreamParams::default()).with_hints(&hints);
         let r = binder.bind(&task, &ops, ops.len());
-        (r, binder.predicted_pose("a"), binder.stats)
+        (r, binder.predicted_pose("a"), binder.stats, binder.bindings)
     };
+    let at_hint = |p: Vector3<f64>| (p.x - hint.0).abs() < 1e-9 && (p.y - hint.1).abs() < 1e-9;
     let free = template(BenchmarkId::B1);
-    let (r, pose, _) = bind(&free);
+    let (r, pose, stats, bindings) = bind(&free);
     assert_eq!(r, Ok(()));
-    let p = pose.unwrap().translation.vector;
-    assert!(
-        (p.x - hint.0).abs() < 1e-9 && (p.y - hint.1).abs() < 1e-9,
-        "{p:?}"
-    );
+    assert!(at_hint(pose.unwrap().translation.vector));
+    assert_eq!(stats.transits, 0, "{stats:?}");
+    assert!(bindings.iter().all(|b| b.transit.is_none()), "{bindings:?}");
 
     let mut tower = template(BenchmarkId::B1);
-    tower
-        .move_block("d", Vector3::new(0.35, 0.0, 0.03))
-        .unwrap();
-    tower
-        .move_block("c", Vector3::new(0.35, 0.0, 0.10))
-        .unwrap();
-    tower
-        .move_block("b", Vector3::new(0.35, 0.0, 0.17))
-        .unwrap();
+    for (name, z) in [("d", 0.03), ("c", 0.10), ("b", 0.17)] {
+        tower.move_block(name, Vector3::new(0.35, 0.0, z)).unwrap();
+    }
     assert!(SceneGraph::from_world(&tower).contains("(on b c)"));
-    let (r, pose, stats) = bind(&tower);
+    let tower_top = tower.body_aabb("b").unwrap().1.z;
+    let (r, pose, stats, bindings) = bind(&tower);
+    assert_eq!(r, Ok(()));
     assert!(stats.rejected_collision >= 1, "{stats:?}");
-    if r.is_ok() {
-        let p = pose.unwrap().translation.vector;
+    assert!(at_hint(pose.unwrap().translation.vector));
+    // The release flies over the tower: a's bottom (2 cm under the TCP) clears its top.
+    let z = bindings[1].transit.expect("a transit over the tower");
+    assert!(
+        z - 0.02 > tower_top,
+        "transit at {z}, tower top {tower_top}"
+    );
+
+    // The executor flies the certified transit: the tower stands, a rests at the spot.
+    let (_, task) = model_and_task(BenchmarkId::B1, &tower);
+    let files = BenchmarkId::B1.sources().unwrap();
+    let skills = SkillLibrary::learn(&files.demo, SkillKind::Lqt, &[]);
+    let params = ExecParams::default();
+    let before: Vec<_> = ["b", "c", "d"]
+        .iter()
+        .map(|n| tower.body_pose(n).unwrap())
+        .collect();
+    for (o, binding) in ops_of(&task).into_iter().zip(&bindings) {
+        let operator = &task.operators[o];
+        let mut kind = classify(&task, operator, &tower).unwrap();
+        if let ActionKind::Release { placement, .. } = &mut kind {
+            placement.clone_from(&binding.placement);
+        }
+        let mut exec = ActionExec::new(&operator.name, kind, &tower, &skills, &params);
+        if let Some(z) = binding.transit {
+            exec = exec.with_transit(z);
+        }
+        let mut status = ExecStatus::Running;
+        for _ in 0..6000 {
+            status = exec.tick(&mut tower, &skills, &params);
+            assert_eq!(tower.check_invariants(), Ok(()));
+            if status != ExecStatus::Running {
+                break;
+            }
+        }
+        assert_eq!(status, ExecStatus::Done, "{}", operator.name);
+    }
+    for (n, p) in ["b", "c", "d"].iter().zip(&before) {
+        let now = tower.body_pose(n).unwrap().translation.vector;
         assert!(
-            (p.x - hint.0).abs() > 1e-6 || (p.y - hint.1).abs() > 1e-6,
-            "the swept placement was accepted"
+            (now - p.translation.vector).norm() < 1e-3,
+            "{n} moved to {now:?}"
         );
     }
+    let a = tower.body_pose("a").unwrap().translation.vector;
+    assert!(
+        (a.x - hint.0).abs() < 0.01 && (a.y - hint.1).abs() < 0.01,
+        "a at {a:?}"
+    );
+}
+
+#[test]
+fn an_empty_hand_low_beside_a_tower_reaches_its_top_through_a_transit() {
+    // a stands on c on d; the open hand waits low beside the tower. The straight way up to the
+    // pre-grasp above a swings the hand through c; the grasp is certified with a transit
+    // (straight up, across, straight down), and the executor flies it without touching c.
+    let mut world = template(BenchmarkId::B1);
+    for (name, z) in [("d", 0.03), ("c", 0.10), ("a", 0.17)] {
+        world.move_block(name, Vector3::new(0.55, 0.26, z)).unwrap();
+    }
+    assert!(SceneGraph::from_world(&world).contains("(on a c)"));
+    let low = world.tcp_pose(0).unwrap();
+    let low = nalgebra::Isometry3::from_parts(
+        nalgebra::Translation3::new(0.60, 0.10, 0.04),
+        low.rotation,
+    );
+    let q = world
+        .reachable(0, &low)
+        .expect("the low pose is reachable")
+        .joints;
+    world.set_joints(0, q).unwrap();
+    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let ops = [op(&task, "(unstack panda a c)")];
+    let mut binder = StreamBinder::new(&world, 5, StreamParams::default());
+    binder.bind(&task, &ops, ops.len()).expect("certified");
+    let z = binder.bindings[0].transit.expect("a transit");
+    let c_box = world.body_shapes("c");
+
+    let files = BenchmarkId::B1.sources().unwrap();
+    let skills = SkillLibrary::learn(&files.demo, SkillKind::Lqt, &[]);
+    let params = ExecParams::default();
+    // Ticks during which the hand overlaps c, with and without the transit.
+    let run = |transit: Option<f64>| {
+        let mut w = world.clone();
+        let kind = classify(&task, &task.operators[ops[0]], &w).unwrap();
+        let mut exec = ActionExec::new("(unstack panda a c)", kind, &w, &skills, &params);
+        if let Some(z) = transit {
+            exec = exec.with_transit(z);
+        }
+        let mut touching = 0;
+        let mut status = ExecStatus::Running;
+        for _ in 0..6000 {
+            status = exec.tick(&mut w, &skills, &params);
+            assert_eq!(w.check_invariants(), Ok(()));
+            touching += usize::from(hand_hits(&w.tcp_pose(0).unwrap(), &c_box));
+            if status != ExecStatus::Running {
+                break;
+            }
+        }
+        (status, touching, w.held_by(0).map(str::to_string))
+    };
+    let (status, touching, held) = run(Some(z));
+    assert_eq!(status, ExecStatus::Done);
+    assert_eq!(held.as_deref(), Some("a"));
+    assert_eq!(touching, 0, "the hand touched c on its transit");
+    // Without the transit the learned approach does swing the hand through c.
+    let (_, touching, _) = run(None);
+    assert!(
+        touching > 0,
+        "the straight approach missed c: the test shows nothing"
+    );
 }
 
 #[test]

@@ -22,7 +22,7 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use crate::plan::{Operator, Task};
 use crate::sim::geometry::{
     boxes_except, clear_grasp_at, quarter_turn_for_arm, raised, rest_pose, rest_pose_on,
-    rise_first, tcp_for_body_pose,
+    rise_first, tcp_for_body_pose, transit_z, HAND_REACH,
 };
 use crate::sim::{GripperCommand, World, WorldEvent};
 
@@ -79,7 +79,26 @@ impl Default for ExecParams {
     }
 }
 
-/// What a stream bound for an action: where a released body goes, or how a pull strokes.
+/// What the streams bound for one action of a plan.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Binding {
+    /// Where a released body goes, or how a pull strokes (`None`: nothing to bind).
+    pub placement: Option<Placement>,
+    /// TCP height of a transit before the action's first approach, when the straight approach
+    /// is blocked ([`ActionExec::with_transit`]).
+    pub transit: Option<f64>,
+}
+
+impl From<Option<Placement>> for Binding {
+    fn from(placement: Option<Placement>) -> Self {
+        Binding {
+            placement,
+            transit: None,
+        }
+    }
+}
+
+/// Where a stream puts an action's body: where a released body goes, or how a pull strokes.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Placement {
     /// A pull stroke turned by this angle (rad) from the line through the arm's base.
@@ -442,6 +461,24 @@ impl ActionExec {
         }
     }
 
+    /// Makes the action's first approach a transit at TCP height `z` (a stream found the
+    /// straight approach blocked and certified this one instead, see `tamp::streams`): straight
+    /// up to `z`, across above the approach's goal, straight down to it.
+    pub fn with_transit(mut self, z: f64) -> Self {
+        let first = self
+            .phases
+            .iter()
+            .position(|ph| matches!(ph, Phase::Move(v) if !matches!(v, Via::Rise { .. })));
+        if let Some(i) = first {
+            if let Phase::Move(via) = self.phases[i].clone() {
+                self.phase = i;
+                self.insert_transit(&via, z);
+                self.phase = 0;
+            }
+        }
+        self
+    }
+
     /// The arm executing the action.
     pub fn arm(&self) -> usize {
         self.arm
@@ -601,6 +638,7 @@ impl ActionExec {
                 // The carried body met another on the way (tracking lag or a moved obstacle):
                 // go up, over at a safe height, and down instead, once per action.
                 if world.arm_blocked_by(self.arm).is_some()
+                    && world.held_by(self.arm).is_some()
                     && self.transit_at.is_none()
                     && !no_transit(&via)
                 {
@@ -931,23 +969,29 @@ fn no_transit(via: &Via) -> bool {
         || matches!(via, Via::Pull { stage, .. } if *stage > 0)
 }
 
-/// The TCP height of a safe transit of arm `arm`'s held body from where it is to `goal`: its
-/// bottom 3 cm above every top between them, "between" widened by the held body's reach around
-/// the TCP (never below either end).
-fn safe_transit_z(world: &World, arm: usize, goal: &Isometry3<f64>) -> Option<f64> {
-    let held = world.held_by(arm)?.to_string();
+/// The TCP height of a safe transit of arm `arm` from where it is to `goal`
+/// ([`transit_z`]): a held body's bottom, or the empty hand, clears every top between them,
+/// "between" widened by how far the held body (at least 8 cm) or the hand reaches around the
+/// TCP.
+pub(crate) fn safe_transit_z(world: &World, arm: usize, goal: &Isometry3<f64>) -> Option<f64> {
     let a = world.tcp_pose(arm)?.translation.vector;
-    let b = goal.translation.vector;
-    let (lo, hi) = world.body_aabb(&held)?;
-    let extent = [lo.x - a.x, hi.x - a.x, lo.y - a.y, hi.y - a.y]
-        .iter()
-        .fold(0.0f64, |m, d| m.max(d.abs()));
-    let m = (extent + 0.02).max(0.08);
-    let top = world.highest_top_in(
-        [a.x.min(b.x) - m, a.y.min(b.y) - m],
-        [a.x.max(b.x) + m, a.y.max(b.y) + m],
-        &held,
-    );
-    let below_tcp = a.z - lo.z;
-    Some((top + 0.03 + below_tcp).max(a.z).max(b.z))
+    let held = world.held_by(arm).map(str::to_string);
+    let (reach, below_tcp) = match &held {
+        Some(h) => {
+            let (lo, hi) = world.body_aabb(h)?;
+            let extent = [lo.x - a.x, hi.x - a.x, lo.y - a.y, hi.y - a.y]
+                .iter()
+                .fold(0.0f64, |m, d| m.max(d.abs()));
+            ((extent + 0.02).max(0.08), a.z - lo.z)
+        }
+        None => (HAND_REACH, 0.0),
+    };
+    let except = held.unwrap_or_default();
+    Some(transit_z(
+        &a,
+        &goal.translation.vector,
+        reach,
+        below_tcp,
+        |lo, hi| world.highest_top_in(lo, hi, &except),
+    ))
 }

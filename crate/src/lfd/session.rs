@@ -28,7 +28,7 @@ use crate::tamp::streams::{StreamBinder, StreamParams};
 
 use super::control::{Binder, ControlParams, Controller, Decision, FailReason, Replan};
 use super::demo::DemoTrace;
-use super::exec::{classify, ActionExec, ActionKind, ExecParams, ExecStatus, Placement};
+use super::exec::{classify, ActionExec, ActionKind, Binding, ExecParams, ExecStatus, Placement};
 use super::logic::Mode;
 use super::model::DomainModel;
 use super::skill::SkillLibrary;
@@ -407,7 +407,7 @@ pub struct Session {
     world: World,
     controller: Controller,
     exec: Option<ActionExec>,
-    bindings: Vec<Option<Placement>>,
+    bindings: Vec<Binding>,
     tick: u64,
     carry: f64,
     outcome: Option<Result<(), FailReason>>,
@@ -768,6 +768,7 @@ impl Session {
                                     .map(|&(x, y, yaw)| Placement::At { x, y, yaw }),
                                 _ => None,
                             }
+                            .into()
                         })
                         .collect();
                 }
@@ -776,7 +777,7 @@ impl Session {
                     let ops = self.controller.plan_ops().to_vec();
                     let task = self.controller.task().clone();
                     if binder.bind(&task, &ops, 0).is_err() {
-                        binder.bindings = vec![None; ops.len()];
+                        binder.bindings = vec![Binding::default(); ops.len()];
                     }
                 }
                 Method::LogicLfd | Method::Tamp => {}
@@ -803,14 +804,15 @@ impl Session {
                     }));
                     return false;
                 };
+                let binding = self.bindings.get(index).cloned().unwrap_or_default();
                 if let ActionKind::Pull { turn, .. } = &mut kind {
-                    if let Some(Some(Placement::Stroke(t))) = self.bindings.get(index) {
-                        *turn = *t;
+                    if let Some(Placement::Stroke(t)) = binding.placement {
+                        *turn = t;
                     }
                 }
                 if let ActionKind::Release { placement, .. } = &mut kind {
                     if placement.is_none() {
-                        *placement = self.bindings.get(index).cloned().flatten();
+                        placement.clone_from(&binding.placement);
                     }
                     if placement.is_none() {
                         self.outcome = Some(Err(FailReason::ActionFailed {
@@ -820,13 +822,12 @@ impl Session {
                         return false;
                     }
                 }
-                self.exec = Some(ActionExec::new(
-                    &action,
-                    kind,
-                    &self.world,
-                    &self.skills,
-                    &self.params.exec,
-                ));
+                let exec =
+                    ActionExec::new(&action, kind, &self.world, &self.skills, &self.params.exec);
+                self.exec = Some(match binding.transit {
+                    Some(z) => exec.with_transit(z),
+                    None => exec,
+                });
                 self.actions.push(ActionRecord {
                     action,
                     start_tick: self.tick,

@@ -5,7 +5,7 @@
 //! point is at the block's centre (fingertips around the block's middle), its fingers close along
 //! one of the block's horizontal face normals — the one whose yaw is closest to the direction from
 //! the arm's base to the block (what joint 1 gives naturally). The hook is grasped on its handle
-//! at [`HOOK_GRASP_POINT`] (hook frame), fingers across the handle.
+//! at [`HOOK_GRASP_POINT`] (hook frame), fingers across the handle, the hand turned as the hook.
 
 use super::panda::{self, ArmFrames};
 use super::snapshot::BodyKind;
@@ -87,6 +87,32 @@ fn hand_within(tcp: &Isometry3<f64>, boxes: &[(Isometry3<f64>, Cuboid)], margin:
     boxes.iter().any(|(iso, c)| {
         parry3d_f64::query::intersection_test(&Isometry3::identity(), &cap, iso, c).unwrap_or(true)
     })
+}
+
+/// Clearance of a transit over the tops below it (m).
+pub const TRANSIT_CLEARANCE: f64 = 0.03;
+
+/// How far around its TCP an empty hand reaches horizontally (m): the hand's half span and
+/// radius.
+pub const HAND_REACH: f64 = HAND_HALF_SPAN + HAND_RADIUS;
+
+/// The TCP height of a transit (straight up, across at this height, straight down) from TCP
+/// position `a` to `b`: what the arm carries, reaching `below_tcp` under the TCP, passes
+/// [`TRANSIT_CLEARANCE`] above every top that `top_in` (the highest top meeting an x, y
+/// rectangle) finds within `reach` of the rectangle spanned by `a` and `b`; never below either
+/// end. The executor (from the world) and the TAMP streams (from their predicted state) both use it.
+pub fn transit_z(
+    a: &Vector3<f64>,
+    b: &Vector3<f64>,
+    reach: f64,
+    below_tcp: f64,
+    top_in: impl Fn([f64; 2], [f64; 2]) -> f64,
+) -> f64 {
+    let top = top_in(
+        [a.x.min(b.x) - reach, a.y.min(b.y) - reach],
+        [a.x.max(b.x) + reach, a.y.max(b.y) + reach],
+    );
+    (top + TRANSIT_CLEARANCE + below_tcp).max(a.z).max(b.z)
 }
 
 /// Where arm `arm` rises to before its next action when its empty hand is down among bodies
@@ -254,8 +280,11 @@ pub fn grasp_pose_at(
             ))
         }
         BodyKind::Hook => {
+            // The hand turned as the hook, never half a turn from it: strokes drag the hook
+            // along its own axis (`sim::demo::pull_hook_poses`), where this grasp keeps the
+            // wrist near the middle of its range; the other would drive joint 7 into its limit.
             let p = (pose * Point3::from(Vector3::from(HOOK_GRASP_POINT))).coords;
-            let yaw = closest_yaw(yaw_of(&pose.rotation), PI, yaw_from_base(world, arm, &p));
+            let yaw = yaw_of(&pose.rotation);
             Some(Isometry3::from_parts(
                 Translation3::from(p),
                 panda::down_orientation(yaw),

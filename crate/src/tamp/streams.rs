@@ -30,6 +30,12 @@
 //! other in the simulator (the demonstrated hand-over has one gripper above the other), so
 //! arm–arm contact is not tested.
 //!
+//! **Transits.** When an action's approach (from where the arm is to its pre-grasp, pre-release
+//! or pre-stroke pose) hits something, it is certified again as a transit: straight up to the
+//! TCP height `z` of `sim::geometry::transit_z` (what the arm carries 3 cm above every top
+//! between the two), across, straight down. The binding records `z` and the executor flies
+//! exactly that (`ActionExec::with_transit`).
+//!
 //! A skeleton fails at the first action for which no sample (within the budget) is certified.
 //! Actions from the demonstration's suffix (Logic-LfD) skip certification: their motion comes from
 //! the demonstrated skills re-targeted to the objects, only their surface placements are sampled.
@@ -44,10 +50,12 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
 use crate::lfd::control::Binder;
-use crate::lfd::exec::{classify, fact_args, ActionKind, Placement};
+use crate::lfd::exec::{classify, fact_args, ActionKind, Binding, Placement};
 use crate::plan::Task;
 use crate::sim::demo::{pull_hook_poses, pull_hook_poses_turned, PULL_TARGET_RADIUS};
-use crate::sim::geometry::{clear_grasp_at, grasp_pose_at, link_capsules, raised, rise_first};
+use crate::sim::geometry::{
+    clear_grasp_at, grasp_pose_at, link_capsules, raised, rise_first, transit_z, HAND_REACH,
+};
 use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
@@ -139,6 +147,8 @@ pub struct StreamStats {
     pub rejected_collision: usize,
     /// Pulls rejected by the shape-cast prediction.
     pub rejected_pull: usize,
+    /// Transits tried after a straight approach was blocked.
+    pub transits: usize,
 }
 
 /// An obstacle of one certification: a box (shrunk by the contact slack) and its world AABB.
@@ -184,8 +194,8 @@ pub struct StreamBinder<'w> {
     params: StreamParams,
     track_ik: IkParams,
     settle_ik: IkParams,
-    /// Placement per action of the last successfully bound skeleton (`None`: nothing to bind).
-    pub bindings: Vec<Option<Placement>>,
+    /// What was bound per action of the last successfully bound skeleton.
+    pub bindings: Vec<Binding>,
     /// Certifications (IK + collision tests of a candidate) done so far.
     pub certifications: usize,
     /// Why the last rejected candidate was rejected, in words (for failure reports).
@@ -487,6 +497,74 @@ impl<'w> StreamBinder<'w> {
         Reject::Collision
     }
 
+    /// Certifies the path through `via`, whose first point is the goal of the action's
+    /// approach: straight, or, when that hits something, as a transit (straight up to
+    /// [`transit_z`], across above `via[0]`, straight down to it: the executor's
+    /// `ActionExec::with_transit`). The joints at the end and the transit's TCP height, if one
+    /// was needed. A rejection keeps the straight path's reason.
+    fn certify_approach(
+        &mut self,
+        geo: &Geo,
+        arm: usize,
+        via: &[Isometry3<f64>],
+        exclude: &[&str],
+        load_margin: f64,
+    ) -> Result<([f64; DOF], Option<f64>), Reject> {
+        match self.certify_path(geo, arm, via, exclude, load_margin) {
+            Ok(q) => return Ok((q, None)),
+            Err(Reject::Ik) => return Err(Reject::Ik),
+            Err(Reject::Collision) => {}
+        }
+        let (Some(goal), Some(from)) = (via.first(), geo.tcp.get(arm)) else {
+            return Err(Reject::Collision);
+        };
+        let why = self.last_rejection.clone();
+        let z = self.transit_height(geo, arm, goal);
+        let mut up = *from;
+        up.translation.z = z;
+        let mut over = *goal;
+        over.translation.z = z;
+        let path: Vec<Isometry3<f64>> = [up, over].into_iter().chain(via.iter().copied()).collect();
+        self.stats.transits += 1;
+        match self.certify_path(geo, arm, &path, exclude, load_margin) {
+            Ok(q) => Ok((q, Some(z))),
+            Err(e) => {
+                self.last_rejection = why;
+                Err(e)
+            }
+        }
+    }
+
+    /// The TCP height of a transit of `arm` from where `geo` has it to `goal` ([`transit_z`]
+    /// over the predicted bodies; the executor computes the same from the world).
+    fn transit_height(&self, geo: &Geo, arm: usize, goal: &Isometry3<f64>) -> f64 {
+        let a = geo.tcp[arm].translation.vector;
+        let (reach, below_tcp) = match geo.held.get(&arm) {
+            Some((body, g)) => {
+                let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
+                for (iso, c) in self.parts_at(body, &(geo.tcp[arm] * g)) {
+                    let (l, h) = box_aabb(&iso, &c);
+                    lo = lo.inf(&l);
+                    hi = hi.sup(&h);
+                }
+                let extent = [lo.x - a.x, hi.x - a.x, lo.y - a.y, hi.y - a.y]
+                    .iter()
+                    .fold(0.0f64, |m, d| m.max(d.abs()));
+                ((extent + 0.02).max(0.08), (a.z - lo.z).max(0.0))
+            }
+            None => (HAND_REACH, 0.0),
+        };
+        let obstacles = self.obstacles(geo, arm, &[]);
+        transit_z(&a, &goal.translation.vector, reach, below_tcp, |lo, hi| {
+            obstacles
+                .iter()
+                .filter(|o| {
+                    o.lo.x <= hi[0] && o.hi.x >= lo[0] && o.lo.y <= hi[1] && o.hi.y >= lo[1]
+                })
+                .fold(f64::MIN, |m, o| m.max(o.hi.z))
+        })
+    }
+
     /// The executor's joint-space recovery from joints `q` to the TCP pose `goal`
     /// (`lfd::exec`: planning IK with restarts, then a straight move in joint space): `None`
     /// if the planning IK finds no solution, else the goal joints or what the move hits.
@@ -677,37 +755,32 @@ impl<'w> StreamBinder<'w> {
         out
     }
 
-    /// Certifies `arm` grasping `body` (approach from above, close, lift) and rolls `geo` on.
-    fn grasp(&mut self, geo: &mut Geo, arm: usize, body: &str, certify: bool) -> bool {
-        let Some(pose) = geo.poses.get(body).copied() else {
-            return false;
-        };
+    /// Certifies `arm` grasping `body` (approach from above, close, lift) and rolls `geo` on:
+    /// `None` if it cannot, else the height of the transit its approach needs, if any.
+    fn grasp(&mut self, geo: &mut Geo, arm: usize, body: &str, certify: bool) -> Option<Transit> {
+        let pose = geo.poses.get(body).copied()?;
         let boxes = self.boxes_except(geo, body);
-        let Some(tcp) = clear_grasp_at(
+        let tcp = clear_grasp_at(
             self.world,
             arm,
             body,
             &pose,
             &boxes,
             self.params.approach_height,
-        ) else {
-            return false;
-        };
+        )?;
         let lifted = raised(&tcp, self.params.lift_height);
+        let mut transit = None;
         if certify {
             let via = [raised(&tcp, self.params.approach_height), tcp];
-            let Ok(q) = self.certify_path(geo, arm, &via, &[body], 0.0) else {
-                return false;
-            };
+            let (q, z) = self.certify_approach(geo, arm, &via, &[body], 0.0).ok()?;
+            transit = z;
             let mut after = geo.clone();
             after.tcp[arm] = tcp;
             after.q[arm] = q;
             after
                 .held
                 .insert(arm, (body.to_string(), tcp.inverse() * pose));
-            let Ok(q) = self.certify_path(&after, arm, &[lifted], &[], 0.0) else {
-                return false;
-            };
+            let q = self.certify_path(&after, arm, &[lifted], &[], 0.0).ok()?;
             geo.q[arm] = q;
         } else if let Ok(sol) = self.world.reachable(arm, &lifted) {
             geo.q[arm] = sol.joints;
@@ -717,41 +790,46 @@ impl<'w> StreamBinder<'w> {
             .insert(arm, (body.to_string(), tcp.inverse() * pose));
         geo.poses
             .insert(body.to_string(), raised(&pose, self.params.lift_height));
-        true
+        Some(transit)
     }
 
     /// Certifies `arm` putting its load down with the body at `pose` (approach from above,
-    /// open, retreat up) and rolls `geo` on.
-    fn release(&mut self, geo: &mut Geo, arm: usize, pose: &Isometry3<f64>, certify: bool) -> bool {
-        let Some((body, g)) = geo.held.get(&arm).cloned() else {
-            return false;
-        };
+    /// open, retreat up) and rolls `geo` on: `None` if it cannot, else the height of the
+    /// transit its approach needs, if any.
+    fn release(
+        &mut self,
+        geo: &mut Geo,
+        arm: usize,
+        pose: &Isometry3<f64>,
+        certify: bool,
+    ) -> Option<Transit> {
+        let (body, g) = geo.held.get(&arm).cloned()?;
         let tcp = pose * g.inverse();
         let retreat = raised(&tcp, self.params.approach_height);
+        let mut transit = None;
         if certify {
             // The transfer to the approach pose is where the learned skill cuts corners (its
             // path is not the straight line checked here): the carried body keeps
             // `transfer_margin` from everything on the way. The descent is checked as is.
             let above = retreat; // the approach pose is also the retreat pose
             let margin = self.params.transfer_margin;
-            let Ok(q_above) = self.certify_path(geo, arm, &[above], &[], margin) else {
-                return false;
-            };
+            let (q_above, z) = self
+                .certify_approach(geo, arm, &[above], &[], margin)
+                .ok()?;
+            transit = z;
             let mut at_above = geo.clone();
             at_above.tcp[arm] = above;
             at_above.q[arm] = q_above;
             // The executor opens the gripper `release_clearance` above the rest pose.
             let drop = raised(&tcp, self.params.release_clearance);
-            let Ok(_) = self.certify_path(&at_above, arm, &[drop], &[], 0.0) else {
-                return false;
-            };
+            self.certify_path(&at_above, arm, &[drop], &[], 0.0).ok()?;
             let mut after = geo.clone();
             after.held.remove(&arm);
             after.poses.insert(body.clone(), *pose);
             after.tcp[arm] = drop;
-            let Ok(q) = self.certify_path(&after, arm, &[retreat], &[&body], 0.0) else {
-                return false;
-            };
+            let q = self
+                .certify_path(&after, arm, &[retreat], &[&body], 0.0)
+                .ok()?;
             geo.q[arm] = q;
         } else if let Ok(sol) = self.world.reachable(arm, &retreat) {
             geo.q[arm] = sol.joints;
@@ -759,23 +837,30 @@ impl<'w> StreamBinder<'w> {
         geo.held.remove(&arm);
         geo.poses.insert(body, *pose);
         geo.tcp[arm] = retreat;
-        true
+        Some(transit)
     }
 
     /// The pose a pull stroke of `arm` leaves `body` at (shape cast of the carried hook along
     /// the executor's stroke, then of the block along its push), after certifying the stroke.
     /// Tries the radial stroke, then strokes turned by ±PULL_TURNS (certified ones only):
-    /// the turn of the first that passes, the geometric state rolled on.
-    fn pull(&mut self, geo: &mut Geo, arm: usize, body: &str, certify: bool) -> Option<f64> {
+    /// the turn of the first that passes and the height of the transit its approach needs, if
+    /// any; the geometric state rolled on.
+    fn pull(
+        &mut self,
+        geo: &mut Geo,
+        arm: usize,
+        body: &str,
+        certify: bool,
+    ) -> Option<(f64, Transit)> {
         let turns: &[f64] = if certify {
             &PULL_TURNS
         } else {
             &PULL_TURNS[..1]
         };
-        turns
-            .iter()
-            .copied()
-            .find(|&turn| self.pull_turned(geo, arm, body, certify, turn))
+        turns.iter().find_map(|&turn| {
+            self.pull_turned(geo, arm, body, certify, turn)
+                .map(|t| (turn, t))
+        })
     }
 
     /// One pull stroke turned by `turn` (see [`pull_hook_poses_turned`]).
@@ -786,23 +871,14 @@ impl<'w> StreamBinder<'w> {
         body: &str,
         certify: bool,
         turn: f64,
-    ) -> bool {
-        let Some(bp) = geo.poses.get(body).copied() else {
-            return false;
-        };
-        let Some((hook, g)) = geo.held.get(&arm).cloned() else {
-            return false;
-        };
-        let Some(base) = self.world.arm_base(arm) else {
-            return false;
-        };
+    ) -> Option<Transit> {
+        let bp = geo.poses.get(body).copied()?;
+        let (hook, g) = geo.held.get(&arm).cloned()?;
+        let base = self.world.arm_base(arm)?;
         let (contact, pulled) = if turn == 0.0 {
             pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS)
         } else {
-            match pull_hook_poses_turned(&base, &bp, PULL_TARGET_RADIUS, turn) {
-                Some(p) => p,
-                None => return false,
-            }
+            pull_hook_poses_turned(&base, &bp, PULL_TARGET_RADIUS, turn)?
         };
         let tc = contact * g.inverse();
         let tp = pulled * g.inverse();
@@ -827,13 +903,14 @@ impl<'w> StreamBinder<'w> {
         if toi > 1.0 {
             self.stats.rejected_pull += 1;
             self.last_rejection = Some(format!("the hook's stroke misses {body}"));
-            return false;
+            return None;
         }
         let push = Vector3::new(d.x, d.y, 0.0) * (1.0 - toi);
         let moved = Isometry3::from_parts(
             Translation3::from(bp.translation.vector + push),
             bp.rotation,
         );
+        let mut transit = None;
         if certify {
             // The block's own sweep may hit nothing but the hook.
             let others: Vec<Obstacle> = {
@@ -861,7 +938,7 @@ impl<'w> StreamBinder<'w> {
                             self.stats.rejected_pull += 1;
                             self.last_rejection =
                                 Some(format!("the stroke would push {body} into {}", o.name));
-                            return false;
+                            return None;
                         }
                     }
                 }
@@ -879,33 +956,28 @@ impl<'w> StreamBinder<'w> {
                     "the stroke would leave {body} off the table or out of the {} arm's reach",
                     self.arm_name(arm)
                 ));
-                return false;
+                return None;
             }
             let via = [raised(&tc, self.params.pull_lift), tc];
-            let Ok(q) = self.certify_path(geo, arm, &via, &[], 0.0) else {
-                return false;
-            };
+            let (q, z) = self.certify_approach(geo, arm, &via, &[], 0.0).ok()?;
+            transit = z;
             let mut stroke = geo.clone();
             stroke.tcp[arm] = tc;
             stroke.q[arm] = q;
-            let Ok(q) = self.certify_path(&stroke, arm, &[tp], &[body], 0.0) else {
-                return false;
-            };
+            let q = self.certify_path(&stroke, arm, &[tp], &[body], 0.0).ok()?;
             let mut after = stroke;
             after.tcp[arm] = tp;
             after.q[arm] = q;
             after.poses.insert(body.to_string(), moved);
-            let Ok(q) =
-                self.certify_path(&after, arm, &[raised(&tp, self.params.pull_lift)], &[], 0.0)
-            else {
-                return false;
-            };
+            let q = self
+                .certify_path(&after, arm, &[raised(&tp, self.params.pull_lift)], &[], 0.0)
+                .ok()?;
             geo.q[arm] = q;
         }
         geo.tcp[arm] = raised(&tp, self.params.pull_lift);
         geo.poses.insert(hook.clone(), geo.tcp[arm] * g);
         geo.poses.insert(body.to_string(), moved);
-        true
+        Some(transit)
     }
 
     /// The support surfaces a release adding `adds` may use: (x-range, y-range, top z). A region
@@ -1054,7 +1126,8 @@ impl<'w> StreamBinder<'w> {
     /// Certifies one candidate resting spot for the body `arm` holds: inside the placing arm's
     /// reach annulus, collision-free, the release motion certified (when `certify`), and
     /// graspable by every other arm whose annulus contains it (hand-over spots). Returns the
-    /// geometric state after the release.
+    /// geometric state after the release and the height of the transit its approach needs, if
+    /// any.
     fn try_surface(
         &mut self,
         geo: &Geo,
@@ -1062,7 +1135,7 @@ impl<'w> StreamBinder<'w> {
         (n, x, y, yaw, top): Candidate,
         hint: Option<(f64, f64, f64)>,
         certify: bool,
-    ) -> Option<Geo> {
+    ) -> Option<(Geo, Transit)> {
         let body = geo.held.get(&arm)?.0.clone();
         // Height of the body's frame above its lowest point (the hook's frame is not centred).
         let (lo, _) = self.world.body_aabb(&body)?;
@@ -1108,7 +1181,8 @@ impl<'w> StreamBinder<'w> {
             }
         }
         let mut next = geo.clone();
-        self.release(&mut next, arm, &pose, certify).then_some(next)
+        let transit = self.release(&mut next, arm, &pose, certify)?;
+        Some((next, transit))
     }
 
     /// Binds `ops[i..]` from the geometric state `geo`, pushing one binding per action onto
@@ -1122,26 +1196,24 @@ impl<'w> StreamBinder<'w> {
         demo_from: usize,
         i: usize,
         mut geo: Geo,
-        out: &mut Vec<Option<Placement>>,
+        out: &mut Vec<Binding>,
     ) -> Result<Geo, usize> {
         let Some(&o) = ops.get(i) else {
             return Ok(geo);
         };
         let op = &task.operators[o];
         let Some(kind) = classify(task, op, self.world) else {
-            out.push(None);
+            out.push(Binding::default());
             return self.bind_from(task, ops, demo_from, i + 1, geo, out);
         };
         // A pull is certified even in the demonstration's suffix: its stroke is computed from
         // the block's pose, not demonstrated, and the 40 cm hook sweeps past other blocks.
         let certify = i < demo_from || matches!(kind, ActionKind::Pull { .. });
         let binding = match kind {
-            ActionKind::Grasp { arm, body } => {
-                if !self.grasp(&mut geo, arm, &body, certify) {
-                    return Err(i);
-                }
-                None
-            }
+            ActionKind::Grasp { arm, body } => Binding {
+                placement: None,
+                transit: self.grasp(&mut geo, arm, &body, certify).ok_or(i)?,
+            },
             ActionKind::Release {
                 arm,
                 body,
@@ -1156,10 +1228,10 @@ impl<'w> StreamBinder<'w> {
                     Translation3::from(py.translation.vector + Vector3::z() * (hy.z + hb.z)),
                     py.rotation,
                 );
-                if !self.release(&mut geo, arm, &pose, certify) {
-                    return Err(i);
+                Binding {
+                    transit: self.release(&mut geo, arm, &pose, certify).ok_or(i)?,
+                    placement: Some(Placement::OnBlock(y)),
                 }
-                Some(Placement::OnBlock(y))
             }
             ActionKind::Release { arm, body, .. } => {
                 let adds: Vec<String> = op
@@ -1178,15 +1250,19 @@ impl<'w> StreamBinder<'w> {
                     {
                         break;
                     }
-                    let Some(next) = self.try_surface(&geo, arm, c, hint, certify) else {
+                    let Some((next, transit)) = self.try_surface(&geo, arm, c, hint, certify)
+                    else {
                         continue;
                     };
                     certified += 1;
-                    out.push(Some(Placement::At {
-                        x: c.1,
-                        y: c.2,
-                        yaw: c.3,
-                    }));
+                    out.push(Binding {
+                        placement: Some(Placement::At {
+                            x: c.1,
+                            y: c.2,
+                            yaw: c.3,
+                        }),
+                        transit,
+                    });
                     match self.bind_from(task, ops, demo_from, i + 1, next, out) {
                         Ok(end) => return Ok(end),
                         Err(j) => {
@@ -1198,10 +1274,11 @@ impl<'w> StreamBinder<'w> {
                 return Err(deepest);
             }
             ActionKind::Pull { arm, body, .. } => {
-                let Some(turn) = self.pull(&mut geo, arm, &body, certify) else {
-                    return Err(i);
-                };
-                Some(Placement::Stroke(turn))
+                let (turn, transit) = self.pull(&mut geo, arm, &body, certify).ok_or(i)?;
+                Binding {
+                    placement: Some(Placement::Stroke(turn)),
+                    transit,
+                }
             }
         };
         out.push(binding);
@@ -1260,6 +1337,9 @@ const PULL_TURNS: [f64; 5] = [0.0, 0.35, -0.35, 0.7, -0.7];
 
 /// Radius around the demonstrated hook placement whose spots are tried first (m).
 const HOOK_HINT_RADIUS: f64 = 0.15;
+
+/// The TCP height of the transit an action's approach needs (`None`: straight is clear).
+type Transit = Option<f64>;
 
 /// A candidate resting spot: (sample index, 0 for the hint; x; y; yaw; top of the surface).
 type Candidate = (usize, f64, f64, f64, f64);
