@@ -2,6 +2,7 @@
 
 use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::demo;
+use logic_lfd::sim::disturb;
 use logic_lfd::sim::geometry;
 use logic_lfd::sim::panda::{self, IkParams};
 use logic_lfd::sim::snapshot::WorldSnapshot;
@@ -982,4 +983,24 @@ fn at_stroke_start(w: &mut World, bp: &Isometry3<f64>) -> (Isometry3<f64>, Isome
     w.set_joints(0, sol.joints).unwrap();
     w.check_invariants().unwrap();
     (tc, tp)
+}
+
+#[test]
+fn the_hook_pulls_only_along_strokes_clear_of_the_shelf_and_within_the_arms_reach() {
+    let mut w = Benchmark::B2.scene();
+    // The template's far block: the radial stroke is clear.
+    assert!(disturb::hook_can_pull(&w, 0, "hook", "b"));
+    assert_eq!(disturb::handleable(&w, "b"), Ok(()));
+    // Right behind the shelf, 0.73 m out: every stroke towards the base drags b into the shelf
+    // or lowers the blade onto it.
+    w.move_block("b", Vector3::new(0.38, -0.625, 0.03)).unwrap();
+    assert!(!disturb::hook_can_pull(&w, 0, "hook", "b"));
+    assert!(disturb::handleable(&w, "b").is_err());
+    // The same distance out on the open table is fine.
+    w.move_block("b", Vector3::new(0.73, 0.0, 0.03)).unwrap();
+    assert!(disturb::hook_can_pull(&w, 0, "hook", "b"));
+    // 1.15 m out the hook still reaches the block on the table, but the hand cannot come down
+    // from the stroke's lifted pose.
+    w.move_block("b", Vector3::new(1.14, -0.14, 0.03)).unwrap();
+    assert!(!disturb::hook_can_pull(&w, 0, "hook", "b"));
 }

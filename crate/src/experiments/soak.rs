@@ -286,7 +286,7 @@ fn dragged_out_of_reach(world: &World, dragged: &BTreeSet<String>) -> Option<Str
 
 /// The legitimate reason of [`dragged_out_of_reach`].
 const DRAGGED_AWAY: &str =
-    "a user drag put a block where no arm can grasp it or pull it with the hook (IK)";
+    "a user drag put a block where no arm can grasp it (IK) or pull it in with a clear stroke of the hook";
 
 /// Parsed benchmark domains (for the validator and the unsolvability check).
 struct Models {

@@ -945,13 +945,9 @@ fn pull_via(
         .body_pose(body)
         .ok_or_else(|| format!("no body {body}"))?;
     let reach = crate::sim::demo::PULL_TARGET_RADIUS;
-    let (contact, pulled) = if turn == 0.0 {
-        crate::sim::demo::pull_hook_poses(&base, &bp, reach)
-    } else {
-        crate::sim::demo::pull_hook_poses_turned(&base, &bp, reach, turn)
-            .ok_or_else(|| format!("no stroke turned by {turn:.2} rad pulls {body} into reach"))?
-    };
-    let lift = |iso: Isometry3<f64>| raised(&iso, 0.08);
+    let (contact, pulled) = crate::sim::demo::pull_hook_poses_turned(&base, &bp, reach, turn)
+        .ok_or_else(|| format!("no stroke turned by {turn:.2} rad pulls {body} into reach"))?;
+    let lift = |iso: Isometry3<f64>| raised(&iso, crate::sim::demo::PULL_LIFT);
     let tc = tcp_for_body_pose(world, arm, &contact);
     let tp = tcp_for_body_pose(world, arm, &pulled);
     Ok(match stage {

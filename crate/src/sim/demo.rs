@@ -534,6 +534,15 @@ fn perform(
 /// strokes).
 pub const PULL_TARGET_RADIUS: f64 = 0.64;
 
+/// Height above a stroke's contact and pulled poses from which the hook comes down and to which
+/// it rises again (m).
+pub const PULL_LIFT: f64 = 0.08;
+
+/// Turns of the hook's pull strokes (rad, from the line through the arm's base, see
+/// [`pull_hook_poses_turned`]) in the order a planner tries them: radial first, then ±15°,
+/// ±30°, ±45°, ±60° (a block right behind the shelf comes into reach only along it).
+pub const PULL_TURNS: [f64; 9] = [0.0, 0.26, -0.26, 0.52, -0.52, 0.79, -0.79, 1.05, -1.05];
+
 /// Hook poses for pulling the block at `block` towards the arm based at `base` until its centre
 /// is `reach` metres from the base axis: `(contact, pulled)`. At `contact` the hook lies 12 mm above
 /// the table with its blade 1 cm behind the block's far face and the block in the middle of the

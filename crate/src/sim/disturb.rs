@@ -23,11 +23,14 @@
 //! hook's contact and pulled poses).
 
 use super::benchmark::{Benchmark, BLOCK_COLORS, BLOCK_SIZE};
-use super::demo::{pull_hook_poses, PULL_TARGET_RADIUS};
+use super::demo::{pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TURNS};
 use super::geometry;
 use super::scene_graph::SceneGraph;
+use super::snapshot::BodyKind;
 use super::world::{yaw_of, World};
-use nalgebra::{Isometry3, Vector3};
+use nalgebra::{Isometry3, Translation3, Vector3};
+use parry3d_f64::query;
+use parry3d_f64::shape::Cuboid;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -240,43 +243,17 @@ fn workable(w: &World, b: Benchmark, x: &str) -> bool {
         && !f.contains(&format!("(inreach panda {x})"))
     {
         // Out of reach: the hook must be able to pull it in.
-        let (Some(base), Some(bp), Some(hook)) =
-            (w.arm_base(0), w.body_pose(x), w.body_pose("hook"))
-        else {
-            return false;
-        };
-        let Some(gp) = geometry::grasp_pose(w, 0, "hook") else {
-            return false;
-        };
-        let grasp = gp.inverse() * hook;
-        let (contact, pulled) = pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS);
-        for h in [contact, pulled] {
-            if w.reachable(0, &(h * grasp.inverse())).is_err() {
-                return false;
-            }
-        }
-        // The hook at the contact pose must not overlap anything but the table.
-        let hook_shapes: Vec<_> = w.body_shapes("hook");
-        let hook_pose = w.body_pose("hook").unwrap_or_else(Isometry3::identity);
-        for (iso, c) in &hook_shapes {
-            let at = contact * hook_pose.inverse() * iso;
-            for other in w.block_names() {
-                for (oi, oc) in w.body_shapes(other) {
-                    if parry3d_f64::query::intersection_test(&at, c, &oi, &oc).unwrap_or(true) {
-                        return false;
-                    }
-                }
-            }
-        }
+        return hook_can_pull(w, 0, "hook", x);
     }
     true
 }
 
 /// Whether some arm can work block `x` where it is, whatever the benchmark: grasp it from above
 /// (inside the arm's reach annulus, IK of the top grasp and of the approach 12 cm above it), or,
-/// where the scene has a hook and the block lies beyond the annulus, pull it in (IK of the
-/// hook's contact and pulled poses, the hook at contact clear of every other block). `Err` says why not. Disturbances keep every block they move workable, and the
-/// soak uses this to tell a user drag that put a block beyond every arm from a planner failure.
+/// where the scene has a hook and the block lies beyond the annulus, pull it in
+/// ([`hook_can_pull`]). `Err` says why not. Disturbances keep every block they move workable,
+/// and the soak uses this to tell a user drag that put a block beyond every arm from a planner
+/// failure.
 pub fn handleable(w: &World, x: &str) -> Result<(), String> {
     let arms = w.arm_names().len();
     let snap = w.snapshot();
@@ -320,31 +297,7 @@ pub fn handleable(w: &World, x: &str) -> Result<(), String> {
             if radius(arm).is_none_or(|(d, _, hi)| d <= hi) {
                 continue;
             }
-            let (Some(base), Some(bp), Some(hp), Some(gp)) = (
-                w.arm_base(arm),
-                w.body_pose(x),
-                w.body_pose(hook),
-                geometry::grasp_pose(w, arm, hook),
-            ) else {
-                continue;
-            };
-            let grasp = gp.inverse() * hp;
-            let (contact, pulled) = pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS);
-            if [contact, pulled]
-                .iter()
-                .any(|h| w.reachable(arm, &(h * grasp.inverse())).is_err())
-            {
-                continue;
-            }
-            let clear = w.body_shapes(hook).iter().all(|(iso, c)| {
-                let at = contact * hp.inverse() * iso;
-                w.block_names().into_iter().filter(|o| *o != x).all(|o| {
-                    w.body_shapes(o).iter().all(|(oi, oc)| {
-                        !parry3d_f64::query::intersection_test(&at, c, oi, oc).unwrap_or(true)
-                    })
-                })
-            });
-            if clear {
+            if hook_can_pull(w, arm, hook, x) {
                 return Ok(());
             }
         }
@@ -352,7 +305,80 @@ pub fn handleable(w: &World, x: &str) -> Result<(), String> {
     Err(if hooks.is_empty() {
         format!("no arm can grasp {x} where it is (IK)")
     } else {
-        format!("no arm can grasp {x} where it is, nor pull it with the hook (IK)")
+        format!("no arm can grasp {x} where it is, nor pull it in with a clear stroke of the hook")
+    })
+}
+
+/// Whether arm `arm`, holding `hook` as it would grasp it now, can pull block `x` towards its
+/// base with one of the hook's strokes ([`PULL_TURNS`], [`pull_hook_poses_turned`]): the arm
+/// reaches the stroke's contact and pulled poses and the poses [`PULL_LIFT`] above them (IK)
+/// with its hand clear of everything but the tables there, the hook at contact overlaps nothing but
+/// the tables and `x`, and `x` slides along the stroke into nothing but the tables and the hook
+/// (every shape shrunk by 2 mm, so resting contacts do not count). The arm's path is not
+/// checked: a stroke that fails here cannot be executed, whatever the planner.
+pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
+    let (Some(base), Some(bp), Some(hp), Some(gp)) = (
+        w.arm_base(arm),
+        w.body_pose(x),
+        w.body_pose(hook),
+        geometry::grasp_pose(w, arm, hook),
+    ) else {
+        return false;
+    };
+    let grasp = gp.inverse() * hp;
+    let shrink =
+        |c: &Cuboid| Cuboid::new((c.half_extents - Vector3::repeat(0.002)).map(|h| h.max(1e-4)));
+    let obstacles = |skip: &[&str]| -> Vec<(Isometry3<f64>, Cuboid)> {
+        w.snapshot()
+            .bodies
+            .iter()
+            .filter(|b| !b.lost && b.kind != BodyKind::Table && !skip.contains(&b.name.as_str()))
+            .flat_map(|b| w.body_shapes(&b.name))
+            .map(|(iso, c)| (iso, shrink(&c)))
+            .collect()
+    };
+    let hits = |parts: &[(Isometry3<f64>, Cuboid)], others: &[(Isometry3<f64>, Cuboid)]| {
+        parts.iter().any(|(iso, c)| {
+            others
+                .iter()
+                .any(|(oi, oc)| query::intersection_test(iso, c, oi, oc).unwrap_or(true))
+        })
+    };
+    let others = obstacles(&[hook, x]);
+    let hook_parts = w.body_shapes(hook);
+    let block_parts = w.body_shapes(x);
+    PULL_TURNS.iter().any(|&turn| {
+        let Some((contact, pulled)) = pull_hook_poses_turned(&base, &bp, PULL_TARGET_RADIUS, turn)
+        else {
+            return false;
+        };
+        let lifted = |h: &Isometry3<f64>| geometry::raised(h, PULL_LIFT);
+        if [contact, pulled, lifted(&contact), lifted(&pulled)]
+            .iter()
+            .map(|h| h * grasp.inverse())
+            .any(|tcp| w.reachable(arm, &tcp).is_err() || geometry::hand_hits(&tcp, &others))
+        {
+            return false;
+        }
+        let at_contact: Vec<_> = hook_parts
+            .iter()
+            .map(|(iso, c)| (contact * hp.inverse() * iso, shrink(c)))
+            .collect();
+        if hits(&at_contact, &others) {
+            return false;
+        }
+        // The blade meets the block after its 1 cm gap, then drags it the rest of the way.
+        let d = pulled.translation.vector - contact.translation.vector;
+        let slide = d * (1.0 - 0.01 / d.norm().max(0.01));
+        let steps = (slide.norm() / 0.01).ceil().max(1.0) as usize;
+        (0..=steps).all(|k| {
+            let shift = Translation3::from(slide * (k as f64 / steps as f64));
+            let moved: Vec<_> = block_parts
+                .iter()
+                .map(|(iso, c)| (shift * iso, shrink(c)))
+                .collect();
+            !hits(&moved, &others)
+        })
     })
 }
 

@@ -52,7 +52,7 @@ use rand_pcg::Pcg64Mcg;
 use crate::lfd::control::Binder;
 use crate::lfd::exec::{classify, fact_args, ActionKind, Binding, Placement};
 use crate::plan::Task;
-use crate::sim::demo::{pull_hook_poses, pull_hook_poses_turned, PULL_TARGET_RADIUS};
+use crate::sim::demo::{pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TURNS};
 use crate::sim::geometry::{
     clear_grasp_at, grasp_pose_at, link_capsules, raised, rise_first, transit_z, HAND_REACH,
 };
@@ -101,7 +101,7 @@ impl Default for StreamParams {
             placement_samples: 48,
             approach_height: 0.10,
             lift_height: 0.12,
-            pull_lift: 0.08,
+            pull_lift: PULL_LIFT,
             path_step: 0.015,
             path_ik_iterations: 30,
             settle_ik_iterations: 300,
@@ -501,7 +501,7 @@ impl<'w> StreamBinder<'w> {
     /// approach: straight, or, when that hits something, as a transit (straight up to
     /// [`transit_z`], across above `via[0]`, straight down to it: the executor's
     /// `ActionExec::with_transit`). The joints at the end and the transit's TCP height, if one
-    /// was needed. A rejection keeps the straight path's reason.
+    /// was needed. A rejection tells why both were refused.
     fn certify_approach(
         &mut self,
         geo: &Geo,
@@ -529,7 +529,12 @@ impl<'w> StreamBinder<'w> {
         match self.certify_path(geo, arm, &path, exclude, load_margin) {
             Ok(q) => Ok((q, Some(z))),
             Err(e) => {
-                self.last_rejection = why;
+                self.last_rejection = Some(format!(
+                    "{}; across at {:.0} mm: {}",
+                    why.unwrap_or_default(),
+                    z * 1e3,
+                    self.last_rejection.take().unwrap_or_default()
+                ));
                 Err(e)
             }
         }
@@ -875,11 +880,7 @@ impl<'w> StreamBinder<'w> {
         let bp = geo.poses.get(body).copied()?;
         let (hook, g) = geo.held.get(&arm).cloned()?;
         let base = self.world.arm_base(arm)?;
-        let (contact, pulled) = if turn == 0.0 {
-            pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS)
-        } else {
-            pull_hook_poses_turned(&base, &bp, PULL_TARGET_RADIUS, turn)?
-        };
+        let (contact, pulled) = pull_hook_poses_turned(&base, &bp, PULL_TARGET_RADIUS, turn)?;
         let tc = contact * g.inverse();
         let tp = pulled * g.inverse();
         let d = pulled.translation.vector - contact.translation.vector;
@@ -1331,9 +1332,6 @@ fn depth_in(iso: &Isometry3<f64>, c: &dyn Shape, o: &Obstacle) -> Option<f64> {
 
 /// Largest joint step between the samples of a certified joint-space move (rad).
 const JOINT_STEP: f64 = 0.05;
-
-/// Turns of the pull strokes tried, in order (rad): the radial stroke, then ±20°, ±40°.
-const PULL_TURNS: [f64; 5] = [0.0, 0.35, -0.35, 0.7, -0.7];
 
 /// Radius around the demonstrated hook placement whose spots are tried first (m).
 const HOOK_HINT_RADIUS: f64 = 0.15;
