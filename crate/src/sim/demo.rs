@@ -535,8 +535,10 @@ fn perform(
 pub const PULL_TARGET_RADIUS: f64 = 0.64;
 
 /// Height above a stroke's contact and pulled poses from which the hook comes down and to which
-/// it rises again (m).
-pub const PULL_LIFT: f64 = 0.08;
+/// it rises again (m). On its way there the blade passes over the block it is to pull; at far
+/// reach the tracker's orientation lag tilts the 40 cm hook by 2–3 cm at the blade, so it crosses
+/// 6 cm above the block's top (8 cm left 3 cm: the soak's "stopped by a" pulls).
+pub const PULL_LIFT: f64 = 0.11;
 
 /// Turns of the hook's pull strokes (rad, from the line through the arm's base, see
 /// [`pull_hook_poses_turned`]) in the order a planner tries them: radial first, then ±15°,
