@@ -750,7 +750,14 @@ impl ActionExec {
             .ok_or_else(|| "no such arm".to_string())?;
         let (goal, frame, anchor) = self.via_pose(world, via, &start)?;
         let dist = (goal.translation.vector - start.translation.vector).norm();
-        let duration = (dist / p.speed).max(p.min_segment);
+        // The stroke and the lift after it go at half speed: the stroke folds the arm towards
+        // its base, where the joint tracker falls behind at full speed (the lagging hand lifts
+        // the blade over the block, or drifts into it as it rises).
+        let speed = match via {
+            Via::Pull { stage: 2.., .. } => 0.5 * p.speed,
+            _ => p.speed,
+        };
+        let duration = (dist / speed).max(p.min_segment);
         let steps = ((duration / world.dt()).round() as usize).max(2);
         let traj = skills.segment(&self.skill_name(via), &start, &goal, frame.as_ref(), steps);
         Ok(Running {
