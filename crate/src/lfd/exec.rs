@@ -22,7 +22,7 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use crate::plan::{Operator, Task};
 use crate::sim::geometry::{
     boxes_except, clear_grasp_at, quarter_turn_for_arm, raised, rest_pose, rest_pose_on,
-    rise_first, tcp_for_body_pose, transit_z, HAND_REACH,
+    rise_first, tcp_for_body_pose, transit_z,
 };
 use crate::sim::{GripperCommand, World, WorldEvent};
 
@@ -471,9 +471,7 @@ impl ActionExec {
             .position(|ph| matches!(ph, Phase::Move(v) if !matches!(v, Via::Rise { .. })));
         if let Some(i) = first {
             if let Phase::Move(via) = self.phases[i].clone() {
-                self.phase = i;
-                self.insert_transit(&via, z);
-                self.phase = 0;
+                self.insert_transit(i, &via, z);
             }
         }
         self
@@ -593,7 +591,7 @@ impl ActionExec {
                                 // A carried body whose path would sweep through another goes
                                 // up, over at a safe height, and down instead.
                                 if let Some(z) = self.transit_height(world, &via, &r) {
-                                    self.insert_transit(&via, z);
+                                    self.insert_transit(self.phase, &via, z);
                                     return ExecStatus::Running;
                                 }
                                 self.segment = Some(r);
@@ -644,7 +642,7 @@ impl ActionExec {
                 {
                     let goal = seg.goal;
                     if let Some(z) = safe_transit_z(world, self.arm, &goal) {
-                        self.insert_transit(&via, z);
+                        self.insert_transit(self.phase, &via, z);
                         return ExecStatus::Running;
                     }
                 }
@@ -799,18 +797,18 @@ impl ActionExec {
         safe_transit_z(world, self.arm, &r.goal)
     }
 
-    /// Inserts a transit (rise, over at height `z`) before the current phase; the phase itself
-    /// then descends straight (the learned approach's shape would swing the load back into
+    /// Inserts a transit (rise, over at height `z`) before phase `at` (whose move is `via`); that
+    /// phase then descends straight (the learned approach's shape would swing the load back into
     /// what the transit avoids).
-    fn insert_transit(&mut self, via: &Via, z: f64) {
-        self.transit_at = Some(self.phase);
+    fn insert_transit(&mut self, at: usize, via: &Via, z: f64) {
+        self.transit_at = Some(at);
         if let Some(Phase::Move(Via::Grasp { skill, .. } | Via::Place { skill, .. })) =
-            self.phases.get_mut(self.phase)
+            self.phases.get_mut(at)
         {
             *skill = false;
         }
         self.phases.splice(
-            self.phase..self.phase,
+            at..at,
             [
                 Phase::Move(Via::Rise { z }),
                 Phase::Move(Via::Over {
@@ -979,22 +977,12 @@ fn no_transit(via: &Via) -> bool {
 pub(crate) fn safe_transit_z(world: &World, arm: usize, goal: &Isometry3<f64>) -> Option<f64> {
     let a = world.tcp_pose(arm)?.translation.vector;
     let held = world.held_by(arm).map(str::to_string);
-    let (reach, below_tcp) = match &held {
-        Some(h) => {
-            let (lo, hi) = world.body_aabb(h)?;
-            let extent = [lo.x - a.x, hi.x - a.x, lo.y - a.y, hi.y - a.y]
-                .iter()
-                .fold(0.0f64, |m, d| m.max(d.abs()));
-            ((extent + 0.02).max(0.08), a.z - lo.z)
-        }
-        None => (HAND_REACH, 0.0),
+    let load = match &held {
+        Some(h) => Some(world.body_aabb(h)?),
+        None => None,
     };
     let except = held.unwrap_or_default();
-    Some(transit_z(
-        &a,
-        &goal.translation.vector,
-        reach,
-        below_tcp,
-        |lo, hi| world.highest_top_in(lo, hi, &except),
-    ))
+    Some(transit_z(&a, &goal.translation.vector, load, |lo, hi| {
+        world.highest_top_in(lo, hi, &except)
+    }))
 }

@@ -328,15 +328,6 @@ pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
     let grasp = gp.inverse() * hp;
     let shrink =
         |c: &Cuboid| Cuboid::new((c.half_extents - Vector3::repeat(0.002)).map(|h| h.max(1e-4)));
-    let obstacles = |skip: &[&str]| -> Vec<(Isometry3<f64>, Cuboid)> {
-        w.snapshot()
-            .bodies
-            .iter()
-            .filter(|b| !b.lost && b.kind != BodyKind::Table && !skip.contains(&b.name.as_str()))
-            .flat_map(|b| w.body_shapes(&b.name))
-            .map(|(iso, c)| (iso, shrink(&c)))
-            .collect()
-    };
     let hits = |parts: &[(Isometry3<f64>, Cuboid)], others: &[(Isometry3<f64>, Cuboid)]| {
         parts.iter().any(|(iso, c)| {
             others
@@ -344,7 +335,14 @@ pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
                 .any(|(oi, oc)| query::intersection_test(iso, c, oi, oc).unwrap_or(true))
         })
     };
-    let others = obstacles(&[hook, x]);
+    // Everything but the tables, the hook and x.
+    let others: Vec<(Isometry3<f64>, Cuboid)> = w
+        .bodies
+        .iter()
+        .filter(|b| !b.lost && b.kind != BodyKind::Table && b.name != hook && b.name != x)
+        .flat_map(|b| b.world_parts())
+        .map(|(iso, c)| (iso, shrink(c)))
+        .collect();
     let hook_parts = w.body_shapes(hook);
     let block_parts = w.body_shapes(x);
     PULL_TURNS.iter().any(|&turn| {

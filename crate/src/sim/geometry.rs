@@ -94,20 +94,29 @@ pub const TRANSIT_CLEARANCE: f64 = 0.03;
 
 /// How far around its TCP an empty hand reaches horizontally (m): the hand's half span and
 /// radius.
-pub const HAND_REACH: f64 = HAND_HALF_SPAN + HAND_RADIUS;
+const HAND_REACH: f64 = HAND_HALF_SPAN + HAND_RADIUS;
 
 /// The TCP height of a transit (straight up, across at this height, straight down) from TCP
-/// position `a` to `b`: what the arm carries, reaching `below_tcp` under the TCP, passes
-/// [`TRANSIT_CLEARANCE`] above every top that `top_in` (the highest top meeting an x, y
-/// rectangle) finds within `reach` of the rectangle spanned by `a` and `b`; never below either
+/// position `a` to `b`. What the arm carries — the body with world AABB `load` (`None`: the
+/// empty hand) — passes [`TRANSIT_CLEARANCE`] above every top that `top_in` (the highest top
+/// meeting an x, y rectangle) finds within its reach around the TCP (the load's extent + 2 cm,
+/// at least 8 cm; the hand's span) of the rectangle spanned by `a` and `b`; never below either
 /// end. The executor (from the world) and the TAMP streams (from their predicted state) both use it.
 pub fn transit_z(
     a: &Vector3<f64>,
     b: &Vector3<f64>,
-    reach: f64,
-    below_tcp: f64,
+    load: Option<(Vector3<f64>, Vector3<f64>)>,
     top_in: impl Fn([f64; 2], [f64; 2]) -> f64,
 ) -> f64 {
+    let (reach, below_tcp) = match load {
+        Some((lo, hi)) => {
+            let extent = [lo.x - a.x, hi.x - a.x, lo.y - a.y, hi.y - a.y]
+                .iter()
+                .fold(0.0f64, |m, d| m.max(d.abs()));
+            ((extent + 0.02).max(0.08), (a.z - lo.z).max(0.0))
+        }
+        None => (HAND_REACH, 0.0),
+    };
     let top = top_in(
         [a.x.min(b.x) - reach, a.y.min(b.y) - reach],
         [a.x.max(b.x) + reach, a.y.max(b.y) + reach],

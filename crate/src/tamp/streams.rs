@@ -54,7 +54,7 @@ use crate::lfd::exec::{classify, fact_args, ActionKind, Binding, Placement};
 use crate::plan::Task;
 use crate::sim::demo::{pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TURNS};
 use crate::sim::geometry::{
-    clear_grasp_at, grasp_pose_at, link_capsules, raised, rise_first, transit_z, HAND_REACH,
+    clear_grasp_at, grasp_pose_at, link_capsules, raised, rise_first, transit_z,
 };
 use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
@@ -543,24 +543,19 @@ impl<'w> StreamBinder<'w> {
     /// The TCP height of a transit of `arm` from where `geo` has it to `goal` ([`transit_z`]
     /// over the predicted bodies; the executor computes the same from the world).
     fn transit_height(&self, geo: &Geo, arm: usize, goal: &Isometry3<f64>) -> f64 {
-        let a = geo.tcp[arm].translation.vector;
-        let (reach, below_tcp) = match geo.held.get(&arm) {
-            Some((body, g)) => {
-                let (mut lo, mut hi) = (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN));
-                for (iso, c) in self.parts_at(body, &(geo.tcp[arm] * g)) {
-                    let (l, h) = box_aabb(&iso, &c);
-                    lo = lo.inf(&l);
-                    hi = hi.sup(&h);
-                }
-                let extent = [lo.x - a.x, hi.x - a.x, lo.y - a.y, hi.y - a.y]
-                    .iter()
-                    .fold(0.0f64, |m, d| m.max(d.abs()));
-                ((extent + 0.02).max(0.08), (a.z - lo.z).max(0.0))
-            }
-            None => (HAND_REACH, 0.0),
-        };
+        // The load's world AABB where the arm carries it now.
+        let load = geo.held.get(&arm).map(|(body, g)| {
+            self.parts_at(body, &(geo.tcp[arm] * g)).iter().fold(
+                (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN)),
+                |(lo, hi), (iso, c)| {
+                    let (l, h) = box_aabb(iso, c);
+                    (lo.inf(&l), hi.sup(&h))
+                },
+            )
+        });
         let obstacles = self.obstacles(geo, arm, &[]);
-        transit_z(&a, &goal.translation.vector, reach, below_tcp, |lo, hi| {
+        let a = geo.tcp[arm].translation.vector;
+        transit_z(&a, &goal.translation.vector, load, |lo, hi| {
             obstacles
                 .iter()
                 .filter(|o| {
