@@ -1004,3 +1004,67 @@ fn the_hook_pulls_only_along_strokes_clear_of_the_shelf_and_within_the_arms_reac
     w.move_block("b", Vector3::new(1.14, -0.14, 0.03)).unwrap();
     assert!(!disturb::hook_can_pull(&w, 0, "hook", "b"));
 }
+
+#[test]
+fn a_hand_stretching_out_at_the_joints_speed_limits_stays_on_its_level_path() {
+    // Regression (soak episode 26 of seed 2026): clamping each joint to its speed limit alone
+    // let the shoulder pitch on while the saturated elbow lagged, and a hand carried out to
+    // 0.8 m at 0.35 m/s sank 5 cm below its level path (the hook's blade into a block).
+    let mut w = Benchmark::B2.scene();
+    let down = panda::down_orientation(0.1);
+    let from = Isometry3::from_parts(Translation3::new(0.33, -0.02, 0.132), down);
+    let to = Vector3::new(0.755, 0.28, 0.132);
+    let sol = w.reachable(0, &from).unwrap();
+    w.set_joints(0, sol.joints).unwrap();
+    let steps = ((to - from.translation.vector).norm() / 0.0035).ceil() as usize;
+    let mut lowest = f64::INFINITY;
+    for k in 1..=steps + 150 {
+        let s = (k as f64 / steps as f64).min(1.0);
+        let p = from.translation.vector.lerp(&to, s);
+        w.command_arm(
+            0,
+            Isometry3::from_parts(Translation3::from(p), down),
+            GripperCommand::Open,
+        )
+        .unwrap();
+        w.step();
+        w.check_invariants().unwrap();
+        lowest = lowest.min(w.tcp_pose(0).unwrap().translation.z);
+    }
+    assert!(lowest > 0.132 - 0.01, "the hand sank to {lowest:.3} m");
+    let end = w.tcp_pose(0).unwrap().translation.vector;
+    assert!((end - to).norm() < 0.004, "the hand stopped at {end}");
+}
+
+#[test]
+fn whether_the_hook_can_pull_does_not_depend_on_how_the_carrying_hand_is_tilted_now() {
+    // Regression (soak episode 26 of seed 2026): the check derived the hook's grasp from the
+    // hand's pose at the moment; a hand tilted 7° mid-motion made a block at the edge of the
+    // stroke's reach count as pullable.
+    let (mut w, _) = holding(Benchmark::B2, "hook");
+    let level = w.joints(0).unwrap();
+    let mut tilted = level;
+    tilted[5] += 0.12;
+    let (mut pullable, mut differ) = (0, vec![]);
+    for i in 0..8 {
+        for j in 0..8 {
+            let p = Vector3::new(0.80 + 0.05 * i as f64, -0.30 + 0.1 * j as f64, 0.03);
+            if w.move_block("b", p).is_err() {
+                continue;
+            }
+            w.set_joints(0, level).unwrap();
+            let a = disturb::hook_can_pull(&w, 0, "hook", "b");
+            w.set_joints(0, tilted).unwrap();
+            let b = disturb::hook_can_pull(&w, 0, "hook", "b");
+            pullable += a as usize;
+            if a != b {
+                differ.push(p);
+            }
+        }
+    }
+    assert!(pullable > 5 && pullable < 60, "{pullable} of 64 pullable");
+    assert!(
+        differ.is_empty(),
+        "the answer changes with the tilt at {differ:?}"
+    );
+}

@@ -309,7 +309,7 @@ pub fn handleable(w: &World, x: &str) -> Result<(), String> {
     })
 }
 
-/// Whether arm `arm`, holding `hook` as it would grasp it now, can pull block `x` towards its
+/// Whether arm `arm`, holding `hook` as it holds it now or would grasp it where it rests, can pull block `x` towards its
 /// base with one of the hook's strokes ([`PULL_TURNS`], [`pull_hook_poses_turned`]): the arm
 /// reaches the stroke's contact and pulled poses and the poses [`PULL_LIFT`] above them (IK)
 /// with its hand clear of everything but the tables there, the hook at contact overlaps nothing but
@@ -325,7 +325,12 @@ pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
     ) else {
         return false;
     };
-    let grasp = gp.inverse() * hp;
+    // The hook's pose in the hand: as the hand holds it now, or as a grasp of it where it
+    // rests would hold it (not the resting grasp of a hook the hand tilts while it carries it).
+    let grasp = match w.grasp_transform(arm) {
+        Some(g) if w.held_by(arm) == Some(hook) => g,
+        _ => gp.inverse() * hp,
+    };
     let shrink =
         |c: &Cuboid| Cuboid::new((c.half_extents - Vector3::repeat(0.002)).map(|h| h.max(1e-4)));
     let hits = |parts: &[(Isometry3<f64>, Cuboid)], others: &[(Isometry3<f64>, Cuboid)]| {

@@ -1161,9 +1161,22 @@ impl World {
         let saved = held.map(|_| (self.arms[ai].joints, self.bodies.clone(), events.len()));
         let before = self.arms[ai].joints;
         let a = &mut self.arms[ai];
+        // Within the joint velocity limits, the whole step scaled down alike: the hand lags
+        // along its path instead of leaving it (clamping each joint alone turns the step: the
+        // shoulder pitching on while the saturated elbow lags drops a stretched-out hand).
+        let scale = (0..DOF)
+            .map(|k| {
+                let d = (desired[k] - a.joints[k]).abs();
+                let max = panda::JOINT_VELOCITY[k] * dt;
+                if d > max {
+                    max / d
+                } else {
+                    1.0
+                }
+            })
+            .fold(1.0, f64::min);
         for k in 0..DOF {
-            let max = panda::JOINT_VELOCITY[k] * dt;
-            let d = (desired[k] - a.joints[k]).clamp(-max, max);
+            let d = scale * (desired[k] - a.joints[k]);
             a.joints[k] = (a.joints[k] + d).clamp(panda::JOINT_LOWER[k], panda::JOINT_UPPER[k]);
         }
         // The links stop at a table or shelf they would press into (deeper than
