@@ -153,7 +153,7 @@ impl Default for ControlParams {
                 time_limit_secs: None,
             },
             max_replans: 40,
-            max_skeletons: 4,
+            max_skeletons: 10,
         }
     }
 }

@@ -672,15 +672,16 @@ impl ActionExec {
                     } else {
                         seg.lag += 1;
                         // Cartesian tracking stuck far from a goal the planning IK reaches (a
-                        // local minimum of the tracking IK after a large reconfiguration): move
-                        // in joint space to the planning IK's solution, once per segment.
+                        // local minimum of the tracking IK after a large reconfiguration, or a
+                        // joint at its limit): move in joint space to the planning IK's
+                        // solution with the most room to the limits, once per segment.
                         if !seg.recovered
                             && (err > p.recovery_distance || !turned)
                             && seg.lag as f64 * dt > p.recovery_after
                             && world.arm_blocked_by(self.arm).is_none()
                         {
                             seg.recovered = true;
-                            if let Ok(sol) = world.reachable(self.arm, &seg.goal) {
+                            if let Ok(sol) = world.reachable_with_room(self.arm, &seg.goal) {
                                 seg.joint_goal = Some(sol.joints);
                                 seg.joint_ticks = 0;
                                 seg.lag = 0;

@@ -364,6 +364,50 @@ pub fn inverse_kinematics(
     })
 }
 
+/// How far joints `q` are from their nearest limit, as a fraction of that joint's range (0 at a
+/// limit, 0.5 in the middle of every range).
+pub fn limit_margin(q: &[f64; DOF]) -> f64 {
+    (0..DOF)
+        .map(|i| {
+            let range = JOINT_UPPER[i] - JOINT_LOWER[i];
+            ((q[i] - JOINT_LOWER[i]).min(JOINT_UPPER[i] - q[i]) / range).max(0.0)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// [`inverse_kinematics`] from each of `seeds` (with its restarts); of the solutions found, the
+/// one farthest from the joint limits ([`limit_margin`]). For moves in joint space that must
+/// leave the tracker room to follow on: a wrist recovered to its limit stalls again.
+pub fn inverse_kinematics_with_room(
+    base: &Isometry3<f64>,
+    target: &Isometry3<f64>,
+    seeds: &[[f64; DOF]],
+    params: &IkParams,
+) -> Result<IkSolution, Unreachable> {
+    let mut best: Option<IkSolution> = None;
+    let mut failure = None;
+    for seed in seeds {
+        match inverse_kinematics(base, target, seed, params) {
+            Ok(sol) => {
+                if best
+                    .as_ref()
+                    .is_none_or(|b| limit_margin(&sol.joints) > limit_margin(&b.joints) + 1e-9)
+                {
+                    best = Some(sol);
+                }
+            }
+            Err(e) => failure = failure.or(Some(e)),
+        }
+    }
+    best.ok_or_else(|| {
+        failure.unwrap_or(Unreachable {
+            best_joints: READY,
+            position_error: f64::INFINITY,
+            orientation_error: f64::INFINITY,
+        })
+    })
+}
+
 /// A gripper orientation pointing straight down (`z` to −z world) with the fingers joined along the
 /// world direction at angle `yaw` from +y.
 pub fn down_orientation(yaw: f64) -> UnitQuaternion<f64> {
@@ -384,6 +428,30 @@ mod tests {
         assert!((p.z - (0.5903 - TCP_OFFSET)).abs() < 0.003, "{p}");
         let z = tcp.rotation * Vector3::z();
         assert!((z + Vector3::z()).norm() < 1e-9, "{z}");
+    }
+
+    #[test]
+    fn ik_with_room_keeps_away_from_the_limits_the_warm_start_sticks_to() {
+        // A wrist at its limit: the warm start keeps it there; the ready seed finds the same
+        // pose with room on every joint.
+        let base = Isometry3::identity();
+        let mut wound = READY;
+        wound[6] = JOINT_UPPER[6] - 0.01;
+        wound[0] = 0.4;
+        let target = forward_kinematics(&base, &wound);
+        let p = IkParams::default();
+        let warm = inverse_kinematics(&base, &target, &wound, &p).unwrap();
+        assert!(limit_margin(&warm.joints) < 0.01);
+        let roomy = inverse_kinematics_with_room(&base, &target, &[wound, READY], &p).unwrap();
+        let reached = forward_kinematics(&base, &roomy.joints);
+        assert!((reached.translation.vector - target.translation.vector).norm() < 1e-3);
+        assert!((reached.rotation.inverse() * target.rotation).angle() < 1e-2);
+        assert!(
+            limit_margin(&roomy.joints) > 0.05,
+            "{:?} has margin {}",
+            roomy.joints,
+            limit_margin(&roomy.joints)
+        );
     }
 
     #[test]

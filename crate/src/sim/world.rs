@@ -989,6 +989,25 @@ impl World {
         panda::inverse_kinematics(&a.base, pose, &a.joints, &self.params.planning_ik)
     }
 
+    /// Like [`World::reachable`], seeded from the arm's joints and from the ready posture: of
+    /// the solutions, the one farthest from the joint limits
+    /// ([`panda::inverse_kinematics_with_room`]; the executor's joint-space recovery).
+    pub fn reachable_with_room(
+        &self,
+        arm: usize,
+        pose: &Isometry3<f64>,
+    ) -> Result<IkSolution, Unreachable> {
+        let Some(a) = self.arms.get(arm) else {
+            return self.reachable(arm, pose);
+        };
+        panda::inverse_kinematics_with_room(
+            &a.base,
+            pose,
+            &[a.joints, panda::READY],
+            &self.params.planning_ik,
+        )
+    }
+
     /// Sets the joint angles of an arm directly (clamped to the limits); a held body follows.
     pub fn set_joints(&mut self, arm: usize, joints: [f64; DOF]) -> Result<(), SimError> {
         let a = self.arms.get_mut(arm).ok_or(SimError::NoSuchArm(arm))?;

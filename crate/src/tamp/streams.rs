@@ -566,7 +566,8 @@ impl<'w> StreamBinder<'w> {
     }
 
     /// The executor's joint-space recovery from joints `q` to the TCP pose `goal`
-    /// (`lfd::exec`: planning IK with restarts, then a straight move in joint space): `None`
+    /// (`lfd::exec`: the planning IK from `q` and from the ready posture, the solution with the
+    /// most room to the joint limits, then a straight move in joint space): `None`
     /// if the planning IK finds no solution, else the goal joints or what the move hits.
     #[allow(clippy::too_many_arguments)]
     fn joint_recovery(
@@ -579,8 +580,13 @@ impl<'w> StreamBinder<'w> {
         obstacles: &[Obstacle],
         start: &StartContacts,
     ) -> Option<Result<[f64; DOF], String>> {
-        let sol =
-            panda::inverse_kinematics(base, goal, q, &self.world.params().planning_ik).ok()?;
+        let sol = panda::inverse_kinematics_with_room(
+            base,
+            goal,
+            &[*q, panda::READY],
+            &self.world.params().planning_ik,
+        )
+        .ok()?;
         let span = q
             .iter()
             .zip(&sol.joints)
