@@ -1068,3 +1068,42 @@ fn whether_the_hook_can_pull_does_not_depend_on_how_the_carrying_hand_is_tilted_
         "the answer changes with the tilt at {differ:?}"
     );
 }
+
+#[test]
+fn a_block_carried_into_one_the_other_arm_holds_stops_at_contact() {
+    // Regression (soak seed 77, episode 167): the contact stop skipped bodies held by the other
+    // arm, and in B3 the left arm carried a 2.2 mm into the b the right arm held.
+    let mut w = Benchmark::B3.scene();
+    w.move_block("a", Vector3::new(0.38, 0.09, 0.03)).unwrap();
+    w.move_block("b", Vector3::new(0.38, -0.06, 0.03)).unwrap();
+    for (arm, body) in [(0, "a"), (1, "b")] {
+        let g = geometry::grasp_pose(&w, arm, body).unwrap();
+        w.set_joints(arm, w.reachable(arm, &g).unwrap().joints)
+            .unwrap();
+        w.command_arm(arm, g, GripperCommand::Close).unwrap();
+        w.step();
+        assert_eq!(w.held_by(arm), Some(body));
+        let up = Isometry3::from_parts(
+            Translation3::new(0.0, 0.0, 0.12),
+            UnitQuaternion::identity(),
+        ) * g;
+        w.set_joints(arm, w.reachable(arm, &up).unwrap().joints)
+            .unwrap();
+        w.command_arm(arm, up, GripperCommand::Close).unwrap();
+    }
+    w.check_invariants().unwrap();
+    // The left arm carries a straight through where b hangs.
+    let from = w.tcp_pose(0).unwrap();
+    let mut stopped = false;
+    for k in 1..=200 {
+        let s = (k as f64 / 150.0).min(1.0);
+        let mut to = from;
+        to.translation.vector.y = from.translation.vector.y - 0.2 * s;
+        w.command_arm(0, to, GripperCommand::Close).unwrap();
+        w.step();
+        w.check_invariants().unwrap();
+        stopped |= w.arm_blocked_by(0) == Some("b");
+    }
+    assert!(stopped, "the left arm never reported b in its way");
+    assert_eq!(w.held_by(1), Some("b"));
+}

@@ -1289,13 +1289,12 @@ impl World {
         best
     }
 
-    /// Deepest overlap of body `bi` with any other body that is neither lost nor held, and with
-    /// which one. (Bodies held by two arms are not stopped against each other: the TAMP
-    /// baseline's B3 hand-over plans may still graze them; the soak reports it.)
+    /// Deepest overlap of body `bi` with any other body that is not lost (bodies the other arms
+    /// hold included), and with which one.
     fn held_penetration(&self, bi: usize) -> (f64, Option<usize>) {
         let mut best = (0.0, None);
         for j in 0..self.bodies.len() {
-            if j == bi || self.bodies[j].lost || self.is_held(j) {
+            if j == bi || self.bodies[j].lost {
                 continue;
             }
             let d = self.bodies[bi].penetration(&self.bodies[j]);
