@@ -309,13 +309,14 @@ pub fn handleable(w: &World, x: &str) -> Result<(), String> {
     })
 }
 
-/// Whether arm `arm`, holding `hook` as it holds it now or would grasp it where it rests, can pull block `x` towards its
-/// base with one of the hook's strokes ([`PULL_TURNS`], [`pull_hook_poses_turned`]): the arm
-/// reaches the stroke's contact and pulled poses and the poses [`PULL_LIFT`] above them (IK)
-/// with its hand clear of everything but the tables there, the hook at contact overlaps nothing but
-/// the tables and `x`, and `x` slides along the stroke into nothing but the tables and the hook
-/// (every shape shrunk by 2 mm, so resting contacts do not count). The arm's path is not
-/// checked: a stroke that fails here cannot be executed, whatever the planner.
+/// Whether arm `arm`, holding `hook` as it holds it now or would grasp it where it rests, can
+/// pull block `x` towards its base with one of the hook's strokes ([`PULL_TURNS`],
+/// [`pull_hook_poses_turned`]): the arm reaches the stroke's contact and pulled poses and the
+/// poses [`PULL_LIFT`] above them (IK) with its hand clear of everything but the tables there,
+/// the hook at contact overlaps nothing but the tables and `x`, and `x` slides along the stroke
+/// into nothing but the tables and the hook (every shape shrunk by 2 mm, so resting contacts do
+/// not count). The arm's path is not checked: a stroke that fails here cannot be executed,
+/// whatever the planner.
 pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
     let (Some(base), Some(bp), Some(hp), Some(gp)) = (
         w.arm_base(arm),

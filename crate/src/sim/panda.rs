@@ -375,18 +375,19 @@ pub fn limit_margin(q: &[f64; DOF]) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// [`inverse_kinematics`] from each of `seeds` (with its restarts); of the solutions found, the
-/// one farthest from the joint limits ([`limit_margin`]). For moves in joint space that must
-/// leave the tracker room to follow on: a wrist recovered to its limit stalls again.
+/// [`inverse_kinematics`] warm-started at `from` and again at [`READY`] (each with its restarts);
+/// of the solutions found, the one farthest from the joint limits ([`limit_margin`]). For moves
+/// in joint space that must leave the tracker room to follow on: a wrist recovered to its limit
+/// stalls again. The executor's recovery and the streams' check of it both call this.
 pub fn inverse_kinematics_with_room(
     base: &Isometry3<f64>,
     target: &Isometry3<f64>,
-    seeds: &[[f64; DOF]],
+    from: &[f64; DOF],
     params: &IkParams,
 ) -> Result<IkSolution, Unreachable> {
     let mut best: Option<IkSolution> = None;
     let mut failure = None;
-    for seed in seeds {
+    for seed in [from, &READY] {
         match inverse_kinematics(base, target, seed, params) {
             Ok(sol) => {
                 if best
@@ -442,7 +443,7 @@ mod tests {
         let p = IkParams::default();
         let warm = inverse_kinematics(&base, &target, &wound, &p).unwrap();
         assert!(limit_margin(&warm.joints) < 0.01);
-        let roomy = inverse_kinematics_with_room(&base, &target, &[wound, READY], &p).unwrap();
+        let roomy = inverse_kinematics_with_room(&base, &target, &wound, &p).unwrap();
         let reached = forward_kinematics(&base, &roomy.joints);
         assert!((reached.translation.vector - target.translation.vector).norm() < 1e-3);
         assert!((reached.rotation.inverse() * target.rotation).angle() < 1e-2);

@@ -989,9 +989,9 @@ impl World {
         panda::inverse_kinematics(&a.base, pose, &a.joints, &self.params.planning_ik)
     }
 
-    /// Like [`World::reachable`], seeded from the arm's joints and from the ready posture: of
-    /// the solutions, the one farthest from the joint limits
-    /// ([`panda::inverse_kinematics_with_room`]; the executor's joint-space recovery).
+    /// Like [`World::reachable`], the solution with the most room to the joint limits
+    /// ([`panda::inverse_kinematics_with_room`] from the arm's joints; the executor's joint-space
+    /// recovery).
     pub fn reachable_with_room(
         &self,
         arm: usize,
@@ -1000,12 +1000,7 @@ impl World {
         let Some(a) = self.arms.get(arm) else {
             return self.reachable(arm, pose);
         };
-        panda::inverse_kinematics_with_room(
-            &a.base,
-            pose,
-            &[a.joints, panda::READY],
-            &self.params.planning_ik,
-        )
+        panda::inverse_kinematics_with_room(&a.base, pose, &a.joints, &self.params.planning_ik)
     }
 
     /// Sets the joint angles of an arm directly (clamped to the limits); a held body follows.

@@ -580,13 +580,9 @@ impl<'w> StreamBinder<'w> {
         obstacles: &[Obstacle],
         start: &StartContacts,
     ) -> Option<Result<[f64; DOF], String>> {
-        let sol = panda::inverse_kinematics_with_room(
-            base,
-            goal,
-            &[*q, panda::READY],
-            &self.world.params().planning_ik,
-        )
-        .ok()?;
+        let sol =
+            panda::inverse_kinematics_with_room(base, goal, q, &self.world.params().planning_ik)
+                .ok()?;
         let span = q
             .iter()
             .zip(&sol.joints)
