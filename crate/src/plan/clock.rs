@@ -1,8 +1,8 @@
 //! Caller-supplied time source for search time budgets.
 //!
-//! The planning core never reads the system clock (`std::time::Instant` panics on wasm32). A
-//! caller that wants a time limit passes a [`Clock`]: the CLI one wraps `Instant`, the browser one
-//! wraps `performance.now()`. Only differences of [`Clock::now_secs`] are used.
+//! The planning core never reads the system clock (the standard library's monotonic clock panics
+//! on wasm32). A caller that wants a time limit passes a [`Clock`]: the CLI one wraps that clock,
+//! the browser one wraps `performance.now()`. Only differences of [`Clock::now_secs`] are used.
 
 /// A monotonic time source in seconds (any origin).
 pub trait Clock {
