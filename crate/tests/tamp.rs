@@ -319,3 +319,161 @@ fn the_pull_stream_predicts_where_the_executor_leaves_the_block() {
     );
     assert!(SceneGraph::from_world(&world).contains("(inreach panda b)"));
 }
+
+#[test]
+fn an_action_a_movable_body_blocked_is_banned_until_that_body_has_moved() {
+    let b = BenchmarkId::B2;
+    let world = template(b);
+    let (_, task) = model_and_task(b, &world);
+    let s0 = task.init.clone();
+    let pull_b = op(&task, "(pull panda hook b)");
+    let pick_hook = op(&task, "(pick panda hook)");
+    let holding = replay(&task, &s0, &[pick_hook]).unwrap();
+    // The same arm holding the hook after a went to the shelf: a has moved.
+    let a_shelved = replay(
+        &task,
+        &s0,
+        &[
+            op(&task, "(pick panda a)"),
+            op(&task, "(place-on-shelf panda a)"),
+            pick_hook,
+        ],
+    )
+    .unwrap();
+    // Holding the hook after putting it down and taking it again: only the hook moved.
+    let hook_again = replay(
+        &task,
+        &s0,
+        &[pick_hook, op(&task, "(place panda hook)"), pick_hook],
+    )
+    .unwrap();
+    assert_eq!(hook_again, holding);
+    assert!(task.operators[pull_b].applicable(&a_shelved));
+
+    let mut banned = BannedTask::new(&task);
+    banned.ban_failed(pull_b, &holding, &["a".to_string()]);
+    assert!(!banned.is_empty());
+    assert_eq!(applicable_copies(&banned, pull_b, &holding), 0);
+    assert!(applicable_copies(&banned, pull_b, &a_shelved) >= 1);
+    // A plan on the banned task moves a before the pull.
+    let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::HMax);
+    let r = search(&banned.task, &cfg, &NoClock);
+    let ops = banned.original(&r.outcome.plan().expect("a plan").operators);
+    let at = ops.iter().position(|&o| o == pull_b).expect("b is pulled");
+    assert!(
+        ops[..at]
+            .iter()
+            .any(|&o| task.operators[o].name == "(place-on-shelf panda a)"),
+        "a plan that does not move a first: {:?}",
+        ops.iter()
+            .map(|&o| task.operators[o].name.as_str())
+            .collect::<Vec<_>>()
+    );
+    let end = replay(&task, &s0, &ops).unwrap();
+    assert!(task.goal.holds(&end));
+    // Bans until something moves do not count towards banning the action everywhere.
+    for _ in 0..=logic_lfd::lfd::control::STATE_BANS {
+        banned.ban_failed(pull_b, &holding, &["a".to_string()]);
+    }
+    assert!(applicable_copies(&banned, pull_b, &a_shelved) >= 1);
+
+    // The action's own arguments are not obstructions to move away: a ban at that state only.
+    let mut own = BannedTask::new(&task);
+    own.ban_failed(pull_b, &holding, &["b".to_string(), "hook".to_string()]);
+    assert_eq!(applicable_copies(&own, pull_b, &holding), 0);
+    let hook_moved = replay(
+        &task,
+        &s0,
+        &[
+            op(&task, "(pick panda a)"),
+            op(&task, "(place panda a)"),
+            pick_hook,
+        ],
+    )
+    .unwrap();
+    assert_eq!(hook_moved, holding, "the same facts: still banned");
+    let a_held_then_hook = replay(
+        &task,
+        &s0,
+        &[
+            op(&task, "(pick panda a)"),
+            op(&task, "(place-on-shelf panda a)"),
+            pick_hook,
+        ],
+    )
+    .unwrap();
+    assert!(applicable_copies(&own, pull_b, &a_held_then_hook) >= 1);
+}
+
+#[test]
+fn a_block_in_the_way_of_a_pull_is_named_and_moved_out_of_the_way_first() {
+    let b = BenchmarkId::B2;
+    let mut world = template(b);
+    // a in reach, where the hand's stroke to pull b in would hit it.
+    world
+        .move_block_to("a", Vector3::new(0.6, 0.0, 0.03), 0.0)
+        .unwrap();
+    let (_, task) = model_and_task(b, &world);
+    assert!(task.init.contains(
+        task.facts
+            .iter()
+            .position(|f| f == "(inreach panda a)")
+            .unwrap() as u32
+    ));
+    let pull = [
+        op(&task, "(pick panda hook)"),
+        op(&task, "(pull panda hook b)"),
+    ];
+    let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
+    assert_eq!(binder.bind(&task, &pull, 0), Err(1));
+    assert_eq!(
+        binder.obstructions(1),
+        ["a"],
+        "{:?}",
+        binder.last_rejection()
+    );
+    assert!(binder.obstructions(0).is_empty());
+    // TAMP from scratch puts a on the shelf before it pulls b, and every action binds.
+    let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
+    let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::HMax);
+    let ops = plan_from_scratch(&task, &task.init, &mut binder, &cfg, 10, &NoClock)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let names: Vec<&str> = ops
+        .iter()
+        .map(|&o| task.operators[o].name.as_str())
+        .collect();
+    let shelved = names.iter().position(|n| *n == "(place-on-shelf panda a)");
+    let pulled = names.iter().position(|n| *n == "(pull panda hook b)");
+    assert!(
+        matches!((shelved, pulled), (Some(s), Some(p)) if s < p),
+        "{names:?}"
+    );
+    assert!(task.goal.holds(&replay(&task, &task.init, &ops).unwrap()));
+    assert_eq!(binder.bindings.len(), ops.len());
+}
+
+#[test]
+fn two_blocks_side_by_side_beyond_reach_block_each_others_pulls_and_the_check_agrees() {
+    let b = BenchmarkId::B2;
+    let mut world = template(b);
+    // b stays at (0.95, 0.05); a beside it, also beyond the reach annulus. Whichever is pulled,
+    // the hook sweeps through the other one.
+    world
+        .move_block_to("a", Vector3::new(0.919, -0.044, 0.03), 0.0)
+        .unwrap();
+    let (_, task) = model_and_task(b, &world);
+    for (x, other) in [("a", "b"), ("b", "a")] {
+        let ops = [
+            op(&task, "(pick panda hook)"),
+            op(&task, &format!("(pull panda hook {x})")),
+        ];
+        let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
+        assert_eq!(binder.bind(&task, &ops, 0), Err(1), "pull {x}");
+        assert_eq!(binder.obstructions(1), [other], "pull {x}");
+        // The soak's and the disturbances' check says so too (the hook's sweep is checked).
+        assert!(
+            !logic_lfd::sim::disturb::hook_can_pull(&world, 0, "hook", x),
+            "hook_can_pull says {x} can be pulled"
+        );
+    }
+}

@@ -46,6 +46,14 @@ pub trait Binder {
     fn last_rejection(&self) -> Option<String> {
         None
     }
+
+    /// The movable bodies that were in the way of action `i` of the last skeleton [`bind`]
+    /// could not bind (empty if nothing movable blocked it).
+    ///
+    /// [`bind`]: Binder::bind
+    fn obstructions(&self, _i: usize) -> Vec<String> {
+        vec![]
+    }
 }
 
 /// Why an episode failed (asserted by the tests, shown by the page).
@@ -588,10 +596,11 @@ impl Controller {
             match binder.bind(&self.task, &p.ops, p.prefix_len) {
                 Ok(()) => return Ok((p.ops, p.k, p.prefix_len)),
                 Err(i) if i < p.prefix_len => {
-                    // A new action could not be bound where the plan puts it: ban it there,
-                    // and sample more.
+                    // A new action could not be bound where the plan puts it: ban it there (or,
+                    // when movable bodies were in its way, until one of them has moved), and
+                    // sample more.
                     if let Ok(at) = replay(&self.task, s, &p.ops[..i]) {
-                        banned.ban(p.ops[i], &at);
+                        banned.ban_failed(p.ops[i], &at, &binder.obstructions(i));
                     }
                     binder.widen();
                 }
@@ -632,6 +641,14 @@ impl Controller {
     }
 }
 
+/// The arguments of a ground atom or action name: `(pull panda hook b)` → `[panda, hook, b]`.
+fn fact_args(name: &str) -> Vec<&str> {
+    name.trim_matches(|c| c == '(' || c == ')')
+        .split_whitespace()
+        .skip(1)
+        .collect()
+}
+
 fn unreachable_linear() -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
     Err(FailReason::NoPlan {
         message: "linear never replans".into(),
@@ -657,7 +674,9 @@ pub(crate) fn forbid(task: &mut Task, o: usize) {
 /// at `s` is replaced by copies, each with one more precondition that tells a state from `s` (a
 /// fact of `s` that `o` does not require must be false, or a fact outside `s` must be true), so
 /// `o` applies exactly where `pre(o)` holds and the state is none of the banned ones. After
-/// [`STATE_BANS`] bans of the same operator, the next one bans it everywhere. Plans found on
+/// [`STATE_BANS`] bans of the same operator, the next one bans it everywhere. An action that
+/// movable bodies blocked is banned until one of them has moved instead
+/// ([`BannedTask::ban_failed`]): the same split, on the facts that name them. Plans found on
 /// [`BannedTask::task`] map back to the original operators with [`BannedTask::original`].
 #[derive(Clone, Debug)]
 pub struct BannedTask {
@@ -689,7 +708,7 @@ impl BannedTask {
 
     /// Whether nothing is banned.
     pub fn is_empty(&self) -> bool {
-        self.bans.is_empty()
+        !self.dead.contains(&true)
     }
 
     /// Bans original operator `o` at state `s` (see the type's documentation).
@@ -713,15 +732,54 @@ impl BannedTask {
         }
     }
 
+    /// Bans original operator `o`, which could not be bound at state `s` with `blockers` (movable
+    /// bodies) in its way: when some of them are not the action's own arguments, at every state
+    /// where none of those has moved (every fact naming one of them is as in `s`; moving a
+    /// block out of a pull's way, say, lifts the ban), else at `s` only ([`BannedTask::ban`]).
+    /// A ban until something moves does not count towards [`STATE_BANS`].
+    pub fn ban_failed(&mut self, o: usize, s: &State, blockers: &[String]) {
+        if o >= self.task.operators.len() || self.origin.get(o) != Some(&o) {
+            return;
+        }
+        let args = fact_args(&self.task.operators[o].name);
+        let movers: Vec<&str> = blockers
+            .iter()
+            .map(String::as_str)
+            .filter(|b| !args.contains(b))
+            .collect();
+        let naming: Vec<u32> = (0..self.task.facts.len() as u32)
+            .filter(|&f| {
+                let named = fact_args(&self.task.facts[f as usize]);
+                movers.iter().any(|m| named.contains(m))
+            })
+            .collect();
+        if naming.is_empty() {
+            return self.ban(o, s);
+        }
+        let live: Vec<usize> = (0..self.task.operators.len())
+            .filter(|&i| self.origin[i] == o && !self.dead[i])
+            .collect();
+        for i in live {
+            if self.task.operators[i].applicable(s) {
+                self.split_on(i, s, &naming);
+            }
+        }
+    }
+
     /// Replaces operator `i` by copies that do not apply at `s` (one per fact telling a state
     /// from `s`).
     fn split(&mut self, i: usize, s: &State) {
+        let all: Vec<u32> = (0..self.task.facts.len() as u32).collect();
+        self.split_on(i, s, &all);
+    }
+
+    /// Replaces operator `i` by copies that apply only where one of `facts` differs from `s`.
+    fn split_on(&mut self, i: usize, s: &State, facts: &[u32]) {
         let op = self.task.operators[i].clone();
         let o = self.origin[i];
         forbid(&mut self.task, i);
         self.dead[i] = true;
-        let n = self.task.facts.len() as u32;
-        for f in 0..n {
+        for &f in facts {
             let mut copy = op.clone();
             if op.pre.contains(&f) || op.pre_neg.contains(&f) {
                 continue;

@@ -313,9 +313,9 @@ pub fn handleable(w: &World, x: &str) -> Result<(), String> {
 /// pull block `x` towards its base with one of the hook's strokes ([`PULL_TURNS`],
 /// [`pull_hook_poses_turned`]): the arm reaches the stroke's contact and pulled poses and the
 /// poses [`PULL_LIFT`] above them (IK) with its hand clear of everything but the tables there,
-/// the hook at contact overlaps nothing but the tables and `x`, and `x` slides along the stroke
-/// into nothing but the tables and the hook (every shape shrunk by 2 mm, so resting contacts do
-/// not count). The arm's path is not checked: a stroke that fails here cannot be executed,
+/// the hook sweeps from contact to pulled through nothing but the tables and `x`, and `x`
+/// slides along the stroke into nothing but the tables and the hook (every shape shrunk by 2 mm,
+/// so resting contacts do not count). The arm's path is not checked: a stroke that fails here cannot be executed,
 /// whatever the planner.
 pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
     let (Some(base), Some(bp), Some(hp), Some(gp)) = (
@@ -371,17 +371,24 @@ pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
         if hits(&at_contact, &others) {
             return false;
         }
-        // The blade meets the block after its 1 cm gap, then drags it the rest of the way.
+        // The hook sweeps from contact to pulled; its blade meets the block after its 1 cm
+        // gap, then drags it the rest of the way.
         let d = pulled.translation.vector - contact.translation.vector;
         let slide = d * (1.0 - 0.01 / d.norm().max(0.01));
-        let steps = (slide.norm() / 0.01).ceil().max(1.0) as usize;
+        let steps = (d.norm() / 0.01).ceil().max(1.0) as usize;
         (0..=steps).all(|k| {
-            let shift = Translation3::from(slide * (k as f64 / steps as f64));
+            let s = k as f64 / steps as f64;
+            let hook_shift = Translation3::from(d * s);
+            let swept: Vec<_> = at_contact
+                .iter()
+                .map(|(iso, c)| (hook_shift * iso, *c))
+                .collect();
+            let shift = Translation3::from(slide * s);
             let moved: Vec<_> = block_parts
                 .iter()
                 .map(|(iso, c)| (shift * iso, shrink(c)))
                 .collect();
-            !hits(&moved, &others)
+            !hits(&swept, &others) && !hits(&moved, &others)
         })
     })
 }

@@ -9,7 +9,8 @@
 //!             certified (collision-free along its motion with parry, trackable by IK) — or
 //!             report the first failing action a_i
 //!     success → π with its bindings
-//!     failure at a_i → ban a_i at the state where it failed (not everywhere), more samples
+//!     failure at a_i → ban a_i at the state where it failed (not everywhere) or, when movable
+//!             bodies were in its way, until one of them has moved; more samples
 //! ```
 //!
 //! This is what Logic-LfD uses to bind the actions it adds, and the "plan from scratch" baseline
@@ -71,7 +72,7 @@ pub fn plan_from_scratch(
             Err(i) => {
                 last = t.operators[ops[i]].name.clone();
                 if let Ok(at) = replay(&t, s, &ops[..i]) {
-                    banned.ban(ops[i], &at);
+                    banned.ban_failed(ops[i], &at, &binder.obstructions(i));
                 }
                 binder.widen();
             }

@@ -41,7 +41,7 @@
 //! the demonstrated skills re-targeted to the objects, only their surface placements are sampled.
 //! Pulls are the exception: their stroke is computed, not demonstrated, so it is certified.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::query;
@@ -200,6 +200,12 @@ pub struct StreamBinder<'w> {
     pub certifications: usize,
     /// Why the last rejected candidate was rejected, in words (for failure reports).
     pub last_rejection: Option<String>,
+    /// The movable bodies in the way of the candidate being certified (the last rejections').
+    last_blockers: Vec<String>,
+    /// The action (index into the skeleton) being bound.
+    action: usize,
+    /// Per action of the last skeleton: the movable bodies that blocked its candidates.
+    blockers: BTreeMap<usize, BTreeSet<String>>,
     /// Backtracking stops once `certifications` passes this (set per skeleton).
     budget_end: usize,
     /// What the certifications did.
@@ -274,6 +280,9 @@ impl<'w> StreamBinder<'w> {
             bindings: vec![],
             certifications: 0,
             last_rejection: None,
+            last_blockers: vec![],
+            action: 0,
+            blockers: BTreeMap::new(),
             budget_end: 0,
             stats: StreamStats::default(),
             predicted: BTreeMap::new(),
@@ -458,12 +467,13 @@ impl<'w> StreamBinder<'w> {
                             .joint_recovery(arm, &base, &tcp, &q, &load, &obstacles, &start)
                         {
                             Some(Ok(qg)) => qg,
-                            Some(Err(hit)) => {
-                                return Err(self.collision(format!(
+                            Some(Err((hit, body))) => {
+                                let why = format!(
                                     "{hit} on the {} arm's joint-space move to {}",
                                     self.arm_name(arm),
                                     fmt_point(&tcp.translation.vector)
-                                )));
+                                );
+                                return Err(self.collision(why, &body));
                             }
                             None => {
                                 self.stats.rejected_ik += 1;
@@ -477,12 +487,15 @@ impl<'w> StreamBinder<'w> {
                         },
                     },
                 };
-                if let Some(hit) = self.sample_hits(arm, &q, &tcp, &load, &obstacles, &start) {
-                    return Err(self.collision(format!(
+                if let Some((hit, body)) =
+                    self.sample_hits(arm, &q, &tcp, &load, &obstacles, &start)
+                {
+                    let why = format!(
                         "{hit} with the {} arm's TCP at {}",
                         self.arm_name(arm),
                         fmt_point(&tcp.translation.vector)
-                    )));
+                    );
+                    return Err(self.collision(why, &body));
                 }
             }
             from = *to;
@@ -490,11 +503,34 @@ impl<'w> StreamBinder<'w> {
         Ok(q)
     }
 
-    /// Records a collision rejection and why.
-    fn collision(&mut self, why: String) -> Reject {
+    /// Records a collision rejection with `body`, and why.
+    fn collision(&mut self, why: String, body: &str) -> Reject {
         self.last_rejection = Some(why);
+        self.blocked_by(body);
         self.stats.rejected_collision += 1;
         Reject::Collision
+    }
+
+    /// Notes that `body` is in the way of the candidate being certified, if it is movable (a
+    /// table or shelf is not: no action can clear it).
+    fn blocked_by(&mut self, body: &str) {
+        if self.local.contains_key(body) && !self.last_blockers.iter().any(|b| b == body) {
+            self.last_blockers.push(body.to_string());
+        }
+    }
+
+    /// Starts certifying a candidate of the action being bound: nothing is in its way yet.
+    fn begin_candidate(&mut self) {
+        self.last_blockers.clear();
+    }
+
+    /// The candidate being certified failed: what was in its way blocked the action.
+    fn candidate_failed(&mut self) {
+        let blockers = std::mem::take(&mut self.last_blockers);
+        self.blockers
+            .entry(self.action)
+            .or_default()
+            .extend(blockers);
     }
 
     /// Certifies the path through `via`, whose first point is the goal of the action's
@@ -510,6 +546,7 @@ impl<'w> StreamBinder<'w> {
         exclude: &[&str],
         load_margin: f64,
     ) -> Result<([f64; DOF], Option<f64>), Reject> {
+        let blockers_before = self.last_blockers.len();
         match self.certify_path(geo, arm, via, exclude, load_margin) {
             Ok(q) => return Ok((q, None)),
             Err(Reject::Ik) => return Err(Reject::Ik),
@@ -527,7 +564,11 @@ impl<'w> StreamBinder<'w> {
         let path: Vec<Isometry3<f64>> = [up, over].into_iter().chain(via.iter().copied()).collect();
         self.stats.transits += 1;
         match self.certify_path(geo, arm, &path, exclude, load_margin) {
-            Ok(q) => Ok((q, Some(z))),
+            Ok(q) => {
+                // What blocked the straight approach is not in the transit's way.
+                self.last_blockers.truncate(blockers_before);
+                Ok((q, Some(z)))
+            }
             Err(e) => {
                 self.last_rejection = Some(format!(
                     "{}; across at {:.0} mm: {}",
@@ -579,7 +620,7 @@ impl<'w> StreamBinder<'w> {
         load: &[LoadPart],
         obstacles: &[Obstacle],
         start: &StartContacts,
-    ) -> Option<Result<[f64; DOF], String>> {
+    ) -> Option<Result<[f64; DOF], (String, String)>> {
         let sol =
             panda::inverse_kinematics_with_room(base, goal, q, &self.world.params().planning_ik)
                 .ok()?;
@@ -669,6 +710,7 @@ impl<'w> StreamBinder<'w> {
 
     /// What the arm at joints `q` (TCP `tcp`, carrying `load` in the TCP frame) hits, in words.
     /// `start`: contacts at the start of the path, allowed as long as they get no deeper.
+    /// Also the name of what it hits.
     fn sample_hits(
         &self,
         arm: usize,
@@ -677,7 +719,7 @@ impl<'w> StreamBinder<'w> {
         load: &[LoadPart],
         obstacles: &[Obstacle],
         start: &StartContacts,
-    ) -> Option<String> {
+    ) -> Option<(String, String)> {
         let (part, oi, _, _) = self
             .overlapping_pairs(arm, q, tcp, load, obstacles)
             .into_iter()
@@ -690,10 +732,11 @@ impl<'w> StreamBinder<'w> {
                 )
             })?;
         let o = &obstacles[oi].name;
-        Some(match part {
+        let words = match part {
             Part::Link(i) => format!("link {i} hits {o}"),
             Part::Load(_) => format!("the carried body hits {o}"),
-        })
+        };
+        Some((words, o.clone()))
     }
 
     fn arm_name(&self, arm: usize) -> String {
@@ -860,8 +903,12 @@ impl<'w> StreamBinder<'w> {
             &PULL_TURNS[..1]
         };
         turns.iter().find_map(|&turn| {
-            self.pull_turned(geo, arm, body, certify, turn)
-                .map(|t| (turn, t))
+            self.begin_candidate();
+            let found = self.pull_turned(geo, arm, body, certify, turn);
+            if found.is_none() {
+                self.candidate_failed();
+            }
+            found.map(|t| (turn, t))
         })
     }
 
@@ -936,6 +983,8 @@ impl<'w> StreamBinder<'w> {
                             self.stats.rejected_pull += 1;
                             self.last_rejection =
                                 Some(format!("the stroke would push {body} into {}", o.name));
+                            let name = o.name.clone();
+                            self.blocked_by(&name);
                             return None;
                         }
                     }
@@ -1200,6 +1249,7 @@ impl<'w> StreamBinder<'w> {
             return Ok(geo);
         };
         let op = &task.operators[o];
+        self.action = i;
         let Some(kind) = classify(task, op, self.world) else {
             out.push(Binding::default());
             return self.bind_from(task, ops, demo_from, i + 1, geo, out);
@@ -1208,10 +1258,17 @@ impl<'w> StreamBinder<'w> {
         // the block's pose, not demonstrated, and the 40 cm hook sweeps past other blocks.
         let certify = i < demo_from || matches!(kind, ActionKind::Pull { .. });
         let binding = match kind {
-            ActionKind::Grasp { arm, body } => Binding {
-                placement: None,
-                transit: self.grasp(&mut geo, arm, &body, certify).ok_or(i)?,
-            },
+            ActionKind::Grasp { arm, body } => {
+                self.begin_candidate();
+                let Some(transit) = self.grasp(&mut geo, arm, &body, certify) else {
+                    self.candidate_failed();
+                    return Err(i);
+                };
+                Binding {
+                    placement: None,
+                    transit,
+                }
+            }
             ActionKind::Release {
                 arm,
                 body,
@@ -1226,8 +1283,13 @@ impl<'w> StreamBinder<'w> {
                     Translation3::from(py.translation.vector + Vector3::z() * (hy.z + hb.z)),
                     py.rotation,
                 );
+                self.begin_candidate();
+                let Some(transit) = self.release(&mut geo, arm, &pose, certify) else {
+                    self.candidate_failed();
+                    return Err(i);
+                };
                 Binding {
-                    transit: self.release(&mut geo, arm, &pose, certify).ok_or(i)?,
+                    transit,
                     placement: Some(Placement::OnBlock(y)),
                 }
             }
@@ -1353,6 +1415,7 @@ impl Binder for StreamBinder<'_> {
         }
         let mut out = Vec::with_capacity(ops.len());
         self.last_rejection = None;
+        self.blockers.clear();
         self.budget_end = self.certifications + self.params.certification_budget;
         let end = self.bind_from(task, ops, demo_from, 0, geo, &mut out)?;
         self.bindings = out;
@@ -1366,5 +1429,12 @@ impl Binder for StreamBinder<'_> {
 
     fn last_rejection(&self) -> Option<String> {
         self.last_rejection.clone()
+    }
+
+    fn obstructions(&self, i: usize) -> Vec<String> {
+        self.blockers
+            .get(&i)
+            .map(|b| b.iter().cloned().collect())
+            .unwrap_or_default()
     }
 }
