@@ -285,6 +285,8 @@ struct Running {
     /// Joint-space recovery: the planning IK's joints for `goal`, followed instead of the
     /// Cartesian command while set; `recovered` once tried for this segment.
     joint_goal: Option<[f64; crate::sim::panda::DOF]>,
+    /// Joint goals after `joint_goal` (the recovery's way round by the ready posture).
+    joint_route: Vec<[f64; crate::sim::panda::DOF]>,
     recovered: bool,
     /// Ticks spent in joint-space recovery.
     joint_ticks: usize,
@@ -664,9 +666,15 @@ impl ActionExec {
                             .joints(self.arm)
                             .is_none_or(|j| j.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-6));
                         let stopped = world.arm_blocked_by(self.arm).is_some();
-                        if there || stopped || seg.joint_ticks as f64 * dt > 2.0 * p.settle_timeout
+                        if there && !seg.joint_route.is_empty() {
+                            seg.joint_goal = Some(seg.joint_route.remove(0));
+                            seg.joint_ticks = 0;
+                        } else if there
+                            || stopped
+                            || seg.joint_ticks as f64 * dt > 2.0 * p.settle_timeout
                         {
                             seg.joint_goal = None;
+                            seg.joint_route.clear();
                             seg.lag = 0;
                         }
                     } else {
@@ -682,7 +690,9 @@ impl ActionExec {
                         {
                             seg.recovered = true;
                             if let Ok(sol) = world.reachable_with_room(self.arm, &seg.goal) {
-                                seg.joint_goal = Some(sol.joints);
+                                let route = joint_recovery_route(world, self.arm, sol.joints);
+                                seg.joint_goal = route.first().copied();
+                                seg.joint_route = route[1..].to_vec();
                                 seg.joint_ticks = 0;
                                 seg.lag = 0;
                             }
@@ -767,6 +777,7 @@ impl ActionExec {
             frame,
             lag: 0,
             joint_goal: None,
+            joint_route: vec![],
             recovered: false,
             joint_ticks: 0,
         })
@@ -986,4 +997,29 @@ pub(crate) fn safe_transit_z(world: &World, arm: usize, goal: &Isometry3<f64>) -
     Some(transit_z(&a, &goal.translation.vector, load, |lo, hi| {
         world.highest_top_in(lo, hi, &except)
     }))
+}
+
+/// The joint goals of a joint-space recovery of `arm` to joints `goal`: straight there, or, when
+/// that move would sweep the arm or its load through something ([`World::joint_move_hits`]) and
+/// the way by the ready posture would not, by way of [`panda::READY`] (the streams certify the
+/// same choice).
+///
+/// [`panda::READY`]: crate::sim::panda::READY
+fn joint_recovery_route(
+    world: &World,
+    arm: usize,
+    goal: [f64; crate::sim::panda::DOF],
+) -> Vec<[f64; crate::sim::panda::DOF]> {
+    let ready = crate::sim::panda::READY;
+    let Some(now) = world.joints(arm) else {
+        return vec![goal];
+    };
+    if world.joint_move_hits(arm, &now, &goal).is_some()
+        && world.joint_move_hits(arm, &now, &ready).is_none()
+        && world.joint_move_hits(arm, &ready, &goal).is_none()
+    {
+        vec![ready, goal]
+    } else {
+        vec![goal]
+    }
 }

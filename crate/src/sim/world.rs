@@ -1003,6 +1003,87 @@ impl World {
         panda::inverse_kinematics_with_room(&a.base, pose, &a.joints, &self.params.planning_ik)
     }
 
+    /// What arm `arm` would sweep through on a straight joint-space move from `from` to `to`
+    /// (sampled every 0.05 rad), carrying what it holds: the name of the first body its links
+    /// (the base link excepted) or its load overlap, by more than 2 mm, that they did not already
+    /// overlap at `from`; `None` if nothing. The executor's joint-space recovery asks this
+    /// before it moves (a link passing through a block would knock it over).
+    pub fn joint_move_hits(
+        &self,
+        arm: usize,
+        from: &[f64; DOF],
+        to: &[f64; DOF],
+    ) -> Option<String> {
+        let a = self.arms.get(arm)?;
+        let held = a.holding.map(|(bi, g)| (bi, g));
+        // The load's boxes in the TCP frame.
+        let load: Vec<(Isometry3<f64>, Cuboid)> = held
+            .map(|(bi, g)| {
+                self.bodies[bi]
+                    .parts
+                    .iter()
+                    .map(|(p, c)| (g * p, *c))
+                    .collect()
+            })
+            .unwrap_or_default();
+        const SLACK: f64 = 0.002;
+        let others: Vec<(usize, Isometry3<f64>, Cuboid)> = self
+            .bodies
+            .iter()
+            .enumerate()
+            .filter(|(j, b)| !b.lost && held.is_none_or(|(bi, _)| bi != *j))
+            .flat_map(|(j, b)| {
+                b.world_parts().map(move |(iso, c)| {
+                    let h = (c.half_extents - Vector3::repeat(SLACK)).map(|v| v.max(1e-4));
+                    (j, iso, Cuboid::new(h))
+                })
+            })
+            .collect();
+        // (part, other) pairs overlapping at q; parts: link capsules, then load boxes.
+        let overlapping = |q: &[f64; DOF]| -> Vec<(usize, usize)> {
+            let mut out = vec![];
+            let caps = super::geometry::link_capsules(self, arm, q);
+            for (pi, (p0, p1, r)) in caps.iter().enumerate().skip(1) {
+                let cap = Capsule::new(Point3::from(*p0), Point3::from(*p1), *r);
+                for (oi, (_, iso, c)) in others.iter().enumerate() {
+                    if query::intersection_test(&Isometry3::identity(), &cap, iso, c)
+                        .unwrap_or(true)
+                    {
+                        out.push((pi, oi));
+                    }
+                }
+            }
+            let tcp = panda::forward_kinematics(&a.base, q);
+            for (li, (off, lc)) in load.iter().enumerate() {
+                let liso = tcp * off;
+                for (oi, (_, iso, c)) in others.iter().enumerate() {
+                    if query::intersection_test(&liso, lc, iso, c).unwrap_or(true) {
+                        out.push((caps.len() + li, oi));
+                    }
+                }
+            }
+            out
+        };
+        let at_start = overlapping(from);
+        let span = from
+            .iter()
+            .zip(to)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0, f64::max);
+        let n = ((span / 0.05).ceil() as usize).max(1);
+        (1..=n).find_map(|k| {
+            let s = k as f64 / n as f64;
+            let mut q = *from;
+            for (j, v) in q.iter_mut().enumerate() {
+                *v += s * (to[j] - from[j]);
+            }
+            overlapping(&q)
+                .into_iter()
+                .find(|pair| !at_start.contains(pair))
+                .map(|(_, oi)| self.bodies[others[oi].0].name.clone())
+        })
+    }
+
     /// Sets the joint angles of an arm directly (clamped to the limits); a held body follows.
     pub fn set_joints(&mut self, arm: usize, joints: [f64; DOF]) -> Result<(), SimError> {
         let a = self.arms.get_mut(arm).ok_or(SimError::NoSuchArm(arm))?;

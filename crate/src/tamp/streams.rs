@@ -608,8 +608,9 @@ impl<'w> StreamBinder<'w> {
 
     /// The executor's joint-space recovery from joints `q` to the TCP pose `goal`
     /// (`lfd::exec`: the planning IK from `q` and from the ready posture, the solution with the
-    /// most room to the joint limits, then a straight move in joint space): `None`
-    /// if the planning IK finds no solution, else the goal joints or what the move hits.
+    /// most room to the joint limits, then a straight move in joint space, or, where that
+    /// sweeps through something, two by way of the ready posture): `None` if the planning IK
+    /// finds no solution, else the goal joints or what the straight move hits.
     #[allow(clippy::too_many_arguments)]
     fn joint_recovery(
         &mut self,
@@ -624,25 +625,53 @@ impl<'w> StreamBinder<'w> {
         let sol =
             panda::inverse_kinematics_with_room(base, goal, q, &self.world.params().planning_ik)
                 .ok()?;
-        let span = q
+        let Some(hit) = self.joint_leg_hits(arm, base, q, &sol.joints, load, obstacles, start)
+        else {
+            return Some(Ok(sol.joints));
+        };
+        // The straight move sweeps through something: by way of the ready posture instead.
+        let via = panda::READY;
+        let around = self
+            .joint_leg_hits(arm, base, q, &via, load, obstacles, start)
+            .or_else(|| self.joint_leg_hits(arm, base, &via, &sol.joints, load, obstacles, start));
+        Some(match around {
+            None => Ok(sol.joints),
+            Some(_) => Err(hit),
+        })
+    }
+
+    /// What arm `arm` (carrying `load`) hits on the straight joint-space move from `from` to
+    /// `to`, in words and by name; `None` if nothing.
+    #[allow(clippy::too_many_arguments)]
+    fn joint_leg_hits(
+        &mut self,
+        arm: usize,
+        base: &Isometry3<f64>,
+        from: &[f64; DOF],
+        to: &[f64; DOF],
+        load: &[LoadPart],
+        obstacles: &[Obstacle],
+        start: &StartContacts,
+    ) -> Option<(String, String)> {
+        let span = from
             .iter()
-            .zip(&sol.joints)
+            .zip(to)
             .map(|(a, b)| (a - b).abs())
             .fold(0.0, f64::max);
         let n = ((span / JOINT_STEP).ceil() as usize).max(1);
         for k in 1..=n {
             let s = k as f64 / n as f64;
-            let mut qk = *q;
+            let mut qk = *from;
             for (j, v) in qk.iter_mut().enumerate() {
-                *v += s * (sol.joints[j] - q[j]);
+                *v += s * (to[j] - from[j]);
             }
             self.stats.path_samples += 1;
             let tcp = panda::forward_kinematics(base, &qk);
             if let Some(hit) = self.sample_hits(arm, &qk, &tcp, load, obstacles, start) {
-                return Some(Err(hit));
+                return Some(hit);
             }
         }
-        Some(Ok(sol.joints))
+        None
     }
 
     /// Every (part, obstacle) pair of arm `arm` at joints `q` (TCP `tcp`, carrying `load`) whose
