@@ -1015,7 +1015,7 @@ impl World {
         to: &[f64; DOF],
     ) -> Option<String> {
         let a = self.arms.get(arm)?;
-        let held = a.holding.map(|(bi, g)| (bi, g));
+        let held = a.holding;
         // The load's boxes in the TCP frame.
         let load: Vec<(Isometry3<f64>, Cuboid)> = held
             .map(|(bi, g)| {
