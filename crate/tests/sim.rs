@@ -1124,12 +1124,12 @@ fn a_joint_space_move_names_what_it_sweeps_through_and_the_ready_posture_goes_ro
     let ik = |p: &Isometry3<f64>| w.reachable(0, p).expect("reachable").joints;
     let (from, to) = (ik(&low(-0.3)), ik(&low(0.3)));
     // The hand sweeps low from one side of the tower to the other: through the top block.
-    let hit = w.joint_move_hits(0, &from, &to);
+    let hit = w.joint_move_hits(0, &from, &to, &[]);
     assert!(matches!(hit.as_deref(), Some("a" | "b")), "{hit:?}");
-    assert!(w.joint_move_hits(0, &to, &from).is_some());
+    assert!(w.joint_move_hits(0, &to, &from, &[]).is_some());
     // By way of the ready posture (high above the table) both legs are clear.
-    assert_eq!(w.joint_move_hits(0, &from, &panda::READY), None);
-    assert_eq!(w.joint_move_hits(0, &panda::READY, &to), None);
+    assert_eq!(w.joint_move_hits(0, &from, &panda::READY, &[]), None);
+    assert_eq!(w.joint_move_hits(0, &panda::READY, &to, &[]), None);
     // Without the tower the straight move is clear too.
     let clear = b1_with(&[
         aside[0],
@@ -1137,10 +1137,21 @@ fn a_joint_space_move_names_what_it_sweeps_through_and_the_ready_posture_goes_ro
         ("a", [0.25, 0.3, 0.03]),
         ("b", [0.2, -0.3, 0.03]),
     ]);
-    assert_eq!(clear.joint_move_hits(0, &from, &to), None);
+    assert_eq!(clear.joint_move_hits(0, &from, &to, &[]), None);
     // What overlaps at the start already (the hand around a block it grasps) is not a hit.
     let around = b1_with(&[aside[0], aside[1], ("a", [0.5, -0.3, 0.03])]);
     let at_a = Isometry3::from_parts(Translation3::new(0.5, -0.3, 0.03), down);
     let grasp = ik(&at_a);
-    assert_eq!(around.joint_move_hits(0, &grasp, &panda::READY), None);
+    assert_eq!(around.joint_move_hits(0, &grasp, &panda::READY, &[]), None);
+    // Coming down to grasp it the hand meets it, unless it is the body the action touches.
+    assert_eq!(
+        around
+            .joint_move_hits(0, &panda::READY, &grasp, &[])
+            .as_deref(),
+        Some("a")
+    );
+    assert_eq!(
+        around.joint_move_hits(0, &panda::READY, &grasp, &["a"]),
+        None
+    );
 }

@@ -690,7 +690,13 @@ impl ActionExec {
                         {
                             seg.recovered = true;
                             if let Ok(sol) = world.reachable_with_room(self.arm, &seg.goal) {
-                                let route = joint_recovery_route(world, self.arm, sol.joints);
+                                let touches = match &self.kind {
+                                    ActionKind::Grasp { body, .. }
+                                    | ActionKind::Release { body, .. }
+                                    | ActionKind::Pull { body, .. } => body.as_str(),
+                                };
+                                let route =
+                                    joint_recovery_route(world, self.arm, sol.joints, touches);
                                 seg.joint_goal = route.first().copied();
                                 seg.joint_route = route[1..].to_vec();
                                 seg.joint_ticks = 0;
@@ -1002,21 +1008,24 @@ pub(crate) fn safe_transit_z(world: &World, arm: usize, goal: &Isometry3<f64>) -
 /// The joint goals of a joint-space recovery of `arm` to joints `goal`: straight there, or, when
 /// that move would sweep the arm or its load through something ([`World::joint_move_hits`]) and
 /// the way by the ready posture would not, by way of [`panda::READY`] (the streams certify the
-/// same choice).
+/// same choice). `touches`: the body the action grasps, releases or pulls, which the hand may
+/// touch.
 ///
 /// [`panda::READY`]: crate::sim::panda::READY
 fn joint_recovery_route(
     world: &World,
     arm: usize,
     goal: [f64; crate::sim::panda::DOF],
+    touches: &str,
 ) -> Vec<[f64; crate::sim::panda::DOF]> {
     let ready = crate::sim::panda::READY;
     let Some(now) = world.joints(arm) else {
         return vec![goal];
     };
-    if world.joint_move_hits(arm, &now, &goal).is_some()
-        && world.joint_move_hits(arm, &now, &ready).is_none()
-        && world.joint_move_hits(arm, &ready, &goal).is_none()
+    let except = [touches];
+    if world.joint_move_hits(arm, &now, &goal, &except).is_some()
+        && world.joint_move_hits(arm, &now, &ready, &except).is_none()
+        && world.joint_move_hits(arm, &ready, &goal, &except).is_none()
     {
         vec![ready, goal]
     } else {

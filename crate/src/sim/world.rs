@@ -1004,15 +1004,16 @@ impl World {
     }
 
     /// What arm `arm` would sweep through on a straight joint-space move from `from` to `to`
-    /// (sampled every 0.05 rad), carrying what it holds: the name of the first body its links
-    /// (the base link excepted) or its load overlap, by more than 2 mm, that they did not already
-    /// overlap at `from`; `None` if nothing. The executor's joint-space recovery asks this
-    /// before it moves (a link passing through a block would knock it over).
+    /// (sampled every 0.05 rad), carrying what it holds: the name of the first body (`except`
+    /// excepted) its links (the base link excepted) or its load overlap, by more than 2 mm, that
+    /// they did not already overlap at `from`; `None` if nothing. The executor's joint-space
+    /// recovery asks this before it moves (a link passing through a block would knock it over).
     pub fn joint_move_hits(
         &self,
         arm: usize,
         from: &[f64; DOF],
         to: &[f64; DOF],
+        except: &[&str],
     ) -> Option<String> {
         let a = self.arms.get(arm)?;
         let held = a.holding;
@@ -1031,7 +1032,9 @@ impl World {
             .bodies
             .iter()
             .enumerate()
-            .filter(|(j, b)| !b.lost && held.is_none_or(|(bi, _)| bi != *j))
+            .filter(|(j, b)| {
+                !b.lost && held.is_none_or(|(bi, _)| bi != *j) && !except.contains(&b.name.as_str())
+            })
             .flat_map(|(j, b)| {
                 b.world_parts().map(move |(iso, c)| {
                     let h = (c.half_extents - Vector3::repeat(SLACK)).map(|v| v.max(1e-4));
