@@ -1154,4 +1154,18 @@ fn a_joint_space_move_names_what_it_sweeps_through_and_the_ready_posture_goes_ro
         around.joint_move_hits(0, &panda::READY, &grasp, &["a"]),
         None
     );
+    // A hand already pressing on the table may not press deeper than the simulator lets links
+    // (it would stop there), though the overlap was there at the start.
+    let at = |z: f64| {
+        ik(&Isometry3::from_parts(
+            Translation3::new(0.45, 0.3, z),
+            down,
+        ))
+    };
+    let (touching, deeper) = (at(-0.02), at(-0.028));
+    assert_eq!(
+        w.joint_move_hits(0, &touching, &deeper, &[]).as_deref(),
+        Some("table")
+    );
+    assert_eq!(w.joint_move_hits(0, &deeper, &touching, &[]), None);
 }

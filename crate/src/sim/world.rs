@@ -1006,7 +1006,8 @@ impl World {
     /// What arm `arm` would sweep through on a straight joint-space move from `from` to `to`
     /// (sampled every 0.05 rad), carrying what it holds: the name of the first body (`except`
     /// excepted) its links (the base link excepted) or its load overlap, by more than 2 mm, that
-    /// they did not already overlap at `from`; `None` if nothing. The executor's joint-space
+    /// they did not already overlap at `from`, or the table or shelf its links would stop at
+    /// (pressing deeper than the simulator lets them); `None` if nothing. The executor's joint-space
     /// recovery asks this before it moves (a link passing through a block would knock it over).
     pub fn joint_move_hits(
         &self,
@@ -1074,12 +1075,22 @@ impl World {
             .map(|(x, y)| (x - y).abs())
             .fold(0.0, f64::max);
         let n = ((span / 0.05).ceil() as usize).max(1);
+        // The links' stop at furniture, as in `step_arm`: deeper than LINK_TOLERANCE and deeper
+        // than the step before.
+        let mut furniture_depth = self.link_penetration(arm, from).0;
         (1..=n).find_map(|k| {
             let s = k as f64 / n as f64;
             let mut q = *from;
             for (j, v) in q.iter_mut().enumerate() {
                 *v += s * (to[j] - from[j]);
             }
+            let (depth, with) = self.link_penetration(arm, &q);
+            if depth > LINK_TOLERANCE && depth > furniture_depth + 1e-9 {
+                if let Some(j) = with {
+                    return Some(self.bodies[j].name.clone());
+                }
+            }
+            furniture_depth = depth;
             overlapping(&q)
                 .into_iter()
                 .find(|pair| !at_start.contains(pair))
