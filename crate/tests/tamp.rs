@@ -477,3 +477,60 @@ fn two_blocks_side_by_side_beyond_reach_block_each_others_pulls_and_the_check_ag
         );
     }
 }
+
+#[test]
+fn five_blocks_fit_on_the_b2_shelf_when_placements_are_packed() {
+    let b = BenchmarkId::B2;
+    let mut world = template(b);
+    // Three more blocks in reach: a, b and these go to the 24 × 16 cm shelf, which holds
+    // five 6 cm blocks (with the streams' clearance and room for the hand) only in rows;
+    // random spots leave gaps too small for the last ones.
+    for (name, x, y) in [("e", 0.40, 0.10), ("f", 0.55, 0.15), ("g", 0.40, 0.35)] {
+        world
+            .add_block(name, "#888888", Vector3::new(x, y, 0.03), 0.0)
+            .unwrap_or_else(|e| panic!("{e}"));
+    }
+    // The goal: all five on the shelf.
+    let files = b.sources().unwrap();
+    let problem = files.problem.replace(
+        "(onshelf b))",
+        "(onshelf b) (onshelf e) (onshelf f) (onshelf g))",
+    );
+    let problem = problem.replace("a b - block", "a b e f g - block");
+    assert_ne!(problem, files.problem);
+    let model = DomainModel::new(
+        &files.domain,
+        "domain.pddl",
+        &problem,
+        "problem.pddl",
+        &world.snapshot().predicates,
+    )
+    .unwrap();
+    let objs: Vec<(String, String)> = SceneGraph::objects(&world)
+        .into_iter()
+        .map(|o| (o.name, o.kind))
+        .collect();
+    let task = model
+        .build(&objs, &SceneGraph::from_world(&world).to_strings())
+        .unwrap();
+    let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
+    let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::HMax);
+    let ops = plan_from_scratch(&task, &task.init, &mut binder, &cfg, 10, &NoClock)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(task.goal.holds(&replay(&task, &task.init, &ops).unwrap()));
+    // Every block has its own spot on the shelf.
+    let (lo, hi) = world.body_aabb("shelf").unwrap();
+    let spots: Vec<Vector3<f64>> = ["a", "b", "e", "f", "g"]
+        .iter()
+        .map(|n| binder.predicted_pose(n).unwrap().translation.vector)
+        .collect();
+    for (i, p) in spots.iter().enumerate() {
+        assert!(
+            (lo.x..=hi.x).contains(&p.x) && (lo.y..=hi.y).contains(&p.y) && p.z > hi.z,
+            "{p:?}"
+        );
+        for q in &spots[..i] {
+            assert!((p - q).xy().abs().max() >= 0.06, "{p:?} overlaps {q:?}");
+        }
+    }
+}

@@ -1188,6 +1188,34 @@ impl<'w> StreamBinder<'w> {
         drawn.sort_by(|a, b| {
             libm::hypot(a.1 - at.x, a.2 - at.y).total_cmp(&libm::hypot(b.1 - at.x, b.2 - at.y))
         });
+        // On a small surface (a shelf) random spots waste room a later body needs: its spots
+        // on a lattice at the packing pitch come first, nearest first.
+        let pitch = 2.0 * h.x.max(h.y) + self.params.clearance + 0.002;
+        let mut lattice = vec![];
+        for &(xr, yr, top) in surfaces {
+            let nx = ((xr[1] - xr[0] - 2.0 * margin) / pitch).floor();
+            let ny = ((yr[1] - yr[0] - 2.0 * margin) / pitch).floor();
+            if nx < 0.0 || ny < 0.0 || (nx + 1.0) * (ny + 1.0) > SMALL_SURFACE_SPOTS as f64 {
+                continue;
+            }
+            for i in 0..=nx as usize {
+                for j in 0..=ny as usize {
+                    let x = xr[0] + margin + i as f64 * pitch;
+                    let y = yr[0] + margin + j as f64 * pitch;
+                    lattice.push((0, x, y, 0.0, top));
+                }
+            }
+        }
+        lattice.sort_by(|a, b| {
+            libm::hypot(a.1 - at.x, a.2 - at.y).total_cmp(&libm::hypot(b.1 - at.x, b.2 - at.y))
+        });
+        for (k, c) in lattice.iter_mut().enumerate() {
+            c.0 = self.params.placement_samples + 1 + k;
+        }
+        if self.world.body_kind(&body) == Some(BodyKind::Block) {
+            lattice.extend(drawn);
+            drawn = lattice;
+        }
         // The hook goes back near where the demonstration left it first (spots within
         // HOOK_HINT_RADIUS of its hint), anywhere else after.
         if self.world.body_kind(&body) != Some(BodyKind::Block) {
@@ -1420,6 +1448,9 @@ fn depth_in(iso: &Isometry3<f64>, c: &dyn Shape, o: &Obstacle) -> Option<f64> {
 
 /// Largest joint step between the samples of a certified joint-space move (rad).
 const JOINT_STEP: f64 = 0.05;
+
+/// Surfaces with at most this many spots on the packing lattice are filled lattice first.
+const SMALL_SURFACE_SPOTS: usize = 12;
 
 /// Radius around the demonstrated hook placement whose spots are tried first (m).
 const HOOK_HINT_RADIUS: f64 = 0.15;
