@@ -516,3 +516,24 @@ fn five_blocks_fit_on_the_b2_shelf_when_placements_are_packed() {
         }
     }
 }
+
+#[test]
+fn widening_the_samples_after_failed_skeletons_is_bounded() {
+    let world = template(BenchmarkId::B2);
+    let params = StreamParams::default();
+    let mut binder = StreamBinder::new(&world, 1, params);
+    binder.widen();
+    assert_eq!(
+        binder.params().placement_samples,
+        2 * params.placement_samples
+    );
+    // One replan may try 2 × max_skeletons skeletons (Logic-LfD's, then TAMP's fallback): the
+    // samples per placement stop growing at WIDEN_LIMIT times the initial count.
+    for _ in 0..40 {
+        binder.widen();
+    }
+    assert_eq!(
+        binder.params().placement_samples,
+        logic_lfd::tamp::streams::WIDEN_LIMIT * params.placement_samples
+    );
+}

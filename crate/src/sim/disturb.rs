@@ -315,8 +315,8 @@ pub fn handleable(w: &World, x: &str) -> Result<(), String> {
 /// poses [`PULL_LIFT`] above them (IK) with its hand clear of everything but the tables there,
 /// the hook sweeps from contact to pulled through nothing but the tables and `x`, and `x`
 /// slides along the stroke into nothing but the tables and the hook (every shape shrunk by 2 mm,
-/// so resting contacts do not count). The arm's path is not checked: a stroke that fails here cannot be executed,
-/// whatever the planner.
+/// so resting contacts do not count). The arm's path is not checked: a stroke that fails here
+/// cannot be executed, whatever the planner.
 pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
     let (Some(base), Some(bp), Some(hp), Some(gp)) = (
         w.arm_base(arm),

@@ -1007,8 +1007,9 @@ impl World {
     /// (sampled every 0.05 rad), carrying what it holds: the name of the first body (`except`
     /// excepted) its links (the base link excepted) or its load overlap, by more than 2 mm, that
     /// they did not already overlap at `from`, or the table or shelf its links would stop at
-    /// (pressing deeper than the simulator lets them); `None` if nothing. The executor's joint-space
-    /// recovery asks this before it moves (a link passing through a block would knock it over).
+    /// (pressing deeper than the simulator lets them); `None` if nothing. The executor's
+    /// joint-space recovery asks this before it moves (a link passing through a block would
+    /// knock it over).
     pub fn joint_move_hits(
         &self,
         arm: usize,

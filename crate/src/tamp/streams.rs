@@ -208,6 +208,10 @@ pub struct StreamBinder<'w> {
     blockers: BTreeMap<usize, BTreeSet<String>>,
     /// Backtracking stops once `certifications` passes this (set per skeleton).
     budget_end: usize,
+    /// How far [`Binder::widen`] may raise `placement_samples`: [`WIDEN_LIMIT`] times the
+    /// initial count (one replan may try up to twice `max_skeletons` skeletons; unbounded
+    /// doubling drew millions of spots per placement).
+    widest_placement_samples: usize,
     /// What the certifications did.
     pub stats: StreamStats,
     /// Poses of the movable bodies after the last successfully bound skeleton (predicted).
@@ -284,6 +288,7 @@ impl<'w> StreamBinder<'w> {
             action: 0,
             blockers: BTreeMap::new(),
             budget_end: 0,
+            widest_placement_samples: params.placement_samples.saturating_mul(WIDEN_LIMIT),
             stats: StreamStats::default(),
             predicted: BTreeMap::new(),
             hints: BTreeMap::new(),
@@ -1449,6 +1454,9 @@ fn depth_in(iso: &Isometry3<f64>, c: &dyn Shape, o: &Obstacle) -> Option<f64> {
 /// Largest joint step between the samples of a certified joint-space move (rad).
 const JOINT_STEP: f64 = 0.05;
 
+/// [`Binder::widen`] raises the samples per placement to at most this many times the initial.
+pub const WIDEN_LIMIT: usize = 16;
+
 /// Surfaces with at most this many spots on the packing lattice are filled lattice first.
 const SMALL_SURFACE_SPOTS: usize = 12;
 
@@ -1484,7 +1492,8 @@ impl Binder for StreamBinder<'_> {
     }
 
     fn widen(&mut self) {
-        self.params.placement_samples *= 2;
+        self.params.placement_samples =
+            (self.params.placement_samples * 2).min(self.widest_placement_samples);
     }
 
     fn last_rejection(&self) -> Option<String> {
