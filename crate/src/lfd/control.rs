@@ -24,6 +24,7 @@ use serde::{Deserialize, Serialize};
 use crate::plan::{Clock, SearchConfig, State, Task};
 
 use super::demo::{DemoTrace, MultiGoalSpec};
+use super::exec::fact_args;
 use super::logic::{plan_logic_lfd_avoiding, replay, Mode};
 use super::{LfdError, Method};
 
@@ -641,14 +642,6 @@ impl Controller {
     }
 }
 
-/// The arguments of a ground atom or action name: `(pull panda hook b)` → `[panda, hook, b]`.
-fn fact_args(name: &str) -> Vec<&str> {
-    name.trim_matches(|c| c == '(' || c == ')')
-        .split_whitespace()
-        .skip(1)
-        .collect()
-}
-
 fn unreachable_linear() -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
     Err(FailReason::NoPlan {
         message: "linear never replans".into(),
@@ -719,10 +712,7 @@ impl BannedTask {
         let count = self.bans.entry(o).or_insert(0);
         *count += 1;
         let everywhere = *count > STATE_BANS;
-        let live: Vec<usize> = (0..self.task.operators.len())
-            .filter(|&i| self.origin[i] == o && !self.dead[i])
-            .collect();
-        for i in live {
+        for i in self.live_copies(o) {
             if everywhere {
                 forbid(&mut self.task, i);
                 self.dead[i] = true;
@@ -741,7 +731,7 @@ impl BannedTask {
         if o >= self.task.operators.len() || self.origin.get(o) != Some(&o) {
             return;
         }
-        let args = fact_args(&self.task.operators[o].name);
+        let (_, args) = fact_args(&self.task.operators[o].name);
         let movers: Vec<&str> = blockers
             .iter()
             .map(String::as_str)
@@ -749,21 +739,25 @@ impl BannedTask {
             .collect();
         let naming: Vec<u32> = (0..self.task.facts.len() as u32)
             .filter(|&f| {
-                let named = fact_args(&self.task.facts[f as usize]);
+                let (_, named) = fact_args(&self.task.facts[f as usize]);
                 movers.iter().any(|m| named.contains(m))
             })
             .collect();
         if naming.is_empty() {
             return self.ban(o, s);
         }
-        let live: Vec<usize> = (0..self.task.operators.len())
-            .filter(|&i| self.origin[i] == o && !self.dead[i])
-            .collect();
-        for i in live {
+        for i in self.live_copies(o) {
             if self.task.operators[i].applicable(s) {
                 self.split_on(i, s, &naming);
             }
         }
+    }
+
+    /// The operators of the banned task that stand for original operator `o` and are not dead.
+    fn live_copies(&self, o: usize) -> Vec<usize> {
+        (0..self.task.operators.len())
+            .filter(|&i| self.origin[i] == o && !self.dead[i])
+            .collect()
     }
 
     /// Replaces operator `i` by copies that do not apply at `s` (one per fact telling a state

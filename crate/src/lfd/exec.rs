@@ -282,11 +282,10 @@ struct Running {
     anchor: Option<(String, Vector3<f64>)>,
     frame: Option<Isometry3<f64>>,
     lag: usize,
-    /// Joint-space recovery: the planning IK's joints for `goal`, followed instead of the
-    /// Cartesian command while set; `recovered` once tried for this segment.
-    joint_goal: Option<[f64; crate::sim::panda::DOF]>,
-    /// Joint goals after `joint_goal` (the recovery's way round by the ready posture).
-    joint_route: Vec<[f64; crate::sim::panda::DOF]>,
+    /// Joint-space recovery: the joint goals still to reach, the first followed instead of the
+    /// Cartesian command while there is one (the planning IK's joints for `goal`, perhaps by
+    /// way of the ready posture first); `recovered` once tried for this segment.
+    joint_goals: Vec<[f64; crate::sim::panda::DOF]>,
     recovered: bool,
     /// Ticks spent in joint-space recovery.
     joint_ticks: usize,
@@ -620,8 +619,8 @@ impl ActionExec {
                 let s = (i as f64 / (seg.traj.len().max(2) - 1) as f64).clamp(0.0, 1.0);
                 let rot = seg.traj.start_rotation().slerp(&seg.goal.rotation, s);
                 let target = Isometry3::from_parts(Translation3::from(cmd_pos), rot);
-                match seg.joint_goal {
-                    Some(q) => {
+                match seg.joint_goals.first() {
+                    Some(&q) => {
                         let _ = world.command_joints(self.arm, q, self.gripper);
                     }
                     None => {
@@ -658,7 +657,7 @@ impl ActionExec {
                     let turned = !grasp_turn || turn_err <= p.orientation_tolerance;
                     if err <= p.reach_tolerance && turned {
                         self.next_phase();
-                    } else if let Some(q) = seg.joint_goal {
+                    } else if let Some(&q) = seg.joint_goals.first() {
                         // Joint-space recovery: back to Cartesian tracking once there (or after
                         // `settle_timeout` more), to settle on the goal.
                         seg.joint_ticks += 1;
@@ -666,15 +665,14 @@ impl ActionExec {
                             .joints(self.arm)
                             .is_none_or(|j| j.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-6));
                         let stopped = world.arm_blocked_by(self.arm).is_some();
-                        if there && !seg.joint_route.is_empty() {
-                            seg.joint_goal = Some(seg.joint_route.remove(0));
+                        if there && seg.joint_goals.len() > 1 {
+                            seg.joint_goals.remove(0);
                             seg.joint_ticks = 0;
                         } else if there
                             || stopped
                             || seg.joint_ticks as f64 * dt > 2.0 * p.settle_timeout
                         {
-                            seg.joint_goal = None;
-                            seg.joint_route.clear();
+                            seg.joint_goals.clear();
                             seg.lag = 0;
                         }
                     } else {
@@ -695,10 +693,8 @@ impl ActionExec {
                                     | ActionKind::Release { body, .. }
                                     | ActionKind::Pull { body, .. } => body.as_str(),
                                 };
-                                let route =
+                                seg.joint_goals =
                                     joint_recovery_route(world, self.arm, sol.joints, touches);
-                                seg.joint_goal = route.first().copied();
-                                seg.joint_route = route[1..].to_vec();
                                 seg.joint_ticks = 0;
                                 seg.lag = 0;
                             }
@@ -782,8 +778,7 @@ impl ActionExec {
             anchor,
             frame,
             lag: 0,
-            joint_goal: None,
-            joint_route: vec![],
+            joint_goals: vec![],
             recovered: false,
             joint_ticks: 0,
         })

@@ -332,8 +332,7 @@ pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
         Some(g) if w.held_by(arm) == Some(hook) => g,
         _ => gp.inverse() * hp,
     };
-    let shrink =
-        |c: &Cuboid| Cuboid::new((c.half_extents - Vector3::repeat(0.002)).map(|h| h.max(1e-4)));
+    let shrink = |c: &Cuboid| geometry::shrunk(c, 0.002);
     let hits = |parts: &[(Isometry3<f64>, Cuboid)], others: &[(Isometry3<f64>, Cuboid)]| {
         parts.iter().any(|(iso, c)| {
             others

@@ -212,6 +212,12 @@ pub fn boxes_except(world: &World, except: &[&str]) -> Vec<(Isometry3<f64>, Cubo
         .collect()
 }
 
+/// `c` with every half extent `slack` smaller (at least 0.1 mm), so that touching faces and
+/// resting contacts do not count as overlaps.
+pub(crate) fn shrunk(c: &Cuboid, slack: f64) -> Cuboid {
+    Cuboid::new((c.half_extents - Vector3::repeat(slack)).map(|h| h.max(1e-4)))
+}
+
 /// `iso` moved up by `dz` along world `z` (orientation kept).
 pub(crate) fn raised(iso: &Isometry3<f64>, dz: f64) -> Isometry3<f64> {
     Isometry3::from_parts(

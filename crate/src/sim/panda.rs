@@ -375,6 +375,30 @@ pub fn limit_margin(q: &[f64; DOF]) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+/// Largest joint step between the samples of a straight joint-space move checked for collisions
+/// (rad): the executor's recovery and the streams' certification of it sample alike.
+pub(crate) const JOINT_PATH_STEP: f64 = 0.05;
+
+/// The samples of the straight joint-space move from `from` to `to`, at most
+/// [`JOINT_PATH_STEP`] apart in every joint, `from` excluded and `to` included.
+pub(crate) fn joint_line(from: &[f64; DOF], to: &[f64; DOF]) -> impl Iterator<Item = [f64; DOF]> {
+    let (from, to) = (*from, *to);
+    let span = from
+        .iter()
+        .zip(&to)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    let n = ((span / JOINT_PATH_STEP).ceil() as usize).max(1);
+    (1..=n).map(move |k| {
+        let s = k as f64 / n as f64;
+        let mut q = from;
+        for (j, v) in q.iter_mut().enumerate() {
+            *v += s * (to[j] - from[j]);
+        }
+        q
+    })
+}
+
 /// [`inverse_kinematics`] warm-started at `from` and again at [`READY`] (each with its restarts);
 /// of the solutions found, the one farthest from the joint limits ([`limit_margin`]). For moves
 /// in joint space that must leave the tracker room to follow on: a wrist recovered to its limit

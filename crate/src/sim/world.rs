@@ -1004,7 +1004,7 @@ impl World {
     }
 
     /// What arm `arm` would sweep through on a straight joint-space move from `from` to `to`
-    /// (sampled every 0.05 rad), carrying what it holds: the name of the first body (`except`
+    /// (sampled as [`panda::joint_line`] does), carrying what it holds: the name of the first body (`except`
     /// excepted) its links (the base link excepted) or its load overlap, by more than 2 mm, that
     /// they did not already overlap at `from`, or the table or shelf its links would stop at
     /// (pressing deeper than the simulator lets them); `None` if nothing. The executor's
@@ -1029,7 +1029,6 @@ impl World {
                     .collect()
             })
             .unwrap_or_default();
-        const SLACK: f64 = 0.002;
         let others: Vec<(usize, Isometry3<f64>, Cuboid)> = self
             .bodies
             .iter()
@@ -1038,10 +1037,8 @@ impl World {
                 !b.lost && held.is_none_or(|(bi, _)| bi != *j) && !except.contains(&b.name.as_str())
             })
             .flat_map(|(j, b)| {
-                b.world_parts().map(move |(iso, c)| {
-                    let h = (c.half_extents - Vector3::repeat(SLACK)).map(|v| v.max(1e-4));
-                    (j, iso, Cuboid::new(h))
-                })
+                b.world_parts()
+                    .map(move |(iso, c)| (j, iso, super::geometry::shrunk(c, 0.002)))
             })
             .collect();
         // (part, other) pairs overlapping at q; parts: link capsules, then load boxes.
@@ -1070,21 +1067,10 @@ impl World {
             out
         };
         let at_start = overlapping(from);
-        let span = from
-            .iter()
-            .zip(to)
-            .map(|(x, y)| (x - y).abs())
-            .fold(0.0, f64::max);
-        let n = ((span / 0.05).ceil() as usize).max(1);
         // The links' stop at furniture, as in `step_arm`: deeper than LINK_TOLERANCE and deeper
         // than the step before.
         let mut furniture_depth = self.link_penetration(arm, from).0;
-        (1..=n).find_map(|k| {
-            let s = k as f64 / n as f64;
-            let mut q = *from;
-            for (j, v) in q.iter_mut().enumerate() {
-                *v += s * (to[j] - from[j]);
-            }
+        panda::joint_line(from, to).find_map(|q| {
             let (depth, with) = self.link_penetration(arm, &q);
             if depth > LINK_TOLERANCE && depth > furniture_depth + 1e-9 {
                 if let Some(j) = with {

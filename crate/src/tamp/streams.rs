@@ -658,18 +658,7 @@ impl<'w> StreamBinder<'w> {
         obstacles: &[Obstacle],
         start: &StartContacts,
     ) -> Option<(String, String)> {
-        let span = from
-            .iter()
-            .zip(to)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
-        let n = ((span / JOINT_STEP).ceil() as usize).max(1);
-        for k in 1..=n {
-            let s = k as f64 / n as f64;
-            let mut qk = *from;
-            for (j, v) in qk.iter_mut().enumerate() {
-                *v += s * (to[j] - from[j]);
-            }
+        for qk in panda::joint_line(from, to) {
             self.stats.path_samples += 1;
             let tcp = panda::forward_kinematics(base, &qk);
             if let Some(hit) = self.sample_hits(arm, &qk, &tcp, load, obstacles, start) {
@@ -1450,9 +1439,6 @@ fn depth_in(iso: &Isometry3<f64>, c: &dyn Shape, o: &Obstacle) -> Option<f64> {
         _ => None,
     }
 }
-
-/// Largest joint step between the samples of a certified joint-space move (rad).
-const JOINT_STEP: f64 = 0.05;
 
 /// [`Binder::widen`] raises the samples per placement to at most this many times the initial.
 pub const WIDEN_LIMIT: usize = 16;
