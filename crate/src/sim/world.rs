@@ -1004,12 +1004,12 @@ impl World {
     }
 
     /// What arm `arm` would sweep through on a straight joint-space move from `from` to `to`
-    /// (sampled as [`panda::joint_line`] does), carrying what it holds: the name of the first body (`except`
-    /// excepted) its links (the base link excepted) or its load overlap, by more than 2 mm, that
-    /// they did not already overlap at `from`, or the table or shelf its links would stop at
-    /// (pressing deeper than the simulator lets them); `None` if nothing. The executor's
-    /// joint-space recovery asks this before it moves (a link passing through a block would
-    /// knock it over).
+    /// (sampled at most 0.05 rad apart in every joint, as the streams sample it), carrying what
+    /// it holds: the name of the first body (`except` excepted) its links (the base link
+    /// excepted) or its load overlap, by more than 2 mm, that they did not already overlap at
+    /// `from`, or the table or shelf its links would stop at (pressing deeper than the simulator
+    /// lets them); `None` if nothing. The executor's joint-space recovery asks this before it
+    /// moves (a link passing through a block would knock it over).
     pub fn joint_move_hits(
         &self,
         arm: usize,
