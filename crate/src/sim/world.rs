@@ -159,7 +159,7 @@ pub(crate) fn yaw_of(rot: &UnitQuaternion<f64>) -> f64 {
 
 /// How deep an arm link may press into a table or shelf before the arm stops (m): the link
 /// capsules are rounded stand-ins for the real links.
-const LINK_TOLERANCE: f64 = 0.01;
+pub(crate) const LINK_TOLERANCE: f64 = 0.01;
 
 /// One arm with its gripper.
 #[derive(Clone, Debug)]

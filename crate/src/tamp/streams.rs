@@ -58,7 +58,7 @@ use crate::sim::geometry::{
 };
 use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
-use crate::sim::World;
+use crate::sim::{World, LINK_TOLERANCE};
 
 /// Tunables of the streams.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -157,6 +157,8 @@ struct Obstacle {
     /// A table: the carried body's transfer margin does not apply to it (a load on its way
     /// from a low pose would otherwise start inside the margin).
     support: bool,
+    /// A table or shelf: no action moves it.
+    fixed: bool,
     iso: Isometry3<f64>,
     shape: Cuboid,
     lo: Vector3<f64>,
@@ -372,6 +374,7 @@ impl<'w> StreamBinder<'w> {
                 out.push(Obstacle {
                     name: name.clone(),
                     support: *kind == BodyKind::Table,
+                    fixed: true,
                     iso: *iso,
                     shape,
                     lo,
@@ -390,6 +393,7 @@ impl<'w> StreamBinder<'w> {
                 out.push(Obstacle {
                     name: name.clone(),
                     support: false,
+                    fixed: false,
                     iso,
                     shape,
                     lo,
@@ -747,12 +751,18 @@ impl<'w> StreamBinder<'w> {
             .overlapping_pairs(arm, q, tcp, load, obstacles)
             .into_iter()
             .find(|(part, oi, iso, shape)| {
-                hits(
-                    iso,
-                    shape.as_shape(),
-                    &obstacles[*oi],
-                    start.get(&(*part, *oi)).copied(),
-                )
+                let o = &obstacles[*oi];
+                let allowed = start.get(&(*part, *oi)).map(|&d0| {
+                    // A link already pressed into a table or shelf moves as the simulator lets
+                    // it: deeper only while within its tolerance (the tracker's redundant joints
+                    // take another path than this IK's, so the depth drifts either way).
+                    let tolerated = match part {
+                        Part::Link(_) if o.fixed => LINK_TOLERANCE - self.params.contact_slack,
+                        _ => 0.0,
+                    };
+                    (d0 + 1e-4).max(tolerated)
+                });
+                hits(iso, shape.as_shape(), o, allowed)
             })?;
         let o = &obstacles[oi].name;
         let words = match part {
@@ -1424,10 +1434,10 @@ impl PartShape {
 type StartContacts = BTreeMap<(Part, usize), f64>;
 
 /// Whether shape `c` at `iso` hits obstacle `o`: overlaps it, or, when it started the path
-/// `start_depth` deep inside, is now deeper.
-fn hits(iso: &Isometry3<f64>, c: &dyn Shape, o: &Obstacle, start_depth: Option<f64>) -> bool {
-    match start_depth {
-        Some(d0) => depth_in(iso, c, o).is_some_and(|d| d > d0 + 1e-4),
+/// inside it, is now deeper than `allowed_depth`.
+fn hits(iso: &Isometry3<f64>, c: &dyn Shape, o: &Obstacle, allowed_depth: Option<f64>) -> bool {
+    match allowed_depth {
+        Some(allowed) => depth_in(iso, c, o).is_some_and(|d| d > allowed),
         None => query::intersection_test(iso, c, &o.iso, &o.shape).unwrap_or(true),
     }
 }
