@@ -583,3 +583,37 @@ fn soak_2026_1970_a_hand_pressed_against_the_shelf_rises_with_the_hook_to_put_it
     assert_eq!(world.held_by(0), None);
     assert!(SceneGraph::from_world(&world).contains("(handempty panda)"));
 }
+
+#[test]
+fn soak_2026_2835_a_block_lifted_behind_the_base_with_a_joint_at_its_limit_reaches_the_shelf() {
+    // Soak finding (seed 2026, episode 2835): block a, grasped behind the arm's base with the
+    // base joint at its limit, could not be lifted: the tracker stalls against the limit, and
+    // both joint-space ways to the roomy solution sweep a into block f, 7 mm beside it. The
+    // recovery now goes to the solution nearest the arm's joints for a point on the way up
+    // (the other joints take the held joint's share), and the tracker follows from there.
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/worlds/soak-2026-2835.json"
+    ))
+    .unwrap();
+    let mut world = World::from_json(&text).unwrap();
+    assert_eq!(world.held_by(0), Some("a"));
+    let q = world.joints(0).unwrap();
+    assert!(logic_lfd::sim::panda::JOINT_UPPER[0] - q[0] < 0.01, "{q:?}");
+    let b = BenchmarkId::B2;
+    let (_, task) = model_and_task(b, &world);
+    let ops = [op(&task, "(place-on-shelf panda a)")];
+    let bindings = {
+        let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
+        let r = binder.bind(&task, &ops, ops.len());
+        assert_eq!(r, Ok(()), "{:?}", binder.last_rejection());
+        binder.bindings
+    };
+    let f = world.body_pose("f").unwrap();
+    let skills = SkillLibrary::learn(&b.sources().unwrap().demo, SkillKind::Lqt, &[]);
+    execute_bound(&mut world, &task, &ops, &bindings, &skills);
+    assert!(SceneGraph::from_world(&world).contains("(onshelf a)"));
+    assert!(
+        (world.body_pose("f").unwrap().translation.vector - f.translation.vector).norm() < 1e-6
+    );
+}

@@ -693,8 +693,9 @@ impl ActionExec {
                                     | ActionKind::Release { body, .. }
                                     | ActionKind::Pull { body, .. } => body.as_str(),
                                 };
-                                seg.joint_goals =
-                                    joint_recovery_route(world, self.arm, sol.joints, touches);
+                                seg.joint_goals = joint_recovery_route(
+                                    world, self.arm, &seg.goal, sol.joints, touches,
+                                );
                                 seg.joint_ticks = 0;
                                 seg.lag = 0;
                             }
@@ -1000,16 +1001,24 @@ pub(crate) fn safe_transit_z(world: &World, arm: usize, goal: &Isometry3<f64>) -
     }))
 }
 
-/// The joint goals of a joint-space recovery of `arm` to joints `goal`: straight there, or, when
-/// that move would sweep the arm or its load through something ([`World::joint_move_hits`]) and
-/// the way by the ready posture would not, by way of [`panda::READY`] (the streams certify the
-/// same choice). `touches`: the body the action grasps, releases or pulls, which the hand may
-/// touch.
+/// Where a joint-space recovery that can take neither of its ways to the roomy solution goes
+/// instead: the solution nearest the arm's joints for the first of these fractions of the way
+/// from the TCP to the goal that a clear move reaches (the tracker takes it from there).
+pub(crate) const NEAR_RECOVERY_FRACTIONS: [f64; 3] = [1.0, 0.5, 0.25];
+
+/// The joint goals of a joint-space recovery of `arm` to the TCP pose `pose`, whose solution
+/// with the most room to the limits is `goal`: straight there, or, when that move would sweep
+/// the arm or its load through something ([`World::joint_move_hits`]) and the way by the ready
+/// posture would not, by way of [`panda::READY`]; failing both, straight to the solution
+/// nearest the arm's joints ([`World::reachable_near`]) for the goal, or for a point on the
+/// way to it ([`NEAR_RECOVERY_FRACTIONS`]), if that move is clear. The streams certify the same
+/// choice. `touches`: the body the action grasps, releases or pulls, which the hand may touch.
 ///
 /// [`panda::READY`]: crate::sim::panda::READY
 fn joint_recovery_route(
     world: &World,
     arm: usize,
+    pose: &Isometry3<f64>,
     goal: [f64; crate::sim::panda::DOF],
     touches: &str,
 ) -> Vec<[f64; crate::sim::panda::DOF]> {
@@ -1018,12 +1027,30 @@ fn joint_recovery_route(
         return vec![goal];
     };
     let except = [touches];
-    if world.joint_move_hits(arm, &now, &goal, &except).is_some()
-        && world.joint_move_hits(arm, &now, &ready, &except).is_none()
+    if world.joint_move_hits(arm, &now, &goal, &except).is_none() {
+        return vec![goal];
+    }
+    if world.joint_move_hits(arm, &now, &ready, &except).is_none()
         && world.joint_move_hits(arm, &ready, &goal, &except).is_none()
     {
-        vec![ready, goal]
-    } else {
-        vec![goal]
+        return vec![ready, goal];
     }
+    let Some(tcp) = world.tcp_pose(arm) else {
+        return vec![goal];
+    };
+    for s in NEAR_RECOVERY_FRACTIONS {
+        let mut part = *pose;
+        part.translation.vector = tcp.translation.vector.lerp(&pose.translation.vector, s);
+        match world.reachable_near(arm, &part) {
+            Ok(near)
+                if world
+                    .joint_move_hits(arm, &now, &near.joints, &except)
+                    .is_none() =>
+            {
+                return vec![near.joints];
+            }
+            _ => {}
+        }
+    }
+    vec![goal]
 }

@@ -254,12 +254,16 @@ pub fn clamp_joints(q: &mut [f64; DOF]) {
 }
 
 /// One DLS attempt from `q`; returns (q, position error, orientation error, iterations).
+/// `hold_limits`: a joint at a limit that a step drives further out is held there and left out
+/// of that step's Jacobian, so the other joints take up its share (otherwise the step is
+/// clamped afterwards, which leaves the TCP short of where it aimed, step after step).
 fn dls_attempt(
     base: &Isometry3<f64>,
     target: &Frame,
     mut q: [f64; DOF],
     params: &IkParams,
     max_iterations: usize,
+    hold_limits: bool,
 ) -> ([f64; DOF], f64, f64, usize) {
     let mid = mid_joints();
     let lambda2 = params.damping * params.damping;
@@ -283,21 +287,43 @@ fn dls_attempt(
             .copy_from(&(ep * (params.max_step / np.max(params.max_step))));
         e.fixed_rows_mut::<3>(3)
             .copy_from(&(er * (params.max_step / nr.max(params.max_step))));
-        let j = jacobian(&f);
-        let jjt: Matrix6<f64> = j * j.transpose() + Matrix6::identity() * lambda2;
-        let Some(chol) = jjt.cholesky() else {
+        let full = jacobian(&f);
+        let mut held = [false; DOF];
+        let dq = loop {
+            let mut j = full;
+            for i in (0..DOF).filter(|&i| held[i]) {
+                j.column_mut(i).fill(0.0);
+            }
+            let jjt: Matrix6<f64> = j * j.transpose() + Matrix6::identity() * lambda2;
+            let Some(chol) = jjt.cholesky() else {
+                break None;
+            };
+            let y: Matrix6x1<f64> = chol.solve(&e);
+            let mut dq = j.transpose() * y;
+            // Null-space posture term: (I - J⁺J) k (q_mid - q), J⁺ = Jᵀ (JJᵀ + λ²I)⁻¹.
+            let mut z = SMatrix::<f64, DOF, 1>::zeros();
+            for i in (0..DOF).filter(|&i| !held[i]) {
+                z[i] = params.null_space_gain * (mid[i] - q[i]);
+            }
+            let jz = j * z;
+            let proj = j.transpose() * chol.solve(&jz);
+            dq += z - proj;
+            let mut newly_held = false;
+            for i in (0..DOF).filter(|_| hold_limits) {
+                let out = (q[i] >= JOINT_UPPER[i] && dq[i] > 0.0)
+                    || (q[i] <= JOINT_LOWER[i] && dq[i] < 0.0);
+                if out && !held[i] {
+                    held[i] = true;
+                    newly_held = true;
+                }
+            }
+            if !newly_held {
+                break Some(dq);
+            }
+        };
+        let Some(dq) = dq else {
             break;
         };
-        let y: Matrix6x1<f64> = chol.solve(&e);
-        let mut dq = j.transpose() * y;
-        // Null-space posture term: (I - J⁺J) k (q_mid - q), J⁺ = Jᵀ (JJᵀ + λ²I)⁻¹.
-        let mut z = SMatrix::<f64, DOF, 1>::zeros();
-        for i in 0..DOF {
-            z[i] = params.null_space_gain * (mid[i] - q[i]);
-        }
-        let jz = j * z;
-        let proj = j.transpose() * chol.solve(&jz);
-        dq += z - proj;
         for i in 0..DOF {
             q[i] = (q[i] + dq[i]).clamp(JOINT_LOWER[i], JOINT_UPPER[i]);
         }
@@ -322,7 +348,7 @@ pub fn inverse_kinematics(
     let mut q0 = *seed_joints;
     clamp_joints(&mut q0);
     let mut total = 0;
-    let (q, np, nr, it) = dls_attempt(base, &target, q0, params, params.max_iterations);
+    let (q, np, nr, it) = dls_attempt(base, &target, q0, params, params.max_iterations, false);
     total += it;
     let mut best = (q, np, nr);
     let ok = |np: f64, nr: f64| np < params.position_tolerance && nr < params.orientation_tolerance;
@@ -343,7 +369,8 @@ pub fn inverse_kinematics(
             let u: f64 = rng.random_range(0.1..0.9);
             qr[i] = 0.5 * (lo + u * (hi - lo)) + 0.5 * READY[i].clamp(lo, hi);
         }
-        let (q, np, nr, it) = dls_attempt(base, &target, qr, params, params.max_iterations * 2);
+        let (q, np, nr, it) =
+            dls_attempt(base, &target, qr, params, params.max_iterations * 2, false);
         total += it;
         if ok(np, nr) {
             return Ok(IkSolution {
@@ -362,6 +389,35 @@ pub fn inverse_kinematics(
         position_error: best.1,
         orientation_error: best.2,
     })
+}
+
+/// Inverse kinematics for a TCP pose from `seed_joints` alone (no restarts), holding a joint
+/// at a limit where a step would drive it further out: the solution nearest the seed where
+/// [`inverse_kinematics`]' warm start stalls against a limit.
+pub fn inverse_kinematics_near(
+    base: &Isometry3<f64>,
+    target: &Isometry3<f64>,
+    seed_joints: &[f64; DOF],
+    params: &IkParams,
+) -> Result<IkSolution, Unreachable> {
+    let mut q0 = *seed_joints;
+    clamp_joints(&mut q0);
+    let target = Frame::from_iso(target);
+    let (q, np, nr, it) = dls_attempt(base, &target, q0, params, params.max_iterations, true);
+    if np < params.position_tolerance && nr < params.orientation_tolerance {
+        Ok(IkSolution {
+            joints: q,
+            position_error: np,
+            orientation_error: nr,
+            iterations: it,
+        })
+    } else {
+        Err(Unreachable {
+            best_joints: q,
+            position_error: np,
+            orientation_error: nr,
+        })
+    }
 }
 
 /// How far joints `q` are from their nearest limit, as a fraction of that joint's range (0 at a
@@ -477,6 +533,48 @@ mod tests {
             roomy.joints,
             limit_margin(&roomy.joints)
         );
+    }
+
+    #[test]
+    fn holding_a_joint_at_its_limit_leaves_the_others_to_reach_the_target() {
+        // Targets reachable with one joint at a limit, from warm starts beside them with that
+        // joint at the limit too. Where a step drives it further out, the other joints must
+        // make up its share.
+        let base = Isometry3::identity();
+        let p = IkParams {
+            restarts: 0,
+            max_iterations: 100,
+            ..IkParams::default()
+        };
+        let mut rng = Pcg64Mcg::seed_from_u64(7);
+        let (mut warm, mut near) = (0, 0);
+        let cases = 300;
+        for _ in 0..cases {
+            let mut q = [0.0; DOF];
+            for i in 0..DOF {
+                q[i] = rng.random_range(JOINT_LOWER[i] + 0.3..JOINT_UPPER[i] - 0.3);
+            }
+            let k = rng.random_range(0..DOF);
+            q[k] = if rng.random_bool(0.5) {
+                JOINT_LOWER[k]
+            } else {
+                JOINT_UPPER[k]
+            };
+            let target = forward_kinematics(&base, &q);
+            let mut seed = q;
+            for i in (0..DOF).filter(|&i| i != k) {
+                seed[i] += rng.random_range(-0.15..0.15);
+            }
+            warm += inverse_kinematics(&base, &target, &seed, &p).is_ok() as usize;
+            if let Ok(sol) = inverse_kinematics_near(&base, &target, &seed, &p) {
+                let reached = forward_kinematics(&base, &sol.joints);
+                assert!((reached.translation.vector - target.translation.vector).norm() < 1e-3);
+                near += 1;
+            }
+        }
+        assert_eq!(near, cases, "warm start {warm} of {cases}");
+        // The plain warm start stalls on some of them: the cases test the hold.
+        assert!(warm < cases);
     }
 
     #[test]

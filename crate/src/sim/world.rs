@@ -1003,6 +1003,19 @@ impl World {
         panda::inverse_kinematics_with_room(&a.base, pose, &a.joints, &self.params.planning_ik)
     }
 
+    /// The solution nearest the arm's joints ([`panda::inverse_kinematics_near`]: from them
+    /// alone, a joint at a limit held there while the others reach the pose).
+    pub fn reachable_near(
+        &self,
+        arm: usize,
+        pose: &Isometry3<f64>,
+    ) -> Result<IkSolution, Unreachable> {
+        let Some(a) = self.arms.get(arm) else {
+            return self.reachable(arm, pose);
+        };
+        panda::inverse_kinematics_near(&a.base, pose, &a.joints, &self.params.planning_ik)
+    }
+
     /// What arm `arm` would sweep through on a straight joint-space move from `from` to `to`
     /// (sampled at most 0.05 rad apart in every joint, as the streams sample it), carrying what
     /// it holds: the name of the first body (`except` excepted) its links (the base link

@@ -50,7 +50,9 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
 use crate::lfd::control::Binder;
-use crate::lfd::exec::{classify, fact_args, ActionKind, Binding, Placement};
+use crate::lfd::exec::{
+    classify, fact_args, ActionKind, Binding, Placement, NEAR_RECOVERY_FRACTIONS,
+};
 use crate::plan::Task;
 use crate::sim::demo::{pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TURNS};
 use crate::sim::geometry::{
@@ -618,8 +620,9 @@ impl<'w> StreamBinder<'w> {
     /// The executor's joint-space recovery from joints `q` to the TCP pose `goal`
     /// (`lfd::exec`: the planning IK from `q` and from the ready posture, the solution with the
     /// most room to the joint limits, then a straight move in joint space, or, where that
-    /// sweeps through something, two by way of the ready posture): `None` if the planning IK
-    /// finds no solution, else the goal joints or what the straight move hits.
+    /// sweeps through something, two by way of the ready posture, or, failing both, one to the
+    /// solution nearest `q`): `None` if the planning IK finds no solution, else the goal joints
+    /// or what the straight move hits.
     #[allow(clippy::too_many_arguments)]
     fn joint_recovery(
         &mut self,
@@ -643,10 +646,75 @@ impl<'w> StreamBinder<'w> {
         let around = self
             .joint_leg_hits(arm, base, q, &via, load, obstacles, start)
             .or_else(|| self.joint_leg_hits(arm, base, &via, &sol.joints, load, obstacles, start));
-        Some(match around {
-            None => Ok(sol.joints),
-            Some(_) => Err(hit),
-        })
+        if around.is_none() {
+            return Some(Ok(sol.joints));
+        }
+        // Failing both, straight to the solution nearest `q` for the goal or a point on the way
+        // to it, the first a clear move reaches; the tracker then follows the rest of the way.
+        let from = panda::forward_kinematics(base, q).translation.vector;
+        let ik = self.world.params().planning_ik.clone();
+        for s in NEAR_RECOVERY_FRACTIONS {
+            let mut part = *goal;
+            part.translation.vector = from.lerp(&goal.translation.vector, s);
+            let Ok(near) = panda::inverse_kinematics_near(base, &part, q, &ik) else {
+                continue;
+            };
+            if self
+                .joint_leg_hits(arm, base, q, &near.joints, load, obstacles, start)
+                .is_some()
+            {
+                continue;
+            }
+            return Some(
+                self.track_line(arm, base, &near.joints, &part, goal, load, obstacles, start)
+                    .ok_or(hit),
+            );
+        }
+        Some(Err(hit))
+    }
+
+    /// The joints at the end of the tracker's straight TCP line from `from` (joints `q`) to
+    /// `to`, sampled and checked like [`StreamBinder::certify_path`]'s (without its
+    /// recoveries); `None` if the tracker cannot follow it or the arm hits something.
+    #[allow(clippy::too_many_arguments)]
+    fn track_line(
+        &mut self,
+        arm: usize,
+        base: &Isometry3<f64>,
+        q: &[f64; DOF],
+        from: &Isometry3<f64>,
+        to: &Isometry3<f64>,
+        load: &[LoadPart],
+        obstacles: &[Obstacle],
+        start: &StartContacts,
+    ) -> Option<[f64; DOF]> {
+        let len = (to.translation.vector - from.translation.vector).norm();
+        let n = ((len / self.params.path_step).ceil() as usize).max(1);
+        let mut q = *q;
+        for k in 1..=n {
+            let s = k as f64 / n as f64;
+            let p = from.translation.vector.lerp(&to.translation.vector, s);
+            let tcp =
+                Isometry3::from_parts(Translation3::from(p), from.rotation.slerp(&to.rotation, s));
+            self.stats.path_samples += 1;
+            let ik = if k == n {
+                &self.settle_ik
+            } else {
+                &self.track_ik
+            };
+            q = match panda::inverse_kinematics(base, &tcp, &q, ik) {
+                Ok(sol) => sol.joints,
+                Err(e) if k < n => e.best_joints,
+                Err(_) => return None,
+            };
+            if self
+                .sample_hits(arm, &q, &tcp, load, obstacles, start)
+                .is_some()
+            {
+                return None;
+            }
+        }
+        Some(q)
     }
 
     /// What arm `arm` (carrying `load`) hits on the straight joint-space move from `from` to
