@@ -2,6 +2,10 @@
 # Builds the npm package `logic-lfd` into pkg/: the crate for wasm32 (size-optimised profile),
 # wasm-bindgen for the web (`init()` then use) and for node (CommonJS, ready on require),
 # wasm-opt -Oz from the npm `binaryen` package (Debian's binaryen 108 emits broken modules).
+# Also builds pkg/page/ (not part of the npm package) for the page: logic_lfd.js, its first-load
+# module (feature `wasm-core`: the API without Teach mode, Session.replay and the npm-only lqt,
+# validate and runEpisode), and logic_lfd_teach.js, the full module under its own name, which the
+# page loads only when it needs one of those (Teach mode).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -20,21 +24,38 @@ if [ ! -x node_modules/.bin/wasm-opt ]; then
   exit 1
 fi
 
-echo "== cargo build (wasm32, profile wasm-release)"
 # Keep the target_features section for wasm-bindgen; wasm-opt strips names afterwards.
-CARGO_PROFILE_WASM_RELEASE_STRIP=false cargo build --target wasm32-unknown-unknown --profile wasm-release --features wasm -p logic-lfd --lib --locked
+build() {
+  echo "== cargo build (wasm32, profile wasm-release, features $1)"
+  CARGO_PROFILE_WASM_RELEASE_STRIP=false cargo build --target wasm32-unknown-unknown --profile wasm-release --features "$1" -p logic-lfd --lib --locked
+}
+FEATURES=(--enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext
+  --enable-mutable-globals --enable-reference-types --enable-multivalue)
+wasm_opt() {
+  local file="$1"
+  shift
+  echo "== wasm-opt -Oz${*:+ $*} $file"
+  node_modules/.bin/wasm-opt -Oz "$@" --strip-debug --strip-producers "${FEATURES[@]}" "$file" -o "$file"
+}
 
 rm -rf "$OUT"
-mkdir -p "$OUT/web" "$OUT/node"
+mkdir -p "$OUT/web" "$OUT/node" "$OUT/page"
+
+build wasm-core
+echo "== wasm-bindgen $have (page)"
+wasm-bindgen "$WASM" --target web --out-dir "$OUT/page" --out-name logic_lfd
+# --converge (repeat until no gain) takes twice as long and saves ~1.7 KB gzipped: only for the
+# module of the page's first load, whose size has a target (README).
+wasm_opt "$OUT/page/logic_lfd_bg.wasm" --converge
+
+build wasm
 echo "== wasm-bindgen $have"
 wasm-bindgen "$WASM" --target web --out-dir "$OUT/web" --out-name logic_lfd
 wasm-bindgen "$WASM" --target nodejs --out-dir "$OUT/node" --out-name logic_lfd
-
-echo "== wasm-opt -Oz"
-FEATURES=(--enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext
-  --enable-mutable-globals --enable-reference-types --enable-multivalue)
-node_modules/.bin/wasm-opt -Oz --strip-debug --strip-producers "${FEATURES[@]}" "$OUT/web/logic_lfd_bg.wasm" -o "$OUT/web/logic_lfd_bg.wasm"
+wasm-bindgen "$WASM" --target web --out-dir "$OUT/page" --out-name logic_lfd_teach
+wasm_opt "$OUT/web/logic_lfd_bg.wasm"
 cp "$OUT/web/logic_lfd_bg.wasm" "$OUT/node/logic_lfd_bg.wasm"
+wasm_opt "$OUT/page/logic_lfd_teach_bg.wasm"
 
 # The node build is CommonJS (ready as soon as it is required); index.mjs gives ESM importers the
 # same shape as the web build (a default `init()` that resolves at once), so code runs unchanged.
@@ -56,6 +77,8 @@ node -e '
   p.version = process.argv[2]; fs.writeFileSync(process.argv[1], JSON.stringify(p, null, 2) + "\n");
 ' "$OUT/package.json" "$ver"
 
-raw=$(wc -c < "$OUT/web/logic_lfd_bg.wasm")
-gz=$(gzip -9 -c "$OUT/web/logic_lfd_bg.wasm" | wc -c)
-echo "== pkg/ ready: logic_lfd_bg.wasm $raw bytes ($gz gzipped)"
+for f in web/logic_lfd_bg.wasm page/logic_lfd_bg.wasm; do
+  raw=$(wc -c < "$OUT/$f")
+  gz=$(gzip -9 -c "$OUT/$f" | wc -c)
+  echo "== pkg/$f ready: $raw bytes ($gz gzipped)"
+done

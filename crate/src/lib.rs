@@ -27,5 +27,5 @@ pub mod plan;
 pub mod recorder;
 pub mod sim;
 pub mod tamp;
-#[cfg(feature = "wasm")]
+#[cfg(feature = "wasm-core")]
 pub mod wasm;

@@ -1,8 +1,14 @@
 //! WebAssembly bindings (feature `wasm`): the only module that touches `wasm-bindgen`.
 //!
-//! Everything crosses the boundary as plain JSON-compatible data (serde through
-//! `serde-wasm-bindgen`, TypeScript declarations from `tsify` or hand-written custom sections);
-//! every fallible call returns a rejected value carrying a message instead of panicking.
+//! Everything crosses the boundary as plain JSON-compatible data (serde through JSON text and
+//! `JSON.parse` / `JSON.stringify`, so that one serde_json (de)serialiser serves every type;
+//! TypeScript declarations from `tsify` or hand-written custom sections); every fallible call
+//! returns a rejected value carrying a message instead of panicking.
+//!
+//! Feature `wasm-core` builds the page's first-load module: everything but Teach mode
+//! (`Teacher`, taught tasks), `Session.replay` and the npm-only `lqt`, `validate` and
+//! `runEpisode`; `wasm` adds them (the npm package, and the module the page loads when Teach mode
+//! opens).
 
 use crate::pddl::{self, PddlError};
 use crate::plan::{self, Algorithm, Clock, HeuristicKind, SearchConfig, SearchOutcome};
@@ -10,7 +16,9 @@ use serde::{Deserialize, Serialize};
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
 
+#[cfg(feature = "wasm")]
 pub mod reliability;
+#[cfg(feature = "wasm")]
 mod teach;
 
 #[wasm_bindgen]
@@ -156,10 +164,45 @@ fn js_err(e: impl std::fmt::Display) -> JsError {
     JsError::new(&e.to_string())
 }
 
-/// Serialises plain data for JS: objects (not `Map`s), numbers for `u64`.
+#[wasm_bindgen]
+extern "C" {
+    /// `JSON.parse(text)`.
+    #[wasm_bindgen(js_namespace = JSON, js_name = parse, catch)]
+    fn json_parse(text: &str) -> Result<JsValue, JsValue>;
+
+    /// `JSON.stringify(value)`: `None` for `undefined`, a function or a symbol; throws for a
+    /// BigInt or a cycle.
+    #[wasm_bindgen(js_namespace = JSON, js_name = stringify, catch)]
+    fn json_stringify(value: &JsValue) -> Result<Option<String>, JsValue>;
+}
+
+/// Reads plain data from JS through its JSON text, so that one deserialiser (serde_json's, which
+/// the core uses for JSON text) serves every type. `undefined` reads as `null`, and an object's
+/// `undefined` fields as absent (JSON has no `undefined`). Errors are the serde messages, without
+/// a position in the text.
+fn from_js<T: serde::de::DeserializeOwned>(v: &JsValue) -> Result<T, String> {
+    let text = json_stringify(v)
+        .map_err(|_| "not JSON data (a BigInt, or a cycle)".to_string())?
+        .unwrap_or_else(|| "null".into());
+    serde_json::from_str(&text).map_err(|e| json_message(&e))
+}
+
+/// A serde_json error without its ` at line L column C` suffix.
+fn json_message(e: &serde_json::Error) -> String {
+    let s = e.to_string();
+    let at = format!(" at line {} column {}", e.line(), e.column());
+    match s.strip_suffix(&at) {
+        Some(m) if e.line() != 0 => m.to_string(),
+        _ => s,
+    }
+}
+
+/// Serialises plain data for JS (objects, not `Map`s; numbers for `u64`) through serde_json's
+/// compact text and `JSON.parse`: floats are written shortest-round-trip, so JS gets the same
+/// numbers; a non-finite one would come out as `null`, as in the CLI's JSON.
 fn to_js<T: serde::Serialize>(v: &T) -> Result<JsValue, JsError> {
-    v.serialize(&serde_wasm_bindgen::Serializer::json_compatible())
-        .map_err(js_err)
+    let text = serde_json::to_string(v).map_err(js_err)?;
+    json_parse(&text).map_err(|_| js_err("JSON.parse failed"))
 }
 
 /// Solves one LQT-CP case (the contract of `shared/lqt-cp-io.md`, as `logic-lfd lqt CASE.json`).
@@ -167,6 +210,7 @@ fn to_js<T: serde::Serialize>(v: &T) -> Result<JsValue, JsError> {
 /// `case` is the case object or its JSON text; the result is the output object (`A`, `B`, `phi`,
 /// `w`, `u`, `x`, `pos`, `cost`, `target_errors`, `feedback`). A malformed case rejects with a
 /// message naming the key.
+#[cfg(feature = "wasm")]
 #[wasm_bindgen(unchecked_return_type = "LqtOutput")]
 pub fn lqt(
     #[wasm_bindgen(unchecked_param_type = "LqtCase | string")] case: JsValue,
@@ -175,7 +219,7 @@ pub fn lqt(
     let input = match case.as_string() {
         Some(text) => CaseInput::from_json_str(&text),
         None => {
-            let v: serde_json::Value = serde_wasm_bindgen::from_value(case).map_err(js_err)?;
+            let v: serde_json::Value = from_js(&case).map_err(js_err)?;
             CaseInput::from_value(&v)
         }
     }
@@ -184,6 +228,7 @@ pub fn lqt(
     to_js(&out)
 }
 
+#[cfg(feature = "wasm")]
 #[wasm_bindgen(typescript_custom_section)]
 const TS_LQT: &'static str = r#"
 /** An LQT-CP case (shared/lqt-cp-io.md); unknown keys are ignored. */
@@ -451,10 +496,8 @@ pub fn plan(
     let o: PlanOptions = if options.is_undefined() || options.is_null() {
         PlanOptions::default()
     } else {
-        // Through serde_json so that misspelt keys are refused (deny_unknown_fields).
-        let v: serde_json::Value =
-            serde_wasm_bindgen::from_value(options).map_err(|e| js_err(format!("options: {e}")))?;
-        serde_json::from_value(v).map_err(|e| js_err(format!("options: {e}")))?
+        // Misspelt keys are refused (deny_unknown_fields).
+        from_js(&options).map_err(|e| js_err(format!("options: {e}")))?
     };
     to_js(&plan_impl(domain, problem, o))
 }
@@ -511,6 +554,7 @@ pub fn benchmark(id: &str) -> Result<JsValue, JsError> {
 }
 
 /// The verdict of [`validate()`].
+#[cfg(feature = "wasm")]
 #[derive(Debug, Serialize, Tsify)]
 pub struct Validation {
     /// Every step applied and the goal holds.
@@ -533,6 +577,7 @@ pub struct Validation {
 /// Replays a plan (IPC format, one `(action arg …)` per line, `;` comments) on a problem and
 /// says whether it is valid, or the first failing step and why. Bad PDDL or a malformed plan is
 /// reported with `line:col` diagnostics, not thrown.
+#[cfg(feature = "wasm")]
 #[wasm_bindgen(unchecked_return_type = "Validation")]
 pub fn validate(domain: &str, problem: &str, plan_text: &str) -> Result<JsValue, JsError> {
     use crate::plan::Outcome;
@@ -597,9 +642,7 @@ fn seed_of(seed: f64) -> Result<u64, JsError> {
 }
 
 fn session_options(options: JsValue) -> Result<crate::lfd::session::SessionOptions, JsError> {
-    let v: serde_json::Value =
-        serde_wasm_bindgen::from_value(options).map_err(|e| js_err(format!("options: {e}")))?;
-    serde_json::from_value(v).map_err(|e| js_err(format!("options: {e}")))
+    from_js(&options).map_err(|e| js_err(format!("options: {e}")))
 }
 
 /// One closed-loop episode (paper Algorithm 1) in a kinematic workcell: step it, draw its frames,
@@ -637,6 +680,7 @@ impl WasmSession {
     }
 
     /// Re-runs a logged episode (from `episodeJson()`) and returns the session at its end.
+    #[cfg(feature = "wasm")]
     pub fn replay(episode: &str) -> Result<WasmSession, JsError> {
         let inner = crate::lfd::session::Session::replay(episode).map_err(js_err)?;
         Ok(WasmSession { inner })

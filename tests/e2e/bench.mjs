@@ -36,9 +36,10 @@ async function sizes() {
     rows.push({ file: f.slice(dist.length + 1), raw: b.length, gz: g });
     raw += b.length;
     gz += g;
-    // The PDDL editor (CodeMirror) and the charts (uPlot, its JS and CSS) are separate chunks
-    // fetched when their tab first opens.
-    if (/\/(editor-[^/]*\.js|uPlot[^/]*\.(js|css))$/.test(f)) lazyGz += g;
+    // The PDDL editor (CodeMirror), the charts (uPlot, its JS and CSS) and Teach mode (its panel,
+    // and the full wasm module with the recorder) are separate chunks fetched when their tab
+    // first opens.
+    if (/\/(editor-[^/]*\.js|uPlot[^/]*\.(js|css)|teach-[^/]*\.js|logic_lfd_teach[^/]*\.(js|wasm))$/.test(f)) lazyGz += g;
   }
   return { raw, gz, lazyGz, rows };
 }

@@ -8,7 +8,7 @@ import type { EditorPanel } from './editor';
 import { Charts } from './charts';
 import { el } from './dom';
 import type { FromWorker, Level } from './protocol';
-import { TeachPanel } from './teach';
+import type { TeachPanel } from './teach';
 
 type Benchmark = SessionOptions['benchmark'];
 type Method = SessionOptions['method'];
@@ -179,7 +179,7 @@ app.replaceChildren(header, el('main', { class: 'layout' }, stage, side), help);
 const client = new WorkerClient(onPush);
 const view = new View(stage, {
   onDrop: async ({ body, position }) => {
-    if (teach.active) return teach.drop({ body, position });
+    if (teach?.active) return teach.drop({ body, position });
     const r = await client.call('perturb', { body, position });
     if (!r.ok) return r.reason;
     showNotice(r.message || `Moved ${body}`, 'info');
@@ -193,7 +193,21 @@ const view = new View(stage, {
   onNotice: (t, k) => showNotice(t, k),
 });
 let autoResume = false;
-const teach = new TeachPanel(teachSlot, {
+// Teach mode (its panel, and the wasm module with the recorder in the worker) is loaded when its
+// tab first opens, like the PDDL editor: the page becomes interactive sooner.
+let teach: TeachPanel | null = null;
+let teachPromise: Promise<TeachPanel> | null = null;
+function getTeach(): Promise<TeachPanel> {
+  teachPromise ??= Promise.all([import('./teach'), client.call('teachLoad', {})]).then(
+    ([{ TeachPanel }]) => (teach = newTeachPanel(TeachPanel)),
+    (e: unknown) => {
+      teachPromise = null;
+      throw e;
+    },
+  );
+  return teachPromise;
+}
+const newTeachPanel = (Panel: typeof TeachPanel): TeachPanel => new Panel(teachSlot, {
   client,
   view,
   stage,
@@ -238,6 +252,7 @@ function getEditor(): Promise<EditorPanel> {
 }
 let editorBenchmark: Benchmark | null = null;
 
+let currentTab = 'run';
 function selectTab(id: string): void {
   tabDefs.forEach(([tid, , panel], i) => {
     const on = tid === id;
@@ -245,7 +260,13 @@ function selectTab(id: string): void {
     tabBtns[i].classList.toggle('active', on);
     tabBtns[i].setAttribute('aria-selected', String(on));
   });
-  teach.setVisible(id === 'teach');
+  currentTab = id;
+  if (id === 'teach') {
+    getTeach().then(
+      (t) => t.setVisible(currentTab === 'teach'),
+      (e: unknown) => showNotice(`could not load Teach mode: ${(e as Error).message}`, 'error'),
+    );
+  } else teach?.setVisible(false);
   if (id !== 'teach' && frame && !pendingFrame) {
     lastPanelKey = '';
     render(frame);
@@ -279,7 +300,7 @@ function onPush(m: FromWorker): void {
     statusText.textContent = m.message;
     return;
   }
-  if (m.type !== 'frame' || teach.active) return;
+  if (m.type !== 'frame' || teach?.active) return;
   lastStepMs = m.timing.stepMs;
   stepTimes.push(m.timing.stepMs);
   if (stepTimes.length > 600) stepTimes.shift();
@@ -437,7 +458,7 @@ async function inject(level: Level): Promise<void> {
 
 benchSel.onchange = () => {
   options.benchmark = benchSel.value as Benchmark;
-  teach.reset();
+  teach?.reset();
   void open();
 };
 methodSel.onchange = () => {
@@ -522,7 +543,7 @@ document.addEventListener('keydown', (e) => {
   if (!help.hidden) return;
   const k = e.key.toLowerCase();
   // While Teach mode owns the view, the run's keys would act on the hidden episode.
-  if (teach.active && ' nrc1234'.includes(k)) return;
+  if (teach?.active && ' nrc1234'.includes(k)) return;
   const act: Record<string, () => void> = {
     ' ': () => guard(() => (playing ? pause() : play())),
     n: () => stepBtn.click(),

@@ -4,6 +4,8 @@
 import type { Frame, TaughtInfo, TaughtRunOptions, TeachEdit, TeachFinish, TeachResult, TeachState } from 'logic-lfd';
 
 export interface TeachApi {
+  /** Starts fetching Teach mode's wasm module (the tab opened), so that Record need not wait. */
+  teachLoad: { args: Record<string, never>; result: null };
   teachStart: { args: { benchmark: 'b1' | 'b2' | 'b3'; scene?: string }; result: TeachState };
   teachPush: { args: { edit: TeachEdit }; result: TeachResult };
   teachUndo: { args: Record<string, never>; result: TeachResult };

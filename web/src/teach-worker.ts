@@ -1,23 +1,60 @@
 // The worker's side of Teach mode: one `Teacher` (recorder) beside the Session. Loaded by
-// worker.ts, which passes in how to replace its Session.
-import * as lfd from 'logic-lfd';
+// worker.ts, which passes in how to replace its Session. The recorder lives in the full wasm
+// module ('logic-lfd-teach'; it also has `Session.replay`), which is not part of the page's first
+// load: it is fetched and compiled the first time it is needed (`teachLoad` when the tab opens).
 import type { Frame } from 'logic-lfd';
 import type { TeachApi } from './teach-protocol';
 
-type TeachHandlers = { [K in keyof TeachApi]: (args: TeachApi[K]['args']) => TeachApi[K]['result'] };
+type TeachModule = typeof import('logic-lfd-teach');
+type TeachHandlers = {
+  [K in keyof TeachApi]: (args: TeachApi[K]['args']) => TeachApi[K]['result'] | Promise<TeachApi[K]['result']>;
+};
 
-let teacher: lfd.Teacher | null = null;
+let loading: Promise<TeachModule> | null = null;
+let loaded: TeachModule | null = null;
+let memory: WebAssembly.Memory | null = null;
+let teacher: InstanceType<TeachModule['Teacher']> | null = null;
 
-function need(): lfd.Teacher {
+/** The full module, instantiated once (a failed fetch is retried on the next call). */
+export function teachModule(): Promise<TeachModule> {
+  loading ??= import('logic-lfd-teach').then(
+    async (m) => {
+      memory = (await m.default()).memory;
+      loaded = m;
+      return m;
+    },
+    (e: unknown) => {
+      loading = null;
+      throw e;
+    },
+  );
+  return loading;
+}
+
+function need(): InstanceType<TeachModule['Teacher']> {
   if (!teacher) throw new Error('not recording: press Record first');
   return teacher;
 }
 
+/** The last panic of the Teach module, or "" (not loaded, or no panic). */
+export function teachLastPanic(): string {
+  return loaded?.lastPanic() ?? '';
+}
+
+/** The Teach module's wasm memory in bytes (0 until it is loaded). */
+export function teachMemoryBytes(): number {
+  return memory?.buffer.byteLength ?? 0;
+}
+
 /** The Teach handlers; `replace` installs a new Session (stopping the old one) and returns its frame. */
-export function teachHandlers(replace: (s: lfd.Session) => Frame): TeachHandlers {
+export function teachHandlers(replace: (s: InstanceType<TeachModule['Session']>) => Frame): TeachHandlers {
   return {
-    teachStart: ({ benchmark, scene }) => {
-      const t = new lfd.Teacher(benchmark, scene);
+    teachLoad: () => {
+      void teachModule().catch(() => {}); // a failure is reported by the call that needs the module
+      return null;
+    },
+    teachStart: async ({ benchmark, scene }) => {
+      const t = new (await teachModule()).Teacher(benchmark, scene);
       teacher?.free();
       teacher = t;
       return t.current();
@@ -26,8 +63,8 @@ export function teachHandlers(replace: (s: lfd.Session) => Frame): TeachHandlers
     teachUndo: () => need().undo(),
     teachFinish: () => need().finish(),
     teachRecording: () => need().recordingJson(),
-    teachInfo: ({ demoJson }) => lfd.taughtInfo(demoJson),
-    teachRun: ({ demoJson, options }) => replace(lfd.Session.fromTaught(demoJson, options)),
+    teachInfo: async ({ demoJson }) => (await teachModule()).taughtInfo(demoJson),
+    teachRun: async ({ demoJson, options }) => replace((await teachModule()).Session.fromTaught(demoJson, options)),
     teachClose: () => {
       teacher?.free();
       teacher = null;

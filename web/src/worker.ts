@@ -1,10 +1,12 @@
 // The Web Worker that owns the wasm module and the closed-loop Session: planning and simulation
 // never run on the page's thread, so the page never freezes. It plays the session in real time
-// (scaled by `speed`) and pushes a frame after every tick.
-import init, * as lfd from 'logic-lfd';
+// (scaled by `speed`) and pushes a frame after every tick. Its module is the page build without
+// Teach mode and `Session.replay` ('logic-lfd-page'); teach-worker.ts fetches the full one when
+// one of those is needed.
+import init, * as lfd from 'logic-lfd-page';
 import type { Frame } from 'logic-lfd';
 import type { Api, ApiKind, FromWorker, ToWorker } from './protocol';
-import { teachHandlers } from './teach-worker';
+import { teachHandlers, teachLastPanic, teachMemoryBytes, teachModule } from './teach-worker';
 
 const post = (m: FromWorker) => (self as unknown as Worker).postMessage(m);
 
@@ -67,7 +69,7 @@ const handlers: Handlers = {
   benchmark: ({ id }) => lfd.benchmark(id),
   open: ({ options, scene }) =>
     replace(scene === undefined ? new lfd.Session(options) : lfd.Session.fromScene(options, scene)),
-  replay: ({ episode }) => replace(lfd.Session.replay(episode)),
+  replay: async ({ episode }) => replace((await teachModule()).Session.replay(episode)),
   play: ({ speed: s }) => {
     need();
     speed = s;
@@ -119,7 +121,7 @@ const handlers: Handlers = {
   },
   episode: () => need().episodeJson(),
   scene: () => need().sceneJson(),
-  memory: () => ({ wasmBytes: wasmMemory?.buffer.byteLength ?? 0 }),
+  memory: () => ({ wasmBytes: (wasmMemory?.buffer.byteLength ?? 0) + teachMemoryBytes() }),
   ...teachHandlers(replace),
 };
 
@@ -129,10 +131,12 @@ function errorMessage(e: unknown): string {
     stop();
     session = null;
     let why = '';
-    try {
-      why = lfd.lastPanic();
-    } catch {
-      /* the module is gone */
+    for (const lastPanic of [lfd.lastPanic, teachLastPanic]) {
+      try {
+        why ||= lastPanic();
+      } catch {
+        /* the module is gone */
+      }
     }
     return `internal error in the planner (${why || e.message}); reload the page`;
   }
@@ -158,6 +162,8 @@ const ready = init().then(
   (e) => post({ type: 'fatal', message: `could not load the wasm module: ${errorMessage(e)}` }),
 );
 
+// One request at a time, in order, even when a handler waits (for Teach mode's module).
+let queue: Promise<void> = ready;
 self.onmessage = (e: MessageEvent<ToWorker>) => {
-  void ready.then(() => handle(e.data));
+  queue = queue.then(() => handle(e.data));
 };

@@ -3,7 +3,7 @@
 //! a recording the model cannot explain comes back as data (`ok: false` with the time and the
 //! unexplained fact change), never as a half-applied edit.
 
-use super::{js_err, seed_of, to_js, WasmSession};
+use super::{from_js, js_err, seed_of, to_js, WasmSession};
 use crate::recorder::synth::Edit;
 use crate::recorder::taught::{self, TaughtRunOptions};
 use crate::recorder::{GripperHandle, Recorder, RecorderError, RecorderEvent, Segment, SkillFit};
@@ -228,13 +228,11 @@ impl Teacher {
         &mut self,
         #[wasm_bindgen(unchecked_param_type = "TeachEdit")] edit: JsValue,
     ) -> Result<JsValue, JsError> {
-        let v: serde_json::Value =
-            serde_wasm_bindgen::from_value(edit).map_err(|e| js_err(format!("edit: {e}")))?;
-        let r = match serde_json::from_value::<Edit>(v) {
+        let r = match from_js::<Edit>(&edit) {
             Ok(edit) => self.inner.push(&edit),
-            Err(e) => Err(RecorderError::Input {
+            Err(message) => Err(RecorderError::Input {
                 path: "edit".into(),
-                message: e.to_string(),
+                message,
             }),
         };
         to_js(&self.result(r, None))
@@ -328,9 +326,7 @@ impl WasmSession {
         let o: TaughtRunOptions = if options.is_undefined() || options.is_null() {
             TaughtRunOptions::default()
         } else {
-            let v: serde_json::Value = serde_wasm_bindgen::from_value(options)
-                .map_err(|e| js_err(format!("options: {e}")))?;
-            serde_json::from_value(v).map_err(|e| js_err(format!("options: {e}")))?
+            from_js(&options).map_err(|e| js_err(format!("options: {e}")))?
         };
         let inner = taught::session(demo_json, &o).map_err(js_err)?;
         Ok(WasmSession { inner })
