@@ -634,10 +634,15 @@ impl ActionExec {
                 {
                     return ExecStatus::Failed(format!("{body} fell: {reason}"));
                 }
-                // The carried body met another on the way (tracking lag or a moved obstacle):
-                // go up, over at a safe height, and down instead, once per action.
+                // The carried body met another on the way (tracking lag or a moved obstacle),
+                // or the hand's learned approach swung a link into a table or shelf: go up,
+                // over at a safe height, and down instead, once per action.
+                let learned_approach = matches!(
+                    via,
+                    Via::Grasp { skill: true, .. } | Via::Place { skill: true, .. }
+                );
                 if world.arm_blocked_by(self.arm).is_some()
-                    && world.held_by(self.arm).is_some()
+                    && (world.held_by(self.arm).is_some() || learned_approach)
                     && self.transit_at.is_none()
                     && !no_transit(&via)
                 {
@@ -703,7 +708,12 @@ impl ActionExec {
                         if seg.lag as f64 * dt > p.settle_timeout {
                             return ExecStatus::Failed(match world.arm_blocked_by(self.arm) {
                                 Some(b) => format!(
-                                    "the held body is stopped by {b} ({:.1} mm from the via-point)",
+                                    "the {} is stopped by {b} ({:.1} mm from the via-point)",
+                                    if world.held_by(self.arm).is_some() {
+                                        "held body"
+                                    } else {
+                                        "arm"
+                                    },
                                     err * 1e3
                                 ),
                                 None if !turned && err <= p.reach_tolerance => format!(

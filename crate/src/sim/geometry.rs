@@ -81,7 +81,11 @@ pub fn hand_hits(tcp: &Isometry3<f64>, boxes: &[(Isometry3<f64>, Cuboid)]) -> bo
 }
 
 /// Whether the hand at `tcp`, grown by `margin`, overlaps one of `boxes`.
-fn hand_within(tcp: &Isometry3<f64>, boxes: &[(Isometry3<f64>, Cuboid)], margin: f64) -> bool {
+pub(crate) fn hand_within(
+    tcp: &Isometry3<f64>,
+    boxes: &[(Isometry3<f64>, Cuboid)],
+    margin: f64,
+) -> bool {
     let (a, b, r) = hand_capsule(tcp);
     let cap = Capsule::new(Point3::from(a), Point3::from(b), r + margin);
     boxes.iter().any(|(iso, c)| {
@@ -180,8 +184,11 @@ pub fn grasp_poses_at(
 
 /// The grasp of block `body` at `pose` whose hand keeps clear of `boxes` at the grasp and
 /// halfway up its approach (`approach` m above): the first of [`grasp_poses_at`] that does,
-/// else the first. Both the executor (boxes: the world now) and the TAMP streams (boxes: the
-/// predicted world) choose with it, so they agree.
+/// else the first whose hand presses hardly deeper into them than the least deep one (a block
+/// beside a shelf: the hand turned along the shelf's face grazes it, turned across it reaches
+/// over it). Both the
+/// executor (boxes: the world now) and the TAMP streams (boxes: the predicted world) choose with
+/// it, so they agree.
 pub fn clear_grasp_at(
     world: &World,
     arm: usize,
@@ -190,11 +197,39 @@ pub fn clear_grasp_at(
     boxes: &[(Isometry3<f64>, Cuboid)],
     approach: f64,
 ) -> Option<Isometry3<f64>> {
-    let all = grasp_poses_at(world, arm, body, pose);
-    all.iter()
-        .find(|g| !hand_hits(g, boxes) && !hand_hits(&raised(g, 0.5 * approach), boxes))
-        .or(all.first())
-        .copied()
+    let depth = |g: &Isometry3<f64>| {
+        hand_depth(g, boxes).max(hand_depth(&raised(g, 0.5 * approach), boxes))
+    };
+    let all: Vec<(f64, Isometry3<f64>)> = grasp_poses_at(world, arm, body, pose)
+        .into_iter()
+        .map(|g| (depth(&g), g))
+        .collect();
+    let least = all.iter().map(|(d, _)| *d).fold(f64::INFINITY, f64::min);
+    // A clear grasp, if there is one; else nearly the least deep.
+    let slack = if least > 0.0 { GRASP_DEPTH_SLACK } else { 0.0 };
+    all.into_iter()
+        .find(|(d, _)| *d <= least + slack)
+        .map(|(_, g)| g)
+}
+
+/// Grasps whose hands press at most this much deeper than the least deep one count as equal
+/// (m): among them [`clear_grasp_at`] keeps the one nearest the arm's heading.
+const GRASP_DEPTH_SLACK: f64 = 0.005;
+
+/// How deep the hand at `tcp` presses into the deepest of `boxes` (m; 0 if it overlaps none).
+fn hand_depth(tcp: &Isometry3<f64>, boxes: &[(Isometry3<f64>, Cuboid)]) -> f64 {
+    let (a, b, r) = hand_capsule(tcp);
+    let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
+    boxes
+        .iter()
+        .filter_map(|(iso, c)| {
+            match parry3d_f64::query::contact(&Isometry3::identity(), &cap, iso, c, 0.0) {
+                Ok(Some(k)) => Some((-k.dist).max(0.0)),
+                Ok(None) => None,
+                Err(_) => Some(f64::INFINITY),
+            }
+        })
+        .fold(0.0, f64::max)
 }
 
 /// The boxes of every body of `world` but `except` and the held ones (world frame).

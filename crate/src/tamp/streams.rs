@@ -56,7 +56,7 @@ use crate::lfd::exec::{
 use crate::plan::Task;
 use crate::sim::demo::{pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TURNS};
 use crate::sim::geometry::{
-    clear_grasp_at, grasp_pose_at, link_capsules, raised, rise_first, transit_z,
+    clear_grasp_at, grasp_pose_at, hand_within, link_capsules, raised, rise_first, transit_z,
 };
 use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
@@ -977,8 +977,21 @@ impl<'w> StreamBinder<'w> {
                 .certify_path(&after, arm, &[retreat], &[&body], 0.0)
                 .ok()?;
             geo.q[arm] = q;
-        } else if let Ok(sol) = self.world.reachable(arm, &retreat) {
-            geo.q[arm] = sol.joints;
+        } else {
+            // Uncertified (the demonstration's own placement), the hand must still fit where it
+            // lets go, clear of the tables and shelves by the contact slack: that is where it
+            // grasps the body again, and a certified grasp there keeps that much room.
+            let furniture: Vec<(Isometry3<f64>, Cuboid)> = self
+                .fixed
+                .iter()
+                .flat_map(|(_, _, parts)| parts.iter().copied())
+                .collect();
+            if hand_within(&tcp, &furniture, self.params.contact_slack) {
+                return None;
+            }
+            if let Ok(sol) = self.world.reachable(arm, &retreat) {
+                geo.q[arm] = sol.joints;
+            }
         }
         geo.held.remove(&arm);
         geo.poses.insert(body, *pose);
