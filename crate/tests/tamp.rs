@@ -643,22 +643,28 @@ fn execute_learned(
     status
 }
 
+/// B2 with `block` moved to `(x, y)` on the table: the demonstration's `(pick panda block)`
+/// executed there with the learned skills grasps it.
+fn b2_pick_after_moving(block: &str, x: f64, y: f64) {
+    let b = BenchmarkId::B2;
+    let mut world = template(b);
+    world
+        .move_block_to(block, Vector3::new(x, y, 0.03), 0.0)
+        .unwrap();
+    let (_, task) = model_and_task(b, &world);
+    let pick = format!("(pick panda {block})");
+    let status = execute_learned(&mut world, &task, &pick, &b2_skills());
+    assert_eq!(status, ExecStatus::Done);
+    assert_eq!(world.held_by(0), Some(block));
+}
+
 #[test]
 fn a_block_beside_the_shelf_is_grasped_with_the_hand_along_the_shelf_not_across_it() {
     // Soak finding (seed 31337, episode 1445): a block dragged 2 mm from the shelf's side. No
     // grasp keeps the hand clear of the shelf; the one nearest the arm's heading reached
     // across the shelf (the simulator stopped the hand 4 cm above the block, three times),
     // the hand turned along the shelf's face grazes it by 3 mm, which the simulator allows.
-    let b = BenchmarkId::B2;
-    let mut world = template(b);
-    world
-        .move_block_to("a", Vector3::new(0.198, -0.435, 0.03), 0.0)
-        .unwrap();
-    let (_, task) = model_and_task(b, &world);
-    let skills = b2_skills();
-    let status = execute_learned(&mut world, &task, "(pick panda a)", &skills);
-    assert_eq!(status, ExecStatus::Done);
-    assert_eq!(world.held_by(0), Some("a"));
+    b2_pick_after_moving("a", 0.198, -0.435);
 }
 
 #[test]
@@ -666,14 +672,5 @@ fn a_learned_approach_that_swings_the_hand_into_the_shelf_flies_over_and_comes_s
     // Soak finding (seed 31337, episode 835): a block dragged to the shelf's corner. The learned
     // approach curves in from the side and the simulator stops the hand at the shelf; the
     // executor now rises, crosses above the grasp and descends straight, as for a carried body.
-    let b = BenchmarkId::B2;
-    let mut world = template(b);
-    world
-        .move_block_to("b", Vector3::new(0.162, -0.616, 0.03), 0.0)
-        .unwrap();
-    let (_, task) = model_and_task(b, &world);
-    let skills = b2_skills();
-    let status = execute_learned(&mut world, &task, "(pick panda b)", &skills);
-    assert_eq!(status, ExecStatus::Done);
-    assert_eq!(world.held_by(0), Some("b"));
+    b2_pick_after_moving("b", 0.162, -0.616);
 }

@@ -157,6 +157,10 @@ pub(crate) fn yaw_of(rot: &UnitQuaternion<f64>) -> f64 {
     libm::atan2(x.y, x.x)
 }
 
+/// An inverse kinematics of [`panda`]: (base, target, seed joints, parameters).
+type IkSolver =
+    fn(&Isometry3<f64>, &Isometry3<f64>, &[f64; DOF], &IkParams) -> Result<IkSolution, Unreachable>;
+
 /// How deep an arm link may press into a table or shelf before the arm stops (m): the link
 /// capsules are rounded stand-ins for the real links.
 pub(crate) const LINK_TOLERANCE: f64 = 0.01;
@@ -997,10 +1001,7 @@ impl World {
         arm: usize,
         pose: &Isometry3<f64>,
     ) -> Result<IkSolution, Unreachable> {
-        let Some(a) = self.arms.get(arm) else {
-            return self.reachable(arm, pose);
-        };
-        panda::inverse_kinematics_with_room(&a.base, pose, &a.joints, &self.params.planning_ik)
+        self.solve_from_joints(arm, pose, panda::inverse_kinematics_with_room)
     }
 
     /// The solution nearest the arm's joints ([`panda::inverse_kinematics_near`]: from them
@@ -1010,10 +1011,21 @@ impl World {
         arm: usize,
         pose: &Isometry3<f64>,
     ) -> Result<IkSolution, Unreachable> {
+        self.solve_from_joints(arm, pose, panda::inverse_kinematics_near)
+    }
+
+    /// `solve` (an IK of [`panda`]) for arm `arm` from its joints, with the planning IK's
+    /// parameters; [`World::reachable`] for an unknown arm.
+    fn solve_from_joints(
+        &self,
+        arm: usize,
+        pose: &Isometry3<f64>,
+        solve: IkSolver,
+    ) -> Result<IkSolution, Unreachable> {
         let Some(a) = self.arms.get(arm) else {
             return self.reachable(arm, pose);
         };
-        panda::inverse_kinematics_near(&a.base, pose, &a.joints, &self.params.planning_ik)
+        solve(&a.base, pose, &a.joints, &self.params.planning_ik)
     }
 
     /// What arm `arm` would sweep through on a straight joint-space move from `from` to `to`
