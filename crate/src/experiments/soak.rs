@@ -270,14 +270,11 @@ fn draw_drag(world: &World, kind: DragKind, rng: &mut Pcg64Mcg) -> (String, [f64
 
 /// A stated, legitimate reason for a failure that a user drag explains: a block the user moved
 /// (directly, or standing on a moved one) is now where no arm can grasp it or pull it with the
-/// hook, by IK ([`handleable`]).
+/// hook, by IK ([`handleable`]). A block in a hand counts too: an arm may close on a block
+/// dragged inside its minimum reach and then be unable to lift it.
 fn dragged_out_of_reach(world: &World, dragged: &BTreeSet<String>) -> Option<String> {
     dragged.iter().find_map(|b| {
         if world.is_lost(b) || world.body_kind(b) != Some(BodyKind::Block) {
-            return None;
-        }
-        let held = (0..world.arm_names().len()).any(|a| world.held_by(a) == Some(b.as_str()));
-        if held {
             return None;
         }
         handleable(world, b).err()
@@ -645,4 +642,26 @@ fn soak_episode(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_held_block_dragged_inside_the_arms_minimum_reach_is_a_legitimate_failure() {
+        // Seed 2026, episode 2919: a user dragged a 15 cm from the base (the arm's reach starts
+        // at 25 cm); the arm closed on it and could not lift it, three times.
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/tests/data/worlds/soak-2026-2919.json"
+        ))
+        .unwrap();
+        let world = World::from_json(&text).unwrap();
+        assert_eq!(world.held_by(0), Some("a"));
+        let dragged: BTreeSet<String> = ["a".to_string()].into();
+        assert!(dragged_out_of_reach(&world, &dragged).is_some());
+        // A block the user did not move explains nothing, and neither does one within reach.
+        assert!(dragged_out_of_reach(&world, &["b".to_string()].into()).is_none());
+    }
 }
