@@ -75,6 +75,12 @@ pub fn hand_capsule(tcp: &Isometry3<f64>) -> (Vector3<f64>, Vector3<f64>, f64) {
     (p(-HAND_HALF_SPAN), p(HAND_HALF_SPAN), HAND_RADIUS)
 }
 
+/// The hand at `tcp` as a capsule ([`hand_capsule`]), its radius grown by `margin`.
+fn hand_shape(tcp: &Isometry3<f64>, margin: f64) -> Capsule {
+    let (a, b, r) = hand_capsule(tcp);
+    Capsule::new(Point3::from(a), Point3::from(b), r + margin)
+}
+
 /// Whether the hand at `tcp` overlaps one of `boxes` (world poses and half extents).
 pub fn hand_hits(tcp: &Isometry3<f64>, boxes: &[(Isometry3<f64>, Cuboid)]) -> bool {
     hand_within(tcp, boxes, 0.0)
@@ -86,8 +92,7 @@ pub(crate) fn hand_within(
     boxes: &[(Isometry3<f64>, Cuboid)],
     margin: f64,
 ) -> bool {
-    let (a, b, r) = hand_capsule(tcp);
-    let cap = Capsule::new(Point3::from(a), Point3::from(b), r + margin);
+    let cap = hand_shape(tcp, margin);
     boxes.iter().any(|(iso, c)| {
         parry3d_f64::query::intersection_test(&Isometry3::identity(), &cap, iso, c).unwrap_or(true)
     })
@@ -186,9 +191,8 @@ pub fn grasp_poses_at(
 /// halfway up its approach (`approach` m above): the first of [`grasp_poses_at`] that does,
 /// else the first whose hand presses hardly deeper into them than the least deep one (a block
 /// beside a shelf: the hand turned along the shelf's face grazes it, turned across it reaches
-/// over it). Both the
-/// executor (boxes: the world now) and the TAMP streams (boxes: the predicted world) choose with
-/// it, so they agree.
+/// over it). Both the executor (boxes: the world now) and the TAMP streams (boxes: the predicted
+/// world) choose with it, so they agree.
 pub fn clear_grasp_at(
     world: &World,
     arm: usize,
@@ -218,8 +222,7 @@ const GRASP_DEPTH_SLACK: f64 = 0.005;
 
 /// How deep the hand at `tcp` presses into the deepest of `boxes` (m; 0 if it overlaps none).
 fn hand_depth(tcp: &Isometry3<f64>, boxes: &[(Isometry3<f64>, Cuboid)]) -> f64 {
-    let (a, b, r) = hand_capsule(tcp);
-    let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
+    let cap = hand_shape(tcp, 0.0);
     boxes
         .iter()
         .filter_map(|(iso, c)| {

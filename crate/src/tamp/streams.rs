@@ -452,18 +452,11 @@ impl<'w> StreamBinder<'w> {
         let mut from = geo.tcp[arm];
         for to in via {
             let q_from = q;
-            let len = (to.translation.vector - from.translation.vector).norm();
-            let n = ((len / self.params.path_step).ceil() as usize).max(1);
-            for k in 1..=n {
-                let s = k as f64 / n as f64;
-                let p = from.translation.vector.lerp(&to.translation.vector, s);
-                let r = from.rotation.slerp(&to.rotation, s);
-                let tcp = Isometry3::from_parts(Translation3::from(p), r);
+            for (tcp, end) in line_samples(&from, to, self.params.path_step) {
                 self.stats.path_samples += 1;
                 // Between via-points the tracker may lag behind the command (the links are
                 // checked where it leaves them); at a via-point it has the settle time to
                 // converge (no restarts either way).
-                let end = k == n;
                 let ik = if end { &self.settle_ik } else { &self.track_ik };
                 q = match panda::inverse_kinematics(&base, &tcp, &q, ik) {
                     Ok(sol) => sol.joints,
@@ -688,23 +681,13 @@ impl<'w> StreamBinder<'w> {
         obstacles: &[Obstacle],
         start: &StartContacts,
     ) -> Option<[f64; DOF]> {
-        let len = (to.translation.vector - from.translation.vector).norm();
-        let n = ((len / self.params.path_step).ceil() as usize).max(1);
         let mut q = *q;
-        for k in 1..=n {
-            let s = k as f64 / n as f64;
-            let p = from.translation.vector.lerp(&to.translation.vector, s);
-            let tcp =
-                Isometry3::from_parts(Translation3::from(p), from.rotation.slerp(&to.rotation, s));
+        for (tcp, end) in line_samples(from, to, self.params.path_step) {
             self.stats.path_samples += 1;
-            let ik = if k == n {
-                &self.settle_ik
-            } else {
-                &self.track_ik
-            };
+            let ik = if end { &self.settle_ik } else { &self.track_ik };
             q = match panda::inverse_kinematics(base, &tcp, &q, ik) {
                 Ok(sol) => sol.joints,
-                Err(e) if k < n => e.best_joints,
+                Err(e) if !end => e.best_joints,
                 Err(_) => return None,
             };
             if self
@@ -1508,6 +1491,24 @@ impl PartShape {
             PartShape::Cuboid(c) => c,
         }
     }
+}
+
+/// The TCP poses along the straight line from `from` to `to`, at most `step` apart (`from`
+/// excluded, `to` included), each with whether it is the last: what a path certification checks.
+fn line_samples(
+    from: &Isometry3<f64>,
+    to: &Isometry3<f64>,
+    step: f64,
+) -> impl Iterator<Item = (Isometry3<f64>, bool)> {
+    let (from, to) = (*from, *to);
+    let len = (to.translation.vector - from.translation.vector).norm();
+    let n = ((len / step).ceil() as usize).max(1);
+    (1..=n).map(move |k| {
+        let s = k as f64 / n as f64;
+        let p = from.translation.vector.lerp(&to.translation.vector, s);
+        let r = from.rotation.slerp(&to.rotation, s);
+        (Isometry3::from_parts(Translation3::from(p), r), k == n)
+    })
 }
 
 /// Contacts at the start of a certified path, which the path may leave but not deepen:
