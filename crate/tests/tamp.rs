@@ -550,6 +550,28 @@ fn execute_bound(
     }
 }
 
+/// The world a soak finding left, saved as `crate/tests/data/worlds/<name>.json`.
+fn saved_world(name: &str) -> World {
+    let path = format!(
+        "{}/tests/data/worlds/{name}.json",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    World::from_json(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// The streams' bindings of the B2 action `name` in `world`; panics unless it binds.
+fn b2_bind_one(
+    world: &World,
+    name: &str,
+) -> (Task, [usize; 1], Vec<logic_lfd::lfd::exec::Binding>) {
+    let (_, task) = model_and_task(BenchmarkId::B2, world);
+    let ops = [op(&task, name)];
+    let mut binder = StreamBinder::new(world, 1, StreamParams::default());
+    let r = binder.bind(&task, &ops, ops.len());
+    assert_eq!(r, Ok(()), "{:?}", binder.last_rejection());
+    (task, ops, binder.bindings)
+}
+
 #[test]
 fn soak_2026_1970_a_hand_pressed_against_the_shelf_rises_with_the_hook_to_put_it_down() {
     // Soak finding (seed 2026, episode 1970): a pull was interrupted with the hand pressed
@@ -557,25 +579,11 @@ fn soak_2026_1970_a_hand_pressed_against_the_shelf_rises_with_the_hook_to_put_it
     // blade against block b. Putting the hook down goes up first; the streams' IK takes
     // another null-space path than the tracker's, and the hand's depth in the shelf drifted
     // up by 0.3 mm on the way: the streams refused what the simulator does.
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/data/worlds/soak-2026-1970.json"
-    ))
-    .unwrap();
-    let mut world = World::from_json(&text).unwrap();
+    let mut world = saved_world("soak-2026-1970");
     assert_eq!(world.held_by(0), Some("hook"));
-    let b = BenchmarkId::B2;
-    let (_, task) = model_and_task(b, &world);
-    let ops = [op(&task, "(place panda hook)")];
-    let bindings = {
-        let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
-        let r = binder.bind(&task, &ops, ops.len());
-        assert_eq!(r, Ok(()), "{:?}", binder.last_rejection());
-        binder.bindings
-    };
+    let (task, ops, bindings) = b2_bind_one(&world, "(place panda hook)");
     assert!(bindings[0].transit.is_some(), "{bindings:?}");
-    let skills = b2_skills();
-    execute_bound(&mut world, &task, &ops, &bindings, &skills);
+    execute_bound(&mut world, &task, &ops, &bindings, &b2_skills());
     assert_eq!(world.held_by(0), None);
     assert!(SceneGraph::from_world(&world).contains("(handempty panda)"));
 }
@@ -587,27 +595,13 @@ fn soak_2026_2835_a_block_lifted_behind_the_base_with_a_joint_at_its_limit_reach
     // both joint-space ways to the roomy solution sweep a into block f, 7 mm beside it. The
     // recovery now goes to the solution nearest the arm's joints for a point on the way up
     // (the other joints take the held joint's share), and the tracker follows from there.
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/data/worlds/soak-2026-2835.json"
-    ))
-    .unwrap();
-    let mut world = World::from_json(&text).unwrap();
+    let mut world = saved_world("soak-2026-2835");
     assert_eq!(world.held_by(0), Some("a"));
     let q = world.joints(0).unwrap();
     assert!(logic_lfd::sim::panda::JOINT_UPPER[0] - q[0] < 0.01, "{q:?}");
-    let b = BenchmarkId::B2;
-    let (_, task) = model_and_task(b, &world);
-    let ops = [op(&task, "(place-on-shelf panda a)")];
-    let bindings = {
-        let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
-        let r = binder.bind(&task, &ops, ops.len());
-        assert_eq!(r, Ok(()), "{:?}", binder.last_rejection());
-        binder.bindings
-    };
+    let (task, ops, bindings) = b2_bind_one(&world, "(place-on-shelf panda a)");
     let f = world.body_pose("f").unwrap();
-    let skills = b2_skills();
-    execute_bound(&mut world, &task, &ops, &bindings, &skills);
+    execute_bound(&mut world, &task, &ops, &bindings, &b2_skills());
     assert!(SceneGraph::from_world(&world).contains("(onshelf a)"));
     assert!(
         (world.body_pose("f").unwrap().translation.vector - f.translation.vector).norm() < 1e-6
