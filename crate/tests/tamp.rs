@@ -538,14 +538,7 @@ fn execute_bound(
         if let Some(z) = binding.transit {
             exec = exec.with_transit(z);
         }
-        let mut status = ExecStatus::Running;
-        for _ in 0..6000 {
-            status = exec.tick(world, skills, &params);
-            assert_eq!(world.check_invariants(), Ok(()));
-            if status != ExecStatus::Running {
-                break;
-            }
-        }
+        let status = tick_to_end(exec, world, skills, &params);
         assert_eq!(status, ExecStatus::Done, "{}", operator.name);
     }
 }
@@ -625,10 +618,21 @@ fn execute_learned(
     let params = ExecParams::default();
     let operator = &task.operators[op(task, name)];
     let kind = classify(task, operator, world).unwrap();
-    let mut exec = ActionExec::new(&operator.name, kind, world, skills, &params);
+    let exec = ActionExec::new(&operator.name, kind, world, skills, &params);
+    tick_to_end(exec, world, skills, &params)
+}
+
+/// Ticks `exec` in `world` until it ends (at most 6 000 ticks), checking the world's invariants
+/// every tick; its last status.
+fn tick_to_end(
+    mut exec: ActionExec,
+    world: &mut World,
+    skills: &SkillLibrary,
+    params: &ExecParams,
+) -> ExecStatus {
     let mut status = ExecStatus::Running;
     for _ in 0..6000 {
-        status = exec.tick(world, skills, &params);
+        status = exec.tick(world, skills, params);
         assert_eq!(world.check_invariants(), Ok(()));
         if status != ExecStatus::Running {
             break;
