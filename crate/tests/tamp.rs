@@ -10,7 +10,7 @@ use logic_lfd::lfd::skill::SkillLibrary;
 use logic_lfd::lfd::TaskBuilder;
 use logic_lfd::plan::{search, Algorithm, HeuristicKind, NoClock, SearchConfig, Task};
 use logic_lfd::sim::demo::PULL_TARGET_RADIUS;
-use logic_lfd::sim::geometry::hand_hits;
+use logic_lfd::sim::geometry::{grasp_pose, hand_hits};
 use logic_lfd::sim::{SceneGraph, World};
 use logic_lfd::tamp::plan_from_scratch;
 use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
@@ -251,12 +251,23 @@ fn an_empty_hand_low_beside_a_tower_reaches_its_top_through_a_transit() {
     assert_eq!(status, ExecStatus::Done);
     assert_eq!(held.as_deref(), Some("a"));
     assert_eq!(touching, 0, "the hand touched c on its transit");
-    // Without the transit the learned approach does swing the hand through c.
-    let (_, touching, _) = run(None);
+    // The learned approach's own path swings the hand through c ...
+    let grasp = grasp_pose(&world, 0, "a").unwrap();
+    let anchor = world.body_pose("a").unwrap();
+    let path = skills.segment("grasp-approach", &low, &grasp, Some(&anchor), 200);
+    let through_c = (0..path.len()).any(|t| {
+        let tcp = nalgebra::Isometry3::from_parts(path.planned(t).into(), low.rotation);
+        hand_hits(&tcp, &c_box)
+    });
     assert!(
-        touching > 0,
-        "the straight approach missed c: the test shows nothing"
+        through_c,
+        "the learned path missed c: the test shows nothing"
     );
+    // ... so the executor, given no transit, checks that path and flies one itself.
+    let (status, touching, held) = run(None);
+    assert_eq!(status, ExecStatus::Done);
+    assert_eq!(held.as_deref(), Some("a"));
+    assert_eq!(touching, 0, "the hand touched c on the learned path");
 }
 
 #[test]
@@ -534,7 +545,8 @@ fn execute_bound(
         if let ActionKind::Release { placement, .. } = &mut kind {
             placement.clone_from(&binding.placement);
         }
-        let mut exec = ActionExec::new(&operator.name, kind, world, skills, &params);
+        let mut exec = ActionExec::new(&operator.name, kind, world, skills, &params)
+            .with_hand_yaw(binding.hand_yaw);
         if let Some(z) = binding.transit {
             exec = exec.with_transit(z);
         }
@@ -671,4 +683,160 @@ fn a_learned_approach_that_swings_the_hand_into_the_shelf_flies_over_and_comes_s
     // approach curves in from the side and the simulator stops the hand at the shelf; the
     // executor now rises, crosses above the grasp and descends straight, as for a carried body.
     b2_pick_after_moving("b", 0.162, -0.616);
+}
+
+/// B1 with block a on the table and c, on d beside it, overhanging a's corner by 4 mm (a user
+/// dragged d next to a, then an L1 nudged c; seed 31337, episode 554).
+fn b1_with_c_overhanging_a() -> World {
+    let mut world = template(BenchmarkId::B1);
+    world
+        .move_block("a", Vector3::new(0.40, -0.25, 0.03))
+        .unwrap();
+    world
+        .move_block("d", Vector3::new(0.4637, -0.2166, 0.03))
+        .unwrap();
+    world
+        .move_block("c", Vector3::new(0.456, -0.1988, 0.09))
+        .unwrap();
+    world
+        .move_block("b", Vector3::new(0.30, 0.25, 0.03))
+        .unwrap();
+    let graph = SceneGraph::from_world(&world);
+    assert!(graph.contains("(on c d)") && graph.contains("(clear a)"));
+    let (a, c) = (world.body_aabb("a").unwrap(), world.body_aabb("c").unwrap());
+    assert!(
+        c.0.x < a.1.x - 0.003 && c.0.y < a.1.y - 0.003,
+        "c does not overhang a"
+    );
+    world
+}
+
+#[test]
+fn a_block_under_an_overhang_is_not_picked_and_the_overhanging_block_is_named() {
+    // Soak finding (seed 31337, episode 554): the streams shrink each box by the contact slack,
+    // so they let a rise past c's 4 mm overhang, which stops the lift in the simulator (it
+    // lets a lifted body press 1.8 mm into another). The pick is now refused, certified or
+    // not, with c named as what is in the way (so the search moves c first).
+    let world = b1_with_c_overhanging_a();
+    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let ops = [op(&task, "(pick panda a)")];
+    for demo_from in [0, 1] {
+        let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
+        assert_eq!(binder.bind(&task, &ops, demo_from), Err(0));
+        assert_eq!(binder.obstructions(0), vec!["c".to_string()]);
+        let why = binder.last_rejection().unwrap_or_default();
+        assert!(why.contains("c overhangs a"), "{why}");
+    }
+    // Without the overhang the same pick binds (as the demonstration's: certified, the wrist
+    // would graze c, 4 mm from a).
+    let mut free = world.clone();
+    free.move_block("c", Vector3::new(0.4637, -0.2166, 0.09))
+        .unwrap();
+    let mut binder = StreamBinder::new(&free, 1, StreamParams::default());
+    let r = binder.bind(&task, &ops, 0);
+    assert_eq!(r, Ok(()), "{:?}", binder.last_rejection());
+}
+
+#[test]
+fn a_lift_stopped_by_an_overhang_puts_the_block_back_and_lets_go() {
+    // The demonstration's pick executed under the overhang: the simulator stops the lift. The
+    // executor lowers a back to where it was, opens and rises, and reports why: the replan
+    // starts from a free hand, with a resting (not lost, not left in the gripper).
+    let mut world = b1_with_c_overhanging_a();
+    let a0 = world.body_pose("a").unwrap().translation.vector;
+    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let skills = SkillLibrary::learn(
+        &BenchmarkId::B1.sources().unwrap().demo,
+        SkillKind::Lqt,
+        &[],
+    );
+    let status = execute_learned(&mut world, &task, "(pick panda a)", &skills);
+    assert_eq!(
+        status,
+        ExecStatus::Failed("cannot lift a: c is in its way".into())
+    );
+    assert_eq!(world.held_by(0), None);
+    assert!(!world.is_lost("a"));
+    let a = world.body_pose("a").unwrap().translation.vector;
+    assert!((a - a0).norm() < 0.002, "a moved from {a0:?} to {a:?}");
+    assert!(SceneGraph::from_world(&world).contains("(ontable a)"));
+}
+
+#[test]
+fn a_release_beside_a_tower_is_put_down_with_the_hand_where_it_was_certified() {
+    // Soak finding (seed 31337, episode 1398): b was put down 9 cm from a tower. The streams
+    // certified the hand lengthwise beside the tower, the executor turned the block so that
+    // the hand faced the arm's heading: across, its palm 2 cm inside the tower. The streams now
+    // try the hand nearest the heading first and the quarter turn next, and the executor puts
+    // the hand where they certified it.
+    let mut world = template(BenchmarkId::B1);
+    for (name, z) in [("d", 0.03), ("c", 0.09)] {
+        world
+            .move_block(name, Vector3::new(0.5487, 0.2588, z))
+            .unwrap();
+    }
+    let hint = (0.562, 0.171, 0.0);
+    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let ops = [op(&task, "(pick panda b)"), op(&task, "(place panda b)")];
+    let hints = [("(place panda b)".to_string(), hint)]
+        .into_iter()
+        .collect();
+    let mut binder = StreamBinder::new(&world, 3, StreamParams::default()).with_hints(&hints);
+    assert_eq!(binder.bind(&task, &ops, ops.len()), Ok(()));
+    let bindings = binder.bindings.clone();
+    let Some(logic_lfd::lfd::exec::Placement::At { x, y, .. }) = bindings[1].placement else {
+        panic!("{bindings:?}");
+    };
+    assert!(
+        (x - hint.0).abs() < 1e-9 && (y - hint.1).abs() < 1e-9,
+        "not at the hint"
+    );
+    // The certified hand is a quarter turn from the one facing the heading.
+    let yaw = bindings[1].hand_yaw.expect("a certified hand yaw");
+    let heading = libm::atan2(hint.1, hint.0);
+    let off = libm::sin(yaw - heading).abs();
+    assert!(
+        off > 0.7,
+        "hand yaw {yaw} is {off} off the heading {heading}"
+    );
+
+    let files = BenchmarkId::B1.sources().unwrap();
+    let skills = SkillLibrary::learn(&files.demo, SkillKind::Lqt, &[]);
+    let params = ExecParams::default();
+    let tower: Vec<_> = ["c", "d"]
+        .iter()
+        .flat_map(|n| world.body_shapes(n))
+        .collect();
+    for (&o, binding) in ops.iter().zip(&bindings) {
+        let operator = &task.operators[o];
+        let mut kind = classify(&task, operator, &world).unwrap();
+        if let ActionKind::Release { placement, .. } = &mut kind {
+            placement.clone_from(&binding.placement);
+        }
+        let mut exec = ActionExec::new(&operator.name, kind, &world, &skills, &params)
+            .with_hand_yaw(binding.hand_yaw);
+        if let Some(z) = binding.transit {
+            exec = exec.with_transit(z);
+        }
+        let mut status = ExecStatus::Running;
+        for _ in 0..6000 {
+            status = exec.tick(&mut world, &skills, &params);
+            assert_eq!(world.check_invariants(), Ok(()));
+            let tcp = world.tcp_pose(0).unwrap();
+            assert!(
+                !hand_hits(&tcp, &tower),
+                "{}: the hand is in the tower",
+                operator.name
+            );
+            if status != ExecStatus::Running {
+                break;
+            }
+        }
+        assert_eq!(status, ExecStatus::Done, "{}", operator.name);
+    }
+    let b = world.body_pose("b").unwrap().translation.vector;
+    assert!(
+        (b.x - hint.0).abs() < 0.01 && (b.y - hint.1).abs() < 0.01,
+        "b at {b:?}"
+    );
 }

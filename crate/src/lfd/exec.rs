@@ -87,6 +87,9 @@ pub struct Binding {
     /// TCP height of a transit before the action's first approach, when the straight approach
     /// is blocked ([`ActionExec::with_transit`]).
     pub transit: Option<f64>,
+    /// The yaw of the TCP's x axis with which a release was certified
+    /// ([`ActionExec::with_hand_yaw`]); `None` for an uncertified one.
+    pub hand_yaw: Option<f64>,
 }
 
 impl From<Option<Placement>> for Binding {
@@ -94,6 +97,7 @@ impl From<Option<Placement>> for Binding {
         Binding {
             placement,
             transit: None,
+            hand_yaw: None,
         }
     }
 }
@@ -271,6 +275,14 @@ pub struct ActionExec {
     hook: bool,
     /// The approach height (m): the grasp is chosen with the hand clear up to half of it.
     approach_height: f64,
+    /// The yaw of the TCP's x axis a release was certified with (`None`: the heading from the
+    /// base).
+    hand_yaw: Option<f64>,
+    /// Why the action failed, once its remaining phases only undo it (a lift stopped at the
+    /// start: the body is let go where it was grasped).
+    abort: Option<String>,
+    /// The TCP's height when the gripper closed on the body it grasps.
+    grasped_z: Option<f64>,
 }
 
 #[derive(Clone, Debug)]
@@ -459,7 +471,18 @@ impl ActionExec {
             transit_at: None,
             hook,
             approach_height: p.approach_height,
+            hand_yaw: None,
+            abort: None,
+            grasped_z: None,
         }
+    }
+
+    /// Puts a released square block down with the hand at yaw `yaw` (of the TCP's x axis, as the
+    /// streams certified it; [`quarter_turn_for_arm`]) rather than the yaw nearest the heading
+    /// from the base. `None` keeps the heading.
+    pub fn with_hand_yaw(mut self, yaw: Option<f64>) -> Self {
+        self.hand_yaw = yaw;
+        self
     }
 
     /// Makes the action's first approach a transit at TCP height `z` (a stream found the
@@ -549,8 +572,18 @@ impl ActionExec {
                     if let Some(s) = self.check_gripper(world, cmd) {
                         return ExecStatus::Failed(s);
                     }
-                    if let ActionKind::Release { body, .. } = &self.kind {
-                        self.event_frame = world.body_pose(body).map(|p| anchor_frame(&p));
+                    match &self.kind {
+                        ActionKind::Release { body, .. } => {
+                            self.event_frame = world.body_pose(body).map(|p| anchor_frame(&p));
+                        }
+                        ActionKind::Grasp { body, .. } if cmd == GripperCommand::Close => {
+                            self.grasped_z = world
+                                .held_by(self.arm)
+                                .filter(|h| h == body)
+                                .and(world.tcp_pose(self.arm))
+                                .map(|p| p.translation.z);
+                        }
+                        _ => {}
                     }
                     self.next_phase();
                 }
@@ -633,6 +666,27 @@ impl ActionExec {
                     ev.iter().find(|e| matches!(e, WorldEvent::Lost { .. }))
                 {
                     return ExecStatus::Failed(format!("{body} fell: {reason}"));
+                }
+                // A lift stopped before the body has left its place (something overhangs it):
+                // put it back down where it was, let go and rise, then report the failure, so
+                // the replan starts from a free hand and the body where it was.
+                let stuck = match self.abort {
+                    None => stuck_lift(world, self.arm, &self.kind, &via, self.grasped_z),
+                    Some(_) => None,
+                };
+                if let (Some(why), Some(z)) = (stuck, self.grasped_z) {
+                    self.phases.truncate(self.phase + 1);
+                    self.phases.extend([
+                        Phase::Move(Via::Rise { z }),
+                        Phase::Gripper(GripperCommand::Open),
+                        Phase::Move(Via::Up {
+                            dz: self.approach_height,
+                            skill: false,
+                        }),
+                    ]);
+                    self.abort = Some(why);
+                    self.next_phase();
+                    return ExecStatus::Running;
                 }
                 // The carried body met another on the way (tracking lag or a moved obstacle),
                 // or the hand's learned approach swung a link into a table or shelf: go up,
@@ -735,7 +789,10 @@ impl ActionExec {
 
     fn status(&self) -> ExecStatus {
         if self.phase >= self.phases.len() {
-            ExecStatus::Done
+            match &self.abort {
+                Some(why) => ExecStatus::Failed(why.clone()),
+                None => ExecStatus::Done,
+            }
         } else {
             ExecStatus::Running
         }
@@ -795,30 +852,62 @@ impl ActionExec {
         })
     }
 
-    /// When the arm carries a body and the planned segment `r` would sweep it into another
-    /// body, the TCP height of a safe transit (the held body's bottom 3 cm above every top
-    /// between start and goal); `None` when the path is clear, nothing is carried, the via is a
-    /// pull stroke or a transit itself, or a transit was already inserted for this phase.
+    /// When the planned segment `r` would sweep a carried body into another body, or a learned
+    /// approach's path (the skill's shape, not the straight line the streams certify) would
+    /// sweep the hand through a block, the TCP height of a safe transit (the held body's bottom,
+    /// or the hand, 3 cm above every top between start and goal); `None` when the path is
+    /// clear, the via is a pull stroke or a transit itself, or a transit was already inserted
+    /// for this phase.
     fn transit_height(&self, world: &World, via: &Via, r: &Running) -> Option<f64> {
         if no_transit(via) || self.transit_at.is_some() {
             return None;
         }
-        let held = world.held_by(self.arm)?.to_string();
-        let g = world.grasp_transform(self.arm)?;
         let n = r.traj.len();
-        let tol = world.params().penetration_tolerance;
-        let collides = (0..n).step_by(4).chain(std::iter::once(n - 1)).any(|t| {
-            let s = (t as f64 / (n.max(2) - 1) as f64).clamp(0.0, 1.0);
-            let rot = r.traj.start_rotation().slerp(&r.goal.rotation, s);
-            let tcp = Isometry3::from_parts(Translation3::from(r.traj.current(t)), rot);
-            world
-                .overlap_at(&held, &(tcp * g))
-                .is_some_and(|(d, _)| d > 0.5 * tol)
+        let path: Vec<Isometry3<f64>> = (0..n)
+            .step_by(4)
+            .chain(std::iter::once(n - 1))
+            .map(|t| {
+                let s = (t as f64 / (n.max(2) - 1) as f64).clamp(0.0, 1.0);
+                let rot = r.traj.start_rotation().slerp(&r.goal.rotation, s);
+                Isometry3::from_parts(Translation3::from(r.traj.planned(t)), rot)
+            })
+            .collect();
+        let held = world.held_by(self.arm).map(str::to_string);
+        let load_hits = held.as_ref().is_some_and(|held| {
+            let tol = world.params().penetration_tolerance;
+            world.grasp_transform(self.arm).is_some_and(|g| {
+                path.iter().any(|tcp| {
+                    world
+                        .overlap_at(held, &(tcp * g))
+                        .is_some_and(|(d, _)| d > 0.5 * tol)
+                })
+            })
         });
-        if !collides {
+        let learned = matches!(
+            via,
+            Via::Grasp { skill: true, .. } | Via::Place { skill: true, .. }
+        );
+        if load_hits {
+            return safe_transit_z(world, self.arm, &r.goal);
+        }
+        if !learned || world.hand_path_hits(&path, &[self.body()]).is_none() {
             return None;
         }
-        safe_transit_z(world, self.arm, &r.goal)
+        // The hand's transit only where the arm reaches above the goal (near the base, the
+        // learned path may reach a goal the transit's corner cannot).
+        let z = safe_transit_z(world, self.arm, &r.goal)?;
+        let mut over = r.goal;
+        over.translation.z = z;
+        world.reachable(self.arm, &over).is_ok().then_some(z)
+    }
+
+    /// The body the action grasps, releases or pulls.
+    fn body(&self) -> &str {
+        match &self.kind {
+            ActionKind::Grasp { body, .. }
+            | ActionKind::Release { body, .. }
+            | ActionKind::Pull { body, .. } => body.as_str(),
+        }
     }
 
     /// Inserts a transit (rise, over at height `z`) before phase `at` (whose move is `via`); that
@@ -898,7 +987,7 @@ impl ActionExec {
                     _ => return Err("not a release".into()),
                 };
                 let (pose, anchor) = placement_pose(world, &body, placement)?;
-                let pose = quarter_turn_for_arm(world, self.arm, &body, &pose);
+                let pose = quarter_turn_for_arm(world, self.arm, &body, &pose, self.hand_yaw);
                 let tcp = tcp_for_body_pose(world, self.arm, &pose);
                 Ok((raised(&tcp, *dz), Some(anchor_frame(&pose)), anchor))
             }
@@ -1010,6 +1099,32 @@ pub(crate) fn safe_transit_z(world: &World, arm: usize, goal: &Isometry3<f64>) -
         world.highest_top_in(lo, hi, &except)
     }))
 }
+
+/// Why the lift of the body that `arm` just grasped (action `kind`, move `via`, the TCP's height
+/// `grasped_z` at the grasp) is stuck: the simulator stopped it at another body before it rose
+/// [`STUCK_LIFT`] above where it was grasped. `None` if it is not.
+fn stuck_lift(
+    world: &World,
+    arm: usize,
+    kind: &ActionKind,
+    via: &Via,
+    grasped_z: Option<f64>,
+) -> Option<String> {
+    let (ActionKind::Grasp { body, .. }, Via::Up { .. }) = (kind, via) else {
+        return None;
+    };
+    if world.held_by(arm) != Some(body.as_str()) {
+        return None;
+    }
+    let by = world.arm_blocked_by(arm)?;
+    let at = grasped_z?;
+    let z = world.tcp_pose(arm)?.translation.z;
+    (z - at < STUCK_LIFT).then(|| format!("cannot lift {body}: {by} is in its way"))
+}
+
+/// How far a body must have risen from where it was grasped for a stopped lift to be carried
+/// on (by a transit) rather than undone (m).
+const STUCK_LIFT: f64 = 0.01;
 
 /// Where a joint-space recovery that can take neither of its ways to the roomy solution goes
 /// instead: the solution nearest the arm's joints for the first of these fractions of the way

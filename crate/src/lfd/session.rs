@@ -823,7 +823,8 @@ impl Session {
                     }
                 }
                 let exec =
-                    ActionExec::new(&action, kind, &self.world, &self.skills, &self.params.exec);
+                    ActionExec::new(&action, kind, &self.world, &self.skills, &self.params.exec)
+                        .with_hand_yaw(binding.hand_yaw);
                 self.exec = Some(match binding.transit {
                     Some(z) => exec.with_transit(z),
                     None => exec,

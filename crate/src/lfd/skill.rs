@@ -66,6 +66,8 @@ pub enum SkillSegment {
         len: usize,
         /// Goal position of the nominal motion (world).
         goal: Vector3<f64>,
+        /// The nominal motion's positions, one per tick (world).
+        nominal: Vec<Vector3<f64>>,
         /// Orientation at the start.
         start_rotation: UnitQuaternion<f64>,
     },
@@ -107,6 +109,17 @@ impl SkillSegment {
         }
     }
 
+    /// The planned position for tick `t` (of the nominal motion, for a learned skill): where
+    /// the segment will take the hand when nothing disturbs it.
+    pub fn planned(&self, t: usize) -> Vector3<f64> {
+        match self {
+            SkillSegment::Profile { positions, .. } => positions[t.min(positions.len() - 1)],
+            SkillSegment::Closed { nominal, goal, .. } => {
+                nominal.get(t).or(nominal.last()).copied().unwrap_or(*goal)
+            }
+        }
+    }
+
     /// The current commanded position (for drawing).
     pub fn current(&self, t: usize) -> Vector3<f64> {
         match self {
@@ -127,9 +140,18 @@ impl SkillSegment {
     pub fn retarget(&mut self, old: &Isometry3<f64>, new: &Isometry3<f64>) -> bool {
         match self {
             SkillSegment::Profile { .. } => false,
-            SkillSegment::Closed { ctrl, goal, .. } => {
+            SkillSegment::Closed {
+                ctrl,
+                goal,
+                nominal,
+                ..
+            } => {
                 ctrl.retarget(new);
-                *goal = (new * old.inverse() * Point3::from(*goal)).coords;
+                let moved = new * old.inverse();
+                *goal = (moved * Point3::from(*goal)).coords;
+                for p in nominal.iter_mut() {
+                    *p = (moved * Point3::from(*p)).coords;
+                }
                 true
             }
         }
@@ -234,6 +256,7 @@ impl SkillLibrary {
                     return SkillSegment::Closed {
                         len: traj.positions.len(),
                         goal: last.coords,
+                        nominal: traj.positions.iter().map(|p| p.coords).collect(),
                         ctrl: Box::new(traj.controller()),
                         start_rotation: start.rotation,
                     };

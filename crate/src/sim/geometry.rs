@@ -393,44 +393,70 @@ pub fn rest_pose_on(world: &World, body: &str, support: &str, yaw: f64) -> Optio
 }
 
 /// `body_pose` turned about the vertical by the quarter turn (0, ±π/2, π) that makes the TCP of
-/// arm `arm`, holding `body` with its actual grasp, point its fingers closest to the direction
-/// from the base (the orientation the placement streams certify with IK). A block with a square
-/// footprint looks the same after a quarter turn, so its facts and footprint do not change; any
-/// other body, or an arm that holds nothing, gets `body_pose` back.
+/// arm `arm`, holding `body` with its actual grasp, point its fingers closest to the yaw
+/// `toward` (of the TCP's x axis; `None`: the direction from the base, the orientation the
+/// placement streams sample with IK). The streams pass the hand yaw they certified the release
+/// with: the actual grasp may differ from the predicted one by a quarter turn, and the hand must
+/// end where it was certified. A block with a square footprint looks the same after a quarter
+/// turn, so its facts and footprint do not change; any other body, or an arm that holds
+/// nothing, gets `body_pose` back.
 ///
-/// Regression: a block picked with one quarter-turn grasp and placed with the placement's yaw as
-/// sampled put the wrist up to 180° away from the certified orientation, and the arm could not
-/// reach the place via-point ("the arm cannot reach its via-point (540 mm away)").
+/// Regressions: a block picked with one quarter-turn grasp and placed with the placement's yaw
+/// as sampled put the wrist up to 180° away from the certified orientation, and the arm could
+/// not reach the place via-point ("the arm cannot reach its via-point (540 mm away)"). Turned
+/// towards the base's heading instead of the certified yaw, a hand certified lengthwise beside
+/// a tower was put down across it, its palm in the tower (seed 31337, episode 1398).
 pub fn quarter_turn_for_arm(
     world: &World,
     arm: usize,
     body: &str,
     body_pose: &Isometry3<f64>,
+    toward: Option<f64>,
 ) -> Isometry3<f64> {
-    let (Some(g), Some(bi)) = (world.grasp_transform(arm), world.body_index(body)) else {
-        return *body_pose;
-    };
-    let b = &world.bodies[bi];
-    let square = b.kind == BodyKind::Block
-        && b.parts.len() == 1
-        && (b.parts[0].1.half_extents.x - b.parts[0].1.half_extents.y).abs() < 1e-9;
+    match world.grasp_transform(arm) {
+        Some(g) => quarter_turns(world, arm, body, body_pose, &g, toward)[0],
+        None => *body_pose,
+    }
+}
+
+/// `body_pose` turned by each quarter turn, ordered by how close the yaw of the TCP holding
+/// `body` with grasp `g` (its pose in the TCP frame) comes to `toward` (`None`: the heading
+/// from arm `arm`'s base); just `body_pose` for a body without a square footprint. The first
+/// is [`quarter_turn_for_arm`]'s; the streams certify a release with the first one or two.
+pub(crate) fn quarter_turns(
+    world: &World,
+    arm: usize,
+    body: &str,
+    body_pose: &Isometry3<f64>,
+    g: &Isometry3<f64>,
+    toward: Option<f64>,
+) -> Vec<Isometry3<f64>> {
+    let square = world.body_index(body).is_some_and(|bi| {
+        let b = &world.bodies[bi];
+        b.kind == BodyKind::Block
+            && b.parts.len() == 1
+            && (b.parts[0].1.half_extents.x - b.parts[0].1.half_extents.y).abs() < 1e-9
+    });
     if !square {
-        return *body_pose;
+        return vec![*body_pose];
     }
-    let heading = yaw_from_base(world, arm, &body_pose.translation.vector);
-    let mut best = (f64::INFINITY, *body_pose);
-    for k in 0..4 {
-        let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), k as f64 * FRAC_PI_2);
-        let pose = Isometry3::from_parts(body_pose.translation, turn * body_pose.rotation);
-        let tcp = pose * g.inverse();
-        // The TCP's fingers close along its y axis; its "yaw" is that of its x axis.
-        let x = tcp.rotation * Vector3::x();
-        let off = wrap(libm::atan2(x.y, x.x) - heading).abs();
-        if off < best.0 - 1e-9 {
-            best = (off, pose);
-        }
-    }
-    best.1
+    let toward = toward.unwrap_or_else(|| yaw_from_base(world, arm, &body_pose.translation.vector));
+    let mut turned: Vec<(f64, Isometry3<f64>)> = (0..4)
+        .map(|k| {
+            let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), k as f64 * FRAC_PI_2);
+            let pose = Isometry3::from_parts(body_pose.translation, turn * body_pose.rotation);
+            (wrap(tcp_yaw(&(pose * g.inverse())) - toward).abs(), pose)
+        })
+        .collect();
+    // Of two turns equally close (to a nanoradian), the lesser turn first (a stable sort).
+    turned.sort_by_key(|(off, _)| (off * 1e9).round() as i64);
+    turned.into_iter().map(|(_, p)| p).collect()
+}
+
+/// The yaw of a TCP pose: that of its x axis (its fingers close along its y axis).
+pub(crate) fn tcp_yaw(tcp: &Isometry3<f64>) -> f64 {
+    let x = tcp.rotation * Vector3::x();
+    libm::atan2(x.y, x.x)
 }
 
 /// The TCP pose that puts the body held by arm `arm` at `body_pose` (using the actual grasp), or,

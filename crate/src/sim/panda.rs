@@ -480,6 +480,16 @@ pub fn inverse_kinematics_with_room(
             Err(e) => failure = failure.or(Some(e)),
         }
     }
+    if best.is_none() {
+        // Near the edges of the workspace (a target just outside the minimum reach, the arm
+        // folded) few random restarts converge: more of them, from other seeds, before giving up.
+        let wide = IkParams {
+            restarts: ROOMY_EXTRA_RESTARTS,
+            seed: params.seed.wrapping_add(1),
+            ..params.clone()
+        };
+        best = inverse_kinematics(base, target, &READY, &wide).ok();
+    }
     best.ok_or_else(|| {
         failure.unwrap_or(Unreachable {
             best_joints: READY,
@@ -488,6 +498,10 @@ pub fn inverse_kinematics_with_room(
         })
     })
 }
+
+/// Random restarts of [`inverse_kinematics_with_room`]'s last try, when the warm start and the
+/// ready posture (with their restarts) found nothing.
+const ROOMY_EXTRA_RESTARTS: usize = 24;
 
 /// A gripper orientation pointing straight down (`z` to −z world) with the fingers joined along the
 /// world direction at angle `yaw` from +y.

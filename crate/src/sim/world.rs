@@ -1028,6 +1028,56 @@ impl World {
         solve(&a.base, pose, &a.joints, &self.params.planning_ik)
     }
 
+    /// The first block or hook (`except` and held bodies excepted) that the hand's capsule
+    /// ([`super::geometry::hand_capsule`]) overlaps, by more than 2 mm, at one of the TCP poses
+    /// `path` and did not already overlap at the first; `None` if none. The simulator stops the
+    /// links only at tables and shelves, so the executor asks this of a learned approach's
+    /// planned path before it follows it (a hand swept through a block would knock it over).
+    pub(crate) fn hand_path_hits(
+        &self,
+        path: &[Isometry3<f64>],
+        except: &[&str],
+    ) -> Option<String> {
+        let held: Vec<usize> = self
+            .arms
+            .iter()
+            .filter_map(|a| a.holding.map(|h| h.0))
+            .collect();
+        let others: Vec<(usize, Isometry3<f64>, Cuboid)> = self
+            .bodies
+            .iter()
+            .enumerate()
+            .filter(|(j, b)| {
+                !b.lost
+                    && matches!(b.kind, BodyKind::Block | BodyKind::Hook)
+                    && !held.contains(j)
+                    && !except.contains(&b.name.as_str())
+            })
+            .flat_map(|(j, b)| {
+                b.world_parts()
+                    .map(move |(iso, c)| (j, iso, super::geometry::shrunk(c, 0.002)))
+            })
+            .collect();
+        let touching = |tcp: &Isometry3<f64>| -> Vec<usize> {
+            let (a, b, r) = super::geometry::hand_capsule(tcp);
+            let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
+            others
+                .iter()
+                .filter(|(_, iso, c)| {
+                    query::intersection_test(&Isometry3::identity(), &cap, iso, c).unwrap_or(true)
+                })
+                .map(|(j, _, _)| *j)
+                .collect()
+        };
+        let at_start = path.first().map(touching).unwrap_or_default();
+        path.iter().skip(1).find_map(|tcp| {
+            touching(tcp)
+                .into_iter()
+                .find(|j| !at_start.contains(j))
+                .map(|j| self.bodies[j].name.clone())
+        })
+    }
+
     /// What arm `arm` would sweep through on a straight joint-space move from `from` to `to`
     /// (sampled at most 0.05 rad apart in every joint, as the streams sample it), carrying what
     /// it holds: the name of the first body (`except` excepted) its links (the base link
@@ -1614,6 +1664,47 @@ impl World {
     /// [`World::settle_probe`]; with `held_obstacles`, bodies held by a gripper are obstacles
     /// too (a dragged block must not fall through a carried one).
     fn settle_probe_among(
+        &self,
+        bi: usize,
+        pose: &Isometry3<f64>,
+        ignore: &[usize],
+        held_obstacles: bool,
+    ) -> Settle {
+        match self.settle_probe_once(bi, pose, ignore, held_obstacles) {
+            Settle::Blocked(j) => {
+                // Wedged under an overhang (a block pushed over its edge): what lies above its
+                // centre cannot hold it up; it rests on what is below, if that holds it.
+                let centre = pose.translation.z;
+                let mut above: Vec<usize> = ignore.to_vec();
+                above.extend(
+                    (0..self.bodies.len())
+                        .filter(|&k| k != bi && self.bodies[k].aabb().0.z > centre),
+                );
+                let tol = self.params.penetration_tolerance;
+                match self.settle_probe_once(bi, pose, &above, held_obstacles) {
+                    Settle::On { support, drop } => {
+                        // Only if, at rest, it presses into none of them beyond the tolerance.
+                        let mut rest = self.bodies[bi].clone();
+                        rest.pose = *pose;
+                        rest.pose.translation.z -= drop;
+                        let clear = above[ignore.len()..].iter().all(|&k| {
+                            self.bodies[k].lost || rest.penetration(&self.bodies[k]) <= 0.9 * tol
+                        });
+                        if clear {
+                            Settle::On { support, drop }
+                        } else {
+                            Settle::Blocked(j)
+                        }
+                    }
+                    _ => Settle::Blocked(j),
+                }
+            }
+            settle => settle,
+        }
+    }
+
+    /// One probe of [`World::settle_probe_among`], `ignore` excepted.
+    fn settle_probe_once(
         &self,
         bi: usize,
         pose: &Isometry3<f64>,

@@ -56,7 +56,8 @@ use crate::lfd::exec::{
 use crate::plan::Task;
 use crate::sim::demo::{pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TURNS};
 use crate::sim::geometry::{
-    clear_grasp_at, grasp_pose_at, hand_within, link_capsules, raised, rise_first, transit_z,
+    clear_grasp_at, grasp_pose_at, hand_within, link_capsules, quarter_turns, raised, rise_first,
+    tcp_yaw, transit_z,
 };
 use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
@@ -868,6 +869,44 @@ impl<'w> StreamBinder<'w> {
         true
     }
 
+    /// A body of `geo` (not held) above the middle of `body` at `pose` that overlaps, by more
+    /// than the simulator's contact stop lets a lifted body press into another, the box `body`
+    /// sweeps rising straight up by the lift height: what would stop its lift.
+    fn overhang(&self, geo: &Geo, body: &str, pose: &Isometry3<f64>) -> Option<String> {
+        // Each box shrunk by half of the overlap the contact stop allows (with a margin).
+        let slack = 0.4 * self.world.params().penetration_tolerance;
+        let rise = self.params.lift_height;
+        let swept: Vec<(Isometry3<f64>, Cuboid)> = self
+            .parts_at(body, pose)
+            .into_iter()
+            .map(|(iso, c)| {
+                let h = c.half_extents + Vector3::new(0.0, 0.0, 0.5 * rise);
+                (
+                    raised(&iso, 0.5 * rise),
+                    Cuboid::new((h - Vector3::repeat(slack)).sup(&(h * 0.5))),
+                )
+            })
+            .collect();
+        let middle = pose.translation.z;
+        geo.poses
+            .iter()
+            .filter(|(name, _)| name.as_str() != body && !geo.is_held(name))
+            .find_map(|(name, p)| {
+                let parts = self.parts_at(name, p);
+                let hit = parts.iter().any(|(oiso, oc)| {
+                    let (lo, _) = box_aabb(oiso, oc);
+                    let other = Cuboid::new(
+                        (oc.half_extents - Vector3::repeat(slack)).sup(&(oc.half_extents * 0.5)),
+                    );
+                    lo.z > middle
+                        && swept.iter().any(|(iso, c)| {
+                            query::intersection_test(iso, c, oiso, &other).unwrap_or(true)
+                        })
+                });
+                hit.then(|| name.clone())
+            })
+    }
+
     /// The boxes of every body in `geo` but `body` and the held ones, unshrunk (what the
     /// executor's grasp choice sees in the world).
     fn boxes_except(&self, geo: &Geo, body: &str) -> Vec<(Isometry3<f64>, Cuboid)> {
@@ -888,6 +927,13 @@ impl<'w> StreamBinder<'w> {
     /// `None` if it cannot, else the height of the transit its approach needs, if any.
     fn grasp(&mut self, geo: &mut Geo, arm: usize, body: &str, certify: bool) -> Option<Transit> {
         let pose = geo.poses.get(body).copied()?;
+        // Certified or not, the body must rise free: a block dragged or nudged over its edge
+        // stops the lift (the simulator's contact stop), and no motion of the hand helps.
+        if let Some(over) = self.overhang(geo, body, &pose) {
+            let why = format!("{over} overhangs {body}");
+            self.collision(why, &over);
+            return None;
+        }
         let boxes = self.boxes_except(geo, body);
         let tcp = clear_grasp_at(
             self.world,
@@ -924,16 +970,38 @@ impl<'w> StreamBinder<'w> {
 
     /// Certifies `arm` putting its load down with the body at `pose` (approach from above,
     /// open, retreat up) and rolls `geo` on: `None` if it cannot, else the height of the
-    /// transit its approach needs, if any.
+    /// transit its approach needs, if any, and the hand's yaw it certified (`None` uncertified).
+    /// A square block may be put down turned by a quarter turn (it looks the same): the hand
+    /// nearest the arm's heading first (what the executor does uncertified), then the next
+    /// nearest (the hand turned a quarter, e.g. lengthwise beside a tower); the executor puts
+    /// the hand where it was certified.
     fn release(
         &mut self,
         geo: &mut Geo,
         arm: usize,
         pose: &Isometry3<f64>,
         certify: bool,
-    ) -> Option<Transit> {
+    ) -> Option<(Transit, Option<f64>)> {
+        let (body, g) = geo.held.get(&arm).cloned()?;
+        let turns = quarter_turns(self.world, arm, &body, pose, &g, None);
+        let tries = if certify { CERTIFIED_TURNS } else { 1 };
+        turns
+            .iter()
+            .take(tries)
+            .find_map(|p| self.release_turned(geo, arm, p, certify))
+    }
+
+    /// [`StreamBinder::release`] with the body at `pose` as it is.
+    fn release_turned(
+        &mut self,
+        geo: &mut Geo,
+        arm: usize,
+        pose: &Isometry3<f64>,
+        certify: bool,
+    ) -> Option<(Transit, Option<f64>)> {
         let (body, g) = geo.held.get(&arm).cloned()?;
         let tcp = pose * g.inverse();
+        let hand_yaw = certify.then(|| tcp_yaw(&tcp));
         let retreat = raised(&tcp, self.params.approach_height);
         let mut transit = None;
         if certify {
@@ -979,7 +1047,7 @@ impl<'w> StreamBinder<'w> {
         geo.held.remove(&arm);
         geo.poses.insert(body, *pose);
         geo.tcp[arm] = retreat;
-        Some(transit)
+        Some((transit, hand_yaw))
     }
 
     /// The pose a pull stroke of `arm` leaves `body` at (shape cast of the carried hook along
@@ -1307,7 +1375,7 @@ impl<'w> StreamBinder<'w> {
         (n, x, y, yaw, top): Candidate,
         hint: Option<(f64, f64, f64)>,
         certify: bool,
-    ) -> Option<(Geo, Transit)> {
+    ) -> Option<(Geo, Transit, Option<f64>)> {
         let body = geo.held.get(&arm)?.0.clone();
         // Height of the body's frame above its lowest point (the hook's frame is not centred).
         let (lo, _) = self.world.body_aabb(&body)?;
@@ -1353,8 +1421,8 @@ impl<'w> StreamBinder<'w> {
             }
         }
         let mut next = geo.clone();
-        let transit = self.release(&mut next, arm, &pose, certify)?;
-        Some((next, transit))
+        let (transit, hand_yaw) = self.release(&mut next, arm, &pose, certify)?;
+        Some((next, transit, hand_yaw))
     }
 
     /// Binds `ops[i..]` from the geometric state `geo`, pushing one binding per action onto
@@ -1392,6 +1460,7 @@ impl<'w> StreamBinder<'w> {
                 Binding {
                     placement: None,
                     transit,
+                    hand_yaw: None,
                 }
             }
             ActionKind::Release {
@@ -1409,13 +1478,14 @@ impl<'w> StreamBinder<'w> {
                     py.rotation,
                 );
                 self.begin_candidate();
-                let Some(transit) = self.release(&mut geo, arm, &pose, certify) else {
+                let Some((transit, hand_yaw)) = self.release(&mut geo, arm, &pose, certify) else {
                     self.candidate_failed();
                     return Err(i);
                 };
                 Binding {
                     transit,
                     placement: Some(Placement::OnBlock(y)),
+                    hand_yaw,
                 }
             }
             ActionKind::Release { arm, body, .. } => {
@@ -1435,7 +1505,8 @@ impl<'w> StreamBinder<'w> {
                     {
                         break;
                     }
-                    let Some((next, transit)) = self.try_surface(&geo, arm, c, hint, certify)
+                    let Some((next, transit, hand_yaw)) =
+                        self.try_surface(&geo, arm, c, hint, certify)
                     else {
                         continue;
                     };
@@ -1447,6 +1518,7 @@ impl<'w> StreamBinder<'w> {
                             yaw: c.3,
                         }),
                         transit,
+                        hand_yaw,
                     });
                     match self.bind_from(task, ops, demo_from, i + 1, next, out) {
                         Ok(end) => return Ok(end),
@@ -1463,6 +1535,7 @@ impl<'w> StreamBinder<'w> {
                 Binding {
                     placement: Some(Placement::Stroke(turn)),
                     transit,
+                    hand_yaw: None,
                 }
             }
         };
@@ -1540,6 +1613,10 @@ const SMALL_SURFACE_SPOTS: usize = 12;
 
 /// Radius around the demonstrated hook placement whose spots are tried first (m).
 const HOOK_HINT_RADIUS: f64 = 0.15;
+
+/// How many quarter turns of a square block (nearest the arm's heading first) a certified
+/// release tries.
+const CERTIFIED_TURNS: usize = 2;
 
 /// The TCP height of the transit an action's approach needs (`None`: straight is clear).
 type Transit = Option<f64>;
