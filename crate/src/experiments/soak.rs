@@ -17,7 +17,10 @@
 //! * **stated outcome**: every episode ends in success or in a [`FailReason`] that is
 //!   *legitimate*: the planner's "no plan" is confirmed by an independent exhaustive search that
 //!   proves the disturbed task unsolvable, or a block a user dragged is now where no arm can
-//!   grasp it or pull it with the hook (checked with IK, [`handleable`]); an exhausted budget is
+//!   grasp it or pull it with the hook (checked with IK, [`handleable`]), or the failed action
+//!   (or the one the planner could not bind) is on a block that its last drag left where no arm
+//!   can work it (an arm that still closed on a block inside its minimum reach gets stuck with
+//!   it elsewhere); an exhausted budget is
 //!   stated as such and counted apart; anything else (an action that failed, a "no plan" for a
 //!   solvable task) is *unexplained*;
 //! * **replay identity** (optional): the episode JSON replays to the byte-identical log.
@@ -33,6 +36,7 @@ use rand_pcg::Pcg64Mcg;
 use serde::{Deserialize, Serialize};
 
 use crate::lfd::control::FailReason;
+use crate::lfd::exec::fact_args;
 use crate::lfd::session::{mix, BenchmarkId, Session, SessionOptions, SkillKind};
 use crate::lfd::{Method, Mode};
 use crate::pddl::{parse_domain, parse_problem, Domain};
@@ -281,6 +285,20 @@ fn dragged_out_of_reach(world: &World, dragged: &BTreeSet<String>) -> Option<Str
     })
 }
 
+/// Whether the failure `reason` is about a block in `away`: the failed action, or the action
+/// the planner could not bind, names it.
+fn fails_on(reason: &FailReason, away: &BTreeSet<String>) -> bool {
+    let action = match reason {
+        FailReason::ActionFailed { action, .. } => action.as_str(),
+        FailReason::NoPlan { message } => message
+            .split_once("cannot bind ")
+            .map_or("", |(_, rest)| rest.split(')').next().unwrap_or("")),
+        _ => "",
+    };
+    let (_, args) = fact_args(action.trim_start_matches('(').trim_end_matches(')'));
+    args.iter().any(|a| away.contains(*a))
+}
+
 /// The legitimate reason of [`dragged_out_of_reach`].
 const DRAGGED_AWAY: &str =
     "a user drag put a block where no arm can grasp it (IK) or pull it in with a clear stroke of the hook";
@@ -495,8 +513,10 @@ fn soak_episode(
         }
     };
     let mut broken = false;
-    // Blocks moved by accepted user drags (with what stood on them).
+    // Blocks moved by accepted user drags (with what stood on them), and those of them that
+    // their last drag left where no arm can work them.
     let mut dragged: BTreeSet<String> = BTreeSet::new();
+    let mut dragged_away: BTreeSet<String> = BTreeSet::new();
     while s.outcome().is_none() && s.tick() < params.max_ticks {
         // Disturbances due now, before the tick (as a replay applies them).
         while next < schedule.len() && schedule[next].0 <= s.tick() {
@@ -518,8 +538,17 @@ fn soak_episode(
                     match s.perturb(&body, pos) {
                         Ok(out) => {
                             rep.drags_accepted += 1;
-                            dragged.insert(out.body.clone());
-                            dragged.extend(out.also_moved.iter().map(|(b, _)| b.clone()));
+                            let moved = std::iter::once(out.body.clone())
+                                .chain(out.also_moved.iter().map(|(b, _)| b.clone()));
+                            for b in moved {
+                                let block = s.world().body_kind(&b) == Some(BodyKind::Block);
+                                if block && handleable(s.world(), &b).is_err() {
+                                    dragged_away.insert(b.clone());
+                                } else {
+                                    dragged_away.remove(&b);
+                                }
+                                dragged.insert(b);
+                            }
                             (format!("drag {body} to {pos:?}"), true)
                         }
                         Err(_) => {
@@ -588,7 +617,12 @@ fn soak_episode(
                         .entry("no plan: the disturbed task is unsolvable".into())
                         .or_default() += 1
                 }
-                Some(false) => match dragged_out_of_reach(s.world(), &dragged) {
+                Some(false) => match dragged_out_of_reach(s.world(), &dragged).or_else(|| {
+                    let reason = FailReason::NoPlan {
+                        message: message.clone(),
+                    };
+                    fails_on(&reason, &dragged_away).then_some(String::new())
+                }) {
                     Some(_) => {
                         *rep.legitimate_failures
                             .entry(DRAGGED_AWAY.into())
@@ -606,7 +640,9 @@ fn soak_episode(
                 None => rep.budget_exhausted += 1,
             }
         }
-        Some(Err(other)) => match dragged_out_of_reach(s.world(), &dragged) {
+        Some(Err(other)) => match dragged_out_of_reach(s.world(), &dragged)
+            .or_else(|| fails_on(other, &dragged_away).then_some(String::new()))
+        {
             Some(_) => {
                 *rep.legitimate_failures
                     .entry(DRAGGED_AWAY.into())
@@ -647,6 +683,32 @@ fn soak_episode(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_failure_is_the_drags_only_when_its_action_names_a_block_dragged_out_of_reach() {
+        let away: BTreeSet<String> = ["c".to_string()].into();
+        let failed = |action: &str| FailReason::ActionFailed {
+            action: action.into(),
+            why: "the arm cannot reach its via-point (4.4 mm away)".into(),
+        };
+        assert!(fails_on(&failed("(stack panda c d)"), &away));
+        assert!(!fails_on(&failed("(stack panda a b)"), &away));
+        let unbound = |message: &str| FailReason::NoPlan {
+            message: message.into(),
+        };
+        assert!(fails_on(
+            &unbound("2 skeletons tried; last failure: cannot bind (pick panda c) (link 6 hits b)"),
+            &away
+        ));
+        assert!(!fails_on(
+            &unbound("2 skeletons tried; last failure: cannot bind (pick panda a) (c overhangs a)"),
+            &away
+        ));
+        assert!(!fails_on(
+            &unbound("no action skeleton: the goal is unreachable"),
+            &away
+        ));
+    }
 
     #[test]
     fn a_held_block_dragged_inside_the_arms_minimum_reach_is_a_legitimate_failure() {
