@@ -1028,6 +1028,23 @@ impl World {
         solve(&a.base, pose, &a.joints, &self.params.planning_ik)
     }
 
+    /// The world boxes of the bodies (not lost) that `keep` accepts (index, body), each with its
+    /// body's index, shrunk by 2 mm so that touching faces and resting contacts do not count.
+    fn parts_shrunk(
+        &self,
+        keep: impl Fn(usize, &Body) -> bool,
+    ) -> Vec<(usize, Isometry3<f64>, Cuboid)> {
+        self.bodies
+            .iter()
+            .enumerate()
+            .filter(|(j, b)| !b.lost && keep(*j, b))
+            .flat_map(|(j, b)| {
+                b.world_parts()
+                    .map(move |(iso, c)| (j, iso, super::geometry::shrunk(c, 0.002)))
+            })
+            .collect()
+    }
+
     /// The first block or hook (`except` and held bodies excepted) that the hand's capsule
     /// ([`super::geometry::hand_capsule`]) overlaps, by more than 2 mm, at one of the TCP poses
     /// `path` and did not already overlap at the first; `None` if none. The simulator stops the
@@ -1043,21 +1060,11 @@ impl World {
             .iter()
             .filter_map(|a| a.holding.map(|h| h.0))
             .collect();
-        let others: Vec<(usize, Isometry3<f64>, Cuboid)> = self
-            .bodies
-            .iter()
-            .enumerate()
-            .filter(|(j, b)| {
-                !b.lost
-                    && matches!(b.kind, BodyKind::Block | BodyKind::Hook)
-                    && !held.contains(j)
-                    && !except.contains(&b.name.as_str())
-            })
-            .flat_map(|(j, b)| {
-                b.world_parts()
-                    .map(move |(iso, c)| (j, iso, super::geometry::shrunk(c, 0.002)))
-            })
-            .collect();
+        let others = self.parts_shrunk(|j, b| {
+            matches!(b.kind, BodyKind::Block | BodyKind::Hook)
+                && !held.contains(&j)
+                && !except.contains(&b.name.as_str())
+        });
         let touching = |tcp: &Isometry3<f64>| -> Vec<usize> {
             let (a, b, r) = super::geometry::hand_capsule(tcp);
             let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
@@ -1104,18 +1111,9 @@ impl World {
                     .collect()
             })
             .unwrap_or_default();
-        let others: Vec<(usize, Isometry3<f64>, Cuboid)> = self
-            .bodies
-            .iter()
-            .enumerate()
-            .filter(|(j, b)| {
-                !b.lost && held.is_none_or(|(bi, _)| bi != *j) && !except.contains(&b.name.as_str())
-            })
-            .flat_map(|(j, b)| {
-                b.world_parts()
-                    .map(move |(iso, c)| (j, iso, super::geometry::shrunk(c, 0.002)))
-            })
-            .collect();
+        let others = self.parts_shrunk(|j, b| {
+            held.is_none_or(|(bi, _)| bi != j) && !except.contains(&b.name.as_str())
+        });
         // (part, other) pairs overlapping at q; parts: link capsules, then load boxes.
         let overlapping = |q: &[f64; DOF]| -> Vec<(usize, usize)> {
             let mut out = vec![];
