@@ -759,6 +759,20 @@ impl ActionExec {
                                 seg.lag = 0;
                             }
                         }
+                        // A release point the arm stops just above (an elbow at its limit over
+                        // a tall stack near the base): let go there if the body comes to rest
+                        // on its support from that height.
+                        let above = tcp.translation.vector - seg.goal.translation.vector;
+                        let drop_ok = matches!(via, Via::Place { .. })
+                            && matches!(self.phases.get(self.phase + 1), Some(Phase::Gripper(_)))
+                            && above.z >= 0.0
+                            && above.norm() <= RELEASE_SLACK
+                            && libm::hypot(above.x, above.y) <= p.reach_tolerance
+                            && world.release_check(self.arm).is_ok();
+                        if seg.lag as f64 * dt > p.settle_timeout && drop_ok {
+                            self.next_phase();
+                            return ExecStatus::Running;
+                        }
                         if seg.lag as f64 * dt > p.settle_timeout {
                             return ExecStatus::Failed(match world.arm_blocked_by(self.arm) {
                                 Some(b) => format!(
@@ -1121,6 +1135,10 @@ fn stuck_lift(
     let z = world.tcp_pose(arm)?.translation.z;
     (z - at < STUCK_LIFT).then(|| format!("cannot lift {body}: {by} is in its way"))
 }
+
+/// How far above its release point (m) a load the arm cannot bring lower may be let go, when it
+/// comes to rest on its support from there.
+const RELEASE_SLACK: f64 = 0.01;
 
 /// How far a body must have risen from where it was grasped for a stopped lift to be carried
 /// on (by a transit) rather than undone (m).
