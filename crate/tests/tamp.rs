@@ -176,8 +176,7 @@ fn a_carried_block_crosses_a_tower_in_a_transit_that_the_executor_follows() {
 
     // The executor flies the certified transit: the tower stands, a rests at the spot.
     let (_, task) = model_and_task(BenchmarkId::B1, &tower);
-    let files = BenchmarkId::B1.sources().unwrap();
-    let skills = SkillLibrary::learn(&files.demo, SkillKind::Lqt, &[]);
+    let skills = b1_skills();
     let before: Vec<_> = ["b", "c", "d"]
         .iter()
         .map(|n| tower.body_pose(n).unwrap())
@@ -224,8 +223,7 @@ fn an_empty_hand_low_beside_a_tower_reaches_its_top_through_a_transit() {
     let z = binder.bindings[0].transit.expect("a transit");
     let c_box = world.body_shapes("c");
 
-    let files = BenchmarkId::B1.sources().unwrap();
-    let skills = SkillLibrary::learn(&files.demo, SkillKind::Lqt, &[]);
+    let skills = b1_skills();
     let params = ExecParams::default();
     // Ticks during which the hand overlaps c, with and without the transit.
     let run = |transit: Option<f64>| {
@@ -236,15 +234,9 @@ fn an_empty_hand_low_beside_a_tower_reaches_its_top_through_a_transit() {
             exec = exec.with_transit(z);
         }
         let mut touching = 0;
-        let mut status = ExecStatus::Running;
-        for _ in 0..6000 {
-            status = exec.tick(&mut w, &skills, &params);
-            assert_eq!(w.check_invariants(), Ok(()));
+        let status = tick_to_end_watching(exec, &mut w, &skills, &params, |w| {
             touching += usize::from(hand_hits(&w.tcp_pose(0).unwrap(), &c_box));
-            if status != ExecStatus::Running {
-                break;
-            }
-        }
+        });
         (status, touching, w.held_by(0).map(str::to_string))
     };
     let (status, touching, held) = run(Some(z));
@@ -538,6 +530,18 @@ fn execute_bound(
     bindings: &[logic_lfd::lfd::exec::Binding],
     skills: &SkillLibrary,
 ) {
+    execute_bound_watching(world, task, ops, bindings, skills, |_, _| {});
+}
+
+/// [`execute_bound`], calling `watch(action, world)` after every tick.
+fn execute_bound_watching(
+    world: &mut World,
+    task: &Task,
+    ops: &[usize],
+    bindings: &[logic_lfd::lfd::exec::Binding],
+    skills: &SkillLibrary,
+    mut watch: impl FnMut(&str, &World),
+) {
     let params = ExecParams::default();
     for (&o, binding) in ops.iter().zip(bindings) {
         let operator = &task.operators[o];
@@ -550,7 +554,8 @@ fn execute_bound(
         if let Some(z) = binding.transit {
             exec = exec.with_transit(z);
         }
-        let status = tick_to_end(exec, world, skills, &params);
+        let status =
+            tick_to_end_watching(exec, world, skills, &params, |w| watch(&operator.name, w));
         assert_eq!(status, ExecStatus::Done, "{}", operator.name);
     }
 }
@@ -613,6 +618,15 @@ fn soak_2026_2835_a_block_lifted_behind_the_base_with_a_joint_at_its_limit_reach
     );
 }
 
+/// B1's skills, learned from its demonstration.
+fn b1_skills() -> SkillLibrary {
+    SkillLibrary::learn(
+        &BenchmarkId::B1.sources().unwrap().demo,
+        SkillKind::Lqt,
+        &[],
+    )
+}
+
 /// B2's skills, learned from its demonstration (the hook's grasp apart from the blocks').
 fn b2_skills() -> SkillLibrary {
     let demo = BenchmarkId::B2.sources().unwrap().demo;
@@ -637,15 +651,27 @@ fn execute_learned(
 /// Ticks `exec` in `world` until it ends (at most 6 000 ticks), checking the world's invariants
 /// every tick; its last status.
 fn tick_to_end(
+    exec: ActionExec,
+    world: &mut World,
+    skills: &SkillLibrary,
+    params: &ExecParams,
+) -> ExecStatus {
+    tick_to_end_watching(exec, world, skills, params, |_| {})
+}
+
+/// [`tick_to_end`], calling `watch(world)` after every tick.
+fn tick_to_end_watching(
     mut exec: ActionExec,
     world: &mut World,
     skills: &SkillLibrary,
     params: &ExecParams,
+    mut watch: impl FnMut(&World),
 ) -> ExecStatus {
     let mut status = ExecStatus::Running;
     for _ in 0..6000 {
         status = exec.tick(world, skills, params);
         assert_eq!(world.check_invariants(), Ok(()));
+        watch(world);
         if status != ExecStatus::Running {
             break;
         }
@@ -745,11 +771,7 @@ fn a_lift_stopped_by_an_overhang_puts_the_block_back_and_lets_go() {
     let mut world = b1_with_c_overhanging_a();
     let a0 = world.body_pose("a").unwrap().translation.vector;
     let (_, task) = model_and_task(BenchmarkId::B1, &world);
-    let skills = SkillLibrary::learn(
-        &BenchmarkId::B1.sources().unwrap().demo,
-        SkillKind::Lqt,
-        &[],
-    );
+    let skills = b1_skills();
     let status = execute_learned(&mut world, &task, "(pick panda a)", &skills);
     assert_eq!(
         status,
@@ -800,40 +822,24 @@ fn a_release_beside_a_tower_is_put_down_with_the_hand_where_it_was_certified() {
         "hand yaw {yaw} is {off} off the heading {heading}"
     );
 
-    let files = BenchmarkId::B1.sources().unwrap();
-    let skills = SkillLibrary::learn(&files.demo, SkillKind::Lqt, &[]);
-    let params = ExecParams::default();
     let tower: Vec<_> = ["c", "d"]
         .iter()
         .flat_map(|n| world.body_shapes(n))
         .collect();
-    for (&o, binding) in ops.iter().zip(&bindings) {
-        let operator = &task.operators[o];
-        let mut kind = classify(&task, operator, &world).unwrap();
-        if let ActionKind::Release { placement, .. } = &mut kind {
-            placement.clone_from(&binding.placement);
-        }
-        let mut exec = ActionExec::new(&operator.name, kind, &world, &skills, &params)
-            .with_hand_yaw(binding.hand_yaw);
-        if let Some(z) = binding.transit {
-            exec = exec.with_transit(z);
-        }
-        let mut status = ExecStatus::Running;
-        for _ in 0..6000 {
-            status = exec.tick(&mut world, &skills, &params);
-            assert_eq!(world.check_invariants(), Ok(()));
-            let tcp = world.tcp_pose(0).unwrap();
+    execute_bound_watching(
+        &mut world,
+        &task,
+        &ops,
+        &bindings,
+        &b1_skills(),
+        |action, w| {
+            let tcp = w.tcp_pose(0).unwrap();
             assert!(
                 !hand_hits(&tcp, &tower),
-                "{}: the hand is in the tower",
-                operator.name
+                "{action}: the hand is in the tower"
             );
-            if status != ExecStatus::Running {
-                break;
-            }
-        }
-        assert_eq!(status, ExecStatus::Done, "{}", operator.name);
-    }
+        },
+    );
     let b = world.body_pose("b").unwrap().translation.vector;
     assert!(
         (b.x - hint.0).abs() < 0.01 && (b.y - hint.1).abs() < 0.01,
@@ -851,11 +857,7 @@ fn soak_4242_1816_a_load_the_arm_cannot_bring_lower_is_let_go_just_above_its_sup
     let mut world = saved_world("soak-4242-1816");
     assert_eq!(world.held_by(0), Some("a"));
     let (_, task) = model_and_task(BenchmarkId::B1, &world);
-    let skills = SkillLibrary::learn(
-        &BenchmarkId::B1.sources().unwrap().demo,
-        SkillKind::Lqt,
-        &[],
-    );
+    let skills = b1_skills();
     let status = execute_learned(&mut world, &task, "(stack panda a b)", &skills);
     assert_eq!(status, ExecStatus::Done);
     assert!(SceneGraph::from_world(&world).contains("(on a b)"));

@@ -276,12 +276,11 @@ fn draw_drag(world: &World, kind: DragKind, rng: &mut Pcg64Mcg) -> (String, [f64
 /// (directly, or standing on a moved one) is now where no arm can grasp it or pull it with the
 /// hook, by IK ([`handleable`]). A block in a hand counts too: an arm may close on a block
 /// dragged inside its minimum reach and then be unable to lift it.
-fn dragged_out_of_reach(world: &World, dragged: &BTreeSet<String>) -> Option<String> {
-    dragged.iter().find_map(|b| {
-        if world.is_lost(b) || world.body_kind(b) != Some(BodyKind::Block) {
-            return None;
-        }
-        handleable(world, b).err()
+fn dragged_out_of_reach(world: &World, dragged: &BTreeSet<String>) -> bool {
+    dragged.iter().any(|b| {
+        !world.is_lost(b)
+            && world.body_kind(b) == Some(BodyKind::Block)
+            && handleable(world, b).is_err()
     })
 }
 
@@ -601,6 +600,11 @@ fn soak_episode(
         }
     }
     rep.ticks = s.tick();
+    // A user drag explains the failure: a block it moved is now where no arm can work it, or
+    // the failure is on a block its last drag left so.
+    let drag_explains = |reason: &FailReason| {
+        dragged_out_of_reach(s.world(), &dragged) || fails_on(reason, &dragged_away)
+    };
     match s.outcome() {
         Some(Ok(())) => rep.successes += 1,
         Some(Err(FailReason::Budget { what })) => {
@@ -610,49 +614,38 @@ fn soak_episode(
         Some(Err(FailReason::NoPlan { message })) if message.contains("exhausted") => {
             rep.budget_exhausted += 1
         }
-        Some(Err(FailReason::NoPlan { message })) => {
+        Some(Err(reason @ FailReason::NoPlan { message })) => {
             match models.unsolvable(bench, s.world(), params.check_nodes) {
                 Some(true) => {
                     *rep.legitimate_failures
                         .entry("no plan: the disturbed task is unsolvable".into())
                         .or_default() += 1
                 }
-                Some(false) => match dragged_out_of_reach(s.world(), &dragged).or_else(|| {
-                    let reason = FailReason::NoPlan {
-                        message: message.clone(),
-                    };
-                    fails_on(&reason, &dragged_away).then_some(String::new())
-                }) {
-                    Some(_) => {
-                        *rep.legitimate_failures
-                            .entry(DRAGGED_AWAY.into())
-                            .or_default() += 1
-                    }
-                    None => {
-                        rep.unexplained_failures += 1;
-                        rep.find(finding(
-                            s.tick(),
-                            "unexplained_failure",
-                            format!("no plan ({message}) but the observed task is solvable"),
-                        ));
-                    }
-                },
+                Some(false) if drag_explains(reason) => {
+                    *rep.legitimate_failures
+                        .entry(DRAGGED_AWAY.into())
+                        .or_default() += 1
+                }
+                Some(false) => {
+                    rep.unexplained_failures += 1;
+                    rep.find(finding(
+                        s.tick(),
+                        "unexplained_failure",
+                        format!("no plan ({message}) but the observed task is solvable"),
+                    ));
+                }
                 None => rep.budget_exhausted += 1,
             }
         }
-        Some(Err(other)) => match dragged_out_of_reach(s.world(), &dragged)
-            .or_else(|| fails_on(other, &dragged_away).then_some(String::new()))
-        {
-            Some(_) => {
-                *rep.legitimate_failures
-                    .entry(DRAGGED_AWAY.into())
-                    .or_default() += 1
-            }
-            None => {
-                rep.unexplained_failures += 1;
-                rep.find(finding(s.tick(), "unexplained_failure", other.to_string()));
-            }
-        },
+        Some(Err(other)) if drag_explains(other) => {
+            *rep.legitimate_failures
+                .entry(DRAGGED_AWAY.into())
+                .or_default() += 1
+        }
+        Some(Err(other)) => {
+            rep.unexplained_failures += 1;
+            rep.find(finding(s.tick(), "unexplained_failure", other.to_string()));
+        }
         None => {
             rep.budget_exhausted += 1;
         }
@@ -722,8 +715,8 @@ mod tests {
         let world = World::from_json(&text).unwrap();
         assert_eq!(world.held_by(0), Some("a"));
         let dragged: BTreeSet<String> = ["a".to_string()].into();
-        assert!(dragged_out_of_reach(&world, &dragged).is_some());
+        assert!(dragged_out_of_reach(&world, &dragged));
         // A block the user did not move explains nothing, and neither does one within reach.
-        assert!(dragged_out_of_reach(&world, &["b".to_string()].into()).is_none());
+        assert!(!dragged_out_of_reach(&world, &["b".to_string()].into()));
     }
 }

@@ -250,6 +250,28 @@ enum Via {
     Over { inner: Box<Via>, z: f64 },
 }
 
+impl ActionKind {
+    /// The body the action grasps, releases or pulls.
+    pub fn body(&self) -> &str {
+        match self {
+            ActionKind::Grasp { body, .. }
+            | ActionKind::Release { body, .. }
+            | ActionKind::Pull { body, .. } => body.as_str(),
+        }
+    }
+}
+
+impl Via {
+    /// A learned skill's approach to a grasp or a release (its shape is the demonstration's, not
+    /// the straight line the streams certify).
+    fn is_learned_approach(&self) -> bool {
+        matches!(
+            self,
+            Via::Grasp { skill: true, .. } | Via::Place { skill: true, .. }
+        )
+    }
+}
+
 /// The running execution of one action.
 #[derive(Clone, Debug)]
 pub struct ActionExec {
@@ -691,12 +713,8 @@ impl ActionExec {
                 // The carried body met another on the way (tracking lag or a moved obstacle),
                 // or the hand's learned approach swung a link into a table or shelf: go up,
                 // over at a safe height, and down instead, once per action.
-                let learned_approach = matches!(
-                    via,
-                    Via::Grasp { skill: true, .. } | Via::Place { skill: true, .. }
-                );
                 if world.arm_blocked_by(self.arm).is_some()
-                    && (world.held_by(self.arm).is_some() || learned_approach)
+                    && (world.held_by(self.arm).is_some() || via.is_learned_approach())
                     && self.transit_at.is_none()
                     && !no_transit(&via)
                 {
@@ -747,33 +765,35 @@ impl ActionExec {
                         {
                             seg.recovered = true;
                             if let Ok(sol) = world.reachable_with_room(self.arm, &seg.goal) {
-                                let touches = match &self.kind {
-                                    ActionKind::Grasp { body, .. }
-                                    | ActionKind::Release { body, .. }
-                                    | ActionKind::Pull { body, .. } => body.as_str(),
-                                };
                                 seg.joint_goals = joint_recovery_route(
-                                    world, self.arm, &seg.goal, sol.joints, touches,
+                                    world,
+                                    self.arm,
+                                    &seg.goal,
+                                    sol.joints,
+                                    self.kind.body(),
                                 );
                                 seg.joint_ticks = 0;
                                 seg.lag = 0;
                             }
                         }
-                        // A release point the arm stops just above (an elbow at its limit over
-                        // a tall stack near the base): let go there if the body comes to rest
-                        // on its support from that height.
-                        let above = tcp.translation.vector - seg.goal.translation.vector;
-                        let drop_ok = matches!(via, Via::Place { .. })
-                            && matches!(self.phases.get(self.phase + 1), Some(Phase::Gripper(_)))
-                            && above.z >= 0.0
-                            && above.norm() <= RELEASE_SLACK
-                            && libm::hypot(above.x, above.y) <= p.reach_tolerance
-                            && world.release_check(self.arm).is_ok();
-                        if seg.lag as f64 * dt > p.settle_timeout && drop_ok {
-                            self.next_phase();
-                            return ExecStatus::Running;
-                        }
                         if seg.lag as f64 * dt > p.settle_timeout {
+                            // A release point the arm stops just above (an elbow at its limit
+                            // over a tall stack near the base): let go there if the body comes
+                            // to rest on its support from that height.
+                            let above = tcp.translation.vector - seg.goal.translation.vector;
+                            let drop_ok = matches!(via, Via::Place { .. })
+                                && matches!(
+                                    self.phases.get(self.phase + 1),
+                                    Some(Phase::Gripper(_))
+                                )
+                                && above.z >= 0.0
+                                && above.norm() <= RELEASE_SLACK
+                                && libm::hypot(above.x, above.y) <= p.reach_tolerance
+                                && world.release_check(self.arm).is_ok();
+                            if drop_ok {
+                                self.next_phase();
+                                return ExecStatus::Running;
+                            }
                             return ExecStatus::Failed(match world.arm_blocked_by(self.arm) {
                                 Some(b) => format!(
                                     "the {} is stopped by {b} ({:.1} mm from the via-point)",
@@ -897,14 +917,11 @@ impl ActionExec {
                 })
             })
         });
-        let learned = matches!(
-            via,
-            Via::Grasp { skill: true, .. } | Via::Place { skill: true, .. }
-        );
         if load_hits {
             return safe_transit_z(world, self.arm, &r.goal);
         }
-        if !learned || world.hand_path_hits(&path, &[self.body()]).is_none() {
+        if !via.is_learned_approach() || world.hand_path_hits(&path, &[self.kind.body()]).is_none()
+        {
             return None;
         }
         // The hand's transit only where the arm reaches above the goal (near the base, the
@@ -913,15 +930,6 @@ impl ActionExec {
         let mut over = r.goal;
         over.translation.z = z;
         world.reachable(self.arm, &over).is_ok().then_some(z)
-    }
-
-    /// The body the action grasps, releases or pulls.
-    fn body(&self) -> &str {
-        match &self.kind {
-            ActionKind::Grasp { body, .. }
-            | ActionKind::Release { body, .. }
-            | ActionKind::Pull { body, .. } => body.as_str(),
-        }
     }
 
     /// Inserts a transit (rise, over at height `z`) before phase `at` (whose move is `via`); that

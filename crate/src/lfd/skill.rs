@@ -62,11 +62,7 @@ pub enum SkillSegment {
     Closed {
         /// The skill's feedback controller.
         ctrl: Box<FeedbackController>,
-        /// Number of ticks of the nominal motion.
-        len: usize,
-        /// Goal position of the nominal motion (world).
-        goal: Vector3<f64>,
-        /// The nominal motion's positions, one per tick (world).
+        /// The nominal motion's positions, one per tick (world); the last is its goal.
         nominal: Vec<Vector3<f64>>,
         /// Orientation at the start.
         start_rotation: UnitQuaternion<f64>,
@@ -74,12 +70,17 @@ pub enum SkillSegment {
 }
 
 impl SkillSegment {
+    /// The planned positions, one per tick: the profile, or a learned skill's nominal motion.
+    fn path(&self) -> &[Vector3<f64>] {
+        match self {
+            SkillSegment::Profile { positions, .. } => positions,
+            SkillSegment::Closed { nominal, .. } => nominal,
+        }
+    }
+
     /// Ticks of the nominal motion.
     pub fn len(&self) -> usize {
-        match self {
-            SkillSegment::Profile { positions, .. } => positions.len(),
-            SkillSegment::Closed { len, .. } => *len,
-        }
+        self.path().len()
     }
 
     /// Whether the segment is empty.
@@ -112,12 +113,8 @@ impl SkillSegment {
     /// The planned position for tick `t` (of the nominal motion, for a learned skill): where
     /// the segment will take the hand when nothing disturbs it.
     pub fn planned(&self, t: usize) -> Vector3<f64> {
-        match self {
-            SkillSegment::Profile { positions, .. } => positions[t.min(positions.len() - 1)],
-            SkillSegment::Closed { nominal, goal, .. } => {
-                nominal.get(t).or(nominal.last()).copied().unwrap_or(*goal)
-            }
-        }
+        let path = self.path();
+        path[t.min(path.len() - 1)]
     }
 
     /// The current commanded position (for drawing).
@@ -130,25 +127,16 @@ impl SkillSegment {
 
     /// Where the segment ends.
     pub fn goal(&self) -> Vector3<f64> {
-        match self {
-            SkillSegment::Profile { positions, .. } => positions[positions.len() - 1],
-            SkillSegment::Closed { goal, .. } => *goal,
-        }
+        self.planned(usize::MAX)
     }
 
     /// The anchor moved: steer to its new frame. `false` if the segment cannot (re-plan it).
     pub fn retarget(&mut self, old: &Isometry3<f64>, new: &Isometry3<f64>) -> bool {
         match self {
             SkillSegment::Profile { .. } => false,
-            SkillSegment::Closed {
-                ctrl,
-                goal,
-                nominal,
-                ..
-            } => {
+            SkillSegment::Closed { ctrl, nominal, .. } => {
                 ctrl.retarget(new);
                 let moved = new * old.inverse();
-                *goal = (moved * Point3::from(*goal)).coords;
                 for p in nominal.iter_mut() {
                     *p = (moved * Point3::from(*p)).coords;
                 }
@@ -252,10 +240,8 @@ impl SkillLibrary {
     ) -> SkillSegment {
         if let (Some(skill), Some(anchor)) = (self.skills.get(name), anchor) {
             if let Some(traj) = skill.plan(&Point3::from(start.translation.vector), anchor) {
-                if let Some(last) = traj.positions.last() {
+                if !traj.positions.is_empty() {
                     return SkillSegment::Closed {
-                        len: traj.positions.len(),
-                        goal: last.coords,
                         nominal: traj.positions.iter().map(|p| p.coords).collect(),
                         ctrl: Box::new(traj.controller()),
                         start_rotation: start.rotation,

@@ -76,7 +76,7 @@ pub fn hand_capsule(tcp: &Isometry3<f64>) -> (Vector3<f64>, Vector3<f64>, f64) {
 }
 
 /// The hand at `tcp` as a capsule ([`hand_capsule`]), its radius grown by `margin`.
-fn hand_shape(tcp: &Isometry3<f64>, margin: f64) -> Capsule {
+pub(crate) fn hand_shape(tcp: &Isometry3<f64>, margin: f64) -> Capsule {
     let (a, b, r) = hand_capsule(tcp);
     Capsule::new(Point3::from(a), Point3::from(b), r + margin)
 }
@@ -445,18 +445,16 @@ pub(crate) fn quarter_turns(
         .map(|k| {
             let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), k as f64 * FRAC_PI_2);
             let pose = Isometry3::from_parts(body_pose.translation, turn * body_pose.rotation);
-            (wrap(tcp_yaw(&(pose * g.inverse())) - toward).abs(), pose)
+            // The TCP's fingers close along its y axis; its yaw is that of its x axis.
+            (
+                wrap(yaw_of(&(pose * g.inverse()).rotation) - toward).abs(),
+                pose,
+            )
         })
         .collect();
     // Of two turns equally close (to a nanoradian), the lesser turn first (a stable sort).
     turned.sort_by_key(|(off, _)| (off * 1e9).round() as i64);
     turned.into_iter().map(|(_, p)| p).collect()
-}
-
-/// The yaw of a TCP pose: that of its x axis (its fingers close along its y axis).
-pub(crate) fn tcp_yaw(tcp: &Isometry3<f64>) -> f64 {
-    let x = tcp.rotation * Vector3::x();
-    libm::atan2(x.y, x.x)
 }
 
 /// The TCP pose that puts the body held by arm `arm` at `body_pose` (using the actual grasp), or,

@@ -1055,19 +1055,13 @@ impl World {
         path: &[Isometry3<f64>],
         except: &[&str],
     ) -> Option<String> {
-        let held: Vec<usize> = self
-            .arms
-            .iter()
-            .filter_map(|a| a.holding.map(|h| h.0))
-            .collect();
         let others = self.parts_shrunk(|j, b| {
             matches!(b.kind, BodyKind::Block | BodyKind::Hook)
-                && !held.contains(&j)
+                && !self.is_held(j)
                 && !except.contains(&b.name.as_str())
         });
         let touching = |tcp: &Isometry3<f64>| -> Vec<usize> {
-            let (a, b, r) = super::geometry::hand_capsule(tcp);
-            let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
+            let cap = super::geometry::hand_shape(tcp, 0.0);
             others
                 .iter()
                 .filter(|(_, iso, c)| {

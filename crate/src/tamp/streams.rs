@@ -57,11 +57,11 @@ use crate::plan::Task;
 use crate::sim::demo::{pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TURNS};
 use crate::sim::geometry::{
     clear_grasp_at, grasp_pose_at, hand_within, link_capsules, quarter_turns, raised, rise_first,
-    tcp_yaw, transit_z,
+    transit_z,
 };
 use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
-use crate::sim::{World, LINK_TOLERANCE};
+use crate::sim::{yaw_of, World, LINK_TOLERANCE};
 
 /// Tunables of the streams.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -360,8 +360,15 @@ impl<'w> StreamBinder<'w> {
     }
 
     fn shrink(&self, c: &Cuboid) -> Cuboid {
-        let h = c.half_extents;
-        Cuboid::new((h - Vector3::repeat(self.params.contact_slack)).sup(&(h * 0.5)))
+        shrunk_by(c, self.params.contact_slack)
+    }
+
+    /// The tables' and shelves' boxes (world frame).
+    fn fixed_boxes(&self) -> Vec<(Isometry3<f64>, Cuboid)> {
+        self.fixed
+            .iter()
+            .flat_map(|(_, _, parts)| parts.iter().copied())
+            .collect()
     }
 
     /// Everything arm `arm` may not touch in `geo`: fixed bodies and movable bodies other than
@@ -880,11 +887,8 @@ impl<'w> StreamBinder<'w> {
             .parts_at(body, pose)
             .into_iter()
             .map(|(iso, c)| {
-                let h = c.half_extents + Vector3::new(0.0, 0.0, 0.5 * rise);
-                (
-                    raised(&iso, 0.5 * rise),
-                    Cuboid::new((h - Vector3::repeat(slack)).sup(&(h * 0.5))),
-                )
+                let tall = Cuboid::new(c.half_extents + Vector3::new(0.0, 0.0, 0.5 * rise));
+                (raised(&iso, 0.5 * rise), shrunk_by(&tall, slack))
             })
             .collect();
         let middle = pose.translation.z;
@@ -895,9 +899,7 @@ impl<'w> StreamBinder<'w> {
                 let parts = self.parts_at(name, p);
                 let hit = parts.iter().any(|(oiso, oc)| {
                     let (lo, _) = box_aabb(oiso, oc);
-                    let other = Cuboid::new(
-                        (oc.half_extents - Vector3::repeat(slack)).sup(&(oc.half_extents * 0.5)),
-                    );
+                    let other = shrunk_by(oc, slack);
                     lo.z > middle
                         && swept.iter().any(|(iso, c)| {
                             query::intersection_test(iso, c, oiso, &other).unwrap_or(true)
@@ -910,11 +912,7 @@ impl<'w> StreamBinder<'w> {
     /// The boxes of every body in `geo` but `body` and the held ones, unshrunk (what the
     /// executor's grasp choice sees in the world).
     fn boxes_except(&self, geo: &Geo, body: &str) -> Vec<(Isometry3<f64>, Cuboid)> {
-        let mut out: Vec<(Isometry3<f64>, Cuboid)> = self
-            .fixed
-            .iter()
-            .flat_map(|(_, _, parts)| parts.iter().copied())
-            .collect();
+        let mut out = self.fixed_boxes();
         for (name, pose) in &geo.poses {
             if name != body && !geo.is_held(name) {
                 out.extend(self.parts_at(name, pose));
@@ -1001,7 +999,7 @@ impl<'w> StreamBinder<'w> {
     ) -> Option<(Transit, Option<f64>)> {
         let (body, g) = geo.held.get(&arm).cloned()?;
         let tcp = pose * g.inverse();
-        let hand_yaw = certify.then(|| tcp_yaw(&tcp));
+        let hand_yaw = certify.then(|| yaw_of(&tcp.rotation));
         let retreat = raised(&tcp, self.params.approach_height);
         let mut transit = None;
         if certify {
@@ -1032,12 +1030,7 @@ impl<'w> StreamBinder<'w> {
             // Uncertified (the demonstration's own placement), the hand must still fit where it
             // lets go, clear of the tables and shelves by the contact slack: that is where it
             // grasps the body again, and a certified grasp there keeps that much room.
-            let furniture: Vec<(Isometry3<f64>, Cuboid)> = self
-                .fixed
-                .iter()
-                .flat_map(|(_, _, parts)| parts.iter().copied())
-                .collect();
-            if hand_within(&tcp, &furniture, self.params.contact_slack) {
+            if hand_within(&tcp, &self.fixed_boxes(), self.params.contact_slack) {
                 return None;
             }
             if let Ok(sol) = self.world.reachable(arm, &retreat) {
@@ -1564,6 +1557,12 @@ impl PartShape {
             PartShape::Cuboid(c) => c,
         }
     }
+}
+
+/// `c` with every half extent `slack` smaller, but at least half of what it was.
+fn shrunk_by(c: &Cuboid, slack: f64) -> Cuboid {
+    let h = c.half_extents;
+    Cuboid::new((h - Vector3::repeat(slack)).sup(&(h * 0.5)))
 }
 
 /// The TCP poses along the straight line from `from` to `to`, at most `step` apart (`from`
