@@ -583,6 +583,52 @@ fn b2_bind_one(
 }
 
 #[test]
+fn soak_4242_2219_a_stroke_whose_hook_presses_into_the_shelf_is_neither_planned_nor_possible() {
+    // Soak finding (seed 4242, episode 2219): a user dragged a beside the shelf's corner. The
+    // streams certified the stroke turned by -0.79 rad, whose hook comes down 3.4 mm into the
+    // shelf's side: within the 2 mm contact slack of both boxes, deeper than the simulator lets a
+    // carried body press (1.8 mm). The simulator stops it; the pull failed three times. The
+    // streams and the soak's check of whether the hook can pull a now press into a shelf only as
+    // far as the simulator does.
+    let world = saved_world("soak-4242-2219");
+    assert_eq!(world.held_by(0), Some("hook"));
+    assert!(!logic_lfd::sim::disturb::hook_can_pull(
+        &world, 0, "hook", "a"
+    ));
+    let (_, task) = model_and_task(BenchmarkId::B2, &world);
+    let ops = [op(&task, "(pull panda hook a)")];
+    let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
+    assert_eq!(binder.bind(&task, &ops, ops.len()), Err(0));
+    // What the simulator does with that stroke.
+    let mut world = world;
+    let mut kind = classify(&task, &task.operators[ops[0]], &world).unwrap();
+    if let ActionKind::Pull { turn, .. } = &mut kind {
+        *turn = -0.79;
+    }
+    let (params, skills) = (ExecParams::default(), b2_skills());
+    let exec = ActionExec::new("(pull panda hook a)", kind, &world, &skills, &params);
+    let status = tick_to_end_watching(exec, &mut world, &skills, &params, |_| {});
+    assert!(
+        matches!(&status, ExecStatus::Failed(why) if why.contains("stopped by shelf")),
+        "{status:?}"
+    );
+}
+
+#[test]
+fn soak_2026_2939_a_pull_turns_the_hook_as_planned_before_it_lowers_it() {
+    // Soak finding (seed 2026, episode 2939): block a dragged behind the shelf's corner, the arm
+    // came over the pull's contact pose with the hand turned 134° from the planned stroke (the
+    // tracker follows the TCP's position first); lowered that way, the hook's blade came down
+    // on the shelf, three times. A pull's via-points now need the hand turned as planned, as a
+    // grasp does, and the joint-space recovery turns it.
+    let mut world = saved_world("soak-2026-2939");
+    assert_eq!(world.held_by(0), Some("hook"));
+    let (task, ops, bindings) = b2_bind_one(&world, "(pull panda hook a)");
+    execute_bound(&mut world, &task, &ops, &bindings, &b2_skills());
+    assert!(SceneGraph::from_world(&world).contains("(inreach panda a)"));
+}
+
+#[test]
 fn soak_2026_1970_a_hand_pressed_against_the_shelf_rises_with_the_hook_to_put_it_down() {
     // Soak finding (seed 2026, episode 1970): a pull was interrupted with the hand pressed
     // 1 cm into the shelf's side (the simulator lets a link press that far) and the hook's

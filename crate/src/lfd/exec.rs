@@ -656,11 +656,15 @@ impl ActionExec {
                         }
                     }
                 }
-                // Only the grasp needs the hand turned as planned: the fingers must fit around
-                // the block (a release lands wherever the block is, turned or not).
+                // The grasp needs the hand turned as planned: the fingers must fit around the
+                // block (a release lands wherever the block is, turned or not). So does every
+                // via-point of a pull: a hook turned otherwise lowers its long arm elsewhere.
                 let grasp_turn = matches!(
                     self.phases.get(self.phase),
                     Some(Phase::Move(Via::Grasp { dz, .. })) if *dz <= 0.0
+                ) || matches!(
+                    self.phases.get(self.phase),
+                    Some(Phase::Move(Via::Pull { .. }))
                 );
                 let Some(seg) = self.segment.as_mut() else {
                     return ExecStatus::Failed("no segment".into());

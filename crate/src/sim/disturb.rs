@@ -315,7 +315,8 @@ pub fn handleable(w: &World, x: &str) -> Result<(), String> {
 /// poses [`PULL_LIFT`] above them (IK) with its hand clear of everything but the tables there,
 /// the hook sweeps from contact to pulled through nothing but the tables and `x`, and `x`
 /// slides along the stroke into nothing but the tables and the hook (every shape shrunk by 2 mm,
-/// so resting contacts do not count). The arm's path is not checked: a stroke that fails here
+/// so resting contacts do not count, but a shelf only as far as the simulator lets a carried or
+/// pushed body press into it). The arm's path is not checked: a stroke that fails here
 /// cannot be executed, whatever the planner.
 pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
     let (Some(base), Some(bp), Some(hp), Some(gp)) = (
@@ -340,14 +341,26 @@ pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
                 .any(|(oi, oc)| query::intersection_test(iso, c, oi, oc).unwrap_or(true))
         })
     };
-    // Everything but the tables, the hook and x.
-    let others: Vec<(Isometry3<f64>, Cuboid)> = w
-        .bodies
-        .iter()
-        .filter(|b| !b.lost && b.kind != BodyKind::Table && b.name != hook && b.name != x)
-        .flat_map(|b| b.world_parts())
-        .map(|(iso, c)| (iso, shrink(c)))
-        .collect();
+    // Everything but the tables, the hook and x, shrunk by 2 mm, a shelf by `shelf_slack`.
+    let around = |shelf_slack: f64| -> Vec<(Isometry3<f64>, Cuboid)> {
+        w.bodies
+            .iter()
+            .filter(|b| !b.lost && b.kind != BodyKind::Table && b.name != hook && b.name != x)
+            .flat_map(|b| {
+                let slack = if b.kind == BodyKind::Shelf {
+                    shelf_slack
+                } else {
+                    0.002
+                };
+                b.world_parts()
+                    .map(move |(iso, c)| (iso, geometry::shrunk(c, slack)))
+            })
+            .collect()
+    };
+    let others = around(0.002);
+    // For the hook and x (shrunk by 2 mm): a shelf only as far as the simulator lets a carried
+    // or pushed body press into it (0.9 of its penetration tolerance).
+    let pressed = around(0.9 * w.params().penetration_tolerance - 0.002);
     let hook_parts = w.body_shapes(hook);
     let block_parts = w.body_shapes(x);
     PULL_TURNS.iter().any(|&turn| {
@@ -367,7 +380,7 @@ pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
             .iter()
             .map(|(iso, c)| (contact * hp.inverse() * iso, shrink(c)))
             .collect();
-        if hits(&at_contact, &others) {
+        if hits(&at_contact, &pressed) {
             return false;
         }
         // The hook sweeps from contact to pulled; its blade meets the block after its 1 cm
@@ -387,7 +400,7 @@ pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
                 .iter()
                 .map(|(iso, c)| (shift * iso, shrink(c)))
                 .collect();
-            !hits(&swept, &others) && !hits(&moved, &others)
+            !hits(&swept, &pressed) && !hits(&moved, &pressed)
         })
     })
 }
