@@ -615,6 +615,25 @@ fn soak_4242_2219_a_stroke_whose_hook_presses_into_the_shelf_is_neither_planned_
 }
 
 #[test]
+fn soak_4242_2388_an_arm_wound_to_a_joint_limit_unwinds_before_it_picks() {
+    // Soak finding (seed 4242, episode 2388): a learned approach to b beside the shelf stopped
+    // at the shelf, and the arm came out of it with its last joint at its limit; from there the
+    // hand reached b's grasp 55° from the grasp's turn, and every joint-space way to turn it
+    // swept the shelf, three times. An action whose arm starts with a joint at its limit now
+    // first moves, up where it rose to, to the joints with the most room for the same TCP pose.
+    let mut world = saved_world("soak-4242-2388");
+    let wound = world.joints(0).unwrap();
+    assert!(
+        logic_lfd::sim::panda::limit_margin(&wound) < 1e-3,
+        "{wound:?}"
+    );
+    let (_, task) = model_and_task(BenchmarkId::B2, &world);
+    let status = execute_learned(&mut world, &task, "(pick panda b)", &b2_skills());
+    assert_eq!(status, ExecStatus::Done);
+    assert_eq!(world.held_by(0), Some("b"));
+}
+
+#[test]
 fn soak_2026_2939_a_pull_turns_the_hook_as_planned_before_it_lowers_it() {
     // Soak finding (seed 2026, episode 2939): block a dragged behind the shelf's corner, the arm
     // came over the pull's contact pose with the hand turned 134° from the planned stroke (the

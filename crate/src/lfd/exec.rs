@@ -246,6 +246,10 @@ enum Via {
     Pull { body: String, stage: u8, turn: f64 },
     /// Transit: straight up (or down) to TCP height `z`.
     Rise { z: f64 },
+    /// Where the TCP is, with the joints that leave the most room to their limits: a joint-space
+    /// move that unwinds an arm left with a joint at its limit ([`unwound`]; none if that move
+    /// would sweep the arm through something).
+    Unwind,
     /// Transit: above the goal of `inner`, at TCP height `z`.
     Over { inner: Box<Via>, z: f64 },
 }
@@ -475,6 +479,19 @@ impl ActionExec {
                 }),
             );
         }
+        // An arm the last action left with a joint at its limit (a recovery that failed, a
+        // tracker wound up against a shelf) unwinds first, up there: from such a posture the
+        // tracker comes down the same way and fails the same way again.
+        if world
+            .joints(arm)
+            .is_some_and(|q| crate::sim::panda::limit_margin(&q) < UNWIND_MARGIN)
+        {
+            let at = usize::from(matches!(
+                phases.first(),
+                Some(Phase::Move(Via::Rise { .. }))
+            ));
+            phases.insert(at, Phase::Move(Via::Unwind));
+        }
         let gripper = world
             .arm_command(arm)
             .map(|c| c.1)
@@ -511,10 +528,9 @@ impl ActionExec {
     /// straight approach blocked and certified this one instead, see `tamp::streams`): straight
     /// up to `z`, across above the approach's goal, straight down to it.
     pub fn with_transit(mut self, z: f64) -> Self {
-        let first = self
-            .phases
-            .iter()
-            .position(|ph| matches!(ph, Phase::Move(v) if !matches!(v, Via::Rise { .. })));
+        let first = self.phases.iter().position(
+            |ph| matches!(ph, Phase::Move(v) if !matches!(v, Via::Rise { .. } | Via::Unwind)),
+        );
         if let Some(i) = first {
             if let Phase::Move(via) = self.phases[i].clone() {
                 self.insert_transit(i, &via, z);
@@ -884,7 +900,12 @@ impl ActionExec {
             anchor,
             frame,
             lag: 0,
-            joint_goals: vec![],
+            joint_goals: match via {
+                Via::Unwind => unwound(world, self.arm, &start, self.kind.body())
+                    .into_iter()
+                    .collect(),
+                _ => vec![],
+            },
             recovered: false,
             joint_ticks: 0,
         })
@@ -1027,6 +1048,7 @@ impl ActionExec {
                 g.translation.vector.z = *z;
                 Ok((g, None, None))
             }
+            Via::Unwind => Ok((*start, None, None)),
             Via::Over { inner, z } => {
                 let (mut g, _, anchor) = self.via_pose(world, inner, start)?;
                 g.translation.vector.z = *z;
@@ -1105,7 +1127,7 @@ fn pull_via(
 /// Whether a segment to `via` must not be replaced by a transit: the hook's stroke itself (from
 /// its contact pose on), and transits.
 fn no_transit(via: &Via) -> bool {
-    matches!(via, Via::Rise { .. } | Via::Over { .. })
+    matches!(via, Via::Rise { .. } | Via::Over { .. } | Via::Unwind)
         || matches!(via, Via::Pull { stage, .. } if *stage > 0)
 }
 
@@ -1160,6 +1182,29 @@ const STUCK_LIFT: f64 = 0.01;
 /// instead: the solution nearest the arm's joints for the first of these fractions of the way
 /// from the TCP to the goal that a clear move reaches (the tracker takes it from there).
 pub(crate) const NEAR_RECOVERY_FRACTIONS: [f64; 3] = [1.0, 0.5, 0.25];
+
+/// Below this [`panda::limit_margin`] (of a joint's range) an action starts by unwinding the
+/// arm ([`Via::Unwind`]).
+///
+/// [`panda::limit_margin`]: crate::sim::panda::limit_margin
+const UNWIND_MARGIN: f64 = 0.01;
+
+/// The joints that reach arm `arm`'s TCP pose `tcp` with the most room to their limits, if they
+/// leave more room than the arm's joints now and the straight joint-space move there is clear
+/// ([`World::joint_move_hits`]; `touches` may be touched).
+fn unwound(
+    world: &World,
+    arm: usize,
+    tcp: &Isometry3<f64>,
+    touches: &str,
+) -> Option<[f64; crate::sim::panda::DOF]> {
+    use crate::sim::panda::limit_margin;
+    let now = world.joints(arm)?;
+    let sol = world.reachable_with_room(arm, tcp).ok()?.joints;
+    (limit_margin(&sol) > limit_margin(&now) + 1e-3
+        && world.joint_move_hits(arm, &now, &sol, &[touches]).is_none())
+    .then_some(sol)
+}
 
 /// The joint goals of a joint-space recovery of `arm` to the TCP pose `pose`, whose solution
 /// with the most room to the limits is `goal`: straight there, or, when that move would sweep
