@@ -675,13 +675,11 @@ impl ActionExec {
                 // The grasp needs the hand turned as planned: the fingers must fit around the
                 // block (a release lands wherever the block is, turned or not). So does every
                 // via-point of a pull: a hook turned otherwise lowers its long arm elsewhere.
-                let grasp_turn = matches!(
-                    self.phases.get(self.phase),
-                    Some(Phase::Move(Via::Grasp { dz, .. })) if *dz <= 0.0
-                ) || matches!(
-                    self.phases.get(self.phase),
-                    Some(Phase::Move(Via::Pull { .. }))
-                );
+                let turn_matters = match self.phases.get(self.phase) {
+                    Some(Phase::Move(Via::Grasp { dz, .. })) => *dz <= 0.0,
+                    Some(Phase::Move(Via::Pull { .. })) => true,
+                    _ => false,
+                };
                 let Some(seg) = self.segment.as_mut() else {
                     return ExecStatus::Failed("no segment".into());
                 };
@@ -751,7 +749,7 @@ impl ActionExec {
                     // At a grasp the hand's turn matters too: a wrist stuck at its limit leaves
                     // the fingers across a block's diagonal, where they do not fit around it.
                     let turn_err = (seg.goal.rotation * tcp.rotation.inverse()).angle();
-                    let turned = !grasp_turn || turn_err <= p.orientation_tolerance;
+                    let turned = !turn_matters || turn_err <= p.orientation_tolerance;
                     if err <= p.reach_tolerance && turned {
                         self.next_phase();
                     } else if let Some(&q) = seg.joint_goals.first() {

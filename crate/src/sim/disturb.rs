@@ -333,7 +333,8 @@ pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
         Some(g) if w.held_by(arm) == Some(hook) => g,
         _ => gp.inverse() * hp,
     };
-    let shrink = |c: &Cuboid| geometry::shrunk(c, 0.002);
+    const SLACK: f64 = 0.002;
+    let shrink = |c: &Cuboid| geometry::shrunk(c, SLACK);
     let hits = |parts: &[(Isometry3<f64>, Cuboid)], others: &[(Isometry3<f64>, Cuboid)]| {
         parts.iter().any(|(iso, c)| {
             others
@@ -341,7 +342,7 @@ pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
                 .any(|(oi, oc)| query::intersection_test(iso, c, oi, oc).unwrap_or(true))
         })
     };
-    // Everything but the tables, the hook and x, shrunk by 2 mm, a shelf by `shelf_slack`.
+    // Everything but the tables, the hook and x, shrunk by SLACK, a shelf by `shelf_slack`.
     let around = |shelf_slack: f64| -> Vec<(Isometry3<f64>, Cuboid)> {
         w.bodies
             .iter()
@@ -350,17 +351,17 @@ pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
                 let slack = if b.kind == BodyKind::Shelf {
                     shelf_slack
                 } else {
-                    0.002
+                    SLACK
                 };
                 b.world_parts()
                     .map(move |(iso, c)| (iso, geometry::shrunk(c, slack)))
             })
             .collect()
     };
-    let others = around(0.002);
-    // For the hook and x (shrunk by 2 mm): a shelf only as far as the simulator lets a carried
-    // or pushed body press into it (0.9 of its penetration tolerance).
-    let pressed = around(0.9 * w.params().penetration_tolerance - 0.002);
+    let others = around(SLACK);
+    // For the hook and x (shrunk by SLACK): a shelf only as far as the simulator lets a carried
+    // or pushed body press into it.
+    let pressed = around(w.params().carried_stop_depth() - SLACK);
     let hook_parts = w.body_shapes(hook);
     let block_parts = w.body_shapes(x);
     PULL_TURNS.iter().any(|&turn| {

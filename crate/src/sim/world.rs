@@ -27,6 +27,14 @@ pub struct WorldParams {
     pub planning_ik: IkParams,
 }
 
+impl WorldParams {
+    /// How deep a carried body (or a block the carried hook pushes) may press into another
+    /// before the arm stops at the contact (m): 0.9 of the penetration tolerance.
+    pub fn carried_stop_depth(&self) -> f64 {
+        0.9 * self.penetration_tolerance
+    }
+}
+
 impl Default for WorldParams {
     fn default() -> Self {
         WorldParams {
@@ -1360,7 +1368,7 @@ impl World {
         }
         self.arms[ai].blocked_by = None;
         if let (Some(bi), Some((joints, mut bodies, n_events))) = (held, saved) {
-            let limit = 0.9 * self.params.penetration_tolerance;
+            let limit = self.params.carried_stop_depth();
             let (depth, with) = self.held_penetration(bi);
             let mut stop = (depth > limit.max(depth_before + 1e-9)).then_some(with);
             if stop.is_none() {

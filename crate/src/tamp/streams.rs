@@ -364,6 +364,14 @@ impl<'w> StreamBinder<'w> {
         shrunk_by(c, self.params.contact_slack)
     }
 
+    /// A carried or pushed body's box `c` as tested against a shelf (which is shrunk by the
+    /// contact slack): it may press in only [`HELD_OVERLAP`], where the simulator stops it; grown
+    /// by `margin` if that is more.
+    fn pressed(&self, c: &Cuboid, margin: f64) -> Cuboid {
+        let grow = margin.max(self.params.contact_slack - HELD_OVERLAP);
+        Cuboid::new(c.half_extents + Vector3::repeat(grow))
+    }
+
     /// The tables' and shelves' boxes (world frame).
     fn fixed_boxes(&self) -> Vec<(Isometry3<f64>, Cuboid)> {
         self.fixed
@@ -446,12 +454,7 @@ impl<'w> StreamBinder<'w> {
                                 } else {
                                     plain
                                 };
-                                // A shelf stops the load where the simulator does: within
-                                // HELD_OVERLAP of its true faces (it is shrunk by the slack).
-                                let grow =
-                                    load_margin.max(self.params.contact_slack - HELD_OVERLAP);
-                                let pressed = Cuboid::new(c.half_extents + Vector3::repeat(grow));
-                                (g * off, wide, plain, pressed)
+                                (g * off, wide, plain, self.pressed(c, load_margin))
                             })
                             .collect()
                     })
@@ -1137,10 +1140,7 @@ impl<'w> StreamBinder<'w> {
             };
             for (biso, bc) in self.parts_at(body, &bp) {
                 let plain = self.shrink(&bc);
-                // Into a shelf only as far as the simulator lets a pushed body press.
-                let pressed = Cuboid::new(
-                    bc.half_extents + Vector3::repeat(self.params.contact_slack - HELD_OVERLAP),
-                );
+                let pressed = self.pressed(&bc, 0.0);
                 for o in &others {
                     let shape = if o.fixed { &pressed } else { &plain };
                     if let Ok(Some(hit)) = query::cast_shapes(
