@@ -214,6 +214,25 @@ pub fn classify(task: &Task, op: &Operator, world: &World) -> Option<ActionKind>
     None
 }
 
+/// Whether operator `op` of `task` moves `body`: grasps it (adds `(holding ?arm body)`, which
+/// a pick, an unstack and a hand-over do), or pulls it in (adds `(inreach ?arm body)` while the
+/// arm holds another body: the hook). The same reading of the task as [`classify`], without a
+/// world.
+pub(crate) fn moves_body(task: &Task, op: &Operator, body: &str) -> bool {
+    let fact = |f: &u32| fact_args(task.facts.get(*f as usize).map_or("", String::as_str));
+    op.add.iter().map(fact).any(|(p, a)| {
+        (p == "holding" && a.len() == 2 && a[1] == body)
+            || (p == "inreach"
+                && a.len() == 2
+                && a[1] == body
+                && op
+                    .pre
+                    .iter()
+                    .map(fact)
+                    .any(|(q, h)| q == "holding" && h.len() == 2 && h[0] == a[0] && h[1] != body))
+    })
+}
+
 const HOOK: crate::sim::snapshot::BodyKind = crate::sim::snapshot::BodyKind::Hook;
 
 /// One step of an action's motion.

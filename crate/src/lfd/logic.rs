@@ -186,7 +186,15 @@ pub fn plan_logic_lfd_avoiding(
         }
         std::borrow::Cow::Owned(g)
     };
-    let found = plan::search_multi_goal(search_task, s, &goals, search_mode, config, clock);
+    let lifted = banned.map(|b| b.lift(s));
+    let found = plan::search_multi_goal(
+        search_task,
+        lifted.as_ref().unwrap_or(s),
+        &goals,
+        search_mode,
+        config,
+        clock,
+    );
     let expanded = found.stats.expanded;
     let (prefix, k) = match (&found.outcome, found.goal_index) {
         (SearchOutcome::Plan(p), Some(k)) => (

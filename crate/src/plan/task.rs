@@ -86,6 +86,15 @@ impl State {
     pub fn words(&self) -> &[u64] {
         &self.words
     }
+
+    /// The same facts in a set sized for `num_facts` facts (never smaller than it is).
+    pub(crate) fn widened(&self, num_facts: usize) -> State {
+        let mut words = self.words.clone();
+        if words.len() < num_facts.div_ceil(64) {
+            words.resize(num_facts.div_ceil(64), 0);
+        }
+        State { words }
+    }
 }
 
 /// A conjunction of literals over fluent facts.
@@ -208,6 +217,16 @@ impl Task {
     /// The id of a fluent fact by its printed name, `(on a b)`.
     pub fn fact_id(&self, name: &str) -> Option<FactId> {
         self.index.get(name).copied()
+    }
+
+    /// Appends a fluent fact no operator touches yet (false in [`Task::init`]) and returns its
+    /// id; `name` must not name a fact of the task already.
+    pub(crate) fn push_fact(&mut self, name: String) -> FactId {
+        let f = self.facts.len() as FactId;
+        self.index.insert(name.clone(), f);
+        self.facts.push(name);
+        self.init = self.init.widened(self.facts.len());
+        f
     }
 
     /// An empty state sized for this task.

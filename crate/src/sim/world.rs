@@ -1782,7 +1782,7 @@ impl World {
         }
     }
 
-    /// Why a dragged body may not come to rest on body `support`, if it may not: a body held by
+    /// Why a dragged or released body may not come to rest on body `support`, if it may not: a body held by
     /// a gripper, the hook, or a block in a scene whose vocabulary has no `on` (the scene graph
     /// could not say where it is, and lifting the block below would leave it in the air).
     fn support_refusal(&self, support: usize) -> Option<String> {
@@ -1813,14 +1813,16 @@ impl World {
     }
 
     /// What opening arm `arm`'s gripper now would do to its load: `Err(why)` if the load would
-    /// fall or end inside another body (nothing held, or an unknown arm: `Ok`).
+    /// fall, end inside another body, or come to rest where a drag may not leave a body (on a
+    /// held body, on the hook, on a block in a scene without `on`: the scene graph could not say
+    /// where it is). Nothing held, or an unknown arm: `Ok`.
     pub fn release_check(&self, arm: usize) -> Result<(), String> {
         let Some((bi, _)) = self.arms.get(arm).and_then(|a| a.holding) else {
             return Ok(());
         };
         let pose = Self::upright(&self.bodies[bi].pose);
         match self.settle_probe(bi, &pose, &[]) {
-            Settle::On { .. } => Ok(()),
+            Settle::On { support, .. } => self.support_refusal(support).map_or(Ok(()), Err),
             Settle::Falls(reason) => Err(reason),
             Settle::Blocked(j) => Err(format!("it would be inside {}", self.bodies[j].name)),
         }

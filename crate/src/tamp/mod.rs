@@ -72,7 +72,7 @@ pub fn plan_from_scratch(
             Err(i) => {
                 last = t.operators[ops[i]].name.clone();
                 if let Ok(at) = replay(&t, s, &ops[..i]) {
-                    banned.ban_failed(ops[i], &at, &binder.obstructions(i));
+                    banned.ban_failed(ops[i], &at, &ops[..i], &binder.obstructions(i));
                 }
                 binder.widen();
             }
