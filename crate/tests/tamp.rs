@@ -2,7 +2,7 @@
 //! the carried body), the pull stream's prediction against the executor, and TAMP from scratch.
 
 use logic_lfd::lfd::control::{BannedTask, Binder, FailReason};
-use logic_lfd::lfd::exec::{classify, ActionExec, ActionKind, ExecParams, ExecStatus};
+use logic_lfd::lfd::exec::{classify, ActionExec, ActionKind, ExecParams, ExecStatus, Placement};
 use logic_lfd::lfd::logic::replay;
 use logic_lfd::lfd::model::DomainModel;
 use logic_lfd::lfd::session::{BenchmarkId, Session, SessionOptions, SkillKind};
@@ -1111,4 +1111,36 @@ fn soak_1234_996_the_hook_is_not_let_go_onto_a_block_in_a_scene_without_on() {
         .unwrap();
     let why = world.release_check(0).unwrap_err();
     assert!(why.contains("rest on the block b"), "{why}");
+}
+
+#[test]
+fn soak_8080_2819_a_block_is_not_put_down_where_the_arm_is_at_its_joint_limits() {
+    // Soak finding (seed 8080, episode 2819): d, unstacked from c, was put down 25.6 cm from the
+    // base, just inside the 25 cm minimum reach. The tower was built on it: there the elbow
+    // folds to its limit, the tracker stalled and its joint-space recovery came back to the
+    // limit, and b could not be stacked, three times. Blocks are now put down at least
+    // `placement_inner_margin` beyond the minimum reach.
+    let world = saved_world("soak-8080-2819");
+    assert_eq!(world.held_by(0), Some("d"));
+    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let place = [op(&task, "(place panda d)")];
+    let cramped = (0.2562, -0.0040, std::f64::consts::FRAC_PI_2);
+    let hints = std::collections::BTreeMap::from([("(place panda d)".to_string(), cramped)]);
+    let bind = |margin: f64| {
+        let params = StreamParams {
+            placement_inner_margin: margin,
+            ..StreamParams::default()
+        };
+        let mut binder = StreamBinder::new(&world, 1, params).with_hints(&hints);
+        assert_eq!(binder.bind(&task, &place, 1), Ok(()));
+        match binder.bindings[0].placement {
+            Some(Placement::At { x, y, .. }) => (x, y),
+            ref p => panic!("{p:?}"),
+        }
+    };
+    // Without the margin the cramped spot is certified (collision-free, reachable by IK).
+    assert_eq!(bind(0.0), (cramped.0, cramped.1));
+    let margin = StreamParams::default().placement_inner_margin;
+    let (x, y) = bind(margin);
+    assert!(libm::hypot(x, y) >= 0.25 + margin, "({x}, {y})");
 }

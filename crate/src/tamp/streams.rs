@@ -94,6 +94,10 @@ pub struct StreamParams {
     /// Other certified spots tried per surface placement when a later action of the skeleton
     /// cannot be bound (backtracking).
     pub max_alternatives: usize,
+    /// How far beyond the placing arm's minimum reach (the inner edge of its reach annulus) a
+    /// block is put down (m): there the elbow folds to its limit, the joint tracker stalls at
+    /// it, and a tower built on the block rises in the same column.
+    pub placement_inner_margin: f64,
     /// Certifications one binding of a skeleton may spend on backtracking.
     pub certification_budget: usize,
 }
@@ -113,6 +117,7 @@ impl Default for StreamParams {
             release_clearance: 0.003,
             transfer_margin: 0.015,
             max_alternatives: 3,
+            placement_inner_margin: 0.05,
             certification_budget: 400,
         }
     }
@@ -1281,6 +1286,16 @@ impl<'w> StreamBinder<'w> {
         }
     }
 
+    /// Whether `(x, y)` is at least `margin` beyond arm `a`'s minimum reach.
+    fn beyond_inner_reach(&self, a: usize, x: f64, y: f64, margin: f64) -> bool {
+        match (self.reach.get(a), self.world.arm_base(a)) {
+            (Some(r), Some(b)) => {
+                libm::hypot(x - b.translation.x, y - b.translation.y) >= r.min_radius + margin
+            }
+            _ => false,
+        }
+    }
+
     /// Candidate resting spots `(sample, x, y, yaw, top)` for the body `arm` holds on one of
     /// `surfaces`: the demonstration's `hint` first (sample 0), then uniform samples ordered by
     /// horizontal distance from where the arm carries the body now (short transfers first: long
@@ -1390,6 +1405,10 @@ impl<'w> StreamBinder<'w> {
         let lift = self.world.body_pose(&body)?.translation.z - lo.z;
         let is_block = self.world.body_kind(&body) == Some(BodyKind::Block);
         if is_block && !self.in_annulus(arm, x, y) {
+            return None;
+        }
+        if is_block && !self.beyond_inner_reach(arm, x, y, self.params.placement_inner_margin) {
+            self.stats.rejected_ik += 1;
             return None;
         }
         let pose = Isometry3::from_parts(
