@@ -1144,3 +1144,49 @@ fn soak_8080_2819_a_block_is_not_put_down_where_the_arm_is_at_its_joint_limits()
     let (x, y) = bind(margin);
     assert!(libm::hypot(x, y) >= 0.25 + margin, "({x}, {y})");
 }
+
+/// Puts the hook down at `(x, y)` (the hook's frame, unturned) from `world`, as the loop
+/// executes a bound `(place panda hook)`, checking the invariants every tick.
+fn place_hook_at(world: &mut World, x: f64, y: f64) {
+    let (_, task) = model_and_task(BenchmarkId::B2, world);
+    let ops = [op(&task, "(place panda hook)")];
+    let bindings = [logic_lfd::lfd::exec::Binding {
+        placement: Some(Placement::At { x, y, yaw: 0.0 }),
+        ..Default::default()
+    }];
+    execute_bound(world, &task, &ops, &bindings, &b2_skills());
+    assert_eq!(world.held_by(0), None);
+    assert!(SceneGraph::from_world(world).contains("(ontable hook)"));
+}
+
+#[test]
+fn soak_8080_2082_a_hand_that_cannot_rise_where_it_is_rises_by_the_ready_posture() {
+    // Soak finding (seed 8080, episodes 2082 and 730): after a pull near the base, the hand
+    // holding the hook was left 24 cm from the base (inside the 25 cm minimum reach) with the
+    // wrist at its limit. Putting the hook back starts with a rise of 1 cm, which no IK reaches
+    // from there, so no recovery was tried and the same rise failed three times. A rise or
+    // retreat the arm cannot make where it is now goes to the ready posture in joint space
+    // (when that move is clear), higher than the rise needs, and the transit goes on from there.
+    let mut world = saved_world("soak-8080-2082");
+    assert_eq!(world.held_by(0), Some("hook"));
+    let q = world.joints(0).unwrap();
+    assert!(logic_lfd::sim::panda::JOINT_UPPER[5] - q[5] < 0.03, "{q:?}");
+    let tcp = world.tcp_pose(0).unwrap().translation.vector;
+    assert!(libm::hypot(tcp.x, tcp.y) < 0.25, "{tcp:?}");
+    place_hook_at(&mut world, 0.5, -0.2);
+}
+
+#[test]
+fn soak_1234_772_a_recovered_retreat_goes_where_its_learned_skill_ends() {
+    // Soak finding (seed 1234, episode 772): the hand's learned retreat after putting the hook
+    // down ends 11 mm from the straight-up via-point the executor computes; the joint-space
+    // recovery went to the via-point, and the segment, judged at the skill's end, failed there
+    // (three times). The recovery now goes where the segment is judged.
+    let mut world = saved_world("soak-1234-772");
+    assert_eq!(world.held_by(0), Some("hook"));
+    place_hook_at(
+        &mut world,
+        0.499_929_081_448_097_56,
+        -0.061_656_611_771_159_22,
+    );
+}

@@ -346,6 +346,9 @@ struct Running {
     recovered: bool,
     /// Ticks spent in joint-space recovery.
     joint_ticks: usize,
+    /// A rise the arm could not make where it was, made by going to the ready posture instead
+    /// (the segment ends there).
+    rise_by_ready: bool,
 }
 
 /// Centre + yaw of a pose (the demo's anchor-frame convention).
@@ -779,6 +782,10 @@ impl ActionExec {
                             .joints(self.arm)
                             .is_none_or(|j| j.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-6));
                         let stopped = world.arm_blocked_by(self.arm).is_some();
+                        if there && seg.rise_by_ready {
+                            self.next_phase();
+                            return ExecStatus::Running;
+                        }
                         if there && seg.joint_goals.len() > 1 {
                             seg.joint_goals.remove(0);
                             seg.joint_ticks = 0;
@@ -801,16 +808,30 @@ impl ActionExec {
                             && world.arm_blocked_by(self.arm).is_none()
                         {
                             seg.recovered = true;
-                            if let Ok(sol) = world.reachable_with_room(self.arm, &seg.goal) {
-                                seg.joint_goals = joint_recovery_route(
-                                    world,
-                                    self.arm,
-                                    &seg.goal,
-                                    sol.joints,
-                                    self.kind.body(),
-                                );
-                                seg.joint_ticks = 0;
-                                seg.lag = 0;
+                            // Where the segment is judged: the end of its trajectory (a learned
+                            // skill's own, in its object frame), turned as the via-point.
+                            let target = Isometry3::from_parts(
+                                Translation3::from(seg.traj.goal()),
+                                seg.goal.rotation,
+                            );
+                            let body = self.kind.body();
+                            match world.reachable_with_room(self.arm, &target) {
+                                Ok(sol) => {
+                                    seg.joint_goals = joint_recovery_route(
+                                        world, self.arm, &target, sol.joints, body,
+                                    );
+                                    seg.joint_ticks = 0;
+                                    seg.lag = 0;
+                                }
+                                Err(_) if matches!(via, Via::Rise { .. } | Via::Up { .. }) => {
+                                    if let Some(q) = rise_by_ready(world, self.arm, &target, body) {
+                                        seg.joint_goals = vec![q];
+                                        seg.rise_by_ready = true;
+                                        seg.joint_ticks = 0;
+                                        seg.lag = 0;
+                                    }
+                                }
+                                Err(_) => {}
                             }
                         }
                         if seg.lag as f64 * dt > p.settle_timeout {
@@ -925,6 +946,7 @@ impl ActionExec {
             },
             recovered: false,
             joint_ticks: 0,
+            rise_by_ready: false,
         })
     }
 
@@ -1221,6 +1243,31 @@ fn unwound(
     (limit_margin(&sol) > limit_margin(&now) + 1e-3
         && world.joint_move_hits(arm, &now, &sol, &[touches]).is_none())
     .then_some(sol)
+}
+
+/// The ready posture, as a way for arm `arm` to rise to `goal`'s height when it cannot rise
+/// where it is (a hand folded inside the minimum reach, a wrist at its limit): if the ready TCP
+/// is at least that high and the joint-space move there is clear ([`World::joint_move_hits`];
+/// `touches` may be touched). The transit's next leg, across and down to its goal, starts from
+/// there, higher than the height it needs.
+fn rise_by_ready(
+    world: &World,
+    arm: usize,
+    goal: &Isometry3<f64>,
+    touches: &str,
+) -> Option<[f64; crate::sim::panda::DOF]> {
+    let ready = crate::sim::panda::READY;
+    let now = world.joints(arm)?;
+    let base = world.arm_base(arm)?;
+    let high = crate::sim::panda::forward_kinematics(&base, &ready)
+        .translation
+        .z
+        >= goal.translation.z;
+    (high
+        && world
+            .joint_move_hits(arm, &now, &ready, &[touches])
+            .is_none())
+    .then_some(ready)
 }
 
 /// The joint goals of a joint-space recovery of `arm` to the TCP pose `pose`, whose solution
