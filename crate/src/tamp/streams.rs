@@ -1264,14 +1264,24 @@ impl<'w> StreamBinder<'w> {
         out
     }
 
-    /// Whether `(x, y)` is within `margin` of a shelf's footprint.
-    fn near_shelf(&self, x: f64, y: f64, margin: f64) -> bool {
+    /// Whether some part of `body` at `pose` comes within `margin` of a shelf's footprint.
+    fn near_shelf(&self, body: &str, pose: &Isometry3<f64>, margin: f64) -> bool {
+        let parts: Vec<(Vector3<f64>, Vector3<f64>)> = self
+            .parts_at(body, pose)
+            .iter()
+            .map(|(iso, c)| box_aabb(iso, c))
+            .collect();
         self.fixed
             .iter()
             .filter(|b| b.1 == BodyKind::Shelf)
             .filter_map(|b| self.world.body_aabb(&b.0))
             .any(|(lo, hi)| {
-                x > lo.x - margin && x < hi.x + margin && y > lo.y - margin && y < hi.y + margin
+                parts.iter().any(|(plo, phi)| {
+                    phi.x > lo.x - margin
+                        && plo.x < hi.x + margin
+                        && phi.y > lo.y - margin
+                        && plo.y < hi.y + margin
+                })
             })
     }
 
@@ -1419,12 +1429,12 @@ impl<'w> StreamBinder<'w> {
             self.stats.rejected_collision += 1;
             return None;
         }
-        // The carried hook keeps clear of shelves and, unless its motion is certified, stays
-        // near where the demonstration left it.
+        // The carried hook keeps every part of it clear of shelves and, unless its motion is
+        // certified, stays near where the demonstration left it.
         if !is_block && n > 0 {
             let far =
                 hint.is_some_and(|(hx, hy, _)| libm::hypot(x - hx, y - hy) >= HOOK_HINT_RADIUS);
-            if self.near_shelf(x, y, 0.12) || (far && !certify) {
+            if self.near_shelf(&body, &pose, HOOK_SHELF_CLEARANCE) || (far && !certify) {
                 return None;
             }
         }
@@ -1651,6 +1661,11 @@ const SMALL_SURFACE_SPOTS: usize = 12;
 
 /// Radius around the demonstrated hook placement whose spots are tried first (m).
 const HOOK_HINT_RADIUS: f64 = 0.15;
+
+/// Room a put-down hook keeps between every part of it and a shelf's footprint (m): the hand
+/// comes down on its handle to pick it up again, and the arm's links beside the shelf (a hook
+/// turned along the shelf left its handle 1 cm from it; the arm was stopped at the shelf).
+const HOOK_SHELF_CLEARANCE: f64 = 0.08;
 
 /// How many quarter turns of a square block (nearest the arm's heading first) a certified
 /// release tries.
