@@ -1255,8 +1255,17 @@ impl<'w> StreamBinder<'w> {
                         .filter(|(lo, hi)| lo.x <= cx && cx <= hi.x && lo.y <= cy && cy <= hi.y)
                         .map(|(_, hi)| hi.z)
                         .fold(f64::NEG_INFINITY, f64::max);
+                    // A region holds a body by its centre (`SceneGraph`): the candidates' edge
+                    // margin (half the body and 1 cm, for the edge of a real surface) becomes
+                    // REGION_INSET from the region's edge.
+                    let h = self.half_extents(body);
+                    let grow = (h.x.max(h.y) + 0.01 - REGION_INSET).max(0.0);
                     if top.is_finite() {
-                        out.push(([r.min[0], r.max[0]], [r.min[1], r.max[1]], top));
+                        out.push((
+                            [r.min[0] - grow, r.max[0] + grow],
+                            [r.min[1] - grow, r.max[1] + grow],
+                            top,
+                        ));
                     }
                 }
             }
@@ -1661,6 +1670,10 @@ const SMALL_SURFACE_SPOTS: usize = 12;
 
 /// Radius around the demonstrated hook placement whose spots are tried first (m).
 const HOOK_HINT_RADIUS: f64 = 0.15;
+
+/// How far inside a region (`(at x p)`) a body's centre is put down (m): the executor lets go
+/// within a few millimetres of where it was told.
+const REGION_INSET: f64 = 0.01;
 
 /// Room a put-down hook keeps between every part of it and a shelf's footprint (m): the hand
 /// comes down on its handle to pick it up again, and the arm's links beside the shelf (a hook
