@@ -20,7 +20,9 @@
 //!   grasp it or pull it with the hook (checked with IK, [`handleable`]), or the failed action
 //!   (or the one the planner could not bind) is on a block that its last drag left where no arm
 //!   can work it (an arm that still closed on a block inside its minimum reach gets stuck with
-//!   it elsewhere); an exhausted budget is
+//!   it elsewhere), or a block the goal puts on a shelf has no room left on it (the footprints
+//!   on its top all taken, `shelf_full_for`; B2 cannot take a block off a shelf); an
+//!   exhausted budget is
 //!   stated as such and counted apart; anything else (an action that failed, a "no plan" for a
 //!   solvable task) is *unexplained*;
 //! * **replay identity** (optional): the episode JSON replays to the byte-identical log.
@@ -297,6 +299,93 @@ fn fails_on(reason: &FailReason, away: &BTreeSet<String>) -> bool {
     let (_, args) = fact_args(action.trim_start_matches('(').trim_end_matches(')'));
     args.iter().any(|a| away.contains(*a))
 }
+
+/// A block the task's goal puts on a shelf, not on one now, for which no shelf has room left:
+/// no spot on the shelf's top (the block's footprint within it; a 2 mm grid, turned in 15°
+/// steps) where the block would overlap no other free body by more than the 2 mm contact slack.
+/// The blocks disturbances left on the shelf fill it, and B2's domain (as the paper's) has no
+/// action that takes a block off a shelf. Generous otherwise: arm reach and clearance are
+/// ignored.
+fn shelf_full_for(world: &World, goal_facts: &[String], facts: &[String]) -> Option<String> {
+    use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+    use parry3d_f64::query;
+    use parry3d_f64::shape::Cuboid;
+    const SLACK: f64 = 0.002;
+    const STEP: f64 = 0.002;
+    let shelves: Vec<usize> = (0..world.bodies.len())
+        .filter(|&i| world.bodies[i].kind == BodyKind::Shelf)
+        .collect();
+    if shelves.is_empty() {
+        return None;
+    }
+    let wanted = goal_facts.iter().filter_map(|f| match fact_args(f) {
+        ("onshelf", a) if a.len() == 1 => Some(a[0].to_string()),
+        _ => None,
+    });
+    for x in wanted {
+        if facts.contains(&format!("(onshelf {x})")) || world.is_lost(&x) {
+            continue;
+        }
+        let Some(bi) = world.body_index(&x) else {
+            continue;
+        };
+        let body = &world.bodies[bi];
+        let [(part, cuboid)] = body.parts.as_slice() else {
+            continue;
+        };
+        if part.translation.vector.norm() > 1e-12 {
+            continue;
+        }
+        let h = cuboid.half_extents;
+        let me = Cuboid::new(h - Vector3::repeat(SLACK).inf(&(h * 0.5)));
+        let others: Vec<(Isometry3<f64>, Cuboid)> = world
+            .bodies
+            .iter()
+            .enumerate()
+            .filter(|(j, o)| *j != bi && o.is_movable() && !o.lost)
+            .flat_map(|(_, o)| {
+                o.world_parts()
+                    .map(|(iso, c)| (iso, *c))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        let room = shelves.iter().any(|&si| {
+            let (lo, hi) = world.bodies[si].aabb();
+            let (nx, ny) = (
+                ((hi.x - lo.x) / STEP).floor() as usize,
+                ((hi.y - lo.y) / STEP).floor() as usize,
+            );
+            (0..6).any(|k| {
+                let turn = UnitQuaternion::from_axis_angle(
+                    &Vector3::z_axis(),
+                    k as f64 * std::f64::consts::PI / 12.0,
+                );
+                // The turned footprint's half widths (of the shrunk box): it lies on the top.
+                let m = turn.to_rotation_matrix().matrix().abs() * me.half_extents;
+                (0..=nx).any(|i| {
+                    (0..=ny).any(|j| {
+                        let (cx, cy) = (lo.x + i as f64 * STEP, lo.y + j as f64 * STEP);
+                        if cx - m.x < lo.x || cx + m.x > hi.x || cy - m.y < lo.y || cy + m.y > hi.y
+                        {
+                            return false;
+                        }
+                        let at = Isometry3::from_parts(Translation3::new(cx, cy, hi.z + h.z), turn);
+                        others.iter().all(|(iso, c)| {
+                            !query::intersection_test(&at, &me, iso, c).unwrap_or(true)
+                        })
+                    })
+                })
+            })
+        });
+        if !room {
+            return Some(x);
+        }
+    }
+    None
+}
+
+/// The legitimate reason of [`shelf_full_for`].
+const SHELF_FULL: &str = "the shelf has no room left for a block the goal puts on it (disturbances filled it; the domain cannot take a block off the shelf)";
 
 /// The legitimate reason of [`dragged_out_of_reach`].
 const DRAGGED_AWAY: &str =
@@ -605,6 +694,19 @@ fn soak_episode(
     let drag_explains = |reason: &FailReason| {
         dragged_out_of_reach(s.world(), &dragged) || fails_on(reason, &dragged_away)
     };
+    let shelf_full = || {
+        let task = s.controller().task();
+        let [goal] = task.goal.alternatives.as_slice() else {
+            return false;
+        };
+        let goal_facts: Vec<String> = goal
+            .pos
+            .iter()
+            .filter_map(|&f| task.facts.get(f as usize).cloned())
+            .collect();
+        let facts = crate::sim::SceneGraph::from_world(s.world()).to_strings();
+        shelf_full_for(s.world(), &goal_facts, &facts).is_some()
+    };
     match s.outcome() {
         Some(Ok(())) => rep.successes += 1,
         Some(Err(FailReason::Budget { what })) => {
@@ -626,6 +728,11 @@ fn soak_episode(
                         .entry(DRAGGED_AWAY.into())
                         .or_default() += 1
                 }
+                Some(false) if shelf_full() => {
+                    *rep.legitimate_failures
+                        .entry(SHELF_FULL.into())
+                        .or_default() += 1
+                }
                 Some(false) => {
                     rep.unexplained_failures += 1;
                     rep.find(finding(
@@ -640,6 +747,11 @@ fn soak_episode(
         Some(Err(other)) if drag_explains(other) => {
             *rep.legitimate_failures
                 .entry(DRAGGED_AWAY.into())
+                .or_default() += 1
+        }
+        Some(Err(_)) if shelf_full() => {
+            *rep.legitimate_failures
+                .entry(SHELF_FULL.into())
                 .or_default() += 1
         }
         Some(Err(other)) => {
@@ -676,6 +788,39 @@ fn soak_episode(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::FRAC_PI_2;
+
+    #[test]
+    fn a_shelf_is_full_only_when_no_footprint_on_its_top_is_free() {
+        // Soak finding (seed 4242, episode 2552): an L4 block e, put where the demonstration
+        // puts a block down, and an L1 that slid it left gaps of 5.2 and 4.8 cm on the shelf
+        // for the 6 cm block b the arm holds. Without an action that takes a block off the
+        // shelf, no plan exists: a legitimate failure.
+        let path = format!(
+            "{}/tests/data/worlds/soak-4242-2552.json",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let mut world = World::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let goal = [
+            "(onshelf a)".to_string(),
+            "(onshelf b)".to_string(),
+            "(onshelf e)".to_string(),
+        ];
+        let facts = |w: &World| crate::sim::SceneGraph::from_world(w).to_strings();
+        assert_eq!(world.held_by(0), Some("b"));
+        assert_eq!(
+            shelf_full_for(&world, &goal, &facts(&world)),
+            Some("b".into())
+        );
+        // e slid 1 cm towards the shelf's end: a 6.2 cm gap, room for b (2 mm to spare).
+        let e = world.body_pose("e").unwrap().translation.vector;
+        world
+            .move_block_to("e", Vector3::new(e.x + 0.01, e.y, e.z), FRAC_PI_2)
+            .unwrap();
+        assert_eq!(shelf_full_for(&world, &goal, &facts(&world)), None);
+        // Blocks the goal does not put on the shelf do not count.
+        assert_eq!(shelf_full_for(&world, &[], &facts(&world)), None);
+    }
 
     #[test]
     fn a_failure_is_the_drags_only_when_its_action_names_a_block_dragged_out_of_reach() {
