@@ -1082,13 +1082,7 @@ fn soak_1234_996_the_hook_is_not_let_go_onto_a_block_in_a_scene_without_on() {
     // under it, and no plan was left. A release now keeps to what a drag may do: never onto a
     // block in a scene without `on` (nor onto the hook or a held body); the executor checks
     // before it opens the gripper, fails the action and the loop places the hook elsewhere.
-    let b = BenchmarkId::B2;
-    let mut world = template(b);
-    let (_, task) = model_and_task(b, &world);
-    assert_eq!(
-        execute_learned(&mut world, &task, "(pick panda hook)", &b2_skills()),
-        ExecStatus::Done
-    );
+    let (mut world, _) = b2_holding_hook();
     assert_eq!(world.release_check(0), Ok(()), "over the table");
     let (lo, _) = world.body_aabb("hook").unwrap();
     assert!(
@@ -1096,11 +1090,7 @@ fn soak_1234_996_the_hook_is_not_let_go_onto_a_block_in_a_scene_without_on() {
         "the hook is held above a block's height: {lo:?}"
     );
     // b under the hook's centroid (the parts' centres weighted by their volumes).
-    let snap = world.snapshot();
-    let hook = snap.bodies.iter().find(|x| x.name == "hook").unwrap();
-    let ShapeSnapshot::Compound { parts } = &hook.shape else {
-        panic!("the hook is a compound");
-    };
+    let parts = hook_parts(&world);
     let (sum, volume) = parts.iter().fold((Vector3::zeros(), 0.0), |(s, v), p| {
         let w: f64 = p.half_extents.iter().product();
         (s + Vector3::from(p.pose.position) * w, v + w)
@@ -1198,13 +1188,7 @@ fn soak_5150_623_the_hook_is_put_down_with_every_part_clear_of_the_shelf() {
     // between the frame and a shelf, and its handle 1 cm from the shelf's side. Picking it up
     // again, the arm was stopped at the shelf three times. Every part of a put-down hook now
     // keeps 8 cm from a shelf's footprint.
-    let b = BenchmarkId::B2;
-    let mut world = template(b);
-    let (_, task) = model_and_task(b, &world);
-    assert_eq!(
-        execute_learned(&mut world, &task, "(pick panda hook)", &b2_skills()),
-        ExecStatus::Done
-    );
+    let (world, task) = b2_holding_hook();
     let shelf = world.body_aabb("shelf").unwrap();
     let place = [op(&task, "(place panda hook)")];
     // Spots away from the demonstration's, as when its spot is taken.
@@ -1225,12 +1209,7 @@ fn soak_5150_623_the_hook_is_put_down_with_every_part_clear_of_the_shelf() {
         }
         // The hook's parts' footprints there, each against the shelf's.
         let (c, s) = (libm::cos(yaw), libm::sin(yaw));
-        let snap = world.snapshot();
-        let hook = snap.bodies.iter().find(|x| x.name == "hook").unwrap();
-        let ShapeSnapshot::Compound { parts } = &hook.shape else {
-            panic!("the hook is a compound");
-        };
-        for p in parts {
+        for p in hook_parts(&world) {
             let [px, py, _] = p.pose.position;
             let [hx, hy, _] = p.half_extents;
             let (cx, cy) = (x + c * px - s * py, y + s * px + c * py);
@@ -1276,4 +1255,26 @@ fn soak_1234_1323_a_hand_over_spot_is_found_beside_a_tower_in_the_hand_over_regi
     let mut after = world.clone();
     execute_bound(&mut after, &task, &place, &binder.bindings, &skills);
     assert!(SceneGraph::from_world(&after).contains("(at f handover)"));
+}
+
+/// B2's template world with the arm holding the hook (the demonstration's pick, learned skills).
+fn b2_holding_hook() -> (World, Task) {
+    let b = BenchmarkId::B2;
+    let mut world = template(b);
+    let (_, task) = model_and_task(b, &world);
+    assert_eq!(
+        execute_learned(&mut world, &task, "(pick panda hook)", &b2_skills()),
+        ExecStatus::Done
+    );
+    (world, task)
+}
+
+/// The hook's boxes in its frame.
+fn hook_parts(world: &World) -> Vec<logic_lfd::sim::snapshot::PartSnapshot> {
+    let snap = world.snapshot();
+    let hook = snap.bodies.iter().find(|x| x.name == "hook").unwrap();
+    let ShapeSnapshot::Compound { parts } = &hook.shape else {
+        panic!("the hook is a compound");
+    };
+    parts.clone()
 }
