@@ -807,6 +807,7 @@ impl BannedTask {
             still.iter().map(|b| self.moved_flag(b)).collect()
         };
         lifts.extend(own.iter().map(|b| self.moved_flag(b)));
+        // Sized again: `moved_flag` may have added facts (false at `s`).
         let at = self.lift(&at);
         for i in self.live_copies(o) {
             if self.task.operators[i].applicable(&at) {

@@ -1256,10 +1256,10 @@ impl<'w> StreamBinder<'w> {
                         .map(|(_, hi)| hi.z)
                         .fold(f64::NEG_INFINITY, f64::max);
                     // A region holds a body by its centre (`SceneGraph`): the candidates' edge
-                    // margin (half the body and 1 cm, for the edge of a real surface) becomes
-                    // REGION_INSET from the region's edge.
+                    // margin (half the body and SURFACE_EDGE_MARGIN, for the edge of a real
+                    // surface) becomes REGION_INSET from the region's edge.
                     let h = self.half_extents(body);
-                    let grow = (h.x.max(h.y) + 0.01 - REGION_INSET).max(0.0);
+                    let grow = (h.x.max(h.y) + SURFACE_EDGE_MARGIN - REGION_INSET).max(0.0);
                     if top.is_finite() {
                         out.push((
                             [r.min[0] - grow, r.max[0] + grow],
@@ -1333,7 +1333,7 @@ impl<'w> StreamBinder<'w> {
             return vec![];
         }
         let h = self.half_extents(&body);
-        let margin = h.x.max(h.y) + 0.01;
+        let margin = h.x.max(h.y) + SURFACE_EDGE_MARGIN;
         let mut candidates: Vec<Candidate> = vec![];
         if let Some((x, y, yaw)) = hint {
             if let Some(&(_, _, top)) = surfaces
@@ -1670,6 +1670,10 @@ const SMALL_SURFACE_SPOTS: usize = 12;
 
 /// Radius around the demonstrated hook placement whose spots are tried first (m).
 const HOOK_HINT_RADIUS: f64 = 0.15;
+
+/// How far a body put down on a surface keeps from the surface's edge, beyond its own half
+/// width (m).
+const SURFACE_EDGE_MARGIN: f64 = 0.01;
 
 /// How far inside a region (`(at x p)`) a body's centre is put down (m): the executor lets go
 /// within a few millimetres of where it was told.
