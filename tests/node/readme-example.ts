@@ -5,10 +5,10 @@ import { readFileSync } from 'node:fs';
 
 await init(); // fetches the .wasm in a browser; a no-op in node
 
-// Plan an IPC blocks-world problem (errors come back as { ok: false, diagnostics: [{ file, line, col, message }] }).
+// Plan the B1 tower task (errors come back as { ok: false, diagnostics: [{ file, line, col, message }] }).
 const out = plan(
-  readFileSync('../shared/ipc/blocks/domain.pddl', 'utf8'),
-  readFileSync('../shared/ipc/blocks/probBLOCKS-4-0.pddl', 'utf8'),
+  readFileSync('domains/b1-tower/domain.pddl', 'utf8'),
+  readFileSync('domains/b1-tower/problem.pddl', 'utf8'),
   { search: 'astar', heuristic: 'lmcut' },
 );
 if (out.ok) console.log(`${out.plan.length} actions:`, out.plan.join(' '));
