@@ -1,4 +1,4 @@
-// Cancel and responsiveness (issue 8, item 4): Cancel stops the robot's running plan within
+// Cancel and responsiveness: Cancel stops the robot's running plan within
 // 100 ms, and a pathological PDDL problem typed into the editor cannot freeze the page: its search
 // runs in a worker of its own, the page and the robot keep running meanwhile, and Cancel
 // terminates that worker at once. Times are measured inside the page (performance.now()).
@@ -20,10 +20,10 @@ function bigBlocks(n) {
 }
 
 /**
- * Timing bounds. The page's own numbers are printed (and reported in the README from a quiet
+ * Timing bounds. The page's own numbers are printed (and reported in docs/reproduction.md from a quiet
  * machine); by default the test asserts only what a freeze would break (a second), because this
  * 2-core machine is shared and a timed assertion of 100 ms would fail on scheduling noise.
- * STRICT_TIMING=1 asserts the issue's 100 ms.
+ * STRICT_TIMING=1 asserts the 100 ms target.
  */
 const BOUND_MS = process.env.STRICT_TIMING === '1' ? 100 : 1000;
 

@@ -1,4 +1,4 @@
-// Security of the page (issue 8, item 6): no eval / innerHTML with user text in the page's
+// Security of the page: no eval / innerHTML with user text in the page's
 // source; hostile names in a permalink, a loaded scene JSON or the PDDL editor never run script
 // and are displayed as text. A payload "ran" if it set window.__pwned, opened a dialog, or added an
 // element (img, svg, script, iframe) to the document.

@@ -1,4 +1,4 @@
-// Page soak (issue 8, item 5): SOAK_CYCLES (default 1000) perturb-and-replan cycles through the
+// Page soak: SOAK_CYCLES (default 1000) perturb-and-replan cycles through the
 // page's own UI — the L1–L4 buttons and real mouse drags of blocks — while the robot runs at 2×,
 // switching benchmark every 25 cycles and resetting whenever an episode ends, with the Charts tab
 // open for 10 cycles in 50 (uPlot drawing) and the Run panels the rest of the time. Memory is

@@ -1,4 +1,4 @@
-// Native/wasm determinism (issue 8): the same seed gives byte-identical episode JSON from the
+// Native/wasm determinism: the same seed gives byte-identical episode JSON from the
 // native CLI (`logic-lfd run … --json`) and from the wasm package (`runEpisode`), and across two
 // runs of each. The only fields allowed to differ are the wall-clock planning times
 // (`planning_ms`, `log.replans[].time_ms`): they are masked to 0 textually on the CLI's output and
