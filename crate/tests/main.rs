@@ -2,6 +2,7 @@
 
 mod fuzz;
 mod ground;
+mod layers;
 mod lfd;
 mod lqt;
 mod multigoal;

@@ -1,14 +1,14 @@
 //! TAMP streams and the retry loop: per-state bans, certified motions (swept path of the arm and
 //! the carried body), the pull stream's prediction against the executor, and TAMP from scratch.
 
-use logic_lfd::lfd::control::{BannedTask, Binder, FailReason};
-use logic_lfd::lfd::exec::{classify, ActionExec, ActionKind, ExecParams, ExecStatus, Placement};
-use logic_lfd::lfd::logic::replay;
+use logic_lfd::lfd::control::FailReason;
+use logic_lfd::lfd::exec::{ActionExec, ExecParams, ExecStatus};
 use logic_lfd::lfd::model::DomainModel;
 use logic_lfd::lfd::session::{BenchmarkId, Session, SessionOptions, SkillKind};
 use logic_lfd::lfd::skill::SkillLibrary;
 use logic_lfd::lfd::TaskBuilder;
 use logic_lfd::lfd::{Method, Mode};
+use logic_lfd::plan::{replay, BannedTask};
 use logic_lfd::plan::{search, Algorithm, HeuristicKind, NoClock, SearchConfig, Task};
 use logic_lfd::sim::demo::PULL_TARGET_RADIUS;
 use logic_lfd::sim::geometry::{grasp_pose, hand_hits};
@@ -16,6 +16,7 @@ use logic_lfd::sim::snapshot::ShapeSnapshot;
 use logic_lfd::sim::{SceneGraph, World};
 use logic_lfd::tamp::plan_from_scratch;
 use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
+use logic_lfd::tamp::{classify, moves_body, ActionKind, Binder, Placement};
 use nalgebra::Vector3;
 
 fn model_and_task(b: BenchmarkId, world: &World) -> (DomainModel, Task) {
@@ -106,7 +107,7 @@ fn banning_an_action_at_one_state_keeps_it_applicable_everywhere_else() {
     let end = replay(&task, &s0, &ops).unwrap();
     assert!(task.goal.holds(&end));
     // One ban more than STATE_BANS bans it everywhere.
-    assert_eq!(logic_lfd::lfd::control::STATE_BANS, 2);
+    assert_eq!(logic_lfd::plan::STATE_BANS, 2);
     banned.ban(pick_c, &s2);
     for s in [&s0, &s1, &s2] {
         assert_eq!(applicable_copies(&banned, pick_c, s), 0);
@@ -341,7 +342,7 @@ fn an_action_a_movable_body_blocked_is_banned_until_that_body_has_moved() {
     assert!(task.operators[pull_b].applicable(&a_shelved));
 
     let mut banned = BannedTask::new(&task);
-    banned.ban_failed(pull_b, &holding, &[], &["a".to_string()]);
+    banned.ban_failed(pull_b, &holding, &[], &["a".to_string()], &moves_body);
     assert!(!banned.is_empty());
     let at = |b: &BannedTask, ops: &[usize]| in_banned(b, &s0, ops);
     let holding_b = at(&banned, &[pick_hook]);
@@ -377,8 +378,8 @@ fn an_action_a_movable_body_blocked_is_banned_until_that_body_has_moved() {
     let end = replay(&task, &s0, &ops).unwrap();
     assert!(task.goal.holds(&end));
     // Bans until something moves do not count towards banning the action everywhere.
-    for _ in 0..=logic_lfd::lfd::control::STATE_BANS {
-        banned.ban_failed(pull_b, &holding, &[], &["a".to_string()]);
+    for _ in 0..=logic_lfd::plan::STATE_BANS {
+        banned.ban_failed(pull_b, &holding, &[], &["a".to_string()], &moves_body);
     }
     assert!(applicable_copies(&banned, pull_b, &a_shelved_b) >= 1);
 
@@ -389,6 +390,7 @@ fn an_action_a_movable_body_blocked_is_banned_until_that_body_has_moved() {
         &holding,
         &[],
         &["b".to_string(), "hook".to_string()],
+        &moves_body,
     );
     assert_eq!(applicable_copies(&own, pull_b, &own.lift(&holding)), 0);
     let hook_moved = replay(
@@ -434,7 +436,7 @@ fn an_action_banned_until_a_blocker_moves_waits_for_the_blocker_itself_not_its_f
     let s = task.state_from_names(&names).unwrap();
     let pick_a = op(&task, "(pick panda a)");
     let mut banned = BannedTask::new(&task);
-    banned.ban_failed(pick_a, &s, &[], &["c".to_string()]);
+    banned.ban_failed(pick_a, &s, &[], &["c".to_string()], &moves_body);
     let unstacked_b = in_banned(
         &banned,
         &s,
@@ -480,7 +482,7 @@ fn an_action_banned_until_a_blocker_moves_waits_for_the_blocker_itself_not_its_f
     // the plan put it) bans it at the facts c has there.
     let prefix = &ops[..first_pick_a];
     let there = replay(&task, &s, prefix).unwrap();
-    banned.ban_failed(pick_a, &there, prefix, &["c".to_string()]);
+    banned.ban_failed(pick_a, &there, prefix, &["c".to_string()], &moves_body);
     assert_eq!(
         applicable_copies(&banned, pick_a, &in_banned(&banned, &s, prefix)),
         0
@@ -630,7 +632,7 @@ fn execute_bound(
     world: &mut World,
     task: &Task,
     ops: &[usize],
-    bindings: &[logic_lfd::lfd::exec::Binding],
+    bindings: &[logic_lfd::tamp::Binding],
     skills: &SkillLibrary,
 ) {
     execute_bound_watching(world, task, ops, bindings, skills, |_, _| {});
@@ -641,7 +643,7 @@ fn execute_bound_watching(
     world: &mut World,
     task: &Task,
     ops: &[usize],
-    bindings: &[logic_lfd::lfd::exec::Binding],
+    bindings: &[logic_lfd::tamp::Binding],
     skills: &SkillLibrary,
     mut watch: impl FnMut(&str, &World),
 ) {
@@ -673,10 +675,7 @@ fn saved_world(name: &str) -> World {
 }
 
 /// The streams' bindings of the B2 action `name` in `world`; panics unless it binds.
-fn b2_bind_one(
-    world: &World,
-    name: &str,
-) -> (Task, [usize; 1], Vec<logic_lfd::lfd::exec::Binding>) {
+fn b2_bind_one(world: &World, name: &str) -> (Task, [usize; 1], Vec<logic_lfd::tamp::Binding>) {
     let (_, task) = model_and_task(BenchmarkId::B2, world);
     let ops = [op(&task, name)];
     let mut binder = StreamBinder::new(world, 1, StreamParams::default());
@@ -974,7 +973,7 @@ fn a_release_beside_a_tower_is_put_down_with_the_hand_where_it_was_certified() {
     let mut binder = StreamBinder::new(&world, 3, StreamParams::default()).with_hints(&hints);
     assert_eq!(binder.bind(&task, &ops, ops.len()), Ok(()));
     let bindings = binder.bindings.clone();
-    let Some(logic_lfd::lfd::exec::Placement::At { x, y, .. }) = bindings[1].placement else {
+    let Some(logic_lfd::tamp::Placement::At { x, y, .. }) = bindings[1].placement else {
         panic!("{bindings:?}");
     };
     assert!(
@@ -1140,7 +1139,7 @@ fn soak_8080_2819_a_block_is_not_put_down_where_the_arm_is_at_its_joint_limits()
 fn place_hook_at(world: &mut World, x: f64, y: f64) {
     let (_, task) = model_and_task(BenchmarkId::B2, world);
     let ops = [op(&task, "(place panda hook)")];
-    let bindings = [logic_lfd::lfd::exec::Binding {
+    let bindings = [logic_lfd::tamp::Binding {
         placement: Some(Placement::At { x, y, yaw: 0.0 }),
         ..Default::default()
     }];

@@ -38,10 +38,10 @@ use rand_pcg::Pcg64Mcg;
 use serde::{Deserialize, Serialize};
 
 use crate::lfd::control::FailReason;
-use crate::lfd::exec::fact_args;
 use crate::lfd::session::{mix, BenchmarkId, Session, SessionOptions, SkillKind};
 use crate::lfd::{Method, Mode};
 use crate::pddl::{parse_domain, parse_problem, Domain};
+use crate::plan::fact_args;
 use crate::plan::{
     ground, search, validate_names, Algorithm, HeuristicKind, NoClock, Outcome, SearchConfig,
     SearchOutcome,

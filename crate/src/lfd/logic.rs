@@ -20,9 +20,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::plan::{self, Clock, MultiGoalMode, SearchConfig, SearchOutcome, State, Task};
+use crate::plan::{
+    self, replay, BannedTask, Clock, MultiGoalMode, SearchConfig, SearchOutcome, State, Task,
+};
 
-use super::control::BannedTask;
 use super::demo::MultiGoalSpec;
 use super::LfdError;
 
@@ -91,19 +92,6 @@ pub fn logic_in(spec: &MultiGoalSpec, s: &State) -> Option<usize> {
         .rev()
         .find(|(_, l)| l.as_ref().is_some_and(|c| c.holds(s)))
         .map(|(k, _)| k)
-}
-
-/// Replays `ops` from `s`; returns the final state, or the index of the first inapplicable action.
-pub fn replay(task: &Task, s: &State, ops: &[usize]) -> Result<State, usize> {
-    let mut cur = s.clone();
-    for (i, &o) in ops.iter().enumerate() {
-        let op = &task.operators[o];
-        if !op.applicable(&cur) {
-            return Err(i);
-        }
-        cur = op.apply(&cur);
-    }
-    Ok(cur)
 }
 
 /// `prefix ⧺ a_{k+1}..a_N`, if the result is applicable from `s` and reaches the goal.

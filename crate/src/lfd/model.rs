@@ -96,7 +96,7 @@ impl DomainModel {
         let preds: BTreeSet<&str> = scene_predicates.iter().map(String::as_str).collect();
         let static_init = init
             .into_iter()
-            .filter(|f| !preds.contains(super::exec::fact_args(f).0))
+            .filter(|f| !preds.contains(plan::fact_args(f).0))
             .filter(|f| !f.starts_with("(="))
             .collect();
         let template_objects = problem

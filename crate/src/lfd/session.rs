@@ -25,10 +25,11 @@ use crate::plan::{Clock, NoClock};
 use crate::sim::snapshot::WorldSnapshot;
 use crate::sim::{MoveOutcome, Refused, SceneGraph, World};
 use crate::tamp::streams::{StreamBinder, StreamParams};
+use crate::tamp::{classify, ActionKind, Binder, Binding, Placement};
 
-use super::control::{Binder, ControlParams, Controller, Decision, FailReason, Replan};
+use super::control::{ControlParams, Controller, Decision, FailReason, Replan};
 use super::demo::DemoTrace;
-use super::exec::{classify, ActionExec, ActionKind, Binding, ExecParams, ExecStatus, Placement};
+use super::exec::{ActionExec, ExecParams, ExecStatus};
 use super::logic::Mode;
 use super::model::DomainModel;
 use super::skill::SkillLibrary;

@@ -1,13 +1,15 @@
 //! Grounded planning: the [`Task`] (facts as packed bitsets, operators with precondition/add/delete
 //! lists), grounding from PDDL, search algorithms, heuristics, the multi-goal search of Logic-LfD
-//! and the plan validator.
+//! the plan validator, plan replay and the task rewrites (bans) of a replan's retries.
 
+mod bans;
 mod ground;
 mod task;
 mod validate;
 
+pub use bans::{BannedTask, MovesBody, STATE_BANS};
 pub use ground::{ground, GroundError};
-pub use task::{Condition, FactId, Goal, Operator, State, Task, UnknownFact};
+pub use task::{fact_args, replay, Condition, FactId, Goal, Operator, State, Task, UnknownFact};
 pub use validate::{
     parse_plan, validate, validate_names, Outcome, PlanStep, PlanToken, ValidationReport,
 };

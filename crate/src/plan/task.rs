@@ -277,6 +277,27 @@ fn normalize_fact_name(n: &str) -> String {
     )
 }
 
+/// The predicate and arguments of a fact or action written as `(p a b …)`.
+pub fn fact_args(fact: &str) -> (&str, Vec<&str>) {
+    let inner = fact.trim().trim_start_matches('(').trim_end_matches(')');
+    let mut it = inner.split_whitespace();
+    let p = it.next().unwrap_or("");
+    (p, it.collect())
+}
+
+/// Replays `ops` from `s`; returns the final state, or the index of the first inapplicable action.
+pub fn replay(task: &Task, s: &State, ops: &[usize]) -> Result<State, usize> {
+    let mut cur = s.clone();
+    for (i, &o) in ops.iter().enumerate() {
+        let op = &task.operators[o];
+        if !op.applicable(&cur) {
+            return Err(i);
+        }
+        cur = op.apply(&cur);
+    }
+    Ok(cur)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -16,11 +16,15 @@
 //! This is what Logic-LfD uses to bind the actions it adds, and the "plan from scratch" baseline
 //! of the paper's Table I (the PDDLStream column). Streams live in [`streams`].
 
+pub mod action;
+mod binder;
+pub mod motion;
 pub mod streams;
 
-use crate::lfd::control::{BannedTask, Binder};
-use crate::lfd::logic::replay;
-use crate::plan::{search, Clock, SearchConfig, SearchOutcome, State, Task};
+pub use action::{classify, moves_body, ActionKind, Binding, Placement};
+pub use binder::Binder;
+
+use crate::plan::{replay, search, BannedTask, Clock, SearchConfig, SearchOutcome, State, Task};
 
 /// Why TAMP found no plan.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -72,7 +76,7 @@ pub fn plan_from_scratch(
             Err(i) => {
                 last = t.operators[ops[i]].name.clone();
                 if let Ok(at) = replay(&t, s, &ops[..i]) {
-                    banned.ban_failed(ops[i], &at, &ops[..i], &binder.obstructions(i));
+                    banned.ban_failed(ops[i], &at, &ops[..i], &binder.obstructions(i), &moves_body);
                 }
                 binder.widen();
             }

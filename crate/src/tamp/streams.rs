@@ -49,11 +49,10 @@ use parry3d_f64::shape::{Capsule, Cuboid, Shape};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
-use crate::lfd::control::Binder;
-use crate::lfd::exec::{
-    classify, fact_args, ActionKind, Binding, Placement, NEAR_RECOVERY_FRACTIONS,
-};
-use crate::plan::Task;
+use super::action::{classify, ActionKind, Binding, Placement};
+use super::motion::NEAR_RECOVERY_FRACTIONS;
+use super::Binder;
+use crate::plan::{fact_args, Task};
 use crate::sim::demo::{pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TURNS};
 use crate::sim::geometry::{
     clear_grasp_at, grasp_pose_at, hand_within, link_capsules, quarter_turns, raised, rise_first,
