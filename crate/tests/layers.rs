@@ -110,17 +110,16 @@ fn imports(source: &str, module: &[String]) -> Vec<(usize, String)> {
     // `super::super::x` from `a::b` names the crate root's `x`.
     let depth = module.len();
     let climb = "super::".repeat(depth);
-    let mut at = 0;
-    while depth > 0 {
-        let Some(i) = text[at..].find(&climb) else {
-            break;
-        };
-        let start = at + i;
-        at = start + climb.len();
-        if text[..start].ends_with("super::") {
-            continue;
+    if depth > 0 {
+        let mut at = 0;
+        while let Some(i) = text[at..].find(&climb) {
+            let start = at + i;
+            at = start + climb.len();
+            if text[..start].ends_with("super::") {
+                continue;
+            }
+            found.push((line_of[at], ident(&text[at..])));
         }
-        found.push((line_of[at], ident(&text[at..])));
     }
     found
 }
