@@ -205,7 +205,7 @@ fn to_js<T: serde::Serialize>(v: &T) -> Result<JsValue, JsError> {
     json_parse(&text).map_err(|_| js_err("JSON.parse failed"))
 }
 
-/// Solves one LQT-CP case (the contract of `shared/lqt-cp-io.md`, as `logic-lfd lqt CASE.json`).
+/// Solves one LQT-CP case (the contract of `docs/formats.md`, as `logic-lfd lqt CASE.json`).
 ///
 /// `case` is the case object or its JSON text; the result is the output object (`A`, `B`, `phi`,
 /// `w`, `u`, `x`, `pos`, `cost`, `target_errors`, `feedback`). A malformed case rejects with a
@@ -231,7 +231,7 @@ pub fn lqt(
 #[cfg(feature = "wasm")]
 #[wasm_bindgen(typescript_custom_section)]
 const TS_LQT: &'static str = r#"
-/** An LQT-CP case (shared/lqt-cp-io.md); unknown keys are ignored. */
+/** An LQT-CP case (docs/formats.md); unknown keys are ignored. */
 export interface LqtCase {
   dim: number; order: number; dt: number; n_steps: number; r: number;
   basis: { type: "rbf" | "bernstein" | "fourier" | "piecewise"; n_fct: number; centers?: number[]; lambda?: number };

@@ -29,7 +29,7 @@ function scaled(dim, steps, nFct) {
     pos: pad(t.pos, 0.2),
     ...(t.vel ? { vel: pad(t.vel, 0) } : {}),
   }));
-  // The reference as lqt-cp-io.md builds it: μ = 0, q = 0, then each target sets pos (and vel).
+  // The reference as docs/formats.md describes it: μ = 0, q = 0, then each target sets pos (and vel).
   const nx = dim * c.order;
   const mu = Array.from({ length: steps }, () => Array(nx).fill(0));
   const q = Array.from({ length: steps }, () => Array(nx).fill(0));

@@ -1,4 +1,4 @@
-//! The JSON contract of `logic-lfd lqt CASE.json` (`shared/lqt-cp-io.md`): parse a case with
+//! The JSON contract of `logic-lfd lqt CASE.json` (`docs/formats.md`): parse a case with
 //! errors that name the key and the expected shape, solve it with the fast path, and build the
 //! output object (`A`, `B`, `phi`, `w`, `u`, `x`, `pos`, `cost`, `target_errors`, `feedback`).
 //!

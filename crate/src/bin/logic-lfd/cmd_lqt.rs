@@ -1,4 +1,4 @@
-//! `logic-lfd lqt CASE.json [--pretty]`: the LQT-CP contract (`shared/lqt-cp-io.md`).
+//! `logic-lfd lqt CASE.json [--pretty]`: the LQT-CP contract (`docs/formats.md`).
 
 use crate::exit;
 use logic_lfd::lqt::case::{run_case, CaseInput};
@@ -9,7 +9,7 @@ use std::process::ExitCode;
 /// Arguments of `logic-lfd lqt`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// The case (JSON, format of shared/lqt-cp-io.md).
+    /// The case (JSON, format of docs/formats.md).
     pub case: PathBuf,
     /// Pretty-print the output object.
     #[arg(long)]

@@ -40,7 +40,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Solve an LQT-CP case (shared/lqt-cp-io.md) and print the output object as JSON.
+    /// Solve an LQT-CP case (docs/formats.md) and print the output object as JSON.
     Lqt(cmd_lqt::Args),
     /// Replay a plan on a PDDL domain and problem; report the first failing step and why.
     Validate(cmd_validate::Args),
