@@ -1,5 +1,5 @@
-//! The dense reference path: a literal transcription of the LQT-CP case conventions (`docs/formats.md`), kept to check the
-//! fast path ([`super::LqtCp`]) in tests. Slow (it forms `Sx`, `Su`, `Ψ` and `Q` as dense
+//! The dense reference path: a literal transcription of the LQT-CP case conventions
+//! (`docs/formats.md`), kept to check the fast path ([`super::LqtCp`]) in tests. Slow (it forms `Sx`, `Su`, `Ψ` and `Q` as dense
 //! matrices) but obviously the formulas:
 //!
 //! ```text
