@@ -1,6 +1,6 @@
 //! The dense reference path: a literal transcription of the LQT-CP case conventions
-//! (`docs/formats.md`), kept to check the fast path ([`super::LqtCp`]) in tests. Slow (it forms `Sx`, `Su`, `Ψ` and `Q` as dense
-//! matrices) but obviously the formulas:
+//! (`docs/formats.md`), kept to check the fast path ([`super::LqtCp`]) in tests. Slow (it forms
+//! `Sx`, `Su`, `Ψ` and `Q` as dense matrices) but obviously the formulas:
 //!
 //! ```text
 //! x = Sx x_0 + Su u, block (t,s) of Su = A^(t-1-s) B for s < t, Ψ = φ ⊗ I_D
