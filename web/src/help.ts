@@ -1,6 +1,8 @@
 /**
- * The help overlay: what the page shows and its keyboard shortcuts. Opens with the ? button or
- * key; closes with its button, Escape or a click beside the dialog.
+ * The help overlay: what the page shows, its keyboard shortcuts and links to the project's
+ * documentation (the repository's docs/*.md, which the build copies beside the page: see
+ * vite.config.ts). Opens with the ? button or key; closes with its button, Escape or a click
+ * beside the dialog.
  */
 import { el } from './dom';
 
@@ -16,6 +18,14 @@ const KEYS: [string, string][] = [
   ['?', 'this help; Esc closes it'],
   ['mouse', 'left-drag a block to move it; drag elsewhere to orbit; wheel to zoom'],
   ['G', 'Teach tab, gripper mode: close / open the gripper'],
+];
+
+/** The project's documentation: file in docs/, link text, what it holds. */
+const DOCS: [string, string, string][] = [
+  ['architecture.md', 'Architecture', 'data flow, layers, where to change what'],
+  ['reproduction.md', 'Reproduction', "the paper's tables, command by command"],
+  ['reliability.md', 'Reliability', 'tests, fuzzing, soak, known limitations'],
+  ['formats.md', 'Formats', 'scene, demo, recording and episode files'],
 ];
 
 export class HelpOverlay {
@@ -39,6 +49,13 @@ export class HelpOverlay {
           ' state seen in that demonstration, then follows the rest of it. Drag a block with the mouse while it works: it notices the change, replans in milliseconds and still finishes.',
         ),
         el('table', { class: 'keys' }, ...KEYS.map(([k, v]) => el('tr', {}, el('th', {}, el('kbd', {}, k)), el('td', {}, v)))),
+        el(
+          'ul',
+          { id: 'help-docs', class: 'docs', 'aria-label': 'Documentation' },
+          ...DOCS.map(([file, name, what]) =>
+            el('li', {}, el('a', { href: `docs/${file}`, target: '_blank', rel: 'noopener' }, name), el('span', { class: 'muted' }, ` — ${what}`)),
+          ),
+        ),
         this.closeBtn,
       ),
     );
