@@ -1,6 +1,8 @@
-// Two small uPlot charts: the time of each replan (ms) and the end-effector trajectory (m).
-// The data is recorded from the first frame; uPlot itself (and its CSS) is loaded on the first
-// draw, i.e. when the Charts tab is opened, so it is not part of the page's first load.
+/**
+ * Two small uPlot charts: the time of each replan (ms) and the end-effector trajectory (m).
+ * The data is recorded from the first frame; uPlot itself (and its CSS) is loaded on the first
+ * draw, i.e. when the Charts tab is opened, so it is not part of the page's first load.
+ */
 import type uPlot from 'uplot';
 import type { Frame } from 'logic-lfd';
 

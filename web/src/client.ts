@@ -1,4 +1,6 @@
-// The page's side of the protocol: typed promises over postMessage.
+/**
+ * The page's side of the protocol: typed promises over postMessage.
+ */
 import type { Api, ApiKind, FromWorker, ToWorker } from './protocol';
 
 /** A request that was cancelled (or timed out) before the worker answered. */

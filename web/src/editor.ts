@@ -1,6 +1,8 @@
-// The PDDL editor panel: two CodeMirror 6 editors (domain, problem) with PDDL highlighting, inline
-// diagnostics at line:col from the wasm parser, a Plan button that lists the plan, and a state
-// stepper that shows the facts after each action.
+/**
+ * The PDDL editor panel: two CodeMirror 6 editors (domain, problem) with PDDL highlighting, inline
+ * diagnostics at line:col from the wasm parser, a Plan button that lists the plan, and a state
+ * stepper that shows the facts after each action.
+ */
 import { EditorState, type Extension } from '@codemirror/state';
 import { EditorView, keymap, lineNumbers, highlightActiveLine, drawSelection } from '@codemirror/view';
 import { defaultKeymap, history, historyKeymap } from '@codemirror/commands';

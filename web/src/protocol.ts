@@ -1,6 +1,8 @@
-// The one message protocol between the page (main thread) and the worker that owns the wasm
-// module and the Session. Requests carry an `id`; the worker answers each with exactly one `reply`
-// of the same id. While a session plays, the worker pushes `frame` messages on its own.
+/**
+ * The one message protocol between the page (main thread) and the worker that owns the wasm
+ * module and the Session. Requests carry an `id`; the worker answers each with exactly one `reply`
+ * of the same id. While a session plays, the worker pushes `frame` messages on its own.
+ */
 import type { BenchmarkInfo, Diagnostic, Frame, PlanOptions, PlanOutcome, SessionOptions } from 'logic-lfd';
 import type { TeachApi } from './teach-protocol';
 

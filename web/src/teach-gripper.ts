@@ -1,8 +1,10 @@
-// The draggable 3-D gripper handle of Teach mode: a ball (drag: move in the horizontal plane), a
-// blue arrow (drag: up/down), a green ring (drag: turn the gripper about the vertical) and two
-// finger marks showing the yaw and whether the gripper is open. The handle shows the commanded
-// pose; the arm follows it by IK in the worker. It takes the pointer before the view's block drag
-// and orbit controls only when the pointer is on the handle.
+/**
+ * The draggable 3-D gripper handle of Teach mode: a ball (drag: move in the horizontal plane), a
+ * blue arrow (drag: up/down), a green ring (drag: turn the gripper about the vertical) and two
+ * finger marks showing the yaw and whether the gripper is open. The handle shows the commanded
+ * pose; the arm follows it by IK in the worker. It takes the pointer before the view's block drag
+ * and orbit controls only when the pointer is on the handle.
+ */
 import * as THREE from 'three';
 import type { View } from './view';
 

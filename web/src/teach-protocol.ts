@@ -1,6 +1,8 @@
-// The Teach mode's requests to the worker (merged into the page's `Api` in protocol.ts): a
-// `Teacher` (the demonstration recorder) lives in the same worker as the Session, and "Run"
-// replaces the Session by one running the taught task.
+/**
+ * The Teach mode's requests to the worker (merged into the page's `Api` in protocol.ts): a
+ * `Teacher` (the demonstration recorder) lives in the same worker as the Session, and "Run"
+ * replaces the Session by one running the taught task.
+ */
 import type { Frame, TaughtInfo, TaughtRunOptions, TeachEdit, TeachFinish, TeachResult, TeachState } from 'logic-lfd';
 
 export interface TeachApi {

@@ -1,7 +1,9 @@
-// The worker's side of Teach mode: one `Teacher` (recorder) beside the Session. Loaded by
-// worker.ts, which passes in how to replace its Session. The recorder lives in the full wasm
-// module ('logic-lfd-teach'; it also has `Session.replay`), which is not part of the page's first
-// load: it is fetched and compiled the first time it is needed (`teachLoad` when the tab opens).
+/**
+ * The worker's side of Teach mode: one `Teacher` (recorder) beside the Session. Loaded by
+ * worker.ts, which passes in how to replace its Session. The recorder lives in the full wasm
+ * module ('logic-lfd-teach'; it also has `Session.replay`), which is not part of the page's first
+ * load: it is fetched and compiled the first time it is needed (`teachLoad` when the tab opens).
+ */
 import type { Frame } from 'logic-lfd';
 import type { TeachApi } from './teach-protocol';
 

@@ -1,21 +1,26 @@
-// Teach mode: record a new demonstration in the workcell and run it with Logic-LfD.
-//
-// Record → demonstrate (quick: drag a block and the robot carries it; gripper: move the 3-D
-// gripper handle, open/close it, the arm follows by IK; by hand: nudge a block without the robot)
-// → Stop. Every edit is segmented in the worker into the domain's actions as it happens; the
-// panel lists the actions a1..aN and the demo states L0..LN, and refusals (a change the PDDL model
-// cannot explain, a release in mid-air) with their time and fact change — a refused edit leaves the
-// recording as it was. After Stop: the goal (L_N's facts by default, editable), save/load of the
-// taught demo.json, and Run: a closed-loop session of the taught task from a random, the taught or
-// a user-arranged initial world, disturbed with the usual drag and L1–L4 buttons.
+/**
+ * Teach mode: record a new demonstration in the workcell and run it with Logic-LfD.
+ *
+ * Record → demonstrate (quick: drag a block and the robot carries it; gripper: move the 3-D
+ * gripper handle, open/close it, the arm follows by IK; by hand: nudge a block without the robot)
+ * → Stop. Every edit is segmented in the worker into the domain's actions as it happens; the
+ * panel lists the actions a1..aN and the demo states L0..LN, and refusals (a change the PDDL model
+ * cannot explain, a release in mid-air) with their time and fact change — a refused edit leaves the
+ * recording as it was. After Stop: the goal (L_N's facts by default, editable), save/load of the
+ * taught demo.json, and Run: a closed-loop session of the taught task from a random, the taught or
+ * a user-arranged initial world, disturbed with the usual drag and L1–L4 buttons.
+ */
 import type { Frame, SessionOptions, TaughtInfo, TeachEdit, TeachError, TeachResult, TeachState, WorldSnapshot } from 'logic-lfd';
 import type { WorkerClient } from './client';
 import type { View, DropRequest } from './view';
-import { el } from './dom';
+import { button, downloadJson, el, guard, isShortcut } from './dom';
+import { parseSeed } from './state';
 import { GripperHandle, type HandlePose } from './teach-gripper';
+import { GripperStream } from './teach-gripper-stream';
+import { buildTeachUi, TEACH_MODES, type TeachMode, type TeachUi } from './teach-layout';
+import { checkedGoal, errorContent, goalItems, recordingItems, taughtItems } from './teach-listing';
 
 type Benchmark = SessionOptions['benchmark'];
-type TeachMode = 'quick' | 'gripper' | 'hand';
 type Start = 'random' | 'taught' | 'arrange';
 
 export interface TeachHost {
@@ -32,17 +37,9 @@ export interface TeachHost {
   runTaught: (f: Frame, autoplay: boolean) => Promise<void>;
 }
 
-const MODES: [TeachMode, string, string][] = [
-  ['quick', 'Quick', 'Drag a block onto a block or a place: the robot carries it (the arm motion is synthesised)'],
-  ['gripper', 'Gripper', 'Drag the gripper handle (ball: move, blue arrow: up/down, green ring: turn); G or the button closes/opens it'],
-  ['hand', 'By hand', 'Move a block by hand, without the robot (only a nudge that changes no fact is accepted)'],
-];
-
-function button(id: string, label: string, text: string, cls = ''): HTMLButtonElement {
-  return el('button', { id, 'aria-label': label, title: label, class: cls, type: 'button' }, text);
-}
-
 const ms = (m: number) => `${(m * 1000).toFixed(1)} mm`;
+/** How far (m) beside or below a block's top face a drop still stacks onto it. */
+const DROP_MARGIN = 0.005;
 
 export class TeachPanel {
   private state: TeachState | null = null;
@@ -52,94 +49,49 @@ export class TeachPanel {
   private mode: TeachMode = 'quick';
   private busy = false;
   private readonly handle: GripperHandle;
+  private readonly stream: GripperStream;
   private closed = false;
-  private inflight = false;
-  private pending: { pose: HandlePose; final: boolean } | null = null;
-  private lastSend = 0;
   private newSegments = new Set<number>();
   /** Whether the listed demo is a loaded file (else the recording). */
   private loaded = false;
 
-  private readonly recordBtn = button('teach-record', 'Start a new recording in this workcell', '● Record', 'primary');
-  private readonly stopBtn = button('teach-stop', 'Stop recording: segment, learn the skills, edit the goal', '■ Stop');
-  private readonly undoBtn = button('teach-undo', 'Undo the last recognised action (the world goes back to the end of the one before)', '↶ Undo');
-  private readonly saveBtn = button('teach-save', 'Save the taught demonstration (demo.json)', 'Save demo');
-  private readonly loadBtn = button('teach-load', 'Load a taught demonstration (demo.json)', 'Load demo');
-  private readonly recBtn = button('teach-save-recording', 'Save the raw recording (for logic-lfd demo segment)', 'Save recording');
-  private readonly fileIn = el('input', { type: 'file', accept: 'application/json,.json', hidden: '', 'aria-label': 'Taught demo JSON file' });
-  private readonly modeBtns: HTMLButtonElement[];
-  private readonly gripBtn = button('teach-grip', 'Close or open the gripper (G)', 'Close gripper');
-  private readonly armSel = el('select', { id: 'teach-arm', 'aria-label': 'Arm to move', title: 'Arm to move' });
-  private readonly pullRow = el('div', { class: 'teach-row', id: 'teach-pull' });
-  private readonly gripRow = el('div', { class: 'teach-row', hidden: '' });
-  private readonly hint = el('p', { class: 'muted small teach-hint', id: 'teach-hint' });
-  private readonly errorBox = el('div', { id: 'teach-error', class: 'teach-error', role: 'alert', hidden: '' });
-  private readonly list = el('ol', { id: 'teach-list', class: 'teach-list', 'aria-label': 'Recognised actions and demo states' });
-  private readonly summary = el('div', { id: 'teach-summary', class: 'teach-summary' });
-  private readonly goalList = el('ul', { id: 'teach-goal', class: 'teach-goal', 'aria-label': 'Goal facts' });
-  private readonly goalBox = el('div', { hidden: '', id: 'teach-goal-box' });
-  private readonly startSel = el(
-    'select',
-    { id: 'teach-start', 'aria-label': 'Initial world of the run', title: 'Initial world of the run' },
-    el('option', { value: 'random' }, 'random initial world (seed)'),
-    el('option', { value: 'taught' }, 'the taught initial world'),
-    el('option', { value: 'arrange' }, 'arrange it myself, then Play'),
-  );
-  private readonly seedIn = el('input', { id: 'teach-seed', type: 'number', min: '0', step: '1', value: '1', 'aria-label': 'Seed of the random initial world', title: 'Seed of the random initial world' });
-  private readonly runBtn = button('teach-run', 'Run the taught task with Logic-LfD', '▶ Run taught task', 'primary');
-  private readonly runBox = el('div', { hidden: '', id: 'teach-run-box' });
+  private readonly ui: TeachUi;
 
   constructor(
     readonly root: HTMLElement,
     private readonly host: TeachHost,
   ) {
-    this.modeBtns = MODES.map(([m, text, what]) => {
-      const b = button(`teach-mode-${m}`, what, text, 'tab');
-      b.setAttribute('aria-pressed', 'false');
-      b.onclick = () => this.setMode(m);
-      return b;
-    });
+    this.ui = buildTeachUi(root);
+    this.ui.modeBtns.forEach((b, i) => (b.onclick = () => this.setMode(TEACH_MODES[i][0])));
     this.handle = new GripperHandle(host.view, host.stage, (p, final) => this.queueGripper(p, final));
-    root.append(
-      el('h2', {}, 'Teach a task ', el('span', { class: 'muted', id: 'teach-clock' })),
-      el('div', { class: 'teach-row' }, this.recordBtn, this.stopBtn, this.undoBtn),
-      el('div', { class: 'teach-row', role: 'group', 'aria-label': 'How to demonstrate' }, el('span', { class: 'muted small' }, 'demonstrate'), ...this.modeBtns),
-      this.gripRow,
-      this.pullRow,
-      this.hint,
-      this.errorBox,
-      el('h2', {}, 'Demonstration ', el('span', { class: 'muted', id: 'teach-count' })),
-      this.list,
-      this.summary,
-      el('div', { class: 'teach-row' }, this.saveBtn, this.loadBtn, this.recBtn, this.fileIn),
-      this.goalBox,
-      this.runBox,
-    );
-    this.gripRow.append(el('label', { class: 'muted small' }, 'arm ', this.armSel), this.gripBtn);
-    this.goalBox.append(
-      el('h2', {}, 'Goal ', el('span', { class: 'muted' }, 'facts the run must reach (default: every fact of L', el('sub', {}, 'N'), ')')),
-      this.goalList,
-    );
-    this.runBox.append(
-      el('h2', {}, 'Run the taught task'),
-      el('div', { class: 'teach-row' }, this.startSel, el('label', { class: 'seed' }, 'seed', this.seedIn)),
-      el('div', { class: 'teach-row' }, this.runBtn),
-      el('p', { class: 'muted small' }, 'Logic-LfD plans to the nearest demo state and follows the taught actions; drag blocks or press L1–L4 while it works.'),
-    );
-    this.recordBtn.onclick = () => void this.guard(() => this.record());
-    this.stopBtn.onclick = () => void this.guard(() => this.stop());
-    this.undoBtn.onclick = () => void this.guard(() => this.undo());
-    this.gripBtn.onclick = () => this.toggleGrip();
-    this.saveBtn.onclick = () => this.save();
-    this.recBtn.onclick = () => void this.guard(() => this.saveRecording());
-    this.loadBtn.onclick = () => this.fileIn.click();
-    this.fileIn.onchange = () => void this.guard(() => this.load());
-    this.runBtn.onclick = () => void this.guard(() => this.run());
-    this.armSel.onchange = () => this.placeHandle();
+    this.stream = new GripperStream({
+      send: (pose, duration) =>
+        this.push({
+          edit: 'gripper',
+          arm: Number(this.ui.armSel.value || 0),
+          position: pose.position,
+          yaw: pose.yaw,
+          gripper: this.closed ? 'closed' : 'open',
+          duration,
+        }),
+      report: (m) => this.host.notice(m, 'error'),
+      // Back to where the arm really is (it may not reach the commanded pose).
+      settled: () => {
+        if (!this.handle.dragging) this.placeHandle();
+      },
+    });
+    this.ui.recordBtn.onclick = () => void this.guard(() => this.record());
+    this.ui.stopBtn.onclick = () => void this.guard(() => this.stop());
+    this.ui.undoBtn.onclick = () => void this.guard(() => this.undo());
+    this.ui.gripBtn.onclick = () => this.toggleGrip();
+    this.ui.saveBtn.onclick = () => this.save();
+    this.ui.recBtn.onclick = () => void this.guard(() => this.saveRecording());
+    this.ui.loadBtn.onclick = () => this.ui.fileIn.click();
+    this.ui.fileIn.onchange = () => void this.guard(() => this.load());
+    this.ui.runBtn.onclick = () => void this.guard(() => this.run());
+    this.ui.armSel.onchange = () => this.placeHandle();
     document.addEventListener('keydown', (e) => {
-      const t = e.target as HTMLElement;
-      if (!this.active || this.mode !== 'gripper' || e.ctrlKey || e.metaKey || e.altKey) return;
-      if (t instanceof HTMLInputElement || t instanceof HTMLSelectElement || t.closest('.cm-editor')) return;
+      if (!this.active || this.mode !== 'gripper' || !isShortcut(e)) return;
       if (e.key.toLowerCase() === 'g') {
         e.preventDefault();
         this.toggleGrip();
@@ -152,7 +104,7 @@ export class TeachPanel {
       info: () => this.info,
       demoJson: () => this.demoJson,
       handle: (part) => this.handle.screenPosition(part),
-      busy: () => this.busy || this.inflight || this.pending !== null,
+      busy: () => this.busy || this.stream.busy,
     };
   }
 
@@ -178,7 +130,7 @@ export class TeachPanel {
       this.info = null;
     }
     this.newSegments.clear();
-    this.pending = null;
+    this.stream.clear();
     this.clearError();
     this.handle.show(false);
     void this.host.client.call('teachClose', {}).catch(() => {});
@@ -194,7 +146,7 @@ export class TeachPanel {
       await this.push({ edit: 'move', body: d.body, position: d.position });
       return null;
     }
-    const onto = this.blockUnder(s.world, d.body, d.position);
+    const onto = blockUnder(s.world, d.body, d.position);
     this.host.status('planning', `Recording: the robot carries ${d.body}…`);
     await this.push(
       onto
@@ -209,14 +161,12 @@ export class TeachPanel {
   private async record(): Promise<void> {
     await this.host.pauseRun();
     const s = await this.host.client.call('teachStart', { benchmark: this.host.benchmark() });
-    this.demoJson = null;
-    this.info = null;
-    this.loaded = false;
+    this.forgetDemo();
     this.closed = false;
     this.newSegments.clear();
     this.clearError();
-    this.armSel.replaceChildren(...s.handles.map((h, i) => el('option', { value: String(i) }, h.arm)));
-    this.armSel.disabled = s.handles.length < 2;
+    this.ui.armSel.replaceChildren(...s.handles.map((h, i) => el('option', { value: String(i) }, h.arm)));
+    this.ui.armSel.disabled = s.handles.length < 2;
     if (s.benchmark === 'b2' && this.mode === 'gripper') this.setMode('quick');
     this.show(s);
     this.host.notice('Recording: demonstrate the task, then press Stop', 'info');
@@ -238,50 +188,20 @@ export class TeachPanel {
     if (r.ok) {
       this.clearError();
       for (const seg of r.new_segments) this.newSegments.add(seg.index);
-      if (r.new_segments.length) {
-        this.demoJson = null;
-        this.info = null;
-        this.loaded = false;
-      }
+      if (r.new_segments.length) this.forgetDemo();
     } else this.showError(r.error);
     this.show(r.state);
   }
 
-  private queueGripper(pose: HandlePose, final: boolean): void {
-    if (!this.state) return;
-    this.pending = { pose, final: final || (this.pending?.final ?? false) };
-    void this.pump();
+  /** Drops the taught or loaded demo (the recording changed). */
+  private forgetDemo(): void {
+    this.demoJson = null;
+    this.info = null;
+    this.loaded = false;
   }
 
-  private async pump(): Promise<void> {
-    if (this.inflight || !this.pending) return;
-    const { pose, final } = this.pending;
-    this.pending = null;
-    this.inflight = true;
-    const now = performance.now();
-    // The recording advances by the wall time between samples (bounded), so a slow drag is slow.
-    const duration = final ? 0.5 : Math.min(0.3, Math.max(0.05, (now - (this.lastSend || now)) / 1000));
-    this.lastSend = now;
-    try {
-      await this.push({
-        edit: 'gripper',
-        arm: Number(this.armSel.value || 0),
-        position: pose.position,
-        yaw: pose.yaw,
-        gripper: this.closed ? 'closed' : 'open',
-        duration,
-      });
-    } catch (e) {
-      this.host.notice((e as Error).message, 'error');
-    } finally {
-      this.inflight = false;
-    }
-    if (this.pending) void this.pump();
-    else if (final) {
-      this.lastSend = 0;
-      // Back to where the arm really is (it may not reach the commanded pose).
-      if (!this.handle.dragging) this.placeHandle();
-    }
+  private queueGripper(pose: HandlePose, final: boolean): void {
+    if (this.state) this.stream.queue(pose, final);
   }
 
   private toggleGrip(): void {
@@ -292,20 +212,18 @@ export class TeachPanel {
   }
 
   private updateGripButton(): void {
-    this.gripBtn.textContent = this.closed ? 'Open gripper' : 'Close gripper';
-    this.gripBtn.setAttribute('aria-pressed', String(this.closed));
+    this.ui.gripBtn.textContent = this.closed ? 'Open gripper' : 'Close gripper';
+    this.ui.gripBtn.setAttribute('aria-pressed', String(this.closed));
   }
 
   private async undo(): Promise<void> {
     const r = await this.host.client.call('teachUndo', {});
     this.newSegments.clear();
-    this.demoJson = null;
-    this.info = null;
-    this.loaded = false;
+    this.forgetDemo();
     this.apply(r);
     if (r.ok) {
       this.closed = false;
-      const h = r.state.handles[Number(this.armSel.value || 0)];
+      const h = r.state.handles[Number(this.ui.armSel.value || 0)];
       if (h) this.closed = h.gripper === 'closed';
       this.updateGripButton();
       this.host.notice(r.removed ? `Undid ${r.removed.action}` : 'Nothing to undo', 'info');
@@ -323,7 +241,7 @@ export class TeachPanel {
     this.info = r.info;
     this.loaded = false;
     const worst = r.skills.reduce((m, f) => Math.max(m, f.rms_error), 0);
-    this.summary.textContent = `Taught ${r.info.actions.length} actions, demo states L0..L${r.info.actions.length}; ${r.skills.length} LQT-CP skills learned from the recorded motions (fit within ${ms(worst)} RMS).`;
+    this.ui.summary.textContent = `Taught ${r.info.actions.length} actions, demo states L0..L${r.info.actions.length}; ${r.skills.length} LQT-CP skills learned from the recorded motions (fit within ${ms(worst)} RMS).`;
     this.refresh();
     if (this.active) this.host.status('done', this.statusText());
     this.host.notice('Recording segmented: edit the goal if you like, then Run', 'info');
@@ -333,24 +251,15 @@ export class TeachPanel {
 
   private renderGoal(): void {
     const info = this.info;
-    this.goalBox.hidden = !info;
-    this.runBox.hidden = !info;
+    this.ui.goalBox.hidden = !info;
+    this.ui.runBox.hidden = !info;
     if (!info) return;
-    const last = info.states[info.states.length - 1];
-    const goal = new Set(info.goal);
-    this.goalList.replaceChildren(
-      ...last.map((f) => {
-        const box = el('input', { type: 'checkbox', 'aria-label': `goal fact ${f}` });
-        box.checked = goal.has(f);
-        box.onchange = () => void this.guard(() => this.setGoal());
-        return el('li', {}, el('label', {}, box, ` ${f}`));
-      }),
-    );
+    this.ui.goalList.replaceChildren(...goalItems(info, () => void this.guard(() => this.setGoal())));
   }
 
   private async setGoal(): Promise<void> {
     if (!this.demoJson) return;
-    const goal = [...this.goalList.querySelectorAll('input')].filter((b) => b.checked).map((b) => (b.getAttribute('aria-label') ?? '').replace(/^goal fact /, ''));
+    const goal = checkedGoal(this.ui.goalList);
     const demo = JSON.parse(this.demoJson) as { goal: string[] };
     demo.goal = goal;
     const json = JSON.stringify(demo);
@@ -369,16 +278,16 @@ export class TeachPanel {
       this.host.notice('Stop the recording first: the demo is saved once it is segmented', 'error');
       return;
     }
-    download(this.demoJson, `taught-${this.info?.benchmark ?? 'demo'}-demo.json`);
+    downloadJson(this.demoJson, `taught-${this.info?.benchmark ?? 'demo'}-demo.json`);
   }
 
   private async saveRecording(): Promise<void> {
-    download(await this.host.client.call('teachRecording', {}), `taught-${this.host.benchmark()}-recording.json`);
+    downloadJson(await this.host.client.call('teachRecording', {}), `taught-${this.host.benchmark()}-recording.json`);
   }
 
   private async load(): Promise<void> {
-    const file = this.fileIn.files?.[0];
-    this.fileIn.value = '';
+    const file = this.ui.fileIn.files?.[0];
+    this.ui.fileIn.value = '';
     if (!file) return;
     const text = await file.text();
     try {
@@ -390,14 +299,14 @@ export class TeachPanel {
     this.demoJson = text;
     this.loaded = true;
     this.clearError();
-    this.summary.textContent = `Loaded ${file.name}: ${this.info.actions.length} actions in ${this.info.benchmark.toUpperCase()}.`;
+    this.ui.summary.textContent = `Loaded ${file.name}: ${this.info.actions.length} actions in ${this.info.benchmark.toUpperCase()}.`;
     this.refresh();
   }
 
   private async run(): Promise<void> {
     if (!this.demoJson) return;
-    const start = this.startSel.value as Start;
-    const seed = Math.max(0, Math.floor(Number(this.seedIn.value)) || 0);
+    const start = this.ui.startSel.value as Start;
+    const seed = parseSeed(this.ui.seedIn.value);
     const o = this.host.options();
     const f = await this.host.client.call('teachRun', {
       demoJson: this.demoJson,
@@ -416,19 +325,19 @@ export class TeachPanel {
       m = 'quick';
     }
     this.mode = m;
-    this.modeBtns.forEach((b, i) => {
-      const on = MODES[i][0] === m;
+    this.ui.modeBtns.forEach((b, i) => {
+      const on = TEACH_MODES[i][0] === m;
       b.classList.toggle('active', on);
       b.setAttribute('aria-pressed', String(on));
     });
-    this.gripRow.hidden = m !== 'gripper';
-    this.hint.textContent = MODES.find(([k]) => k === m)![2];
+    this.ui.gripRow.hidden = m !== 'gripper';
+    this.ui.hint.textContent = TEACH_MODES.find(([k]) => k === m)![2];
     this.handle.show(this.active && m === 'gripper');
     this.placeHandle();
   }
 
   private placeHandle(): void {
-    const h = this.state?.handles[Number(this.armSel.value || 0)];
+    const h = this.state?.handles[Number(this.ui.armSel.value || 0)];
     if (!h) return;
     this.handle.set({ position: h.position, yaw: h.yaw }, h.gripper === 'closed');
   }
@@ -439,7 +348,7 @@ export class TeachPanel {
       this.host.view.update(s.world);
       this.host.status(this.busy ? 'planning' : 'idle', this.statusText());
     }
-    if (!this.handle.dragging && !this.inflight) this.placeHandle();
+    if (!this.handle.dragging && !this.stream.sending) this.placeHandle();
     this.handle.show(this.active && this.mode === 'gripper');
     this.refresh();
   }
@@ -454,55 +363,33 @@ export class TeachPanel {
   private refresh(): void {
     const s = this.state;
     const recording = s !== null;
-    this.stopBtn.disabled = !recording;
-    this.undoBtn.disabled = !recording || s.segments.length === 0;
-    this.recBtn.disabled = !recording;
-    this.saveBtn.disabled = !this.demoJson;
-    this.recordBtn.textContent = recording ? '● New recording' : '● Record';
-    (this.root.querySelector('#teach-clock') as HTMLElement).textContent = s ? `t = ${s.t.toFixed(2)} s` : '';
+    this.ui.stopBtn.disabled = !recording;
+    this.ui.undoBtn.disabled = !recording || s.segments.length === 0;
+    this.ui.recBtn.disabled = !recording;
+    this.ui.saveBtn.disabled = !this.demoJson;
+    this.ui.recordBtn.textContent = recording ? '● New recording' : '● Record';
+    this.ui.clock.textContent = s ? `t = ${s.t.toFixed(2)} s` : '';
     this.renderPull();
     // The listing: from the recording while recording, else from a loaded demo.
-    const items: HTMLElement[] = [];
-    if (s && !this.loaded) {
-      s.states.forEach((st, i) => {
-        items.push(el('li', { class: 'demo-state', title: st.join(' ') }, `L${i}`, el('span', { class: 'muted' }, ` · ${st.length} facts`)));
-        const seg = s.segments[i];
-        if (seg) {
-          const change = [...seg.added.map((f) => `+${f}`), ...seg.removed.map((f) => `−${f}`)].join(' ');
-          items.push(
-            el(
-              'li',
-              { class: `teach-seg${this.newSegments.has(i) ? ' new' : ''}`, title: change },
-              el('span', { class: 'seg-name' }, `a${i + 1} ${seg.action}`),
-              el('span', { class: 'muted small' }, ` ${seg.arm} · ${seg.t_start.toFixed(2)}–${seg.t_end.toFixed(2)} s`),
-            ),
-          );
-        }
-      });
-    } else if (this.info) {
-      this.info.states.forEach((st, i) => {
-        items.push(el('li', { class: 'demo-state', title: st.join(' ') }, `L${i}`, el('span', { class: 'muted' }, ` · ${st.length} facts`)));
-        if (i < this.info!.actions.length) items.push(el('li', { class: 'teach-seg' }, el('span', { class: 'seg-name' }, `a${i + 1} ${this.info!.actions[i]}`), el('span', { class: 'muted small' }, ` ${this.info!.arms[i]}`)));
-      });
-    }
+    const items = s && !this.loaded ? recordingItems(s, this.newSegments) : this.info ? taughtItems(this.info) : [];
     if (!items.length) items.push(el('li', { class: 'muted empty' }, recording ? 'nothing yet: demonstrate the first action' : 'not recording'));
-    this.list.replaceChildren(...items);
-    this.list.lastElementChild?.scrollIntoView({ block: 'nearest' });
+    this.ui.list.replaceChildren(...items);
+    this.ui.list.lastElementChild?.scrollIntoView({ block: 'nearest' });
     const n = s?.segments.length ?? this.info?.actions.length ?? 0;
-    (this.root.querySelector('#teach-count') as HTMLElement).textContent = n ? `${n} actions` : '';
-    if (!this.demoJson) this.summary.textContent = '';
+    this.ui.count.textContent = n ? `${n} actions` : '';
+    if (!this.demoJson) this.ui.summary.textContent = '';
     this.renderGoal();
   }
 
   private renderPull(): void {
     const s = this.state;
     if (!s || s.benchmark !== 'b2') {
-      this.pullRow.hidden = true;
+      this.ui.pullRow.hidden = true;
       return;
     }
-    this.pullRow.hidden = false;
+    this.ui.pullRow.hidden = false;
     const blocks = s.world.bodies.filter((b) => b.kind === 'block').map((b) => b.name);
-    this.pullRow.replaceChildren(
+    this.ui.pullRow.replaceChildren(
       el('span', { class: 'muted small' }, 'hook'),
       ...blocks.map((b) => {
         const btn = button(`teach-pull-${b}`, `Pull ${b} into reach with the hook`, `Pull ${b}`);
@@ -516,58 +403,37 @@ export class TeachPanel {
   }
 
   private showError(e: TeachError): void {
-    const what = { input: 'Bad input', model: 'Model', unexplained: 'Not explained by the domain', physics: 'Physically implausible', refused: 'Refused' }[e.kind];
-    this.errorBox.replaceChildren(
-      el('strong', {}, `${what}${e.t != null ? ` at t = ${e.t.toFixed(2)} s` : ''}`),
-      el('div', { class: 'teach-error-msg' }, e.message),
-      el(
-        'div',
-        { class: 'facts-diff' },
-        ...e.added.map((x) => el('span', { class: 'chip added' }, `+ ${x}`)),
-        ...e.removed.map((x) => el('span', { class: 'chip removed' }, `− ${x}`)),
-      ),
-      el('div', { class: 'muted small' }, 'Nothing was recorded from this edit.'),
-    );
-    this.errorBox.hidden = false;
+    this.ui.errorBox.replaceChildren(...errorContent(e));
+    this.ui.errorBox.hidden = false;
   }
 
   private clearError(): void {
-    this.errorBox.hidden = true;
-    this.errorBox.replaceChildren();
+    this.ui.errorBox.hidden = true;
+    this.ui.errorBox.replaceChildren();
   }
 
-  /** The block under a drop point (stack onto it), if the point is above one's top face. */
-  private blockUnder(w: WorldSnapshot, body: string, p: [number, number, number]): string | null {
-    let best: { name: string; top: number } | null = null;
-    for (const b of w.bodies) {
-      if (b.kind !== 'block' || b.name === body || b.shape.type !== 'cuboid') continue;
-      const [hx, hy, hz] = b.shape.half_extents;
-      const [x, y, z] = b.pose.position;
-      const q = b.pose.quaternion;
-      const yaw = Math.atan2(2 * (q[3] * q[2] + q[0] * q[1]), 1 - 2 * (q[1] * q[1] + q[2] * q[2]));
-      const dx = p[0] - x;
-      const dy = p[1] - y;
-      const lx = Math.cos(yaw) * dx + Math.sin(yaw) * dy;
-      const ly = -Math.sin(yaw) * dx + Math.cos(yaw) * dy;
-      const top = z + hz;
-      if (Math.abs(lx) <= hx + 0.005 && Math.abs(ly) <= hy + 0.005 && p[2] > top - 0.005 && (!best || top > best.top)) best = { name: b.name, top };
-    }
-    return best?.name ?? null;
-  }
-
-  private async guard(f: () => Promise<void>): Promise<void> {
-    try {
-      await f();
-    } catch (e) {
-      this.host.notice((e as Error).message, 'error');
-    }
+  private guard(f: () => Promise<void>): Promise<void> {
+    return guard(f, (m) => this.host.notice(m, 'error'));
   }
 }
 
-function download(text: string, name: string): void {
-  const a = el('a', { href: URL.createObjectURL(new Blob([text], { type: 'application/json' })), download: name });
-  a.click();
-  URL.revokeObjectURL(a.href);
+/** The block under a drop point (stack onto it), if the point is above one's top face. */
+function blockUnder(w: WorldSnapshot, body: string, p: [number, number, number]): string | null {
+  let best: { name: string; top: number } | null = null;
+  for (const b of w.bodies) {
+    if (b.kind !== 'block' || b.name === body || b.shape.type !== 'cuboid') continue;
+    const [hx, hy, hz] = b.shape.half_extents;
+    const [x, y, z] = b.pose.position;
+    const q = b.pose.quaternion;
+    const yaw = Math.atan2(2 * (q[3] * q[2] + q[0] * q[1]), 1 - 2 * (q[1] * q[1] + q[2] * q[2]));
+    const dx = p[0] - x;
+    const dy = p[1] - y;
+    const lx = Math.cos(yaw) * dx + Math.sin(yaw) * dy;
+    const ly = -Math.sin(yaw) * dx + Math.cos(yaw) * dy;
+    const top = z + hz;
+    if (Math.abs(lx) <= hx + DROP_MARGIN && Math.abs(ly) <= hy + DROP_MARGIN && p[2] > top - DROP_MARGIN && (!best || top > best.top)) best = { name: b.name, top };
+  }
+  return best?.name ?? null;
 }
 
 declare global {

@@ -1,10 +1,13 @@
-// The 3-D view: draws a WorldSnapshot (tables, shelf, regions, labelled blocks, hook, arms from
-// their link capsules and fingers) with three.js, z up, an orbit camera, and lets the user drag a
-// block with the mouse (raycast onto the support under the pointer; the drop is sent to the worker,
-// which accepts or refuses it).
+/**
+ * The 3-D view: draws a WorldSnapshot (tables, shelf, regions, labelled blocks, hook, arms from
+ * their link capsules and fingers) with three.js, z up, an orbit camera, and lets the user drag a
+ * block with the mouse (raycast onto the support under the pointer; the drop is sent to the worker,
+ * which accepts or refuses it).
+ */
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import type { ArmSnapshot, BodySnapshot, PoseSnapshot, WorldSnapshot } from 'logic-lfd';
+import type { ArmSnapshot, BodySnapshot, WorldSnapshot } from 'logic-lfd';
+import { addRoom, applyPose, bodyObject, disposeObject, isSoftwareRenderer, regionObjects } from './view-scene';
 
 export interface DropRequest {
   body: string;
@@ -22,87 +25,6 @@ export interface ViewOptions {
 
 const UP = new THREE.Vector3(0, 0, 1);
 const Y = new THREE.Vector3(0, 1, 0);
-
-function applyPose(o: THREE.Object3D, p: PoseSnapshot): void {
-  o.position.set(p.position[0], p.position[1], p.position[2]);
-  o.quaternion.set(p.quaternion[0], p.quaternion[1], p.quaternion[2], p.quaternion[3]);
-}
-
-function labelTexture(text: string, color: string): THREE.CanvasTexture {
-  const c = document.createElement('canvas');
-  c.width = c.height = 128;
-  const g = c.getContext('2d')!;
-  g.fillStyle = color;
-  g.fillRect(0, 0, 128, 128);
-  g.strokeStyle = 'rgba(0,0,0,0.25)';
-  g.lineWidth = 6;
-  g.strokeRect(3, 3, 122, 122);
-  const dark = luminance(color) > 0.55;
-  g.fillStyle = dark ? '#111' : '#fff';
-  g.font = 'bold 72px system-ui, sans-serif';
-  g.textAlign = 'center';
-  g.textBaseline = 'middle';
-  g.fillText(text.toUpperCase().slice(0, 3), 64, 70);
-  const t = new THREE.CanvasTexture(c);
-  t.colorSpace = THREE.SRGBColorSpace;
-  t.anisotropy = 4;
-  return t;
-}
-
-function textTexture(text: string): THREE.CanvasTexture {
-  const c = document.createElement('canvas');
-  c.width = 256;
-  c.height = 64;
-  const g = c.getContext('2d')!;
-  g.font = '600 30px system-ui, sans-serif';
-  g.textAlign = 'center';
-  g.textBaseline = 'middle';
-  g.fillStyle = 'rgba(20, 23, 28, 0.75)';
-  g.fillText(text, 128, 32);
-  const t = new THREE.CanvasTexture(c);
-  t.colorSpace = THREE.SRGBColorSpace;
-  return t;
-}
-
-/** Whether WebGL is rasterised on the CPU (SwiftShader, llvmpipe). */
-function isSoftwareRenderer(): boolean {
-  try {
-    const gl = document.createElement('canvas').getContext('webgl2');
-    if (!gl) return true;
-    const ext = gl.getExtension('WEBGL_debug_renderer_info');
-    const name = String(ext ? gl.getParameter(ext.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER));
-    gl.getExtension('WEBGL_lose_context')?.loseContext();
-    return /swiftshader|llvmpipe|software/i.test(name);
-  } catch {
-    return false;
-  }
-}
-
-/**
- * Frees the GPU resources of an object and its children (geometries, materials, their textures),
- * except those in `shared`, which outlive it. three.js keeps them until `dispose()` is called, so
- * every mesh the view drops goes through here (the page soak test checks the memory stays flat).
- */
-function disposeObject(o: THREE.Object3D, shared: ReadonlySet<unknown> = new Set()): void {
-  o.traverse((c) => {
-    const m = c as THREE.Mesh | THREE.Line | THREE.Sprite;
-    // (Every Sprite shares one module-level geometry inside three.js: never dispose it.)
-    if (!(c instanceof THREE.Sprite) && 'geometry' in m && m.geometry && !shared.has(m.geometry)) m.geometry.dispose();
-    if (!('material' in m) || !m.material) return;
-    const mats = new Set(Array.isArray(m.material) ? m.material : [m.material]);
-    for (const mat of mats) {
-      if (shared.has(mat)) continue;
-      const map = (mat as THREE.MeshStandardMaterial).map;
-      if (map) map.dispose();
-      mat.dispose();
-    }
-  });
-}
-
-function luminance(hex: string): number {
-  const c = new THREE.Color(hex);
-  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
-}
 
 interface BodyEntry {
   object: THREE.Object3D;
@@ -177,34 +99,7 @@ export class View {
     this.controls.maxDistance = 6;
     this.controls.addEventListener('change', () => (this.dirty = true));
 
-    const hemi = new THREE.HemisphereLight(0xdfe8ff, 0x2a2420, 1.4);
-    hemi.position.set(0, 0, 2);
-    this.scene.add(hemi);
-    const sun = new THREE.DirectionalLight(0xffffff, 2.2);
-    sun.position.set(1.2, -1.0, 2.4);
-    sun.castShadow = true;
-    sun.shadow.mapSize.set(1024, 1024);
-    const sc = sun.shadow.camera;
-    sc.left = sc.bottom = -1.6;
-    sc.right = sc.top = 1.6;
-    sc.near = 0.5;
-    sc.far = 6;
-    sun.shadow.bias = -0.0005;
-    this.scene.add(sun);
-
-    const floor = new THREE.Mesh(
-      new THREE.PlaneGeometry(20, 20),
-      new THREE.MeshStandardMaterial({ color: 0x1b1f26, roughness: 0.95 }),
-    );
-    floor.name = 'floor';
-    floor.receiveShadow = true;
-    floor.position.z = -0.75;
-    this.scene.add(floor);
-    const grid = new THREE.GridHelper(8, 32, 0x2d333d, 0x232830);
-    grid.rotation.x = Math.PI / 2;
-    grid.position.z = -0.749;
-    this.scene.add(grid);
-
+    addRoom(this.scene);
     this.scene.add(this.regions, this.targets);
     this.trail = new THREE.Line(
       new THREE.BufferGeometry(),
@@ -286,7 +181,7 @@ export class View {
       const key = JSON.stringify(b.shape) + b.color;
       if (!e || e.shapeKey !== key) {
         if (e) this.dropObject(e.object);
-        e = this.makeBody(b, key);
+        e = { ...bodyObject(b), kind: b.kind, shapeKey: key };
         this.bodies.set(b.name, e);
         this.scene.add(e.object);
       }
@@ -341,71 +236,13 @@ export class View {
     this.dirty = true;
   }
 
-  private makeBody(b: BodySnapshot, key: string): BodyEntry {
-    const group = new THREE.Group();
-    group.name = b.name;
-    group.userData = { body: b.name, kind: b.kind };
-    const parts =
-      b.shape.type === 'cuboid'
-        ? [{ pose: { position: [0, 0, 0], quaternion: [0, 0, 0, 1] } as PoseSnapshot, half_extents: b.shape.half_extents }]
-        : b.shape.parts;
-    let halfZ = 0;
-    for (const p of parts) {
-      const [hx, hy, hz] = p.half_extents;
-      halfZ = Math.max(halfZ, hz + Math.abs(p.pose.position[2]));
-      const geo = new THREE.BoxGeometry(2 * hx, 2 * hy, 2 * hz);
-      let mat: THREE.Material | THREE.Material[];
-      if (b.kind === 'block') {
-        const side = new THREE.MeshStandardMaterial({ map: labelTexture(b.name, b.color), roughness: 0.55 });
-        mat = [side, side, side, side, side, side];
-      } else if (b.kind === 'table') {
-        mat = new THREE.MeshStandardMaterial({ color: b.color, roughness: 0.85, metalness: 0.0 });
-      } else if (b.kind === 'shelf') {
-        mat = new THREE.MeshStandardMaterial({ color: b.color, roughness: 0.7 });
-      } else {
-        mat = new THREE.MeshStandardMaterial({ color: b.color, roughness: 0.35, metalness: 0.4 });
-      }
-      const m = new THREE.Mesh(geo, mat);
-      applyPose(m, p.pose);
-      m.castShadow = b.kind !== 'table';
-      m.receiveShadow = true;
-      m.userData = { body: b.name, kind: b.kind, lostAware: b.kind === 'block' || b.kind === 'hook' };
-      group.add(m);
-      if (b.kind === 'block' || b.kind === 'hook') {
-        const edges = new THREE.LineSegments(
-          new THREE.EdgesGeometry(geo),
-          new THREE.LineBasicMaterial({ color: 0x000000, transparent: true, opacity: 0.35 }),
-        );
-        applyPose(edges, p.pose);
-        group.add(edges);
-      }
-    }
-    return { object: group, kind: b.kind, shapeKey: key, halfZ };
-  }
-
   private clearRegions(): void {
     for (const c of [...this.regions.children]) this.dropObject(c);
   }
 
   private drawRegions(s: WorldSnapshot): void {
     this.clearRegions();
-    for (const r of s.regions) {
-      const w = r.max[0] - r.min[0];
-      const h = r.max[1] - r.min[1];
-      const m = new THREE.Mesh(
-        new THREE.PlaneGeometry(w, h),
-        new THREE.MeshBasicMaterial({ color: r.color, transparent: true, opacity: 0.22, depthWrite: false }),
-      );
-      m.position.set((r.min[0] + r.max[0]) / 2, (r.min[1] + r.max[1]) / 2, 0.0015);
-      m.name = `region:${r.name}`;
-      this.regions.add(m);
-      const label = new THREE.Sprite(
-        new THREE.SpriteMaterial({ map: textTexture(r.name), transparent: true, depthWrite: false }),
-      );
-      label.position.set((r.min[0] + r.max[0]) / 2, r.min[1] + 0.03, 0.01);
-      label.scale.set(0.24, 0.06, 1);
-      this.regions.add(label);
-    }
+    for (const r of s.regions) this.regions.add(...regionObjects(r));
   }
 
   private updateArm(i: number, a: ArmSnapshot): void {
@@ -430,7 +267,7 @@ export class View {
       let m = e.links[j];
       if (!m || e.linkKeys[j] !== key) {
         if (m) this.dropObject(m);
-        m = new THREE.Mesh(new THREE.CapsuleGeometry(c.radius, Math.max(len, 1e-4), 6, 16), j % 2 ? this.linkMaterial : this.linkMaterial);
+        m = new THREE.Mesh(new THREE.CapsuleGeometry(c.radius, Math.max(len, 1e-4), 6, 16), this.linkMaterial);
         m.castShadow = true;
         m.receiveShadow = true;
         e.links[j] = m;
@@ -591,14 +428,16 @@ export class View {
   screenPosition(body: string): { x: number; y: number } | null {
     const e = this.bodies.get(body);
     if (!e) return null;
-    const v = e.object.getWorldPosition(new THREE.Vector3()).project(this.camera);
-    const r = this.renderer.domElement.getBoundingClientRect();
-    return { x: r.left + ((v.x + 1) / 2) * r.width, y: r.top + ((1 - v.y) / 2) * r.height };
+    return this.toClient(e.object.getWorldPosition(new THREE.Vector3()));
   }
 
   /** Projects a world point to client coordinates. */
   project(p: [number, number, number]): { x: number; y: number } {
-    const v = new THREE.Vector3(...p).project(this.camera);
+    return this.toClient(new THREE.Vector3(...p));
+  }
+
+  private toClient(world: THREE.Vector3): { x: number; y: number } {
+    const v = world.project(this.camera);
     const r = this.renderer.domElement.getBoundingClientRect();
     return { x: r.left + ((v.x + 1) / 2) * r.width, y: r.top + ((1 - v.y) / 2) * r.height };
   }

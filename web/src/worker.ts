@@ -1,8 +1,10 @@
-// The Web Worker that owns the wasm module and the closed-loop Session: planning and simulation
-// never run on the page's thread, so the page never freezes. It plays the session in real time
-// (scaled by `speed`) and pushes a frame after every tick. Its module is the page build without
-// Teach mode and `Session.replay` ('logic-lfd-page'); teach-worker.ts fetches the full one when
-// one of those is needed.
+/**
+ * The Web Worker that owns the wasm module and the closed-loop Session: planning and simulation
+ * never run on the page's thread, so the page never freezes. It plays the session in real time
+ * (scaled by `speed`) and pushes a frame after every tick. Its module is the page build without
+ * Teach mode and `Session.replay` ('logic-lfd-page'); teach-worker.ts fetches the full one when
+ * one of those is needed.
+ */
 import init, * as lfd from 'logic-lfd-page';
 import type { Frame } from 'logic-lfd';
 import type { Api, ApiKind, FromWorker, ToWorker } from './protocol';

@@ -1,0 +1,174 @@
+/**
+ * The page's DOM: the top bar (scenario, playback, disturbances, scene and link, help), the stage
+ * that holds the 3-D view with its status line, clock and notices, and the side with its tabs (Run,
+ * Teach, Charts, PDDL). Builds the elements, mounts them in #app and hands back the ones the panels
+ * use; no behaviour lives here.
+ */
+import { button, el, select } from './dom';
+import { HelpOverlay } from './help';
+import { BENCHMARKS, LEVELS, METHODS, MODES, SPEEDS, type PageState, type TabId } from './state';
+
+/** The top bar's controls. */
+export interface Controls {
+  benchSel: HTMLSelectElement;
+  methodSel: HTMLSelectElement;
+  modeSel: HTMLSelectElement;
+  seedIn: HTMLInputElement;
+  resetBtn: HTMLButtonElement;
+  playBtn: HTMLButtonElement;
+  stepBtn: HTMLButtonElement;
+  speedSel: HTMLSelectElement;
+  levelBtns: HTMLButtonElement[];
+  saveBtn: HTMLButtonElement;
+  loadBtn: HTMLButtonElement;
+  fileIn: HTMLInputElement;
+  linkBtn: HTMLButtonElement;
+  helpBtn: HTMLButtonElement;
+}
+
+/** The stage over the 3-D view: status line (with Cancel), clock, notices. */
+export interface Stage {
+  root: HTMLElement;
+  status: HTMLElement;
+  statusText: HTMLElement;
+  cancelBtn: HTMLButtonElement;
+  hud: HTMLElement;
+  notice: HTMLElement;
+}
+
+/** The Run tab's lists. */
+export interface RunLists {
+  planCount: HTMLElement;
+  plan: HTMLOListElement;
+  replanInfo: HTMLElement;
+  matched: HTMLElement;
+  demo: HTMLOListElement;
+  factsDiff: HTMLElement;
+  facts: HTMLUListElement;
+}
+
+/** A side tab: its button and its panel. */
+export interface Tab {
+  id: TabId;
+  button: HTMLButtonElement;
+  panel: HTMLElement;
+}
+
+export interface Layout {
+  app: HTMLElement;
+  version: HTMLElement;
+  controls: Controls;
+  stage: Stage;
+  run: RunLists;
+  tabs: Tab[];
+  /** Panels filled by their own modules: charts, the PDDL editor, Teach mode. */
+  chartsPanel: HTMLElement;
+  editorHost: HTMLElement;
+  teachSlot: HTMLElement;
+  help: HelpOverlay;
+}
+
+function buildControls(s: PageState): Controls {
+  const o = s.options;
+  const levelBtns = LEVELS.map(([lvl, text, what]) => {
+    const b = button(`inject-${lvl}`, `Inject ${text}: ${what} (${lvl[1]})`, text, 'level');
+    b.dataset.level = lvl;
+    return b;
+  });
+  return {
+    benchSel: select('benchmark', 'Benchmark', BENCHMARKS, o.benchmark),
+    methodSel: select('method', 'Method', METHODS, o.method),
+    modeSel: select('mode', 'Multi-goal mode', MODES, o.mode),
+    seedIn: el('input', { id: 'seed', type: 'number', min: '0', step: '1', 'aria-label': 'Random seed', title: 'Random seed', value: String(o.seed) }),
+    resetBtn: button('reset', 'Reset the episode with this seed (R)', '↺ Reset'),
+    playBtn: button('play', 'Play (Space)', '▶ Play', 'primary'),
+    stepBtn: button('step', 'Advance 0.1 s of simulated time (N)', 'Step'),
+    speedSel: select('speed', 'Playback speed', SPEEDS, String(s.speed)),
+    levelBtns,
+    saveBtn: button('save-scene', 'Save the current scene as JSON', 'Save'),
+    loadBtn: button('load-scene', 'Load a scene JSON file', 'Load'),
+    fileIn: el('input', { type: 'file', accept: 'application/json,.json', hidden: '', 'aria-label': 'Scene JSON file' }),
+    linkBtn: button('permalink', 'Copy a link to this benchmark, method, mode and seed', 'Link'),
+    helpBtn: button('help', 'Keyboard shortcuts and help (?)', '?'),
+  };
+}
+
+function buildStage(): Stage {
+  const statusText = el('span', { id: 'status-text', class: 'status-text' }, 'Loading the planner…');
+  const statusDot = el('span', { class: 'status-dot', 'aria-hidden': 'true' });
+  const cancelBtn = button('cancel', 'Cancel the current plan: the robot stops and replans (C)', 'Cancel');
+  const status = el('div', { id: 'status', class: 'status idle', role: 'status', 'aria-live': 'polite' }, statusDot, statusText, cancelBtn);
+  const hud = el('div', { id: 'hud', class: 'hud', 'aria-label': 'Simulation clock and timings' });
+  const notice = el('div', { id: 'notice', class: 'notice', role: 'alert', hidden: '' });
+  const root = el('section', { class: 'stage', 'aria-label': 'Workcell' }, status, hud, notice);
+  return { root, status, statusText, cancelBtn, hud, notice };
+}
+
+function buildRunPanel(): { panel: HTMLElement; lists: RunLists } {
+  const lists: RunLists = {
+    planCount: el('span', { class: 'muted', id: 'plan-count' }),
+    plan: el('ol', { id: 'plan', class: 'plan-list', 'aria-label': 'Current plan' }),
+    replanInfo: el('div', { id: 'replan-info', class: 'replan-info' }),
+    matched: el('span', { class: 'muted', id: 'matched' }),
+    demo: el('ol', { id: 'demo', class: 'demo-list', 'aria-label': 'Demonstration states and actions' }),
+    factsDiff: el('div', { id: 'facts-diff', class: 'facts-diff', 'aria-live': 'polite' }),
+    facts: el('ul', { id: 'facts', class: 'facts', 'aria-label': 'Current facts' }),
+  };
+  const panel = el(
+    'div',
+    { class: 'panel', id: 'panel-run', role: 'tabpanel' },
+    el('h2', {}, 'Plan ', lists.planCount),
+    lists.plan,
+    lists.replanInfo,
+    el('h2', {}, 'Demonstration ', lists.matched),
+    lists.demo,
+    el('h2', {}, 'Facts ', el('span', { class: 'muted' }, 'S', el('sub', {}, 'C'))),
+    lists.factsDiff,
+    lists.facts,
+  );
+  return { panel, lists };
+}
+
+function buildTopBar(c: Controls, version: HTMLElement): HTMLElement {
+  return el(
+    'header',
+    { class: 'topbar' },
+    el('div', { class: 'brand' }, el('strong', {}, 'logic-lfd'), version),
+    el('div', { class: 'group', role: 'group', 'aria-label': 'Scenario' }, c.benchSel, c.methodSel, c.modeSel, el('label', { class: 'seed' }, 'seed', c.seedIn), c.resetBtn),
+    el('div', { class: 'group', role: 'group', 'aria-label': 'Playback' }, c.playBtn, c.stepBtn, c.speedSel),
+    el('div', { class: 'group', role: 'group', 'aria-label': 'Inject a disturbance' }, el('span', { class: 'muted small' }, 'inject'), ...c.levelBtns),
+    el('div', { class: 'group right', role: 'group', 'aria-label': 'Scene and link' }, c.saveBtn, c.loadBtn, c.fileIn, c.linkBtn, c.helpBtn),
+  );
+}
+
+/** Builds the page for state `s` and mounts it in #app (replacing the boot message). */
+export function buildLayout(s: PageState): Layout {
+  const controls = buildControls(s);
+  const stage = buildStage();
+  const run = buildRunPanel();
+  const chartsPanel = el('div', { class: 'panel', id: 'panel-charts', role: 'tabpanel', hidden: '' });
+  const editorHost = el('div', { class: 'panel panel-editor', id: 'panel-pddl', role: 'tabpanel', hidden: '' });
+  const teachSlot = el('div', { class: 'panel', id: 'panel-teach', role: 'tabpanel', hidden: '' });
+  const tabDefs: [TabId, string, HTMLElement][] = [
+    ['run', 'Run', run.panel],
+    ['teach', 'Teach', teachSlot],
+    ['charts', 'Charts', chartsPanel],
+    ['pddl', 'PDDL', editorHost],
+  ];
+  const tabs: Tab[] = tabDefs.map(([id, text, panel]) => ({
+    id,
+    panel,
+    button: el('button', { id: `tab-${id}`, role: 'tab', class: 'tab', 'aria-controls': `panel-${id}`, 'aria-selected': 'false', type: 'button' }, text),
+  }));
+  const side = el(
+    'aside',
+    { class: 'side', 'aria-label': 'Plan, demonstration, facts, charts and PDDL' },
+    el('div', { class: 'side-tabs', role: 'tablist' }, ...tabs.map((t) => t.button)),
+    ...tabs.map((t) => t.panel),
+  );
+  const help = new HelpOverlay(controls.helpBtn);
+  const version = el('span', { id: 'version', class: 'muted' });
+  const app = document.getElementById('app')!;
+  app.replaceChildren(buildTopBar(controls, version), el('main', { class: 'layout' }, stage.root, side), help.root);
+  return { app, version, controls, stage, run: run.lists, tabs, chartsPanel, editorHost, teachSlot, help };
+}

@@ -1,0 +1,220 @@
+/**
+ * The Run's session, driven from the top bar and the 3-D view: open a benchmark (or a scene file),
+ * play, pause, step, reset, change the speed, inject a disturbance, cancel the plan, drop a dragged
+ * block, save the scene, copy the permalink; and the frames the worker pushes while it plays.
+ */
+import type { DropRequest, View } from './view';
+import type { WorkerClient } from './client';
+import { downloadJson, guard } from './dom';
+import type { FrameRenderer } from './frame-renderer';
+import type { Layout } from './layout';
+import type { FromWorker, Level } from './protocol';
+import { BENCHMARKS, parseSeed, recordStep, updateUrl, type Benchmark, type Method, type Mode, type PageState } from './state';
+import type { StatusBar } from './status-bar';
+import type { Tabs } from './tabs';
+
+export interface SessionParts {
+  state: PageState;
+  ui: Layout;
+  client: WorkerClient;
+  view: View;
+  renderer: FrameRenderer;
+  status: StatusBar;
+  /** The side tabs (made after the controls: they need the playback). */
+  tabs: () => Tabs;
+}
+
+const withoutLevel = (level: Level, m: string) => m.replace(new RegExp(`^${level}:\\s*`, 'i'), '');
+const withLevel = (level: Level, m: string) => `${level.toUpperCase()}: ${withoutLevel(level, m)}`;
+
+export class SessionControls {
+  constructor(private readonly p: SessionParts) {}
+
+  /** Runs a UI action; a rejected call (no session, a refused request) becomes a notice. */
+  guard(f: () => unknown): Promise<void> {
+    return guard(f, (m) => this.p.status.notice(m, 'error'));
+  }
+
+  setPlaying(on: boolean): void {
+    this.p.state.playing = on;
+    const b = this.p.ui.controls.playBtn;
+    b.textContent = on ? '❚❚ Pause' : '▶ Play';
+    b.setAttribute('aria-label', on ? 'Pause (Space)' : 'Play (Space)');
+    b.setAttribute('aria-pressed', String(on));
+  }
+
+  async play(): Promise<void> {
+    const f = this.p.state.frame;
+    if (f && (f.status.kind === 'done' || f.status.kind === 'failed')) return;
+    this.setPlaying(true);
+    await this.p.client.call('play', { speed: this.p.state.speed });
+  }
+
+  async pause(): Promise<void> {
+    this.setPlaying(false);
+    const f = await this.p.client.call('pause', {});
+    if (f) this.p.renderer.render(f);
+  }
+
+  togglePlay(): Promise<void> {
+    return this.guard(() => (this.p.state.playing ? this.pause() : this.play()));
+  }
+
+  /** Opens a session of the chosen scenario (or of a scene file's world). */
+  async open(scene?: string): Promise<void> {
+    const { state, client, renderer, status, view } = this.p;
+    this.setPlaying(false);
+    updateUrl(state);
+    status.say('Loading the benchmark…');
+    try {
+      const f = await client.call('open', { options: { ...state.options }, scene });
+      renderer.restart(f);
+      if (state.editorBenchmark !== state.options.benchmark && !this.p.ui.editorHost.hidden) void this.p.tabs().loadEditor();
+      if (state.autoplay) await this.play();
+    } catch (e) {
+      // Still show the benchmark's scene, and say why nothing moves.
+      try {
+        view.update((await client.call('benchmark', { id: state.options.benchmark })).scene);
+      } catch {
+        /* the message below says enough */
+      }
+      status.fail(`Could not start the session: ${(e as Error).message}`);
+    }
+  }
+
+  async reset(): Promise<void> {
+    this.setPlaying(false);
+    this.p.renderer.clearHistory();
+    this.p.renderer.render(await this.p.client.call('reset', { seed: this.p.state.options.seed }));
+    if (this.p.state.autoplay) await this.play();
+  }
+
+  step(): Promise<void> {
+    return this.guard(async () => {
+      this.setPlaying(false);
+      this.p.renderer.render(await this.p.client.call('step', { dt: 0.1 }));
+    });
+  }
+
+  async inject(level: Level): Promise<void> {
+    try {
+      const r = await this.p.client.call('inject', { level });
+      this.p.status.notice(withLevel(level, r.message), 'info');
+      this.p.renderer.render(r.frame);
+      if (!this.p.state.playing) await this.play();
+    } catch (e) {
+      this.p.status.notice(`${level.toUpperCase()} refused: ${withoutLevel(level, (e as Error).message)}`, 'error');
+    }
+  }
+
+  cancel(): Promise<void> {
+    return this.guard(async () => {
+      const clickedAt = performance.timeOrigin + performance.now();
+      const r = await this.p.client.call('cancel', {});
+      this.p.renderer.render(r.frame);
+      this.p.state.lastCancel = { clickedAt, appliedAt: r.appliedAt, repliedAt: performance.timeOrigin + performance.now() };
+    });
+  }
+
+  /** A block the user dropped in the view; resolves to a refusal or null. */
+  async drop(d: DropRequest): Promise<string | null> {
+    const teach = this.p.tabs().teach;
+    if (teach?.active) return teach.drop(d);
+    const r = await this.p.client.call('perturb', { body: d.body, position: d.position });
+    if (!r.ok) return r.reason;
+    this.p.status.notice(r.message || `Moved ${d.body}`, 'info');
+    this.p.renderer.render(r.frame);
+    if (!this.p.state.playing && this.p.state.resumeAfterDrag) await this.play();
+    return null;
+  }
+
+  /** A message the worker sent on its own: a frame of the playing session, or a fatal error. */
+  onPush(m: FromWorker): void {
+    if (m.type === 'fatal') {
+      this.setPlaying(false);
+      this.p.status.fail(m.message);
+      return;
+    }
+    if (m.type !== 'frame' || this.p.tabs().teach?.active) return;
+    recordStep(this.p.state, m.timing.stepMs);
+    this.p.renderer.render(m.frame);
+    if (!m.playing && this.p.state.playing) this.setPlaying(false);
+  }
+
+  /** Selects the next benchmark (as if chosen in its select). */
+  nextBenchmark(): void {
+    const sel = this.p.ui.controls.benchSel;
+    const i = BENCHMARKS.findIndex(([b]) => b === this.p.state.options.benchmark);
+    sel.value = BENCHMARKS[(i + 1) % BENCHMARKS.length][0];
+    sel.dispatchEvent(new Event('change'));
+  }
+
+  /** Moves the speed select `d` steps up or down (as if chosen in it). */
+  stepSpeed(d: number): void {
+    const sel = this.p.ui.controls.speedSel;
+    const opts = [...sel.options].map((o) => o.value);
+    const i = Math.max(0, Math.min(opts.length - 1, opts.indexOf(sel.value) + d));
+    sel.value = opts[i];
+    sel.dispatchEvent(new Event('change'));
+  }
+
+  private async save(): Promise<void> {
+    downloadJson(await this.p.client.call('scene', {}), `${this.p.state.options.benchmark}-scene.json`);
+  }
+
+  private async copyLink(): Promise<void> {
+    updateUrl(this.p.state);
+    try {
+      await navigator.clipboard.writeText(location.href);
+      this.p.status.notice('Link copied: it restores this benchmark, method, mode and seed', 'info');
+    } catch {
+      this.p.status.notice(location.href, 'info');
+    }
+  }
+
+  /** Connects the top bar's controls and the stage's Cancel. */
+  wire(): void {
+    const { state, client } = this.p;
+    const c = this.p.ui.controls;
+    const o = state.options;
+    c.benchSel.onchange = () => {
+      o.benchmark = c.benchSel.value as Benchmark;
+      this.p.tabs().teach?.reset();
+      void this.open();
+    };
+    c.methodSel.onchange = () => {
+      o.method = c.methodSel.value as Method;
+      void this.open();
+    };
+    c.modeSel.onchange = () => {
+      o.mode = c.modeSel.value as Mode;
+      void this.open();
+    };
+    c.seedIn.onchange = () => {
+      o.seed = parseSeed(c.seedIn.value);
+      c.seedIn.value = String(o.seed);
+      updateUrl(state);
+      void this.guard(() => this.reset());
+    };
+    c.resetBtn.onclick = () => void this.guard(() => this.reset());
+    c.playBtn.onclick = () => void this.togglePlay();
+    c.stepBtn.onclick = () => void this.step();
+    c.speedSel.onchange = () => {
+      state.speed = Number(c.speedSel.value);
+      updateUrl(state);
+      void this.guard(() => client.call('speed', { speed: state.speed }));
+    };
+    c.levelBtns.forEach((b) => (b.onclick = () => void this.inject(b.dataset.level as Level)));
+    this.p.ui.stage.cancelBtn.onclick = () => void this.cancel();
+    c.saveBtn.onclick = () => void this.guard(() => this.save());
+    c.loadBtn.onclick = () => c.fileIn.click();
+    c.fileIn.onchange = () =>
+      void this.guard(async () => {
+        const file = c.fileIn.files?.[0];
+        if (!file) return;
+        await this.open(await file.text());
+        c.fileIn.value = '';
+      });
+    c.linkBtn.onclick = () => void this.copyLink();
+  }
+}

@@ -1,0 +1,42 @@
+/**
+ * The page's keyboard shortcuts (listed in the help overlay): playback, disturbances, benchmark,
+ * speed, the PDDL tab and the help itself. Keys typed into a field or the editor are left alone.
+ */
+import { isShortcut } from './dom';
+import type { HelpOverlay } from './help';
+import type { Controls, Stage } from './layout';
+import { LEVELS } from './state';
+import type { SessionControls } from './session-controls';
+import type { Tabs } from './tabs';
+
+/** Keys of the Run that would act on the hidden episode while Teach mode owns the view. */
+const RUN_KEYS = ' nrc1234';
+
+export function installShortcuts(p: { help: HelpOverlay; session: SessionControls; tabs: Tabs; controls: Controls; stage: Stage }): void {
+  const { help, session, tabs } = p;
+  const act: Record<string, () => void> = {
+    ' ': () => void session.togglePlay(),
+    n: () => p.controls.stepBtn.click(),
+    r: () => void session.guard(() => session.reset()),
+    c: () => p.stage.cancelBtn.click(),
+    ...Object.fromEntries(LEVELS.map(([level]) => [level[1], () => void session.inject(level)])),
+    b: () => session.nextBenchmark(),
+    '+': () => session.stepSpeed(1),
+    '=': () => session.stepSpeed(1),
+    '-': () => session.stepSpeed(-1),
+    p: () => tabs.select('pddl'),
+    '?': () => help.open(),
+  };
+  document.addEventListener('keydown', (e) => {
+    if (!isShortcut(e)) return;
+    if (e.key === 'Escape' && help.shown) return help.close();
+    if (help.shown) return;
+    const k = e.key.toLowerCase();
+    if (tabs.teach?.active && RUN_KEYS.includes(k)) return;
+    const f = act[k];
+    if (f) {
+      e.preventDefault();
+      f();
+    }
+  });
+}

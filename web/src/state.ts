@@ -1,0 +1,129 @@
+/**
+ * What the page knows, in one object: the scenario it runs (benchmark, method, mode, seed), the
+ * playback (speed, playing), the latest frame from the worker (status, plan, demo, facts), the step
+ * timings, the open tab and the last cancel. Also the choices the controls offer and the URL that
+ * restores a scenario (the permalink).
+ */
+import type { Frame, SessionOptions } from 'logic-lfd';
+import type { Level } from './protocol';
+
+export type Benchmark = SessionOptions['benchmark'];
+export type Method = SessionOptions['method'];
+export type Mode = SessionOptions['mode'];
+export type TabId = 'run' | 'teach' | 'charts' | 'pddl';
+
+export const BENCHMARKS: [Benchmark, string][] = [
+  ['b1', 'B1 · tower'],
+  ['b2', 'B2 · reach (hook)'],
+  ['b3', 'B3 · two arms'],
+];
+export const METHODS: [Method, string][] = [
+  ['logic-lfd', 'Logic-LfD'],
+  ['linear', 'Linear'],
+  ['rlds', 'RLDS'],
+  ['tamp', 'TAMP'],
+];
+export const MODES: [Mode, string][] = [
+  ['paper', 'paper'],
+  ['prioritised', 'prioritised'],
+];
+export const LEVELS: [Level, string, string][] = [
+  ['l1', 'L1', 'Motion-level: move a block a little; the facts stay the same'],
+  ['l2', 'L2', 'Facts change to a state seen in the demonstration'],
+  ['l3', 'L3', 'Facts change to a state the demonstration never saw'],
+  ['l4', 'L4', 'A new block appears in the way'],
+];
+export const SPEEDS: [string, string][] = [
+  ['0.25', '¼×'],
+  ['0.5', '½×'],
+  ['1', '1×'],
+  ['2', '2×'],
+  ['4', '4×'],
+  ['8', '8×'],
+];
+
+/** Step timings kept for the HUD's mean and the tests (oldest dropped first). */
+const MAX_STEP_TIMES = 600;
+
+/** Times of a cancel (ms since the epoch, `performance.timeOrigin` based), for the tests. */
+export interface CancelTiming {
+  clickedAt: number;
+  appliedAt: number;
+  repliedAt: number;
+}
+
+export interface PageState {
+  /** The scenario the session runs. */
+  options: SessionOptions;
+  /** Playback speed (simulated seconds per wall-clock second). */
+  speed: number;
+  /** Whether a freshly opened or reset episode starts playing (`?autoplay=0` turns it off). */
+  autoplay: boolean;
+  playing: boolean;
+  /** Whether to resume playing after the user's drag (it was playing when the drag began). */
+  resumeAfterDrag: boolean;
+  /** The latest frame: session status, plan, demo states, facts. */
+  frame: Frame | null;
+  /** Wall time of the worker's last `Session::step` (ms), and the recent ones. */
+  lastStepMs: number;
+  stepTimes: number[];
+  currentTab: TabId;
+  /** The benchmark whose PDDL the editor holds (null: none loaded yet). */
+  editorBenchmark: Benchmark | null;
+  lastCancel: CancelTiming | null;
+}
+
+/** A seed from user text: a whole number >= 0 (anything else is 0). */
+export function parseSeed(text: string): number {
+  return Math.max(0, Math.floor(Number(text)) || 0);
+}
+
+const pick = <T extends string>(v: string | null, all: [T, ...unknown[]][], d: T): T =>
+  all.some(([k]) => k === v) ? (v as T) : d;
+
+/** The state a page opened at `search` (its URL's query) starts from. */
+export function initialState(search: string): PageState {
+  const params = new URLSearchParams(search);
+  return {
+    options: {
+      benchmark: pick(params.get('benchmark'), BENCHMARKS, 'b1'),
+      method: pick(params.get('method'), METHODS, 'logic-lfd'),
+      mode: pick(params.get('mode'), MODES, 'paper'),
+      seed: parseSeed(params.get('seed') ?? '1'),
+    },
+    speed: Number(params.get('speed') ?? '1') || 1,
+    autoplay: params.get('autoplay') !== '0',
+    playing: false,
+    resumeAfterDrag: false,
+    frame: null,
+    lastStepMs: 0,
+    stepTimes: [],
+    currentTab: 'run',
+    editorBenchmark: null,
+    lastCancel: null,
+  };
+}
+
+/** Records the wall time of one worker step. */
+export function recordStep(s: PageState, stepMs: number): void {
+  s.lastStepMs = stepMs;
+  s.stepTimes.push(stepMs);
+  if (s.stepTimes.length > MAX_STEP_TIMES) s.stepTimes.shift();
+}
+
+/** Mean of the recent step times (ms; 0 before the first). */
+export function meanStepMs(s: PageState): number {
+  return s.stepTimes.length ? s.stepTimes.reduce((a, b) => a + b, 0) / s.stepTimes.length : 0;
+}
+
+/** Puts the scenario into the address bar (without a new history entry), so a reload or a copied
+ * link restores it. */
+export function updateUrl(s: PageState): void {
+  const p = new URLSearchParams();
+  p.set('benchmark', s.options.benchmark);
+  p.set('method', s.options.method);
+  p.set('mode', s.options.mode);
+  p.set('seed', String(s.options.seed));
+  if (s.speed !== 1) p.set('speed', String(s.speed));
+  history.replaceState(null, '', `${location.pathname}?${p}`);
+}

@@ -1,0 +1,52 @@
+/**
+ * The stage's overlays: the status line (planning / executing / replanning / done / failed, with
+ * Cancel enabled while a plan runs), the clock and timings, and short notices that fade.
+ */
+import type { Frame } from 'logic-lfd';
+import type { Stage } from './layout';
+import { meanStepMs, type PageState } from './state';
+
+/** How long a notice stays (ms). */
+const NOTICE_MS = { info: 3500, error: 6000 };
+
+export class StatusBar {
+  private noticeTimer = 0;
+
+  constructor(private readonly ui: Stage) {}
+
+  /** Shows a status of `kind` (a CSS class: idle, planning, executing, done, failed…). */
+  show(kind: string, text: string): void {
+    this.ui.status.className = `status ${kind}`;
+    this.ui.status.dataset.kind = kind;
+    this.ui.statusText.textContent = text;
+  }
+
+  /** Marks the status failed with `text` (the frame's kind stays in `data-kind`). */
+  fail(text: string): void {
+    this.ui.status.className = 'status failed';
+    this.ui.statusText.textContent = text;
+  }
+
+  /** Replaces the status text only. */
+  say(text: string): void {
+    this.ui.statusText.textContent = text;
+  }
+
+  /** The status, Cancel and the clock of a frame. */
+  showFrame(f: Frame, s: PageState): void {
+    const k = f.status.kind;
+    this.show(k, f.status.message || k);
+    this.ui.cancelBtn.disabled = !(k === 'planning' || k === 'executing' || k === 'replanning');
+    this.ui.hud.textContent = `t = ${f.t.toFixed(2)} s · tick ${f.tick} · step ${s.lastStepMs.toFixed(2)} ms (mean ${meanStepMs(s).toFixed(2)}) · ${f.replans} replans`;
+  }
+
+  /** A short message over the view; errors stay longer. */
+  notice(text: string, kind: 'info' | 'error'): void {
+    const n = this.ui.notice;
+    n.textContent = text;
+    n.className = `notice ${kind}`;
+    n.hidden = false;
+    clearTimeout(this.noticeTimer);
+    this.noticeTimer = window.setTimeout(() => (n.hidden = true), NOTICE_MS[kind]);
+  }
+}

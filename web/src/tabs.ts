@@ -1,0 +1,131 @@
+/**
+ * The side tabs (Run, Teach, Charts, PDDL): switching between them, and loading Teach mode and the
+ * PDDL editor on first use (each is a chunk of its own, and Teach mode a wasm module of its own in
+ * the worker), so the page becomes interactive sooner.
+ */
+import type { Frame } from 'logic-lfd';
+import type { Charts } from './charts';
+import { SearchRunner, type WorkerClient } from './client';
+import type { EditorPanel } from './editor';
+import type { FrameRenderer } from './frame-renderer';
+import type { Layout } from './layout';
+import type { PageState, TabId } from './state';
+import type { StatusBar } from './status-bar';
+import type { TeachPanel } from './teach';
+import type { View } from './view';
+
+/** What Teach mode needs of the Run's playback. */
+export interface Playback {
+  play(): Promise<void>;
+  pause(): Promise<void>;
+  setPlaying(p: boolean): void;
+}
+
+export interface TabsParts {
+  state: PageState;
+  ui: Layout;
+  client: WorkerClient;
+  view: View;
+  charts: Charts;
+  renderer: FrameRenderer;
+  status: StatusBar;
+  playback: Playback;
+}
+
+export class Tabs {
+  /** Teach mode, once its tab has been opened. */
+  teach: TeachPanel | null = null;
+  private teachPromise: Promise<TeachPanel> | null = null;
+  private editorPromise: Promise<EditorPanel> | null = null;
+  private readonly search = new SearchRunner();
+
+  constructor(private readonly p: TabsParts) {
+    p.ui.tabs.forEach((t) => (t.button.onclick = () => this.select(t.id)));
+    this.select('run');
+  }
+
+  select(id: TabId): void {
+    const { state, ui, status, renderer, charts } = this.p;
+    for (const t of ui.tabs) {
+      const on = t.id === id;
+      t.panel.hidden = !on;
+      t.button.classList.toggle('active', on);
+      t.button.setAttribute('aria-selected', String(on));
+    }
+    state.currentTab = id;
+    if (id === 'teach') {
+      this.getTeach().then(
+        (t) => t.setVisible(state.currentTab === 'teach'),
+        (e: unknown) => status.notice(`could not load Teach mode: ${(e as Error).message}`, 'error'),
+      );
+    } else this.teach?.setVisible(false);
+    if (id !== 'teach') renderer.redraw();
+    if (id === 'pddl') void this.loadEditor();
+    if (id === 'charts') charts.draw();
+  }
+
+  /** Loads the benchmark's PDDL into the editor, unless it holds it already. */
+  async loadEditor(): Promise<void> {
+    const { state, client } = this.p;
+    if (state.editorBenchmark === state.options.benchmark) return;
+    state.editorBenchmark = state.options.benchmark;
+    const [editor, b] = await Promise.all([this.getEditor(), client.call('benchmark', { id: state.options.benchmark })]);
+    editor.setTexts(b.domain, b.problem);
+  }
+
+  /** Opens the PDDL tab holding `domain` and `problem` (the benchmark's PDDL is not loaded over them). */
+  async setPddl(domain: string, problem: string): Promise<void> {
+    this.p.state.editorBenchmark = this.p.state.options.benchmark;
+    this.select('pddl');
+    (await this.getEditor()).setTexts(domain, problem);
+  }
+
+  private getEditor(): Promise<EditorPanel> {
+    this.editorPromise ??= import('./editor').then(({ EditorPanel, PLAN_TIME_LIMIT_MS }) => {
+      // The editor's searches run in a worker of their own (terminated on cancel or timeout): a
+      // pathological problem never stops the robot's worker nor freezes the page.
+      const search = this.search;
+      const e = new EditorPanel({
+        plan: (domain, problem, o) => search.call('plan', { domain, problem, options: o }, PLAN_TIME_LIMIT_MS + 5000),
+        check: (domain, problem) => search.call('check', { domain, problem }, 10_000),
+        cancel: () => search.cancel('cancelled'),
+      });
+      this.p.ui.editorHost.append(e.root);
+      return e;
+    });
+    return this.editorPromise;
+  }
+
+  private getTeach(): Promise<TeachPanel> {
+    this.teachPromise ??= Promise.all([import('./teach'), this.p.client.call('teachLoad', {})]).then(
+      ([{ TeachPanel }]) => (this.teach = this.newTeachPanel(TeachPanel)),
+      (e: unknown) => {
+        this.teachPromise = null;
+        throw e;
+      },
+    );
+    return this.teachPromise;
+  }
+
+  private newTeachPanel(Panel: typeof TeachPanel): TeachPanel {
+    const { state, ui, client, view, status, renderer, playback } = this.p;
+    return new Panel(ui.teachSlot, {
+      client,
+      view,
+      stage: ui.stage.root,
+      benchmark: () => state.options.benchmark,
+      options: () => state.options,
+      notice: (t, k) => status.notice(t, k),
+      status: (kind, text) => status.show(kind, text),
+      pauseRun: async () => {
+        if (state.playing) await playback.pause();
+      },
+      runTaught: async (f: Frame, autoplay: boolean) => {
+        playback.setPlaying(false);
+        this.select('run');
+        renderer.restart(f);
+        if (autoplay) await playback.play();
+      },
+    });
+  }
+}

@@ -1,0 +1,73 @@
+/**
+ * What the Teach tab lists, built from the worker's data: the recording's demo states and
+ * recognised actions (each with its arm, time span and fact change), a taught demo's states and
+ * actions, the goal checklist (L_N's facts) and a refused edit's explanation.
+ */
+import type { TaughtInfo, TeachError, TeachState } from 'logic-lfd';
+import { demoStateItem, el, factChips } from './dom';
+
+const ERROR_TITLES: Record<TeachError['kind'], string> = {
+  input: 'Bad input',
+  model: 'Model',
+  unexplained: 'Not explained by the domain',
+  physics: 'Physically implausible',
+  refused: 'Refused',
+};
+
+/** The recording's L0, a1, L1, …; the actions in `fresh` are highlighted (just recognised). */
+export function recordingItems(s: TeachState, fresh: ReadonlySet<number>): HTMLElement[] {
+  const items: HTMLElement[] = [];
+  s.states.forEach((st, i) => {
+    items.push(demoStateItem(i, st));
+    const seg = s.segments[i];
+    if (seg) {
+      const change = [...seg.added.map((f) => `+${f}`), ...seg.removed.map((f) => `−${f}`)].join(' ');
+      items.push(
+        el(
+          'li',
+          { class: `teach-seg${fresh.has(i) ? ' new' : ''}`, title: change },
+          el('span', { class: 'seg-name' }, `a${i + 1} ${seg.action}`),
+          el('span', { class: 'muted small' }, ` ${seg.arm} · ${seg.t_start.toFixed(2)}–${seg.t_end.toFixed(2)} s`),
+        ),
+      );
+    }
+  });
+  return items;
+}
+
+/** A taught demo's L0, a1, L1, … with the arm of each action. */
+export function taughtItems(info: TaughtInfo): HTMLElement[] {
+  const items: HTMLElement[] = [];
+  info.states.forEach((st, i) => {
+    items.push(demoStateItem(i, st));
+    if (i < info.actions.length) items.push(el('li', { class: 'teach-seg' }, el('span', { class: 'seg-name' }, `a${i + 1} ${info.actions[i]}`), el('span', { class: 'muted small' }, ` ${info.arms[i]}`)));
+  });
+  return items;
+}
+
+/** The goal checklist: every fact of the last demo state, ticked when it is in the goal. */
+export function goalItems(info: TaughtInfo, onChange: () => void): HTMLElement[] {
+  const last = info.states[info.states.length - 1];
+  const goal = new Set(info.goal);
+  return last.map((f) => {
+    const box = el('input', { type: 'checkbox', 'aria-label': `goal fact ${f}` });
+    box.checked = goal.has(f);
+    box.onchange = onChange;
+    return el('li', {}, el('label', {}, box, ` ${f}`));
+  });
+}
+
+/** The facts ticked in a goal checklist. */
+export function checkedGoal(list: HTMLElement): string[] {
+  return [...list.querySelectorAll('input')].filter((b) => b.checked).map((b) => (b.getAttribute('aria-label') ?? '').replace(/^goal fact /, ''));
+}
+
+/** A refused edit: what kind of refusal and when, the message, the fact change it would make. */
+export function errorContent(e: TeachError): HTMLElement[] {
+  return [
+    el('strong', {}, `${ERROR_TITLES[e.kind]}${e.t != null ? ` at t = ${e.t.toFixed(2)} s` : ''}`),
+    el('div', { class: 'teach-error-msg' }, e.message),
+    el('div', { class: 'facts-diff' }, ...factChips(e.added, e.removed)),
+    el('div', { class: 'muted small' }, 'Nothing was recorded from this edit.'),
+  ];
+}

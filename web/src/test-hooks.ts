@@ -1,0 +1,44 @@
+/**
+ * `window.lfd`: read-only views of the page's state for the browser tests and the benchmark script
+ * (the current frame, where a body is on screen, step and render timings, replans, the last
+ * cancel, memory), and a way to put PDDL into the editor.
+ */
+import type { Frame } from 'logic-lfd';
+import type { Charts } from './charts';
+import type { WorkerClient } from './client';
+import type { CancelTiming, PageState } from './state';
+import type { Tabs } from './tabs';
+import type { View } from './view';
+
+declare global {
+  interface Window {
+    lfd: {
+      frame: () => Frame | null;
+      screenPosition: (body: string) => { x: number; y: number } | null;
+      project: (p: [number, number, number]) => { x: number; y: number };
+      stepTimes: () => number[];
+      replans: () => [number, number][];
+      setPddl: (domain: string, problem: string) => Promise<void>;
+      renderMs: () => number;
+      lastCancel: () => CancelTiming | null;
+      memory: () => Promise<{ wasmBytes: number; geometries: number; textures: number }>;
+      loadedAt: number;
+    };
+  }
+}
+
+export function installTestHooks(p: { state: PageState; view: View; charts: Charts; tabs: Tabs; client: WorkerClient }): void {
+  const { state, view, charts, tabs, client } = p;
+  window.lfd = {
+    frame: () => state.frame,
+    screenPosition: (b) => view.screenPosition(b),
+    project: (pt) => view.project(pt),
+    stepTimes: () => [...state.stepTimes],
+    replans: () => charts.replans(),
+    setPddl: (domain, problem) => tabs.setPddl(domain, problem),
+    renderMs: () => view.renderMs,
+    lastCancel: () => state.lastCancel,
+    memory: async () => ({ ...(await client.call('memory', {})), ...view.renderer.info.memory }),
+    loadedAt: 0,
+  };
+}
