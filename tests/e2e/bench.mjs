@@ -39,7 +39,7 @@ async function sizes() {
     // The PDDL editor (CodeMirror), the charts (uPlot, its JS and CSS) and Teach mode (its panel,
     // and the full wasm module with the recorder) are separate chunks fetched when their tab
     // first opens.
-    if (/\/(editor-[^/]*\.js|uPlot[^/]*\.(js|css)|teach-[^/]*\.js|logic_lfd_teach[^/]*\.(js|wasm))$/.test(f)) lazyGz += g;
+    if (/\/(editor-[^/]*\.js|uPlot[^/]*\.(js|css)|teach-[^/]*\.js|logic_lfd_teach[^/]*\.(js|wasm)|docs\/[^/]*\.md)$/.test(f)) lazyGz += g;
   }
   return { raw, gz, lazyGz, rows };
 }

@@ -1,4 +1,4 @@
-// The page's test hooks (web/src/main.ts `window.lfd`), as the browser tests see them.
+// The page's test hooks (web/src/test-hooks.ts `window.lfd`), as the browser tests see them.
 import type { Frame } from '../../pkg/web/logic_lfd.js';
 
 declare global {
