@@ -1,7 +1,7 @@
 //! LQT-CP motion skills (paper §III-B, eqs. 1–4) and the classic DMP used for comparison.
 //!
 //! * [`LqtCp`]: linear quadratic tracking with control primitives — batch weights, the matrix F
-//!   and the time-varying feedback gains K̃_t, on the exact conventions of `shared/lqt-cp-io.md`
+//!   and the time-varying feedback gains K̃_t, on the exact conventions of `docs/formats.md`
 //!   (fast structured path; [`reference`](mod@reference) is the dense transcription kept for tests);
 //! * [`task`]: builds the reference μ and weights Q from via-points, goals and a tracked demo;
 //! * [`case`]: the JSON contract of `logic-lfd lqt CASE.json`;
