@@ -1,6 +1,6 @@
 //! The paper's evaluation (§IV): closed-loop episodes, Table I (generalisation over random
 //! initial states) and Table II (reactivity to disturbances L1–L4), with report writers that put
-//! our numbers beside the paper's.
+//! the measured numbers beside the paper's.
 //!
 //! * Table I: per benchmark, `tasks` random initial states (levels L1–L4 in turn, from the
 //!   simulator's task generator); methods `linear`, `tamp`, `logic-lfd` (both modes) run the

@@ -258,6 +258,81 @@ fn parse_sample(v: &Value, p: &str) -> Result<RawSample, RecorderError> {
     })
 }
 
+/// The recording's scene: a named benchmark or an inline scene (checked), not both.
+fn parse_scene(v: &Value) -> Result<RecordingScene, RecorderError> {
+    Ok(match (v.get("benchmark"), v.get("scene")) {
+        (Some(_), Some(_)) => {
+            return Err(input(
+                "scene",
+                "give either \"benchmark\" or \"scene\", not both",
+            ))
+        }
+        (Some(b), None) => {
+            let name = b.as_str().unwrap_or("");
+            RecordingScene::Benchmark(
+                Benchmark::parse(name).ok_or_else(|| {
+                    input("benchmark", format!("unknown benchmark {b} (b1, b2, b3)"))
+                })?,
+            )
+        }
+        (None, Some(s)) => {
+            let snap: WorldSnapshot =
+                serde_json::from_value(s.clone()).map_err(|e| input("scene", e.to_string()))?;
+            let scene = RecordingScene::Scene(Box::new(snap));
+            scene.snapshot()?;
+            scene
+        }
+        (None, None) => {
+            return Err(input(
+                "benchmark",
+                "missing (give \"benchmark\": \"b1\" or an inline \"scene\")",
+            ))
+        }
+    })
+}
+
+/// The samples, in non-decreasing time order.
+fn parse_samples(v: &Value) -> Result<Vec<RawSample>, RecorderError> {
+    let arr = v
+        .get("samples")
+        .ok_or_else(|| input("samples", "missing"))?
+        .as_array()
+        .ok_or_else(|| input("samples", "expected an array"))?;
+    let mut samples = Vec::with_capacity(arr.len());
+    let mut last = f64::NEG_INFINITY;
+    for (i, s) in arr.iter().enumerate() {
+        let p = format!("samples[{i}]");
+        let s = parse_sample(s, &p)?;
+        if s.t() < last {
+            return Err(input(
+                format!("{p}.t"),
+                format!("goes back in time ({} s after {} s)", s.t(), last),
+            ));
+        }
+        last = s.t();
+        samples.push(s);
+    }
+    Ok(samples)
+}
+
+/// The optional taught goal: an array of fact strings.
+fn parse_goal(v: &Value) -> Result<Option<Vec<String>>, RecorderError> {
+    Ok(match v.get("goal") {
+        None | Some(Value::Null) => None,
+        Some(Value::Array(a)) => Some(
+            a.iter()
+                .enumerate()
+                .map(|(i, f)| {
+                    f.as_str()
+                        .map(str::to_string)
+                        .ok_or_else(|| input(format!("goal[{i}]"), "expected a fact string"))
+                })
+                .collect::<Result<Vec<_>, _>>()?,
+        ),
+        Some(_) => return Err(input("goal", "expected an array of fact strings")),
+    })
+}
+
 impl RawRecording {
     /// Parses and checks a recording; errors name the key path (`samples[3].pose.yaw: …`) or
     /// the line and column of malformed JSON.
@@ -271,33 +346,7 @@ impl RawRecording {
         if !v.is_object() {
             return Err(input("(root)", "expected a JSON object"));
         }
-        let scene = match (v.get("benchmark"), v.get("scene")) {
-            (Some(_), Some(_)) => {
-                return Err(input(
-                    "scene",
-                    "give either \"benchmark\" or \"scene\", not both",
-                ))
-            }
-            (Some(b), None) => {
-                let name = b.as_str().unwrap_or("");
-                RecordingScene::Benchmark(Benchmark::parse(name).ok_or_else(|| {
-                    input("benchmark", format!("unknown benchmark {b} (b1, b2, b3)"))
-                })?)
-            }
-            (None, Some(s)) => {
-                let snap: WorldSnapshot =
-                    serde_json::from_value(s.clone()).map_err(|e| input("scene", e.to_string()))?;
-                let scene = RecordingScene::Scene(Box::new(snap));
-                scene.snapshot()?;
-                scene
-            }
-            (None, None) => {
-                return Err(input(
-                    "benchmark",
-                    "missing (give \"benchmark\": \"b1\" or an inline \"scene\")",
-                ))
-            }
-        };
+        let scene = parse_scene(&v)?;
         let dt = match v.get("dt") {
             None => 0.01,
             Some(d) => {
@@ -308,39 +357,8 @@ impl RawRecording {
                 x
             }
         };
-        let arr = v
-            .get("samples")
-            .ok_or_else(|| input("samples", "missing"))?
-            .as_array()
-            .ok_or_else(|| input("samples", "expected an array"))?;
-        let mut samples = Vec::with_capacity(arr.len());
-        let mut last = f64::NEG_INFINITY;
-        for (i, s) in arr.iter().enumerate() {
-            let p = format!("samples[{i}]");
-            let s = parse_sample(s, &p)?;
-            if s.t() < last {
-                return Err(input(
-                    format!("{p}.t"),
-                    format!("goes back in time ({} s after {} s)", s.t(), last),
-                ));
-            }
-            last = s.t();
-            samples.push(s);
-        }
-        let goal = match v.get("goal") {
-            None | Some(Value::Null) => None,
-            Some(Value::Array(a)) => Some(
-                a.iter()
-                    .enumerate()
-                    .map(|(i, f)| {
-                        f.as_str()
-                            .map(str::to_string)
-                            .ok_or_else(|| input(format!("goal[{i}]"), "expected a fact string"))
-                    })
-                    .collect::<Result<Vec<_>, _>>()?,
-            ),
-            Some(_) => return Err(input("goal", "expected an array of fact strings")),
-        };
+        let samples = parse_samples(&v)?;
+        let goal = parse_goal(&v)?;
         let seed = match v.get("seed") {
             None => 0,
             Some(s) => s

@@ -16,7 +16,9 @@
 //! towards the arm, lifts, and puts the hook back where it was.
 
 use super::engine::gripper_sample;
-use super::recording::{ArmRef, HandMove, RawRecording, RawSample, RecordingScene};
+use super::recording::{
+    ArmRef, GripperPose, GripperState, HandMove, RawRecording, RawSample, RecordingScene,
+};
 use super::{Recorder, RecorderError, RecorderEvent};
 use crate::sim::benchmark::Benchmark;
 use crate::sim::demo::{self, pull_hook_poses, Demonstration, PULL_TARGET_RADIUS};
@@ -75,7 +77,7 @@ pub enum Edit {
         /// Gripper yaw (rad).
         yaw: f64,
         /// `open` or `closed`.
-        gripper: super::recording::GripperState,
+        gripper: GripperState,
         /// How long the command holds (s; 0 = one step).
         #[serde(default)]
         duration: f64,
@@ -139,46 +141,7 @@ impl Recorder {
                 gripper,
                 duration,
             } => {
-                let t0 = self.time();
-                let dt = self.world().dt();
-                let n = ((duration / dt).round().max(1.0)) as usize;
-                // From where the gripper is now to the commanded pose along a minimum-jerk path
-                // (the handle gives where to go; a jump would make the arm move at its joint
-                // speed limits, a motion no skill reproduces well).
-                let from = arm
-                    .resolve(self.world())
-                    .and_then(|a| self.world().tcp_pose(a))
-                    .map(|p| {
-                        let v = p.translation.vector;
-                        ([v.x, v.y, v.z], super::engine::gripper_yaw(&p.rotation))
-                    });
-                let samples: Vec<RawSample> = (0..n)
-                    .map(|k| {
-                        let (p, y) = match from {
-                            Some((p0, y0)) => {
-                                let s = min_jerk((k + 1) as f64 / n as f64);
-                                (
-                                    [
-                                        p0[0] + (position[0] - p0[0]) * s,
-                                        p0[1] + (position[1] - p0[1]) * s,
-                                        p0[2] + (position[2] - p0[2]) * s,
-                                    ],
-                                    y0 + geometry::wrap(*yaw - y0) * s,
-                                )
-                            }
-                            None => (*position, *yaw),
-                        };
-                        RawSample::Gripper {
-                            t: t0 + k as f64 * dt,
-                            arm: arm.clone(),
-                            pose: super::recording::GripperPose {
-                                position: p,
-                                yaw: y,
-                            },
-                            gripper: *gripper,
-                        }
-                    })
-                    .collect();
+                let samples = self.gripper_path(arm, *position, *yaw, *gripper, *duration);
                 self.push_samples(&samples)
             }
             Edit::Drag {
@@ -219,17 +182,78 @@ impl Recorder {
             }
         }
     }
+
+    /// Gripper mode: samples from where `arm`'s gripper is now to `position`/`yaw` along a
+    /// minimum-jerk path lasting `duration` seconds (at least one step).
+    fn gripper_path(
+        &self,
+        arm: &ArmRef,
+        position: [f64; 3],
+        yaw: f64,
+        gripper: GripperState,
+        duration: f64,
+    ) -> Vec<RawSample> {
+        let t0 = self.time();
+        let dt = self.world().dt();
+        let n = ((duration / dt).round().max(1.0)) as usize;
+        // From where the gripper is now to the commanded pose along a minimum-jerk path
+        // (the handle gives where to go; a jump would make the arm move at its joint
+        // speed limits, a motion no skill reproduces well).
+        let from = arm
+            .resolve(self.world())
+            .and_then(|a| self.world().tcp_pose(a))
+            .map(|p| {
+                let v = p.translation.vector;
+                ([v.x, v.y, v.z], super::engine::gripper_yaw(&p.rotation))
+            });
+        (0..n)
+            .map(|k| {
+                let (p, y) = match from {
+                    Some((p0, y0)) => {
+                        let s = min_jerk((k + 1) as f64 / n as f64);
+                        (
+                            [
+                                p0[0] + (position[0] - p0[0]) * s,
+                                p0[1] + (position[1] - p0[1]) * s,
+                                p0[2] + (position[2] - p0[2]) * s,
+                            ],
+                            y0 + geometry::wrap(yaw - y0) * s,
+                        )
+                    }
+                    None => (position, yaw),
+                };
+                RawSample::Gripper {
+                    t: t0 + k as f64 * dt,
+                    arm: arm.clone(),
+                    pose: GripperPose {
+                        position: p,
+                        yaw: y,
+                    },
+                    gripper,
+                }
+            })
+            .collect()
+    }
 }
 
+/// Height above its resting pose at which a carried body is released (m).
+const PUT_DOWN_CLEARANCE: f64 = 0.002;
+/// Shortest horizontal pull stroke (m) that still gives the blade a direction to back off along.
+const MIN_BACK_OFF_DIRECTION: f64 = 1e-9;
+
+/// A refusal with the message `m`.
 fn refused(m: impl Into<String>) -> RecorderError {
     RecorderError::Refused(m.into())
 }
 
+/// The minimum-jerk profile `10τ³ − 15τ⁴ + 6τ⁵` at `τ = t`.
 fn min_jerk(t: f64) -> f64 {
     t * t * t * (10.0 + t * (-15.0 + 6.0 * t))
 }
 
-fn raised(p: &Isometry3<f64>, z: f64) -> Isometry3<f64> {
+/// `p` moved to the height `z` (orientation and x, y kept). Unlike `sim::geometry::raised`,
+/// which moves a pose up by an offset, this sets the height itself.
+fn at_height(p: &Isometry3<f64>, z: f64) -> Isometry3<f64> {
     let mut q = *p;
     q.translation.vector.z = z;
     q
@@ -319,7 +343,7 @@ fn pick_and_place(
         .ok_or_else(|| refused(format!("{body} cannot be grasped")))?;
     let grasp = g.inverse() * bp; // the body in the TCP frame
     let mut put = *rest;
-    put.translation.vector.z += 0.002;
+    put.translation.vector.z += PUT_DOWN_CLEARANCE;
     let place = put * grasp.inverse();
     let safe = g
         .translation
@@ -327,16 +351,16 @@ fn pick_and_place(
         .max(place.translation.z)
         .max(highest_top(world) + 0.05)
         + p.approach_height;
-    m.transfer(raised(&g, safe), p.speed);
+    m.transfer(at_height(&g, safe), p.speed);
     m.grip = GripperCommand::Open;
     m.to(g, p.contact_time, Some(GripperCommand::Open));
     m.to(g, p.hold_time, Some(GripperCommand::Close));
-    m.to(raised(&g, safe), p.contact_time, None);
-    m.transfer(raised(&place, safe), p.speed);
+    m.to(at_height(&g, safe), p.contact_time, None);
+    m.transfer(at_height(&place, safe), p.speed);
     m.to(place, p.contact_time, None);
     m.to(place, p.hold_time, Some(GripperCommand::Open));
     m.to(
-        raised(&place, place.translation.z + p.approach_height),
+        at_height(&place, place.translation.z + p.approach_height),
         p.contact_time,
         None,
     );
@@ -353,6 +377,52 @@ fn go_home(world: &World, m: &mut Motion, p: &SynthParams) {
             m.transfer(panda::forward_kinematics(&base, &panda::READY), p.speed);
         }
     }
+}
+
+/// Where a drag puts a body: its new centre `x`, `y` (m, world) and yaw (rad).
+struct DragTarget {
+    x: f64,
+    y: f64,
+    yaw: f64,
+}
+
+/// The target of a drag of `body` (now at yaw `cur_yaw`) onto `onto` or to `position`: onto a
+/// block, its centre and yaw; onto another support, `position` or the support's centre; `Err`
+/// says why there is none.
+fn drag_target(
+    world: &World,
+    body: &str,
+    onto: Option<&str>,
+    position: Option<[f64; 2]>,
+    yaw: Option<f64>,
+    cur_yaw: f64,
+) -> Result<DragTarget, String> {
+    let (x, y, yaw) = match (onto, position) {
+        (Some(s), _) => {
+            if s == body {
+                return Err("not onto itself".into());
+            }
+            let sp = world
+                .body_pose(s)
+                .ok_or_else(|| format!("there is no body {s}"))?;
+            match (world.body_kind(s), position) {
+                (Some(BodyKind::Block), _) => (
+                    sp.translation.x,
+                    sp.translation.y,
+                    yaw.unwrap_or_else(|| crate::sim::yaw_of(&sp.rotation)),
+                ),
+                (_, Some([x, y])) => (x, y, yaw.unwrap_or(cur_yaw)),
+                (_, None) => {
+                    let (lo, hi) = world.body_aabb(s).ok_or_else(|| "no box".to_string())?;
+                    let c = 0.5 * (lo + hi);
+                    (c.x, c.y, yaw.unwrap_or(cur_yaw))
+                }
+            }
+        }
+        (None, Some([x, y])) => (x, y, yaw.unwrap_or(cur_yaw)),
+        (None, None) => return Err("say where: \"onto\" a block or a \"position\"".into()),
+    };
+    Ok(DragTarget { x, y, yaw })
 }
 
 /// Samples that move `body` onto `onto` or to `position` (see [`Edit::Drag`]).
@@ -382,36 +452,9 @@ pub fn drag_samples(
     let bp = world
         .body_pose(body)
         .ok_or_else(|| cannot("no pose".into()))?;
-    let cur_yaw = super::engine::yaw_of(&bp.rotation);
-    let (x, y, yaw) = match (onto, position) {
-        (Some(s), _) => {
-            if s == body {
-                return Err(cannot("not onto itself".into()));
-            }
-            let sp = world
-                .body_pose(s)
-                .ok_or_else(|| cannot(format!("there is no body {s}")))?;
-            match (world.body_kind(s), position) {
-                (Some(BodyKind::Block), _) => (
-                    sp.translation.x,
-                    sp.translation.y,
-                    yaw.unwrap_or_else(|| super::engine::yaw_of(&sp.rotation)),
-                ),
-                (_, Some([x, y])) => (x, y, yaw.unwrap_or(cur_yaw)),
-                (_, None) => {
-                    let (lo, hi) = world.body_aabb(s).ok_or_else(|| cannot("no box".into()))?;
-                    let c = 0.5 * (lo + hi);
-                    (c.x, c.y, yaw.unwrap_or(cur_yaw))
-                }
-            }
-        }
-        (None, Some([x, y])) => (x, y, yaw.unwrap_or(cur_yaw)),
-        (None, None) => {
-            return Err(cannot(
-                "say where: \"onto\" a block or a \"position\"".into(),
-            ))
-        }
-    };
+    let cur_yaw = crate::sim::yaw_of(&bp.rotation);
+    let DragTarget { x, y, yaw } =
+        drag_target(world, body, onto, position, yaw, cur_yaw).map_err(cannot)?;
     if !(x.is_finite() && y.is_finite() && yaw.is_finite()) {
         return Err(cannot("the target is not finite".into()));
     }
@@ -445,9 +488,9 @@ pub fn drag_samples(
 pub type HookGrip = (usize, Isometry3<f64>);
 
 /// Samples of a hook pull (see [`Edit::Pull`]), in two phases: with `holding = None`, picking
-/// the hook and lifting it (returns the arm used); with `holding = Some((arm, home))` (the arm now holds
-/// the hook, using its actual grasp), putting the blade behind `body`, dragging it into reach, lifting, and putting the
-/// hook back at `home`, where it was picked.
+/// the hook and lifting it (returns the arm used); with `holding = Some((arm, home))` (the arm
+/// now holds the hook, using its actual grasp), putting the blade behind `body`, dragging it into
+/// reach, lifting, and putting the hook back at `home`, where it was picked.
 pub fn pull_samples(
     rec: &Recorder,
     body: &str,
@@ -475,43 +518,27 @@ pub fn pull_samples(
         .body_pose(body)
         .ok_or_else(|| cannot("no pose".into()))?;
     let safe = highest_top(world) + 0.05 + p.approach_height;
-    if let Some((r, home)) = holding {
-        let grasp = world
-            .grasp_transform(r)
-            .filter(|_| world.held_by(r) == Some(hook_name.as_str()))
-            .ok_or_else(|| cannot(format!("the arm does not hold {hook_name}")))?;
-        let grasp_inv = grasp.inverse();
-        let base = world
-            .arm_base(r)
-            .ok_or_else(|| cannot("no arm base".into()))?;
-        let (contact, pulled) = pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS);
-        let tc = contact * grasp_inv;
-        let tp = pulled * grasp_inv;
-        let mut m = motion_start(rec, r)?;
-        m.grip = GripperCommand::Close;
-        m.transfer(raised(&tc, safe), p.speed);
-        m.to(tc, p.contact_time, None);
-        let d = (tp.translation.vector - tc.translation.vector).norm();
-        m.to(tp, (d / p.pull_speed).max(0.6), None);
-        // Back the blade off the block before lifting, so the lift cannot scrape it.
-        let mut off = tp;
-        let back = tc.translation.vector - tp.translation.vector;
-        let back = Vector3::new(back.x, back.y, 0.0);
-        if back.norm() > 1e-9 {
-            off.translation.vector += back.normalize() * 0.015;
-        }
-        m.to(off, p.hold_time, None);
-        m.to(raised(&off, safe), p.contact_time, None);
-        // Put the hook back where it was before the pick (kept in the first phase's log).
-        let mut put = home;
-        put.translation.vector += Vector3::new(0.0, 0.0, 0.002);
-        let place = put * grasp_inv;
-        m.transfer(raised(&place, safe), p.speed);
-        m.to(place, p.contact_time, None);
-        m.to(place, p.hold_time, Some(GripperCommand::Open));
-        m.to(raised(&place, safe), p.contact_time, None);
-        return Ok((m.out, (r, home)));
+    match holding {
+        Some(grip) => pull_stroke(rec, &hook_name, grip, &bp, safe, p, &cannot),
+        None => pick_hook(rec, body, &hook_name, &hp, &bp, safe, arm, p, &cannot),
     }
+}
+
+/// The first phase of a pull: the first arm (of `arm`, or any) that can grasp the hook and
+/// reach behind `body` with it picks the hook and lifts it to the height `safe`.
+#[allow(clippy::too_many_arguments)]
+fn pick_hook(
+    rec: &Recorder,
+    body: &str,
+    hook_name: &str,
+    hp: &Isometry3<f64>,
+    bp: &Isometry3<f64>,
+    safe: f64,
+    arm: &Option<ArmRef>,
+    p: &SynthParams,
+    cannot: &dyn Fn(String) -> RecorderError,
+) -> Result<(Vec<RawSample>, HookGrip), RecorderError> {
+    let world = rec.world();
     let arms = resolve_arms(world, arm)?;
     let mut why = vec![];
     for &r in &arms {
@@ -520,14 +547,14 @@ pub fn pull_samples(
             why.push(format!("{name} holds {h}"));
             continue;
         }
-        let Some(g) = geometry::grasp_pose(world, r, &hook_name) else {
+        let Some(g) = geometry::grasp_pose(world, r, hook_name) else {
             return Err(cannot("the hook cannot be grasped".into()));
         };
         let grasp_inv = (g.inverse() * hp).inverse();
         let base = world
             .arm_base(r)
             .ok_or_else(|| cannot("no arm base".into()))?;
-        let (contact, pulled) = pull_hook_poses(&base, &bp, PULL_TARGET_RADIUS);
+        let (contact, pulled) = pull_hook_poses(&base, bp, PULL_TARGET_RADIUS);
         if !reaches(world, r, &[g, contact * grasp_inv, pulled * grasp_inv]) {
             why.push(format!(
                 "{name} cannot reach behind {body} with {hook_name}"
@@ -536,13 +563,62 @@ pub fn pull_samples(
         }
         let mut m = motion_start(rec, r)?;
         let safe = g.translation.z.max(safe);
-        m.transfer(raised(&g, safe), p.speed);
+        m.transfer(at_height(&g, safe), p.speed);
         m.to(g, p.contact_time, Some(GripperCommand::Open));
         m.to(g, p.hold_time, Some(GripperCommand::Close));
-        m.to(raised(&g, safe), p.contact_time, None);
-        return Ok((m.out, (r, hp)));
+        m.to(at_height(&g, safe), p.contact_time, None);
+        return Ok((m.out, (r, *hp)));
     }
     Err(cannot(why.join("; ")))
+}
+
+/// The second phase of a pull, with the grasp the hook actually got: the blade goes behind the
+/// block (`bp`), drags it into reach, backs off and lifts; the hook goes back to `home`.
+fn pull_stroke(
+    rec: &Recorder,
+    hook_name: &str,
+    (r, home): HookGrip,
+    bp: &Isometry3<f64>,
+    safe: f64,
+    p: &SynthParams,
+    cannot: &dyn Fn(String) -> RecorderError,
+) -> Result<(Vec<RawSample>, HookGrip), RecorderError> {
+    let world = rec.world();
+    let grasp = world
+        .grasp_transform(r)
+        .filter(|_| world.held_by(r) == Some(hook_name))
+        .ok_or_else(|| cannot(format!("the arm does not hold {hook_name}")))?;
+    let grasp_inv = grasp.inverse();
+    let base = world
+        .arm_base(r)
+        .ok_or_else(|| cannot("no arm base".into()))?;
+    let (contact, pulled) = pull_hook_poses(&base, bp, PULL_TARGET_RADIUS);
+    let tc = contact * grasp_inv;
+    let tp = pulled * grasp_inv;
+    let mut m = motion_start(rec, r)?;
+    m.grip = GripperCommand::Close;
+    m.transfer(at_height(&tc, safe), p.speed);
+    m.to(tc, p.contact_time, None);
+    let d = (tp.translation.vector - tc.translation.vector).norm();
+    m.to(tp, (d / p.pull_speed).max(0.6), None);
+    // Back the blade off the block before lifting, so the lift cannot scrape it.
+    let mut off = tp;
+    let back = tc.translation.vector - tp.translation.vector;
+    let back = Vector3::new(back.x, back.y, 0.0);
+    if back.norm() > MIN_BACK_OFF_DIRECTION {
+        off.translation.vector += back.normalize() * 0.015;
+    }
+    m.to(off, p.hold_time, None);
+    m.to(at_height(&off, safe), p.contact_time, None);
+    // Put the hook back where it was before the pick (kept in the first phase's log).
+    let mut put = home;
+    put.translation.vector += Vector3::new(0.0, 0.0, PUT_DOWN_CLEARANCE);
+    let place = put * grasp_inv;
+    m.transfer(at_height(&place, safe), p.speed);
+    m.to(place, p.contact_time, None);
+    m.to(place, p.hold_time, Some(GripperCommand::Open));
+    m.to(at_height(&place, safe), p.contact_time, None);
+    Ok((m.out, (r, home)))
 }
 
 struct SceneHook;

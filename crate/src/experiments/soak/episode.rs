@@ -1,0 +1,461 @@
+//! One soak episode: draw its benchmark, mode, session seed and disturbance schedule from the
+//! episode's seed, run the session tick by tick applying the disturbances when due, and check
+//! every guarantee on the way (invariants, nothing partially applied, adopted plans valid, the
+//! outcome stated and legitimate, the replay identical).
+
+use std::collections::BTreeSet;
+
+use nalgebra::Vector3;
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+
+use super::reasons::{
+    dragged_out_of_reach, fails_on, shelf_full_for, Models, DRAGGED_AWAY, SHELF_FULL,
+};
+use super::{SoakFinding, SoakParams, SoakReport};
+use crate::lfd::control::FailReason;
+use crate::lfd::session::{mix, BenchmarkId, Session, SessionOptions, SkillKind};
+use crate::lfd::{Method, Mode};
+use crate::plan::NoClock;
+use crate::sim::disturb::handleable;
+use crate::sim::snapshot::BodyKind;
+use crate::sim::World;
+
+/// One scheduled disturbance.
+#[derive(Clone, Debug)]
+enum Disturbance {
+    Inject(&'static str),
+    Drag(DragKind),
+}
+
+/// What a user-like drag aims at.
+#[derive(Clone, Copy, Debug)]
+enum DragKind {
+    OntoBlock,
+    TableSpot,
+    Nudge,
+    Hostile,
+}
+
+/// One disturbance, drawn with the schedule's weights.
+fn draw_disturbance(rng: &mut Pcg64Mcg) -> Disturbance {
+    match rng.random_range(0..10) {
+        0..=1 => Disturbance::Inject("l1"),
+        2 => Disturbance::Inject("l2"),
+        3 => Disturbance::Inject("l3"),
+        4 => Disturbance::Inject("l4"),
+        5..=6 => Disturbance::Drag(DragKind::OntoBlock),
+        7 => Disturbance::Drag(DragKind::TableSpot),
+        8 => Disturbance::Drag(DragKind::Nudge),
+        _ => Disturbance::Drag(DragKind::Hostile),
+    }
+}
+
+/// The bodies the arms hold.
+fn held(world: &World) -> Vec<String> {
+    (0..world.arm_names().len())
+        .filter_map(|a| world.held_by(a).map(str::to_string))
+        .collect()
+}
+
+/// The centre of body `b`.
+fn centre(world: &World, b: &str) -> Option<Vector3<f64>> {
+    world.body_pose(b).map(|p| p.translation.vector)
+}
+
+/// A user-like drag request: (body, target centre).
+fn draw_drag(world: &World, kind: DragKind, rng: &mut Pcg64Mcg) -> (String, [f64; 3]) {
+    let held = held(world);
+    let free: Vec<String> = world
+        .block_names()
+        .into_iter()
+        .filter(|b| !world.is_lost(b) && !held.iter().any(|h| h == b))
+        .map(str::to_string)
+        .collect();
+    let pick = |v: &[String], rng: &mut Pcg64Mcg| -> Option<String> {
+        (!v.is_empty()).then(|| v[rng.random_range(0..v.len())].clone())
+    };
+    let Some(body) = pick(&free, rng) else {
+        return ("a".into(), [0.4, 0.0, 0.2]);
+    };
+    let c = centre(world, &body).unwrap_or_default();
+    let target = match kind {
+        DragKind::OntoBlock => {
+            let others: Vec<String> = free.iter().filter(|o| **o != body).cloned().collect();
+            match pick(&others, rng).and_then(|o| centre(world, &o)) {
+                Some(o) => o + Vector3::new(0.0, 0.0, 0.1),
+                None => c,
+            }
+        }
+        DragKind::TableSpot => {
+            let snap = world.snapshot();
+            let tables: Vec<_> = snap
+                .bodies
+                .iter()
+                .filter(|b| b.kind == BodyKind::Table)
+                .filter_map(|b| world.body_aabb(&b.name))
+                .collect();
+            match tables.get(rng.random_range(0..tables.len().max(1))) {
+                Some((lo, hi)) => Vector3::new(
+                    rng.random_range(lo.x..=hi.x),
+                    rng.random_range(lo.y..=hi.y),
+                    hi.z + 0.05,
+                ),
+                None => c,
+            }
+        }
+        DragKind::Nudge => {
+            let a = rng.random_range(0.0..std::f64::consts::TAU);
+            let r = rng.random_range(0.005..0.06);
+            c + Vector3::new(r * libm::cos(a), r * libm::sin(a), 0.002)
+        }
+        DragKind::Hostile => {
+            return match rng.random_range(0..6) {
+                0 => (body, [f64::NAN, 0.0, 0.1]),
+                1 => (body, [1e9, -1e9, 1e9]),
+                2 => (body, [c.x, c.y, -5.0]),
+                3 => (
+                    held.first().cloned().unwrap_or_else(|| "table".into()),
+                    [c.x, c.y, c.z + 0.2],
+                ),
+                4 => ("table".into(), [0.0, 0.0, 0.5]),
+                _ => ("<no such body>".into(), [0.4, 0.0, 0.2]),
+            }
+        }
+    };
+    (body, [target.x, target.y, target.z])
+}
+
+/// What an episode draws from its seed before it starts, in this order.
+struct EpisodeDraw {
+    bench: BenchmarkId,
+    mode: Mode,
+    session_seed: u64,
+    /// Disturbances by tick, sorted.
+    schedule: Vec<(u64, Disturbance)>,
+}
+
+fn draw_episode(params: &SoakParams, rng: &mut Pcg64Mcg) -> EpisodeDraw {
+    let bench = BenchmarkId::ALL[rng.random_range(0..3)];
+    let mode = if rng.random_bool(0.5) {
+        Mode::Paper
+    } else {
+        Mode::Prioritised
+    };
+    let session_seed: u64 = rng.random();
+    let mut schedule: Vec<(u64, Disturbance)> = (0..rng.random_range(0..=params.max_disturbances))
+        .map(|_| {
+            (
+                rng.random_range(0..params.horizon_ticks),
+                draw_disturbance(rng),
+            )
+        })
+        .collect();
+    schedule.sort_by_key(|(t, _)| *t);
+    EpisodeDraw {
+        bench,
+        mode,
+        session_seed,
+        schedule,
+    }
+}
+
+/// A running episode and what its checks need to remember.
+struct EpisodeRun<'a> {
+    params: &'a SoakParams,
+    models: &'a Models,
+    /// Episode index within the soak.
+    e: usize,
+    bench: BenchmarkId,
+    session_seed: u64,
+    s: Session,
+    /// The episode's generator (drags draw their targets from it when they happen).
+    rng: Pcg64Mcg,
+    /// Blocks moved by accepted user drags (with what stood on them).
+    dragged: BTreeSet<String>,
+    /// Those of `dragged` that their last drag left where no arm can work them.
+    dragged_away: BTreeSet<String>,
+}
+
+/// Runs episode `e` of a soak into `rep` (an empty report) and its episode JSON into
+/// `json_out`.
+pub(super) fn soak_episode(
+    params: &SoakParams,
+    e: usize,
+    models: &Models,
+    rep: &mut SoakReport,
+    json_out: &mut String,
+) -> Result<(), String> {
+    let mut rng = Pcg64Mcg::seed_from_u64(mix(params.seed, e as u64));
+    let draw = draw_episode(params, &mut rng);
+    let options = SessionOptions {
+        benchmark: draw.bench,
+        method: Method::LogicLfd,
+        mode: draw.mode,
+        seed: draw.session_seed,
+        skill: SkillKind::Lqt,
+    };
+    let s = Session::new(options).map_err(|e| e.to_string())?;
+    rep.episodes = 1;
+    *rep.per_benchmark
+        .entry(draw.bench.as_str().into())
+        .or_default() += 1;
+    let mut run = EpisodeRun {
+        params,
+        models,
+        e,
+        bench: draw.bench,
+        session_seed: draw.session_seed,
+        s,
+        rng,
+        dragged: BTreeSet::new(),
+        dragged_away: BTreeSet::new(),
+    };
+    run.run_ticks(&draw.schedule, rep);
+    rep.ticks = run.s.tick();
+    run.classify_outcome(rep);
+    let json = run.s.episode_json();
+    *json_out = json.clone();
+    if params.check_replay {
+        run.check_replay(&json, rep);
+    }
+    Ok(())
+}
+
+impl EpisodeRun<'_> {
+    fn finding(&self, tick: u64, kind: &str, detail: String) -> SoakFinding {
+        SoakFinding {
+            episode: self.e,
+            benchmark: self.bench.as_str().into(),
+            session_seed: self.session_seed,
+            tick,
+            kind: kind.into(),
+            detail,
+        }
+    }
+
+    /// Checks the world's invariants; true (and a finding) when one is broken.
+    fn invariant_check(&self, rep: &mut SoakReport, when: &str) -> bool {
+        rep.invariant_checks += 1;
+        if let Err(v) = self.s.world().check_invariants() {
+            rep.invariant_violations += 1;
+            let list: Vec<String> = v.iter().map(|v| v.to_string()).collect();
+            rep.find(self.finding(
+                self.s.tick(),
+                "invariant",
+                format!("{when}: {}", list.join("; ")),
+            ));
+            true
+        } else {
+            false
+        }
+    }
+
+    /// Ticks the session until it ends or `max_ticks`, applying the disturbances due before each
+    /// tick (as a replay applies them) and checking every plan adopted during a tick. After the
+    /// first broken invariant, ticks are no longer checked (one finding per episode is enough).
+    fn run_ticks(&mut self, schedule: &[(u64, Disturbance)], rep: &mut SoakReport) {
+        let mut next = 0;
+        let mut replans_seen = 0;
+        let clock = NoClock;
+        let mut broken = false;
+        while self.s.outcome().is_none() && self.s.tick() < self.params.max_ticks {
+            while next < schedule.len() && schedule[next].0 <= self.s.tick() {
+                broken |= self.disturb(&schedule[next].1, rep);
+                next += 1;
+            }
+            let pre = self.s.world().clone();
+            let t0 = self.s.tick();
+            self.s.tick_once(&clock);
+            self.check_new_plans(&pre, &mut replans_seen, rep);
+            if !broken {
+                broken |= self.invariant_check(rep, "after a tick");
+            }
+            if self.s.tick() == t0 && self.s.outcome().is_none() && !self.s.is_executing() {
+                break;
+            }
+        }
+    }
+
+    /// Applies one disturbance: an applied one is followed by an invariant check (returns
+    /// whether it broke), a refused one must leave the world and the log unchanged.
+    fn disturb(&mut self, d: &Disturbance, rep: &mut SoakReport) -> bool {
+        let before_world = serde_json::to_string(&self.s.world().snapshot()).unwrap_or_default();
+        let before_events = self.s.log().events.len();
+        let (what, applied) = match d {
+            Disturbance::Inject(level) => match self.s.inject(level) {
+                Ok(_) => {
+                    *rep.injections.entry((*level).into()).or_default() += 1;
+                    (format!("inject {level}"), true)
+                }
+                Err(_) => {
+                    rep.injections_refused += 1;
+                    (format!("inject {level}"), false)
+                }
+            },
+            Disturbance::Drag(kind) => self.drag(*kind, rep),
+        };
+        if applied {
+            rep.disturbances += 1;
+            return self.invariant_check(rep, &format!("after {what}"));
+        }
+        let after_world = serde_json::to_string(&self.s.world().snapshot()).unwrap_or_default();
+        if after_world != before_world || self.s.log().events.len() != before_events {
+            rep.partial_applies += 1;
+            rep.find(self.finding(
+                self.s.tick(),
+                "partial_apply",
+                format!("refused {what} changed the world or the log"),
+            ));
+        }
+        false
+    }
+
+    /// A user-like drag; remembers which blocks it moved and which it left out of reach.
+    fn drag(&mut self, kind: DragKind, rep: &mut SoakReport) -> (String, bool) {
+        let (body, pos) = draw_drag(self.s.world(), kind, &mut self.rng);
+        match self.s.perturb(&body, pos) {
+            Ok(out) => {
+                rep.drags_accepted += 1;
+                let moved = std::iter::once(out.body.clone())
+                    .chain(out.also_moved.iter().map(|(b, _)| b.clone()));
+                for b in moved {
+                    let block = self.s.world().body_kind(&b) == Some(BodyKind::Block);
+                    if block && handleable(self.s.world(), &b).is_err() {
+                        self.dragged_away.insert(b.clone());
+                    } else {
+                        self.dragged_away.remove(&b);
+                    }
+                    self.dragged.insert(b);
+                }
+                (format!("drag {body} to {pos:?}"), true)
+            }
+            Err(_) => {
+                rep.drags_refused += 1;
+                (format!("drag {body} to {pos:?}"), false)
+            }
+        }
+    }
+
+    /// Replays every plan adopted during the last tick with the validator, from `pre`, the world
+    /// as it was before the tick (the plans were made from it).
+    fn check_new_plans(&self, pre: &World, replans_seen: &mut usize, rep: &mut SoakReport) {
+        let replans = self.s.controller().replans();
+        if replans.len() > *replans_seen {
+            for r in &replans[*replans_seen..] {
+                rep.plans_checked += 1;
+                if let Err(why) = self.models.validate(self.bench, pre, &r.plan) {
+                    rep.invalid_plans += 1;
+                    rep.find(self.finding(
+                        r.tick,
+                        "invalid_plan",
+                        format!("plan {:?} (because {}): {why}", r.plan, r.reason),
+                    ));
+                }
+            }
+            *replans_seen = replans.len();
+        }
+    }
+
+    /// A user drag explains the failure: a block it moved is now where no arm can work it, or
+    /// the failure is on a block its last drag left so.
+    fn drag_explains(&self, reason: &FailReason) -> bool {
+        dragged_out_of_reach(self.s.world(), &self.dragged) || fails_on(reason, &self.dragged_away)
+    }
+
+    /// Whether a block the (single-alternative) goal puts on a shelf finds no room on any.
+    fn shelf_full(&self) -> bool {
+        let task = self.s.controller().task();
+        let [goal] = task.goal.alternatives.as_slice() else {
+            return false;
+        };
+        let goal_facts: Vec<String> = goal
+            .pos
+            .iter()
+            .filter_map(|&f| task.facts.get(f as usize).cloned())
+            .collect();
+        let facts = crate::sim::SceneGraph::from_world(self.s.world()).to_strings();
+        shelf_full_for(self.s.world(), &goal_facts, &facts).is_some()
+    }
+
+    /// Counts the episode's outcome: a success, an exhausted budget, a legitimate reason, or an
+    /// unexplained failure (a finding).
+    fn classify_outcome(&self, rep: &mut SoakReport) {
+        let s = &self.s;
+        match s.outcome() {
+            Some(Ok(())) => rep.successes += 1,
+            Some(Err(FailReason::Budget { .. })) => rep.budget_exhausted += 1,
+            Some(Err(FailReason::NoPlan { message })) if message.contains("exhausted") => {
+                rep.budget_exhausted += 1
+            }
+            Some(Err(reason @ FailReason::NoPlan { message })) => {
+                match self
+                    .models
+                    .unsolvable(self.bench, s.world(), self.params.check_nodes)
+                {
+                    Some(true) => {
+                        *rep.legitimate_failures
+                            .entry("no plan: the disturbed task is unsolvable".into())
+                            .or_default() += 1
+                    }
+                    Some(false) if self.drag_explains(reason) => {
+                        *rep.legitimate_failures
+                            .entry(DRAGGED_AWAY.into())
+                            .or_default() += 1
+                    }
+                    Some(false) if self.shelf_full() => {
+                        *rep.legitimate_failures
+                            .entry(SHELF_FULL.into())
+                            .or_default() += 1
+                    }
+                    Some(false) => {
+                        rep.unexplained_failures += 1;
+                        rep.find(self.finding(
+                            s.tick(),
+                            "unexplained_failure",
+                            format!("no plan ({message}) but the observed task is solvable"),
+                        ));
+                    }
+                    None => rep.budget_exhausted += 1,
+                }
+            }
+            Some(Err(other)) if self.drag_explains(other) => {
+                *rep.legitimate_failures
+                    .entry(DRAGGED_AWAY.into())
+                    .or_default() += 1
+            }
+            Some(Err(_)) if self.shelf_full() => {
+                *rep.legitimate_failures
+                    .entry(SHELF_FULL.into())
+                    .or_default() += 1
+            }
+            Some(Err(other)) => {
+                rep.unexplained_failures += 1;
+                rep.find(self.finding(s.tick(), "unexplained_failure", other.to_string()));
+            }
+            None => {
+                rep.budget_exhausted += 1;
+            }
+        }
+    }
+
+    /// Replays the episode JSON and compares the replay's JSON byte for byte.
+    fn check_replay(&self, json: &str, rep: &mut SoakReport) {
+        rep.replays_checked += 1;
+        match Session::replay(json) {
+            Ok(r) if r.episode_json() == json => {}
+            Ok(_) => {
+                rep.replay_mismatches += 1;
+                rep.find(self.finding(
+                    self.s.tick(),
+                    "replay",
+                    "the replayed episode JSON differs".into(),
+                ));
+            }
+            Err(err) => {
+                rep.replay_mismatches += 1;
+                rep.find(self.finding(self.s.tick(), "replay", format!("replay failed: {err}")));
+            }
+        }
+    }
+}

@@ -1,0 +1,252 @@
+//! Closed-loop soak: many random Logic-LfD episodes over B1–B3 with random disturbances,
+//! checking the loop's guarantees at every step.
+//!
+//! Episode `e` of a soak with seed `S` draws everything from `Pcg64Mcg(mix(S, e))`: the benchmark,
+//! the multi-goal mode, the session seed, and a schedule of `0..=max_disturbances` disturbances at
+//! random ticks in `[0, horizon_ticks)`; each is an injected level `L1`–`L4` or a user-like drag
+//! through [`Session::perturb`](crate::lfd::session::Session::perturb) (onto another block, to a
+//! table spot, a small nudge, or a hostile request: a held or fixed body, an unknown name, a
+//! non-finite or far-away position). Checked:
+//!
+//! * **world invariants** ([`crate::sim::World::check_invariants`]) after every tick and every
+//!   disturbance: no interpenetration, every free body supported, nothing lost, joints in limits;
+//! * **nothing partially applied**: a refused drag or a disturbance that cannot be produced leaves
+//!   the world's snapshot and the episode's event log byte-identical;
+//! * **plan validity**: every plan the loop adopts is replayed by the lifted PDDL validator
+//!   ([`crate::plan::validate_names`]) from the observed state it was planned in (the scene graph
+//!   of the world at that tick, as a PDDL problem) to the benchmark's goal;
+//! * **stated outcome**: every episode ends in success or in a
+//!   [`FailReason`](crate::lfd::control::FailReason) that is *legitimate*: the planner's "no
+//!   plan" is confirmed by an independent exhaustive search that proves the disturbed task
+//!   unsolvable, or a block a user dragged is now where no arm can grasp it or pull it with the
+//!   hook (checked with IK, [`handleable`](crate::sim::disturb::handleable)), or the failed action
+//!   (or the one the planner could not bind) is on a block that its last drag left where no arm
+//!   can work it (an arm that still closed on a block inside its minimum reach gets stuck with
+//!   it elsewhere), or a block the goal puts on a shelf has no room left on it (the footprints
+//!   on its top all taken, `shelf_full_for`; B2 cannot take a block off a shelf); an exhausted
+//!   budget is stated as such and counted apart; anything else (an action that failed, a "no
+//!   plan" for a solvable task) is *unexplained*;
+//! * **replay identity** (optional): the episode JSON replays to the byte-identical log.
+//!
+//! No clock is read: planning runs under the controller's node budgets, so a soak's report is a
+//! pure function of its seed.
+//!
+//! This file holds the parameters, the report and the driver; `episode.rs` runs one episode and
+//! `reasons.rs` holds the checks behind every legitimate reason for a failure.
+
+mod episode;
+mod reasons;
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use crate::lfd::session::mix;
+
+use episode::soak_episode;
+use reasons::Models;
+
+/// Most findings a report keeps.
+const MAX_FINDINGS: usize = 100;
+
+/// Tunables of a soak.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SoakParams {
+    /// Number of episodes.
+    pub episodes: usize,
+    /// Seed of the whole soak.
+    pub seed: u64,
+    /// Most disturbances scheduled per episode (uniform in `0..=max_disturbances`).
+    pub max_disturbances: usize,
+    /// Disturbances are scheduled uniformly over `[0, horizon_ticks)` (10 ms ticks).
+    pub horizon_ticks: u64,
+    /// Ticks after which an episode is stopped (the session's own simulated-time budget is 240 s).
+    pub max_ticks: u64,
+    /// Node budget of the independent search that checks a "no plan".
+    pub check_nodes: u64,
+    /// Replay every episode's JSON and compare the logs byte for byte.
+    pub check_replay: bool,
+    /// Index of the first episode (episodes `first_episode..first_episode + episodes` run, so
+    /// one episode of a large soak can be re-run alone).
+    #[serde(default)]
+    pub first_episode: usize,
+}
+
+impl Default for SoakParams {
+    fn default() -> Self {
+        SoakParams {
+            episodes: 20,
+            seed: 0,
+            max_disturbances: 6,
+            horizon_ticks: 2_500,
+            max_ticks: 30_000,
+            check_nodes: 2_000_000,
+            check_replay: true,
+            first_episode: 0,
+        }
+    }
+}
+
+/// A broken guarantee, with enough to replay it (`logic-lfd soak --episodes 1 --seed …` or the
+/// episode seed with `logic-lfd run`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SoakFinding {
+    /// Episode index within the soak.
+    pub episode: usize,
+    /// Benchmark.
+    pub benchmark: String,
+    /// The session seed of that episode.
+    pub session_seed: u64,
+    /// Tick at which it was found.
+    pub tick: u64,
+    /// `invariant`, `partial_apply`, `invalid_plan`, `unexplained_failure`, `replay`, `panic`.
+    pub kind: String,
+    /// What happened, in words.
+    pub detail: String,
+}
+
+/// The figures of a soak.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct SoakReport {
+    /// The parameters.
+    pub params: Option<SoakParams>,
+    /// Episodes run.
+    pub episodes: usize,
+    /// Episodes per benchmark.
+    pub per_benchmark: BTreeMap<String, usize>,
+    /// Simulated 10 ms ticks in total.
+    pub ticks: u64,
+    /// Disturbances applied (accepted drags + produced injections).
+    pub disturbances: usize,
+    /// Injections produced per level.
+    pub injections: BTreeMap<String, usize>,
+    /// Drags accepted.
+    pub drags_accepted: usize,
+    /// Drags refused by the world (checked: nothing applied).
+    pub drags_refused: usize,
+    /// Injections the state did not allow (checked: nothing applied).
+    pub injections_refused: usize,
+    /// World-invariant checks performed.
+    pub invariant_checks: u64,
+    /// Invariant violations found.
+    pub invariant_violations: usize,
+    /// Refusals that changed the world or the log.
+    pub partial_applies: usize,
+    /// Plans adopted by the loop and replayed by the validator.
+    pub plans_checked: usize,
+    /// Plans the validator rejected.
+    pub invalid_plans: usize,
+    /// Episodes that reached the goal.
+    pub successes: usize,
+    /// Episodes that ended with a legitimate stated reason, by reason.
+    pub legitimate_failures: BTreeMap<String, usize>,
+    /// Episodes that ended with an exhausted budget (stated, counted apart).
+    pub budget_exhausted: usize,
+    /// Episodes whose failure is not explained.
+    pub unexplained_failures: usize,
+    /// Episodes whose replay differed.
+    pub replay_mismatches: usize,
+    /// Episodes replayed.
+    pub replays_checked: usize,
+    /// Panics caught (the loop must never panic).
+    pub panics: usize,
+    /// Every broken guarantee (at most 100 kept).
+    pub findings: Vec<SoakFinding>,
+}
+
+impl SoakReport {
+    /// Whether every guarantee held.
+    pub fn is_clean(&self) -> bool {
+        self.invariant_violations == 0
+            && self.partial_applies == 0
+            && self.invalid_plans == 0
+            && self.unexplained_failures == 0
+            && self.replay_mismatches == 0
+            && self.panics == 0
+    }
+
+    /// Keeps a finding (at most [`MAX_FINDINGS`]).
+    fn find(&mut self, f: SoakFinding) {
+        if self.findings.len() < MAX_FINDINGS {
+            self.findings.push(f);
+        }
+    }
+
+    /// Adds an episode's figures and findings.
+    fn merge(&mut self, o: SoakReport) {
+        self.episodes += o.episodes;
+        for (k, v) in o.per_benchmark {
+            *self.per_benchmark.entry(k).or_default() += v;
+        }
+        self.ticks += o.ticks;
+        self.disturbances += o.disturbances;
+        for (k, v) in o.injections {
+            *self.injections.entry(k).or_default() += v;
+        }
+        self.drags_accepted += o.drags_accepted;
+        self.drags_refused += o.drags_refused;
+        self.injections_refused += o.injections_refused;
+        self.invariant_checks += o.invariant_checks;
+        self.invariant_violations += o.invariant_violations;
+        self.partial_applies += o.partial_applies;
+        self.plans_checked += o.plans_checked;
+        self.invalid_plans += o.invalid_plans;
+        self.successes += o.successes;
+        for (k, v) in o.legitimate_failures {
+            *self.legitimate_failures.entry(k).or_default() += v;
+        }
+        self.budget_exhausted += o.budget_exhausted;
+        self.unexplained_failures += o.unexplained_failures;
+        self.replay_mismatches += o.replay_mismatches;
+        self.replays_checked += o.replays_checked;
+        self.panics += o.panics;
+        for f in o.findings {
+            self.find(f);
+        }
+    }
+}
+
+/// Runs a soak (see the module documentation). Every episode runs under `catch_unwind` on
+/// native targets, so a panic is counted as a finding instead of ending the soak.
+pub fn soak(params: &SoakParams) -> Result<SoakReport, String> {
+    soak_with(params, |_, _, _| {})
+}
+
+/// [`soak`], calling `on_episode(index, episode_report, episode_json)` after each episode (the
+/// CLI saves the JSON of episodes with findings; `logic-lfd run --replay` re-runs them).
+pub fn soak_with(
+    params: &SoakParams,
+    mut on_episode: impl FnMut(usize, &SoakReport, &str),
+) -> Result<SoakReport, String> {
+    let models = Models::new()?;
+    let mut report = SoakReport {
+        params: Some(*params),
+        ..SoakReport::default()
+    };
+    for e in params.first_episode..params.first_episode + params.episodes {
+        let mut ep = SoakReport::default();
+        let mut json = String::new();
+        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            soak_episode(params, e, &models, &mut ep, &mut json)
+        }));
+        match r {
+            Ok(Ok(())) => {}
+            Ok(Err(msg)) => return Err(format!("episode {e}: {msg}")),
+            Err(p) => {
+                let msg = super::panic_message(p.as_ref());
+                ep.panics += 1;
+                ep.find(SoakFinding {
+                    episode: e,
+                    benchmark: String::new(),
+                    session_seed: mix(params.seed, e as u64),
+                    tick: 0,
+                    kind: "panic".into(),
+                    detail: msg,
+                });
+            }
+        }
+        on_episode(e, &ep, &json);
+        report.merge(ep);
+    }
+    Ok(report)
+}
