@@ -9,9 +9,10 @@ use serde::{Deserialize, Serialize};
 
 use crate::lfd::control::{FailReason, Replan};
 use crate::lfd::session::{
-    mix, BenchmarkId, EpisodeLog, Injection, Session, SessionError, SessionOptions, SessionParams,
+    mix, EpisodeLog, Injection, Session, SessionError, SessionOptions, SessionParams,
     SkillKind,
 };
+use crate::sim::benchmark::Benchmark;
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
 
@@ -55,7 +56,7 @@ impl Level {
 #[derive(Clone, Debug, PartialEq)]
 pub struct EpisodeSpec {
     /// Benchmark.
-    pub benchmark: BenchmarkId,
+    pub benchmark: Benchmark,
     /// Disturbance injected during execution (`None`: undisturbed).
     pub level: Option<Level>,
     /// Method.

@@ -31,8 +31,9 @@ use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
 
 use crate::lfd::session::{
-    demo_actions, mix, BenchmarkId, EpisodeLog, Session, SessionError, SessionOptions,
+    demo_actions, mix, EpisodeLog, Session, SessionError, SessionOptions,
 };
+use crate::sim::benchmark::Benchmark as BenchmarkId;
 use crate::lqt::case::{run_case, CaseInput};
 use crate::lqt::LqtError;
 use crate::pddl::{parse_domain, parse_problem, Domain, PddlError, Problem};
@@ -1156,7 +1157,7 @@ fn check_world_ops(input: &str) -> Result<Verdict, String> {
     let Some(b) = BenchmarkId::parse(&ops.benchmark) else {
         return Ok(Verdict::Refused);
     };
-    let mut w = b.sim().scene();
+    let mut w = b.scene();
     let snap = |w: &World| serde_json::to_string(&w.snapshot()).unwrap_or_default();
     let mut accepted = false;
     for (i, op) in ops.ops.iter().enumerate() {

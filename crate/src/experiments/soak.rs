@@ -39,7 +39,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::lfd::control::FailReason;
 use crate::lfd::exec::fact_args;
-use crate::lfd::session::{mix, BenchmarkId, Session, SessionOptions, SkillKind};
+use crate::lfd::session::{mix, Session, SessionOptions, SkillKind};
+use crate::sim::benchmark::Benchmark as BenchmarkId;
 use crate::lfd::{Method, Mode};
 use crate::pddl::{parse_domain, parse_problem, Domain};
 use crate::plan::{
@@ -401,7 +402,7 @@ impl Models {
         let domains = BenchmarkId::ALL
             .into_iter()
             .map(|b| {
-                parse_domain(b.sim().domain_pddl(), "domain.pddl")
+                parse_domain(b.domain_pddl(), "domain.pddl")
                     .map(|d| (b, d))
                     .map_err(|e| e.to_string())
             })
@@ -420,7 +421,7 @@ impl Models {
 
     /// Validates `plan` from the world's observed state to the benchmark's goal.
     fn validate(&self, b: BenchmarkId, world: &World, plan: &[String]) -> Result<(), String> {
-        let text = b.sim().problem_for(world, "observed");
+        let text = b.problem_for(world, "observed");
         let d = self.domain(b);
         let p = parse_problem(&text, "observed.pddl", d).map_err(|e| e.to_string())?;
         let r = validate_names(d, &p, plan);
@@ -445,7 +446,7 @@ impl Models {
     /// Whether the benchmark's goal is provably unreachable from the world's observed state
     /// (`Some(true)`), reachable (`Some(false)`), or undecided within `nodes` expansions.
     fn unsolvable(&self, b: BenchmarkId, world: &World, nodes: u64) -> Option<bool> {
-        let text = b.sim().problem_for(world, "observed");
+        let text = b.problem_for(world, "observed");
         let d = self.domain(b);
         let p = parse_problem(&text, "observed.pddl", d).ok()?;
         let task = ground(d, &p).ok()?;

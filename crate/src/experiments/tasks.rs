@@ -8,14 +8,15 @@
 
 use crate::lfd::demo::DemoTrace;
 use crate::lfd::disturb;
-use crate::lfd::session::{demo_actions, mix, BenchmarkId, SessionError};
+use crate::lfd::session::{demo_actions, mix, SessionError};
+use crate::sim::benchmark::Benchmark;
 use crate::lfd::TaskBuilder as _;
 use crate::sim::{SceneGraph, World};
 
 use super::episode::Level;
 
 /// The initial world (as scene JSON) of a Table I task.
-pub fn initial_scene(b: BenchmarkId, level: Level, seed: u64) -> Result<String, SessionError> {
+pub fn initial_scene(b: Benchmark, level: Level, seed: u64) -> Result<String, SessionError> {
     let files = b.sources()?;
     let mut world = World::from_json(&files.scene)?;
     let template = World::from_json(&files.scene)?;

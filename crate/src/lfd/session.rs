@@ -22,6 +22,8 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 use crate::plan::{Clock, NoClock};
+pub use crate::sim::benchmark::BenchmarkSources;
+use crate::sim::benchmark::Benchmark;
 use crate::sim::snapshot::WorldSnapshot;
 use crate::sim::{MoveOutcome, Refused, SceneGraph, World};
 use crate::tamp::streams::{StreamBinder, StreamParams};
@@ -33,85 +35,6 @@ use super::logic::Mode;
 use super::model::DomainModel;
 use super::skill::SkillLibrary;
 use super::{LfdError, Method};
-
-/// The three benchmarks of the paper.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum BenchmarkId {
-    /// Tower of four blocks.
-    #[default]
-    B1,
-    /// Workspace reach with a hook and a shelf.
-    B2,
-    /// Dual-arm transportation.
-    B3,
-}
-
-impl BenchmarkId {
-    /// All benchmarks.
-    pub const ALL: [BenchmarkId; 3] = [BenchmarkId::B1, BenchmarkId::B2, BenchmarkId::B3];
-
-    /// `b1`, `b2`, `b3`.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            BenchmarkId::B1 => "b1",
-            BenchmarkId::B2 => "b2",
-            BenchmarkId::B3 => "b3",
-        }
-    }
-
-    /// Parses `b1`..`b3` (or the directory names).
-    pub fn parse(s: &str) -> Option<Self> {
-        crate::sim::benchmark::Benchmark::parse(s).map(|b| match b {
-            crate::sim::benchmark::Benchmark::B1 => BenchmarkId::B1,
-            crate::sim::benchmark::Benchmark::B2 => BenchmarkId::B2,
-            crate::sim::benchmark::Benchmark::B3 => BenchmarkId::B3,
-        })
-    }
-
-    /// The simulator's benchmark.
-    pub fn sim(self) -> crate::sim::benchmark::Benchmark {
-        match self {
-            BenchmarkId::B1 => crate::sim::benchmark::Benchmark::B1,
-            BenchmarkId::B2 => crate::sim::benchmark::Benchmark::B2,
-            BenchmarkId::B3 => crate::sim::benchmark::Benchmark::B3,
-        }
-    }
-
-    /// The benchmark's files (embedded in the library).
-    pub fn sources(self) -> Result<BenchmarkSources, SessionError> {
-        let b = self.sim();
-        let demo = match self {
-            BenchmarkId::B1 => include_str!("../../../domains/b1-tower/demo.json"),
-            BenchmarkId::B2 => include_str!("../../../domains/b2-workspace-reach/demo.json"),
-            BenchmarkId::B3 => include_str!("../../../domains/b3-dual-arm/demo.json"),
-        };
-        let scene = serde_json::to_string(&b.scene_snapshot())
-            .map_err(|e| SessionError::Json(format!("scene: {e}")))?;
-        Ok(BenchmarkSources {
-            dir: b.dir_name().to_string(),
-            domain: b.domain_pddl().to_string(),
-            problem: b.problem_pddl().to_string(),
-            scene,
-            demo: demo.to_string(),
-        })
-    }
-}
-
-/// The text of a benchmark's files.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct BenchmarkSources {
-    /// Directory name under `domains/` (for error messages).
-    pub dir: String,
-    /// `domain.pddl`.
-    pub domain: String,
-    /// `problem.pddl` (the template task).
-    pub problem: String,
-    /// `scene.json` (the template task's initial world).
-    pub scene: String,
-    /// `demo.json` (the demonstration).
-    pub demo: String,
-}
 
 /// Which motion skill family executes the actions.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -128,7 +51,7 @@ pub enum SkillKind {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SessionOptions {
     /// `b1`, `b2` or `b3`.
-    pub benchmark: BenchmarkId,
+    pub benchmark: Benchmark,
     /// `logic-lfd`, `linear`, `rlds` or `tamp`.
     #[serde(default)]
     pub method: Method,

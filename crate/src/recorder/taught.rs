@@ -22,8 +22,9 @@ use super::{RecorderError, SkillFit, TaughtDemo};
 use crate::lfd::demo::DemoTrace;
 use crate::lfd::model::DomainModel;
 use crate::lfd::session::{
-    mix, BenchmarkId, BenchmarkSources, Session, SessionOptions, SessionParams, SkillKind,
+    mix, BenchmarkSources, Session, SessionOptions, SessionParams, SkillKind,
 };
+use crate::sim::benchmark::Benchmark;
 use crate::lfd::{Method, Mode, TaskBuilder as _};
 use crate::lqt::{Skill, SkillParams};
 use crate::sim::demo::Demonstration;
@@ -34,7 +35,7 @@ use nalgebra::{Isometry3, Point3};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TaughtInfo {
     /// `b1`, `b2` or `b3`: the benchmark whose world and domain the demonstration uses.
-    pub benchmark: BenchmarkId,
+    pub benchmark: Benchmark,
     /// a_1..a_N.
     pub actions: Vec<String>,
     /// The arm of each action.
@@ -95,8 +96,8 @@ pub fn parse(demo_json: &str) -> Result<TaughtDemo, RecorderError> {
 }
 
 /// The benchmark whose world (by the scene's name) a taught demo uses.
-pub fn benchmark_of(t: &TaughtDemo) -> Result<BenchmarkId, RecorderError> {
-    BenchmarkId::parse(&t.scene.name).ok_or_else(|| {
+pub fn benchmark_of(t: &TaughtDemo) -> Result<Benchmark, RecorderError> {
+    Benchmark::parse(&t.scene.name).ok_or_else(|| {
         refused(format!(
             "the demonstration's world `{}` is none of the benchmarks b1, b2, b3: a taught task runs \
              in a benchmark's workcell",
@@ -140,7 +141,6 @@ fn sources_with_goal(
         }
     }
     let statics: Vec<String> = b
-        .sim()
         .static_facts()
         .iter()
         .map(|f| f.to_string())
@@ -240,7 +240,6 @@ pub fn load(demo_json: &str) -> Result<(TaughtDemo, TaughtInfo), RecorderError> 
         .collect();
     let last = states.last().cloned().unwrap_or_default();
     let statics: Vec<String> = benchmark
-        .sim()
         .static_facts()
         .iter()
         .map(|f| f.to_string())
