@@ -5,14 +5,12 @@
 
 use logic_lfd::experiments::{EpisodeSpec, Level};
 use logic_lfd::lfd::control::FailReason;
-use logic_lfd::lfd::session::{
-    mix, Session, SessionOptions, SessionParams, SkillKind,
-};
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::lfd::session::{mix, Session, SessionOptions, SessionParams, SkillKind};
 use logic_lfd::lfd::{
     logic_in, plan_logic_lfd, DemoTrace, Method, Mode, MultiGoalSpec, PlanSource, TaskBuilder,
 };
 use logic_lfd::plan::{validate_names, Algorithm, HeuristicKind, NoClock, SearchConfig};
+use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::{SceneGraph, Violation};
 
 /// What one episode did, as the tests see it.

@@ -6,11 +6,11 @@ use logic_lfd::lfd::exec::{classify, ActionExec, ActionKind, ExecParams, ExecSta
 use logic_lfd::lfd::logic::replay;
 use logic_lfd::lfd::model::DomainModel;
 use logic_lfd::lfd::session::{Session, SessionOptions, SkillKind};
-use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::lfd::skill::SkillLibrary;
 use logic_lfd::lfd::TaskBuilder;
 use logic_lfd::lfd::{Method, Mode};
 use logic_lfd::plan::{search, Algorithm, HeuristicKind, NoClock, SearchConfig, Task};
+use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::demo::PULL_TARGET_RADIUS;
 use logic_lfd::sim::geometry::{grasp_pose, hand_hits};
 use logic_lfd::sim::snapshot::ShapeSnapshot;
@@ -555,7 +555,7 @@ fn two_blocks_side_by_side_beyond_reach_block_each_others_pulls_and_the_check_ag
         assert_eq!(binder.obstructions(1), [other], "pull {x}");
         // The soak's and the disturbances' check says so too (the hook's sweep is checked).
         assert!(
-            !logic_lfd::sim::disturb::hook_can_pull(&world, 0, "hook", x),
+            !logic_lfd::sim::reach::hook_can_pull(&world, 0, "hook", x),
             "hook_can_pull says {x} can be pulled"
         );
     }
@@ -696,7 +696,7 @@ fn soak_4242_2219_a_stroke_whose_hook_presses_into_the_shelf_is_neither_planned_
     // far as the simulator does.
     let world = saved_world("soak-4242-2219");
     assert_eq!(world.held_by(0), Some("hook"));
-    assert!(!logic_lfd::sim::disturb::hook_can_pull(
+    assert!(!logic_lfd::sim::reach::hook_can_pull(
         &world, 0, "hook", "a"
     ));
     let (_, task) = model_and_task(Benchmark::B2, &world);
@@ -789,11 +789,7 @@ fn soak_2026_2835_a_block_lifted_behind_the_base_with_a_joint_at_its_limit_reach
 
 /// B1's skills, learned from its demonstration.
 fn b1_skills() -> SkillLibrary {
-    SkillLibrary::learn(
-        &Benchmark::B1.sources().unwrap().demo,
-        SkillKind::Lqt,
-        &[],
-    )
+    SkillLibrary::learn(&Benchmark::B1.sources().unwrap().demo, SkillKind::Lqt, &[])
 }
 
 /// B2's skills, learned from its demonstration (the hook's grasp apart from the blocks').

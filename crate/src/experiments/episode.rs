@@ -8,49 +8,13 @@
 use serde::{Deserialize, Serialize};
 
 use crate::lfd::control::{FailReason, Replan};
+pub use crate::lfd::disturb::Level;
 use crate::lfd::session::{
-    mix, EpisodeLog, Injection, Session, SessionError, SessionOptions, SessionParams,
-    SkillKind,
+    mix, EpisodeLog, Injection, Session, SessionError, SessionOptions, SessionParams, SkillKind,
 };
-use crate::sim::benchmark::Benchmark;
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
-
-/// Disturbance levels of the paper (§IV-B).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Level {
-    /// Motion level: positions change, facts do not.
-    L1,
-    /// Slight task level: facts change to a state seen in the demonstration.
-    L2,
-    /// Severe task level: facts change to a state the demonstration never visits.
-    L3,
-    /// Extreme task level: a new block appears in the way.
-    L4,
-}
-
-impl Level {
-    /// All levels.
-    pub const ALL: [Level; 4] = [Level::L1, Level::L2, Level::L3, Level::L4];
-
-    /// `l1`..`l4`.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Level::L1 => "l1",
-            Level::L2 => "l2",
-            Level::L3 => "l3",
-            Level::L4 => "l4",
-        }
-    }
-
-    /// Parses `l1`..`l4` (case-insensitive).
-    pub fn parse(s: &str) -> Option<Level> {
-        Level::ALL
-            .into_iter()
-            .find(|l| l.as_str().eq_ignore_ascii_case(s))
-    }
-}
+use crate::sim::benchmark::Benchmark;
 
 /// What to run.
 #[derive(Clone, Debug, PartialEq)]

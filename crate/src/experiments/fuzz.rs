@@ -30,14 +30,12 @@ use rand_pcg::Pcg64Mcg;
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
 
-use crate::lfd::session::{
-    demo_actions, mix, EpisodeLog, Session, SessionError, SessionOptions,
-};
-use crate::sim::benchmark::Benchmark as BenchmarkId;
+use crate::lfd::session::{demo_actions, mix, EpisodeLog, Session, SessionError, SessionOptions};
 use crate::lqt::case::{run_case, CaseInput};
 use crate::lqt::LqtError;
 use crate::pddl::{parse_domain, parse_problem, Domain, PddlError, Problem};
 use crate::plan::{ground, parse_plan, validate, NoClock, Outcome};
+use crate::sim::benchmark::Benchmark as BenchmarkId;
 use crate::sim::{SceneGraph, Violation, World};
 
 /// An input format under test.

@@ -40,14 +40,14 @@ use serde::{Deserialize, Serialize};
 use crate::lfd::control::FailReason;
 use crate::lfd::exec::fact_args;
 use crate::lfd::session::{mix, Session, SessionOptions, SkillKind};
-use crate::sim::benchmark::Benchmark as BenchmarkId;
 use crate::lfd::{Method, Mode};
 use crate::pddl::{parse_domain, parse_problem, Domain};
 use crate::plan::{
     ground, search, validate_names, Algorithm, HeuristicKind, NoClock, Outcome, SearchConfig,
     SearchOutcome,
 };
-use crate::sim::disturb::handleable;
+use crate::sim::benchmark::Benchmark as BenchmarkId;
+use crate::sim::reach::handleable;
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
 

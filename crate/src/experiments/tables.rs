@@ -6,9 +6,9 @@ use serde::{Deserialize, Serialize};
 use nalgebra::{Isometry3, Translation3, Vector3};
 
 use crate::lfd::session::{mix, SessionError, SessionParams};
-use crate::sim::benchmark::Benchmark;
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
+use crate::sim::benchmark::Benchmark;
 use crate::sim::demo::{pull_hook_poses, PULL_TARGET_RADIUS};
 use crate::sim::geometry::grasp_pose;
 use crate::sim::snapshot::BodyKind;

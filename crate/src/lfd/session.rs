@@ -21,15 +21,17 @@
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
+pub use super::disturb::Injection;
 use crate::plan::{Clock, NoClock};
-pub use crate::sim::benchmark::BenchmarkSources;
 use crate::sim::benchmark::Benchmark;
+pub use crate::sim::benchmark::BenchmarkSources;
 use crate::sim::snapshot::WorldSnapshot;
 use crate::sim::{MoveOutcome, Refused, SceneGraph, World};
 use crate::tamp::streams::{StreamBinder, StreamParams};
 
 use super::control::{Binder, ControlParams, Controller, Decision, FailReason, Replan};
 use super::demo::DemoTrace;
+use super::disturb::Level;
 use super::exec::{classify, ActionExec, ActionKind, Binding, ExecParams, ExecStatus, Placement};
 use super::logic::Mode;
 use super::model::DomainModel;
@@ -141,17 +143,6 @@ pub struct Frame {
 
 /// The outcome of an accepted drag.
 pub type PerturbOutcome = MoveOutcome;
-
-/// What an injected disturbance did.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Injection {
-    /// `l1`..`l4`.
-    pub level: String,
-    /// What it did, in words.
-    pub description: String,
-    /// Bodies moved or added: (name, new centre).
-    pub moved: Vec<(String, [f64; 3])>,
-}
 
 /// An external event of the episode, with the tick before which it happened.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -978,11 +969,17 @@ impl Session {
     /// Injects a disturbance of level `l1`..`l4` now (seeded by the session's seed and the
     /// number of injections so far); what it did, in words and data.
     pub fn inject(&mut self, level: &str) -> Result<Injection, SessionError> {
+        let Some(parsed) = Level::parse(level) else {
+            return Err(SessionError::Json(format!(
+                "unknown disturbance level {:?} (l1..l4)",
+                level.to_ascii_lowercase()
+            )));
+        };
         let n = self.injections;
         let spots: Vec<(f64, f64)> = self.hints.values().map(|h| (h.0, h.1)).collect();
         let inj = super::disturb::inject(
             &mut self.world,
-            level,
+            parsed,
             &self.trace,
             &spots,
             mix(self.options.seed, 1_000_003 + n),

@@ -20,13 +20,14 @@ use serde::{Deserialize, Serialize};
 
 use super::{RecorderError, SkillFit, TaughtDemo};
 use crate::lfd::demo::DemoTrace;
+use crate::lfd::disturb::Level;
 use crate::lfd::model::DomainModel;
 use crate::lfd::session::{
     mix, BenchmarkSources, Session, SessionOptions, SessionParams, SkillKind,
 };
-use crate::sim::benchmark::Benchmark;
 use crate::lfd::{Method, Mode, TaskBuilder as _};
 use crate::lqt::{Skill, SkillParams};
+use crate::sim::benchmark::Benchmark;
 use crate::sim::demo::Demonstration;
 use crate::sim::{SceneGraph, World};
 use nalgebra::{Isometry3, Point3};
@@ -140,11 +141,7 @@ fn sources_with_goal(
             objects.push_str(&format!(" {} - {}", o.name, o.kind));
         }
     }
-    let statics: Vec<String> = b
-        .static_facts()
-        .iter()
-        .map(|f| f.to_string())
-        .collect();
+    let statics: Vec<String> = b.static_facts().iter().map(|f| f.to_string()).collect();
     let problem = format!(
         "(define (problem taught) (:domain {})\n  (:objects{})\n  (:init {} {})\n  (:goal (and {})))\n",
         domain.name.text,
@@ -279,7 +276,7 @@ pub fn random_scene(demo_json: &str, seed: u64) -> Result<String, RecorderError>
     for attempt in 0..8u64 {
         let s = mix(seed, attempt);
         let mut w = template.clone();
-        let changed = ["l3", "l2"].iter().any(|level| {
+        let changed = [Level::L3, Level::L2].into_iter().any(|level| {
             match crate::lfd::disturb::inject(&mut w, level, &trace, &[], s) {
                 Ok(_) => true,
                 Err(e) => {
@@ -289,7 +286,7 @@ pub fn random_scene(demo_json: &str, seed: u64) -> Result<String, RecorderError>
             }
         });
         if changed {
-            let _ = crate::lfd::disturb::inject(&mut w, "l1", &trace, &[], mix(s, 1));
+            let _ = crate::lfd::disturb::inject(&mut w, Level::L1, &trace, &[], mix(s, 1));
             return serde_json::to_string(&w.snapshot())
                 .map_err(|e| RecorderError::Model(e.to_string()));
         }

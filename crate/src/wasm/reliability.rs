@@ -3,9 +3,9 @@
 
 use super::{js_err, PerformanceClock};
 use crate::experiments::{run_episode, EpisodeSpec, Level};
-use crate::lfd::session::{SessionParams};
-use crate::sim::benchmark::Benchmark;
+use crate::lfd::session::SessionParams;
 use crate::lfd::{Method, Mode};
+use crate::sim::benchmark::Benchmark;
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 

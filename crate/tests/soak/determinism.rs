@@ -5,9 +5,9 @@
 use logic_lfd::experiments::soak::{soak, SoakParams};
 use logic_lfd::experiments::{run_episode, EpisodeSpec, Level};
 use logic_lfd::lfd::session::{Session, SessionParams};
-use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::lfd::{Method, Mode};
 use logic_lfd::plan::NoClock;
+use logic_lfd::sim::benchmark::Benchmark;
 
 fn episode_json(b: Benchmark, level: Option<Level>, seed: u64) -> String {
     let spec = EpisodeSpec {

@@ -12,8 +12,8 @@ use std::process::ExitCode;
 
 use logic_lfd::experiments::{run_episode, EpisodeReport, EpisodeSpec, Level};
 use logic_lfd::lfd::session::{EpisodeLog, Session, SessionParams};
-use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::lfd::{Method, Mode};
+use logic_lfd::sim::benchmark::Benchmark;
 
 use crate::cmd_plan::WallClock;
 use crate::exit;
