@@ -16,6 +16,9 @@ use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
 use crate::sim::benchmark::Benchmark;
 
+/// The draw of the episode's seed that picks the action after which the disturbance comes.
+const INJECT_AFTER_DRAW: u64 = 77;
+
 /// What to run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EpisodeSpec {
@@ -82,7 +85,7 @@ pub fn run_episode(
     let sources = spec.benchmark.sources()?;
     let mut s = Session::with_sources(options, &sources, spec.scene.as_deref(), None, params)?;
     let n = s.controller().trace().len().max(3);
-    let inject_after = 1 + (mix(spec.seed, 77) % (n as u64 - 2)) as usize;
+    let inject_after = 1 + (mix(spec.seed, INJECT_AFTER_DRAW) % (n as u64 - 2)) as usize;
     let mut injection = None;
     let mut next_try = inject_after;
     let max_ticks = (params.max_time / s.world().dt()).ceil() as u64 + 10;
