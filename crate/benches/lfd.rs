@@ -7,16 +7,17 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use logic_lfd::lfd::model::DomainModel;
-use logic_lfd::lfd::session::{demo_actions, BenchmarkId, Session, SessionOptions, SkillKind};
+use logic_lfd::lfd::session::{demo_actions, Session, SessionOptions, SkillKind};
 use logic_lfd::lfd::{plan_logic_lfd, DemoTrace, Method, Mode, MultiGoalSpec, TaskBuilder};
 use logic_lfd::plan::{Algorithm, HeuristicKind, NoClock, SearchConfig};
+use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::{SceneGraph, World};
 use logic_lfd::tamp::plan_from_scratch;
 use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
 use std::hint::black_box;
 
 fn planning(c: &mut Criterion) {
-    let files = BenchmarkId::B1.sources().unwrap();
+    let files = Benchmark::B1.sources().unwrap();
     let world = World::from_json(&files.scene).unwrap();
     let model = DomainModel::new(
         &files.domain,
@@ -85,7 +86,7 @@ fn planning(c: &mut Criterion) {
 
 fn replanning_tick(c: &mut Criterion) {
     let opts = SessionOptions {
-        benchmark: BenchmarkId::B1,
+        benchmark: Benchmark::B1,
         method: Method::LogicLfd,
         mode: Mode::Paper,
         seed: 1,

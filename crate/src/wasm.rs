@@ -545,7 +545,7 @@ pub fn benchmark(id: &str) -> Result<JsValue, JsError> {
     let b = Benchmark::parse(id)
         .ok_or_else(|| js_err(format!("unknown benchmark `{id}` (expected b1, b2 or b3)")))?;
     to_js(&BenchmarkInfo {
-        id: b.id(),
+        id: b.as_str(),
         name: b.dir_name(),
         scene: b.scene_snapshot(),
         domain: b.domain_pddl(),

@@ -5,13 +5,12 @@
 
 use logic_lfd::experiments::{EpisodeSpec, Level};
 use logic_lfd::lfd::control::FailReason;
-use logic_lfd::lfd::session::{
-    mix, BenchmarkId, Session, SessionOptions, SessionParams, SkillKind,
-};
+use logic_lfd::lfd::session::{mix, Session, SessionOptions, SessionParams, SkillKind};
 use logic_lfd::lfd::{
     logic_in, plan_logic_lfd, DemoTrace, Method, Mode, MultiGoalSpec, PlanSource, TaskBuilder,
 };
 use logic_lfd::plan::{validate_names, Algorithm, HeuristicKind, NoClock, SearchConfig};
+use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::{SceneGraph, Violation};
 
 /// What one episode did, as the tests see it.
@@ -32,7 +31,7 @@ fn objects(s: &Session) -> Vec<(String, String)> {
 /// Runs an episode like `logic-lfd run` does, checking the world's invariants after every tick
 /// and every new plan (Logic-LfD, TAMP, RLDS; linear's only at the start) in the PDDL model from
 /// the facts it was planned from.
-fn episode(b: BenchmarkId, level: Level, method: Method, mode: Mode, seed: u64) -> Run {
+fn episode(b: Benchmark, level: Level, method: Method, mode: Mode, seed: u64) -> Run {
     let opts = SessionOptions {
         benchmark: b,
         method,
@@ -107,7 +106,7 @@ fn episode(b: BenchmarkId, level: Level, method: Method, mode: Mode, seed: u64) 
     }
 }
 
-fn matrix(b: BenchmarkId) {
+fn matrix(b: Benchmark) {
     for seed in [1, 3] {
         for level in Level::ALL {
             for method in Method::ALL {
@@ -117,7 +116,7 @@ fn matrix(b: BenchmarkId) {
                 // returns to an earlier demonstration state; README). On B2 the linear baseline
                 // may succeed at L3/L4 (its skills re-target the pull to the moved block, and a
                 // new block on the shelf may not be in the way) and RLDS at L4 (README).
-                if !(b == BenchmarkId::B2 && level == Level::L2) {
+                if !(b == Benchmark::B2 && level == Level::L2) {
                     assert!(r.injected, "{tag}: no disturbance injected");
                 }
                 match (method, level) {
@@ -128,11 +127,11 @@ fn matrix(b: BenchmarkId) {
                         matches!(r.reason, Some(FailReason::NoDemoStateMatches { .. })),
                         "{tag}"
                     ),
-                    (Method::Rlds, Level::L4) if b != BenchmarkId::B2 => assert!(
+                    (Method::Rlds, Level::L4) if b != Benchmark::B2 => assert!(
                         matches!(r.reason, Some(FailReason::NoDemoStateMatches { .. })),
                         "{tag}"
                     ),
-                    (Method::Linear, Level::L2 | Level::L3 | Level::L4) if b != BenchmarkId::B2 => {
+                    (Method::Linear, Level::L2 | Level::L3 | Level::L4) if b != Benchmark::B2 => {
                         assert!(
                             matches!(
                                 r.reason,
@@ -154,23 +153,23 @@ fn matrix(b: BenchmarkId) {
 
 #[test]
 fn b1_every_level_and_method_ends_as_expected() {
-    matrix(BenchmarkId::B1);
+    matrix(Benchmark::B1);
 }
 
 #[test]
 fn b2_every_level_and_method_ends_as_expected() {
-    matrix(BenchmarkId::B2);
+    matrix(Benchmark::B2);
 }
 
 #[test]
 fn b3_every_level_and_method_ends_as_expected() {
-    matrix(BenchmarkId::B3);
+    matrix(Benchmark::B3);
 }
 
 #[test]
 fn the_same_seed_gives_the_identical_episode_and_the_json_replays_exactly() {
     let spec = EpisodeSpec {
-        benchmark: BenchmarkId::B1,
+        benchmark: Benchmark::B1,
         level: Some(Level::L3),
         method: Method::LogicLfd,
         mode: Mode::Paper,
@@ -200,7 +199,7 @@ fn the_same_seed_gives_the_identical_episode_and_the_json_replays_exactly() {
 #[test]
 fn a_user_drag_is_logged_and_replayed() {
     let opts = SessionOptions {
-        benchmark: BenchmarkId::B1,
+        benchmark: Benchmark::B1,
         method: Method::LogicLfd,
         mode: Mode::Prioritised,
         seed: 2,
@@ -230,7 +229,7 @@ fn a_user_drag_is_logged_and_replayed() {
 
 #[test]
 fn prioritised_mode_never_executes_more_actions_than_paper_mode() {
-    for b in BenchmarkId::ALL {
+    for b in Benchmark::ALL {
         for seed in [1, 2, 3] {
             for level in [Level::L2, Level::L3, Level::L4] {
                 let p = episode(b, level, Method::LogicLfd, Mode::Paper, seed);
@@ -238,7 +237,7 @@ fn prioritised_mode_never_executes_more_actions_than_paper_mode() {
                 // Known failure (README, "Reproducing the paper's tables"): B2 seed 2 L3, both
                 // modes plan the same repair and the demonstrated hook placement is stopped by
                 // block b. Any other failure, or a failure of one mode only, fails the test.
-                if b == BenchmarkId::B2 && seed == 2 && level == Level::L3 && !p.success {
+                if b == Benchmark::B2 && seed == 2 && level == Level::L3 && !p.success {
                     assert_eq!(p.reason, q.reason, "{b:?} seed {seed} {level:?}");
                     continue;
                 }
@@ -256,7 +255,7 @@ fn prioritised_mode_never_executes_more_actions_than_paper_mode() {
 
 #[test]
 fn multi_goal_plan_plus_suffix_reaches_the_goal_in_the_pddl_model() {
-    let files = BenchmarkId::B1.sources().unwrap();
+    let files = Benchmark::B1.sources().unwrap();
     let world = logic_lfd::sim::World::from_json(&files.scene).unwrap();
     let model = logic_lfd::lfd::model::DomainModel::new(
         &files.domain,

@@ -78,15 +78,15 @@ fn segmentation_reproduces_each_scripted_demo() {
     for b in Benchmark::ALL {
         let d = demo::committed(b).unwrap();
         let rec = recording_from_demo(b, &d).unwrap();
-        let taught = segment(&rec, b).unwrap_or_else(|e| panic!("{}: {e}", b.id()));
+        let taught = segment(&rec, b).unwrap_or_else(|e| panic!("{}: {e}", b.as_str()));
         let got: Vec<&str> = taught.demo.demo.plan();
-        assert_eq!(got, d.plan(), "{}", b.id());
+        assert_eq!(got, d.plan(), "{}", b.as_str());
         assert_eq!(taught.states.len(), d.actions.len() + 1);
         for g in b.goal() {
             assert!(
                 taught.demo.goal.contains(&g.to_string()),
                 "{}: goal {g}",
-                b.id()
+                b.as_str()
             );
         }
         // Every sample is somewhere: the actions cover the recording without gaps.
@@ -97,7 +97,7 @@ fn segmentation_reproduces_each_scripted_demo() {
             .iter()
             .map(|a| a.samples.len())
             .sum();
-        assert_eq!(n, rec.samples.len(), "{}", b.id());
+        assert_eq!(n, rec.samples.len(), "{}", b.as_str());
     }
 }
 

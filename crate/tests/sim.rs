@@ -2,9 +2,9 @@
 
 use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::demo;
-use logic_lfd::sim::disturb;
 use logic_lfd::sim::geometry;
 use logic_lfd::sim::panda::{self, IkParams};
+use logic_lfd::sim::reach;
 use logic_lfd::sim::snapshot::WorldSnapshot;
 use logic_lfd::sim::{GripperCommand, SceneGraph, World};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
@@ -563,9 +563,10 @@ mod pddl_models {
 }
 
 mod disturbances {
-    //! Every injector delivers its promise.
+    //! Every injector delivers its promise (the injector of Tables I/II, the soak and the page).
     use super::*;
-    use logic_lfd::sim::disturb::{self, Level};
+    use logic_lfd::experiments::tasks::demo_trace;
+    use logic_lfd::lfd::disturb::{self, Level};
     use std::collections::BTreeSet;
 
     fn fset(w: &World) -> BTreeSet<String> {
@@ -574,44 +575,76 @@ mod disturbances {
 
     #[test]
     fn every_level_keeps_its_promise_on_every_benchmark() {
+        let mut refused = vec![];
         for b in Benchmark::ALL {
-            let states = demo::demo_states(b).unwrap();
+            let trace = demo_trace(b).unwrap();
+            let states = &trace.states;
             assert_eq!(states.len(), demo::committed(b).unwrap().actions.len() + 1);
             for seed in 0..4 {
                 for level in Level::ALL {
                     let mut w = b.scene();
                     let before = fset(&w);
                     let nblocks = w.block_names().len();
-                    let d = disturb::inject(&mut w, b, level, &states, seed)
-                        .unwrap_or_else(|e| panic!("{b:?} {level:?} seed {seed}: {e}"));
+                    let d = match disturb::inject(&mut w, level, &trace, &[], seed) {
+                        Ok(d) => d,
+                        // Refused with the reason when no candidate qualifies: the world is
+                        // left as it was.
+                        Err(e) => {
+                            assert!(!e.is_empty());
+                            assert_eq!(w.snapshot(), b.scene().snapshot(), "{e}");
+                            refused.push((b, level, seed));
+                            continue;
+                        }
+                    };
                     w.check_invariants()
                         .unwrap_or_else(|v| panic!("{b:?} {level:?}: {v:?}"));
                     let after = fset(&w);
-                    assert_eq!(d.facts_after, after.iter().cloned().collect::<Vec<_>>());
-                    assert_eq!(d.facts_before, before.iter().cloned().collect::<Vec<_>>());
+                    assert_eq!(d.level, level);
                     assert!(!d.description.is_empty());
+                    assert_eq!(d.moved.len(), 1, "{b:?} {level:?} seed {seed}");
+                    for (body, _) in &d.moved {
+                        assert_eq!(reach::handleable(&w, body), Ok(()), "{b:?} {level:?}");
+                    }
                     match level {
                         Level::L1 => {
                             assert_eq!(after, before, "{b:?} L1 seed {seed}");
-                            assert!(!d.moves.is_empty());
                         }
                         Level::L2 => {
                             assert_ne!(after, before, "{b:?} L2 seed {seed}");
                             assert!(states.contains(&after), "{b:?} L2 seed {seed}: {after:?}");
                         }
                         Level::L3 => {
-                            assert!(!states.contains(&after), "{b:?} L3 seed {seed}: {after:?}");
+                            assert!(
+                                !states.iter().any(|l| l.is_subset(&after)),
+                                "{b:?} L3 seed {seed}: {after:?}"
+                            );
                         }
                         Level::L4 => {
                             assert_eq!(w.block_names().len(), nblocks + 1);
-                            assert_eq!(d.added.len(), 1);
-                            let e = &d.added[0];
+                            let e = &d.moved[0].0;
                             assert!(
                                 after.iter().any(|f| f.contains(&format!(" {e}"))),
                                 "{after:?}"
                             );
+                            assert!(!states.contains(&after), "{b:?} L4 seed {seed}: {after:?}");
                         }
                     }
+                }
+            }
+        }
+        // B2's template is no single block move away from another state of its demonstration
+        // (the Table I tasks fall back to L1 there); every other level is produced from the
+        // template for some seed.
+        for b in Benchmark::ALL {
+            for level in Level::ALL {
+                let n = refused
+                    .iter()
+                    .filter(|&&(rb, rl, _)| rb == b && rl == level)
+                    .count();
+                if b == Benchmark::B2 && level == Level::L2 {
+                    assert_eq!(n, 4, "{refused:?}");
+                } else {
+                    assert!(n < 4, "{b:?} {level:?} refused for every seed");
                 }
             }
         }
@@ -619,10 +652,10 @@ mod disturbances {
 
     #[test]
     fn injection_is_deterministic_in_its_seed() {
-        let states = demo::demo_states(Benchmark::B3).unwrap();
+        let trace = demo_trace(Benchmark::B3).unwrap();
         let run = |seed| {
             let mut w = Benchmark::B3.scene();
-            disturb::inject(&mut w, Benchmark::B3, Level::L3, &states, seed).unwrap();
+            disturb::inject(&mut w, Level::L3, &trace, &[], seed).unwrap();
             w.snapshot()
         };
         assert_eq!(run(5), run(5));
@@ -633,37 +666,38 @@ mod disturbances {
 mod task_generator {
     //! Table I tasks: the promised level, valid worlds, solvable PDDL problems.
     use super::*;
+    use logic_lfd::experiments::tables::table1_task_seed;
+    use logic_lfd::experiments::tasks::initial_scene;
+    use logic_lfd::experiments::Level;
     use logic_lfd::plan::{self, NoClock, SearchConfig, SearchOutcome};
-    use logic_lfd::sim::disturb::Level;
-    use logic_lfd::sim::tasks;
 
     #[test]
     fn generated_tasks_load_and_their_problems_parse_and_are_solvable() {
         for b in Benchmark::ALL {
-            let ts = tasks::generate_table1(b, 12, 3).unwrap_or_else(|e| panic!("{b:?}: {e}"));
-            assert_eq!(ts.len(), 12);
             let dom = logic_lfd::pddl::parse_domain(b.domain_pddl(), "domain.pddl").unwrap();
-            for t in &ts {
-                assert_eq!(t.level, Level::ALL[t.index % 4]);
-                let w = World::from_snapshot(&t.scene)
-                    .unwrap_or_else(|e| panic!("{}: {e}", t.description));
+            for i in 0..12 {
+                let level = Level::ALL[i % 4];
+                let scene = initial_scene(b, level, table1_task_seed(b, i, 3))
+                    .unwrap_or_else(|e| panic!("{b:?} {level:?}: {e}"));
+                let w = World::from_json(&scene).unwrap_or_else(|e| panic!("{b:?} {i}: {e}"));
                 w.check_invariants().unwrap();
                 let blocks = w.block_names().len();
-                let want = b.blocks().len() + usize::from(t.level == Level::L4);
-                assert_eq!(blocks, want, "{b:?} {:?}", t.level);
-                let prob = logic_lfd::pddl::parse_problem(&t.problem_pddl, "task.pddl", &dom)
-                    .unwrap_or_else(|e| panic!("{}\n{e}", t.problem_pddl));
+                let want = b.blocks().len() + usize::from(level == Level::L4);
+                assert_eq!(blocks, want, "{b:?} {level:?}");
+                let problem = b.problem_for(&w, "task");
+                let prob = logic_lfd::pddl::parse_problem(&problem, "task.pddl", &dom)
+                    .unwrap_or_else(|e| panic!("{problem}\n{e}"));
                 let task = plan::ground(&dom, &prob).unwrap();
                 // The problem's init is the scene graph of the world.
+                let facts = SceneGraph::from_world(&w).to_strings();
                 assert_eq!(
-                    task.state_names(&task.state_from_names(&t.facts).unwrap()),
+                    task.state_names(&task.state_from_names(&facts).unwrap()),
                     task.state_names(&task.init)
                 );
                 let r = plan::search(&task, &SearchConfig::default(), &NoClock);
                 assert!(
                     matches!(r.outcome, SearchOutcome::Plan(_)),
-                    "{b:?} {}: {:?}",
-                    t.description,
+                    "{b:?} {level:?} task {i}: {:?}",
                     r.outcome
                 );
             }
@@ -672,12 +706,16 @@ mod task_generator {
 
     #[test]
     fn task_generation_is_deterministic() {
-        let a = tasks::generate(Benchmark::B1, Level::L3, 3, 9).unwrap();
-        let b = tasks::generate(Benchmark::B1, Level::L3, 3, 9).unwrap();
-        assert_eq!(a, b);
+        for level in Level::ALL {
+            assert_eq!(
+                initial_scene(Benchmark::B1, level, 9).unwrap(),
+                initial_scene(Benchmark::B1, level, 9).unwrap()
+            );
+        }
+        // Another seed, another motion-level variant.
         assert_ne!(
-            a[0].facts,
-            tasks::generate(Benchmark::B1, Level::L3, 1, 10).unwrap()[0].facts
+            initial_scene(Benchmark::B1, Level::L1, 9).unwrap(),
+            initial_scene(Benchmark::B1, Level::L1, 10).unwrap()
         );
     }
 }
@@ -989,20 +1027,20 @@ fn at_stroke_start(w: &mut World, bp: &Isometry3<f64>) -> (Isometry3<f64>, Isome
 fn the_hook_pulls_only_along_strokes_clear_of_the_shelf_and_within_the_arms_reach() {
     let mut w = Benchmark::B2.scene();
     // The template's far block: the radial stroke is clear.
-    assert!(disturb::hook_can_pull(&w, 0, "hook", "b"));
-    assert_eq!(disturb::handleable(&w, "b"), Ok(()));
+    assert!(reach::hook_can_pull(&w, 0, "hook", "b"));
+    assert_eq!(reach::handleable(&w, "b"), Ok(()));
     // Right behind the shelf, 0.73 m out: every stroke towards the base drags b into the shelf
     // or lowers the blade onto it.
     w.move_block("b", Vector3::new(0.38, -0.625, 0.03)).unwrap();
-    assert!(!disturb::hook_can_pull(&w, 0, "hook", "b"));
-    assert!(disturb::handleable(&w, "b").is_err());
+    assert!(!reach::hook_can_pull(&w, 0, "hook", "b"));
+    assert!(reach::handleable(&w, "b").is_err());
     // The same distance out on the open table is fine.
     w.move_block("b", Vector3::new(0.73, 0.0, 0.03)).unwrap();
-    assert!(disturb::hook_can_pull(&w, 0, "hook", "b"));
+    assert!(reach::hook_can_pull(&w, 0, "hook", "b"));
     // 1.15 m out the hook still reaches the block on the table, but the hand cannot come down
     // from the stroke's lifted pose.
     w.move_block("b", Vector3::new(1.14, -0.14, 0.03)).unwrap();
-    assert!(!disturb::hook_can_pull(&w, 0, "hook", "b"));
+    assert!(!reach::hook_can_pull(&w, 0, "hook", "b"));
 }
 
 #[test]
@@ -1053,9 +1091,9 @@ fn whether_the_hook_can_pull_does_not_depend_on_how_the_carrying_hand_is_tilted_
                 continue;
             }
             w.set_joints(0, level).unwrap();
-            let a = disturb::hook_can_pull(&w, 0, "hook", "b");
+            let a = reach::hook_can_pull(&w, 0, "hook", "b");
             w.set_joints(0, tilted).unwrap();
-            let b = disturb::hook_can_pull(&w, 0, "hook", "b");
+            let b = reach::hook_can_pull(&w, 0, "hook", "b");
             pullable += a as usize;
             if a != b {
                 differ.push(p);

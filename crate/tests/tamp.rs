@@ -4,12 +4,13 @@
 use logic_lfd::lfd::control::FailReason;
 use logic_lfd::lfd::exec::{ActionExec, ExecParams, ExecStatus};
 use logic_lfd::lfd::model::DomainModel;
-use logic_lfd::lfd::session::{BenchmarkId, Session, SessionOptions, SkillKind};
+use logic_lfd::lfd::session::{Session, SessionOptions, SkillKind};
 use logic_lfd::lfd::skill::SkillLibrary;
 use logic_lfd::lfd::TaskBuilder;
 use logic_lfd::lfd::{Method, Mode};
 use logic_lfd::plan::{replay, BannedTask};
 use logic_lfd::plan::{search, Algorithm, HeuristicKind, NoClock, SearchConfig, Task};
+use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::demo::PULL_TARGET_RADIUS;
 use logic_lfd::sim::geometry::{grasp_pose, hand_hits};
 use logic_lfd::sim::snapshot::ShapeSnapshot;
@@ -19,12 +20,12 @@ use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
 use logic_lfd::tamp::{classify, moves_body, ActionKind, Binder, Placement};
 use nalgebra::Vector3;
 
-fn model_and_task(b: BenchmarkId, world: &World) -> (DomainModel, Task) {
+fn model_and_task(b: Benchmark, world: &World) -> (DomainModel, Task) {
     model_and_task_for(b, world, &b.sources().unwrap().problem)
 }
 
 /// Like [`model_and_task`] with another problem text (its goal).
-fn model_and_task_for(b: BenchmarkId, world: &World, problem: &str) -> (DomainModel, Task) {
+fn model_and_task_for(b: Benchmark, world: &World, problem: &str) -> (DomainModel, Task) {
     let files = b.sources().unwrap();
     let model = DomainModel::new(
         &files.domain,
@@ -44,7 +45,7 @@ fn model_and_task_for(b: BenchmarkId, world: &World, problem: &str) -> (DomainMo
     (model, task)
 }
 
-fn template(b: BenchmarkId) -> World {
+fn template(b: Benchmark) -> World {
     World::from_json(&b.sources().unwrap().scene).unwrap()
 }
 
@@ -63,8 +64,8 @@ fn applicable_copies(b: &BannedTask, o: usize, s: &logic_lfd::plan::State) -> us
 
 #[test]
 fn banning_an_action_at_one_state_keeps_it_applicable_everywhere_else() {
-    let world = template(BenchmarkId::B1);
-    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let world = template(Benchmark::B1);
+    let (_, task) = model_and_task(Benchmark::B1, &world);
     let s0 = task.init.clone();
     let pick_c = op(&task, "(pick panda c)");
     assert!(task.operators[pick_c].applicable(&s0));
@@ -116,7 +117,7 @@ fn banning_an_action_at_one_state_keeps_it_applicable_everywhere_else() {
 
 #[test]
 fn tamp_from_scratch_binds_every_benchmark_with_certified_motions() {
-    for b in BenchmarkId::ALL {
+    for b in Benchmark::ALL {
         let world = template(b);
         let (_, task) = model_and_task(b, &world);
         let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
@@ -143,7 +144,7 @@ fn a_carried_block_crosses_a_tower_in_a_transit_that_the_executor_follows() {
     let hint = (0.30, 0.25, 0.0);
     let ops_of = |task: &Task| [op(task, "(pick panda a)"), op(task, "(place panda a)")];
     let bind = |world: &World| {
-        let (_, task) = model_and_task(BenchmarkId::B1, world);
+        let (_, task) = model_and_task(Benchmark::B1, world);
         let ops = ops_of(&task);
         let hints = [("(place panda a)".to_string(), hint)]
             .into_iter()
@@ -153,14 +154,14 @@ fn a_carried_block_crosses_a_tower_in_a_transit_that_the_executor_follows() {
         (r, binder.predicted_pose("a"), binder.stats, binder.bindings)
     };
     let at_hint = |p: Vector3<f64>| (p.x - hint.0).abs() < 1e-9 && (p.y - hint.1).abs() < 1e-9;
-    let free = template(BenchmarkId::B1);
+    let free = template(Benchmark::B1);
     let (r, pose, stats, bindings) = bind(&free);
     assert_eq!(r, Ok(()));
     assert!(at_hint(pose.unwrap().translation.vector));
     assert_eq!(stats.transits, 0, "{stats:?}");
     assert!(bindings.iter().all(|b| b.transit.is_none()), "{bindings:?}");
 
-    let mut tower = template(BenchmarkId::B1);
+    let mut tower = template(Benchmark::B1);
     for (name, z) in [("d", 0.03), ("c", 0.10), ("b", 0.17)] {
         tower.move_block(name, Vector3::new(0.35, 0.0, z)).unwrap();
     }
@@ -178,7 +179,7 @@ fn a_carried_block_crosses_a_tower_in_a_transit_that_the_executor_follows() {
     );
 
     // The executor flies the certified transit: the tower stands, a rests at the spot.
-    let (_, task) = model_and_task(BenchmarkId::B1, &tower);
+    let (_, task) = model_and_task(Benchmark::B1, &tower);
     let skills = b1_skills();
     let before: Vec<_> = ["b", "c", "d"]
         .iter()
@@ -204,7 +205,7 @@ fn an_empty_hand_low_beside_a_tower_reaches_its_top_through_a_transit() {
     // a stands on c on d; the open hand waits low beside the tower. The straight way up to the
     // pre-grasp above a swings the hand through c; the grasp is certified with a transit
     // (straight up, across, straight down), and the executor flies it without touching c.
-    let mut world = template(BenchmarkId::B1);
+    let mut world = template(Benchmark::B1);
     for (name, z) in [("d", 0.03), ("c", 0.10), ("a", 0.17)] {
         world.move_block(name, Vector3::new(0.55, 0.26, z)).unwrap();
     }
@@ -219,7 +220,7 @@ fn an_empty_hand_low_beside_a_tower_reaches_its_top_through_a_transit() {
         .expect("the low pose is reachable")
         .joints;
     world.set_joints(0, q).unwrap();
-    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let (_, task) = model_and_task(Benchmark::B1, &world);
     let ops = [op(&task, "(unstack panda a c)")];
     let mut binder = StreamBinder::new(&world, 5, StreamParams::default());
     binder.bind(&task, &ops, ops.len()).expect("certified");
@@ -267,7 +268,7 @@ fn an_empty_hand_low_beside_a_tower_reaches_its_top_through_a_transit() {
 
 #[test]
 fn the_pull_stream_predicts_where_the_executor_leaves_the_block() {
-    let b = BenchmarkId::B2;
+    let b = Benchmark::B2;
     let mut world = template(b);
     let (_, task) = model_and_task(b, &world);
     let ops = [
@@ -313,7 +314,7 @@ fn the_pull_stream_predicts_where_the_executor_leaves_the_block() {
 
 #[test]
 fn an_action_a_movable_body_blocked_is_banned_until_that_body_has_moved() {
-    let b = BenchmarkId::B2;
+    let b = Benchmark::B2;
     let world = template(b);
     let (_, task) = model_and_task(b, &world);
     let s0 = task.init.clone();
@@ -420,8 +421,8 @@ fn in_banned(b: &BannedTask, s0: &logic_lfd::plan::State, ops: &[usize]) -> logi
 /// first and forbade every way to the goal (no plan); a ban until c has moved does neither.
 #[test]
 fn an_action_banned_until_a_blocker_moves_waits_for_the_blocker_itself_not_its_facts() {
-    let world = template(BenchmarkId::B1);
-    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let world = template(Benchmark::B1);
+    let (_, task) = model_and_task(Benchmark::B1, &world);
     let names: Vec<String> = [
         "(clear a)",
         "(clear b)",
@@ -491,7 +492,7 @@ fn an_action_banned_until_a_blocker_moves_waits_for_the_blocker_itself_not_its_f
 
 #[test]
 fn a_block_in_the_way_of_a_pull_is_named_and_moved_out_of_the_way_first() {
-    let b = BenchmarkId::B2;
+    let b = Benchmark::B2;
     let mut world = template(b);
     // a in reach, where the hand's stroke to pull b in would hit it.
     world
@@ -538,7 +539,7 @@ fn a_block_in_the_way_of_a_pull_is_named_and_moved_out_of_the_way_first() {
 
 #[test]
 fn two_blocks_side_by_side_beyond_reach_block_each_others_pulls_and_the_check_agrees() {
-    let b = BenchmarkId::B2;
+    let b = Benchmark::B2;
     let mut world = template(b);
     // b stays at (0.95, 0.05); a beside it, also beyond the reach annulus. Whichever is pulled,
     // the hook sweeps through the other one.
@@ -556,7 +557,7 @@ fn two_blocks_side_by_side_beyond_reach_block_each_others_pulls_and_the_check_ag
         assert_eq!(binder.obstructions(1), [other], "pull {x}");
         // The soak's and the disturbances' check says so too (the hook's sweep is checked).
         assert!(
-            !logic_lfd::sim::disturb::hook_can_pull(&world, 0, "hook", x),
+            !logic_lfd::sim::reach::hook_can_pull(&world, 0, "hook", x),
             "hook_can_pull says {x} can be pulled"
         );
     }
@@ -564,7 +565,7 @@ fn two_blocks_side_by_side_beyond_reach_block_each_others_pulls_and_the_check_ag
 
 #[test]
 fn five_blocks_fit_on_the_b2_shelf_when_placements_are_packed() {
-    let b = BenchmarkId::B2;
+    let b = Benchmark::B2;
     let mut world = template(b);
     // Three more blocks in reach: a, b and these go to the 24 × 16 cm shelf, which holds
     // five 6 cm blocks (with the streams' clearance and room for the hand) only in rows;
@@ -607,7 +608,7 @@ fn five_blocks_fit_on_the_b2_shelf_when_placements_are_packed() {
 
 #[test]
 fn widening_the_samples_after_failed_skeletons_is_bounded() {
-    let world = template(BenchmarkId::B2);
+    let world = template(Benchmark::B2);
     let params = StreamParams::default();
     let mut binder = StreamBinder::new(&world, 1, params);
     binder.widen();
@@ -676,7 +677,7 @@ fn saved_world(name: &str) -> World {
 
 /// The streams' bindings of the B2 action `name` in `world`; panics unless it binds.
 fn b2_bind_one(world: &World, name: &str) -> (Task, [usize; 1], Vec<logic_lfd::tamp::Binding>) {
-    let (_, task) = model_and_task(BenchmarkId::B2, world);
+    let (_, task) = model_and_task(Benchmark::B2, world);
     let ops = [op(&task, name)];
     let mut binder = StreamBinder::new(world, 1, StreamParams::default());
     let r = binder.bind(&task, &ops, ops.len());
@@ -694,10 +695,10 @@ fn soak_4242_2219_a_stroke_whose_hook_presses_into_the_shelf_is_neither_planned_
     // far as the simulator does.
     let world = saved_world("soak-4242-2219");
     assert_eq!(world.held_by(0), Some("hook"));
-    assert!(!logic_lfd::sim::disturb::hook_can_pull(
+    assert!(!logic_lfd::sim::reach::hook_can_pull(
         &world, 0, "hook", "a"
     ));
-    let (_, task) = model_and_task(BenchmarkId::B2, &world);
+    let (_, task) = model_and_task(Benchmark::B2, &world);
     let ops = [op(&task, "(pull panda hook a)")];
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
     assert_eq!(binder.bind(&task, &ops, ops.len()), Err(0));
@@ -729,7 +730,7 @@ fn soak_4242_2388_an_arm_wound_to_a_joint_limit_unwinds_before_it_picks() {
         logic_lfd::sim::panda::limit_margin(&wound) < 1e-3,
         "{wound:?}"
     );
-    let (_, task) = model_and_task(BenchmarkId::B2, &world);
+    let (_, task) = model_and_task(Benchmark::B2, &world);
     let status = execute_learned(&mut world, &task, "(pick panda b)", &b2_skills());
     assert_eq!(status, ExecStatus::Done);
     assert_eq!(world.held_by(0), Some("b"));
@@ -787,16 +788,12 @@ fn soak_2026_2835_a_block_lifted_behind_the_base_with_a_joint_at_its_limit_reach
 
 /// B1's skills, learned from its demonstration.
 fn b1_skills() -> SkillLibrary {
-    SkillLibrary::learn(
-        &BenchmarkId::B1.sources().unwrap().demo,
-        SkillKind::Lqt,
-        &[],
-    )
+    SkillLibrary::learn(&Benchmark::B1.sources().unwrap().demo, SkillKind::Lqt, &[])
 }
 
 /// B2's skills, learned from its demonstration (the hook's grasp apart from the blocks').
 fn b2_skills() -> SkillLibrary {
-    let demo = BenchmarkId::B2.sources().unwrap().demo;
+    let demo = Benchmark::B2.sources().unwrap().demo;
     SkillLibrary::learn(&demo, SkillKind::Lqt, &["hook".to_string()])
 }
 
@@ -849,7 +846,7 @@ fn tick_to_end_watching(
 /// B2 with `block` moved to `(x, y)` on the table: the demonstration's `(pick panda block)`
 /// executed there with the learned skills grasps it.
 fn b2_pick_after_moving(block: &str, x: f64, y: f64) {
-    let b = BenchmarkId::B2;
+    let b = Benchmark::B2;
     let mut world = template(b);
     world
         .move_block_to(block, Vector3::new(x, y, 0.03), 0.0)
@@ -881,7 +878,7 @@ fn a_learned_approach_that_swings_the_hand_into_the_shelf_flies_over_and_comes_s
 /// B1 with block a on the table and c, on d beside it, overhanging a's corner by 4 mm (a user
 /// dragged d next to a, then an L1 nudged c; seed 31337, episode 554).
 fn b1_with_c_overhanging_a() -> World {
-    let mut world = template(BenchmarkId::B1);
+    let mut world = template(Benchmark::B1);
     world
         .move_block("a", Vector3::new(0.40, -0.25, 0.03))
         .unwrap();
@@ -911,7 +908,7 @@ fn a_block_under_an_overhang_is_not_picked_and_the_overhanging_block_is_named() 
     // lets a lifted body press 1.8 mm into another). The pick is now refused, certified or
     // not, with c named as what is in the way (so the search moves c first).
     let world = b1_with_c_overhanging_a();
-    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let (_, task) = model_and_task(Benchmark::B1, &world);
     let ops = [op(&task, "(pick panda a)")];
     for demo_from in [0, 1] {
         let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
@@ -937,7 +934,7 @@ fn a_lift_stopped_by_an_overhang_puts_the_block_back_and_lets_go() {
     // starts from a free hand, with a resting (not lost, not left in the gripper).
     let mut world = b1_with_c_overhanging_a();
     let a0 = world.body_pose("a").unwrap().translation.vector;
-    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let (_, task) = model_and_task(Benchmark::B1, &world);
     let skills = b1_skills();
     let status = execute_learned(&mut world, &task, "(pick panda a)", &skills);
     assert_eq!(
@@ -958,14 +955,14 @@ fn a_release_beside_a_tower_is_put_down_with_the_hand_where_it_was_certified() {
     // the hand faced the arm's heading: across, its palm 2 cm inside the tower. The streams now
     // try the hand nearest the heading first and the quarter turn next, and the executor puts
     // the hand where they certified it.
-    let mut world = template(BenchmarkId::B1);
+    let mut world = template(Benchmark::B1);
     for (name, z) in [("d", 0.03), ("c", 0.09)] {
         world
             .move_block(name, Vector3::new(0.5487, 0.2588, z))
             .unwrap();
     }
     let hint = (0.562, 0.171, 0.0);
-    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let (_, task) = model_and_task(Benchmark::B1, &world);
     let ops = [op(&task, "(pick panda b)"), op(&task, "(place panda b)")];
     let hints = [("(place panda b)".to_string(), hint)]
         .into_iter()
@@ -1023,7 +1020,7 @@ fn soak_4242_1816_a_load_the_arm_cannot_bring_lower_is_let_go_just_above_its_sup
     // support from that height.
     let mut world = saved_world("soak-4242-1816");
     assert_eq!(world.held_by(0), Some("a"));
-    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let (_, task) = model_and_task(Benchmark::B1, &world);
     let skills = b1_skills();
     let status = execute_learned(&mut world, &task, "(stack panda a b)", &skills);
     assert_eq!(status, ExecStatus::Done);
@@ -1034,7 +1031,7 @@ fn soak_4242_1816_a_load_the_arm_cannot_bring_lower_is_let_go_just_above_its_sup
 
 /// Runs a Logic-LfD session of benchmark `b` from the saved world `name` to its end, checking
 /// the world's invariants every tick; its outcome.
-fn run_from_saved_world(b: BenchmarkId, name: &str) -> Option<Result<(), FailReason>> {
+fn run_from_saved_world(b: Benchmark, name: &str) -> Option<Result<(), FailReason>> {
     let scene = serde_json::to_string(&saved_world(name).snapshot()).unwrap();
     let options = SessionOptions {
         benchmark: b,
@@ -1062,13 +1059,13 @@ fn soak_8080_1354_a_block_under_an_overhang_is_freed_by_moving_the_block_over_it
     // and c put back on d, where the goal wants it, did not. No plan was left. Now c's moves
     // are what count (and a's own, for a second ban with the tower rebuilt beside it).
     let world = saved_world("soak-8080-1354");
-    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let (_, task) = model_and_task(Benchmark::B1, &world);
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
     let pick_a = [op(&task, "(pick panda a)")];
     assert_eq!(binder.bind(&task, &pick_a, 1), Err(0));
     assert_eq!(binder.obstructions(0), vec!["c".to_string()]);
     assert_eq!(
-        run_from_saved_world(BenchmarkId::B1, "soak-8080-1354"),
+        run_from_saved_world(Benchmark::B1, "soak-8080-1354"),
         Some(Ok(()))
     );
 }
@@ -1111,7 +1108,7 @@ fn soak_8080_2819_a_block_is_not_put_down_where_the_arm_is_at_its_joint_limits()
     // `placement_inner_margin` beyond the minimum reach.
     let world = saved_world("soak-8080-2819");
     assert_eq!(world.held_by(0), Some("d"));
-    let (_, task) = model_and_task(BenchmarkId::B1, &world);
+    let (_, task) = model_and_task(Benchmark::B1, &world);
     let place = [op(&task, "(place panda d)")];
     let cramped = (0.2562, -0.0040, std::f64::consts::FRAC_PI_2);
     let hints = std::collections::BTreeMap::from([("(place panda d)".to_string(), cramped)]);
@@ -1137,7 +1134,7 @@ fn soak_8080_2819_a_block_is_not_put_down_where_the_arm_is_at_its_joint_limits()
 /// Puts the hook down at `(x, y)` (the hook's frame, unturned) from `world`, as the loop
 /// executes a bound `(place panda hook)`, checking the invariants every tick.
 fn place_hook_at(world: &mut World, x: f64, y: f64) {
-    let (_, task) = model_and_task(BenchmarkId::B2, world);
+    let (_, task) = model_and_task(Benchmark::B2, world);
     let ops = [op(&task, "(place panda hook)")];
     let bindings = [logic_lfd::tamp::Binding {
         placement: Some(Placement::At { x, y, yaw: 0.0 }),
@@ -1235,7 +1232,7 @@ fn soak_1234_1323_a_hand_over_spot_is_found_beside_a_tower_in_the_hand_over_regi
     // keeps 1 cm inside the region.
     let world = saved_world("soak-1234-1323");
     assert_eq!(world.held_by(0), Some("f"));
-    let b = BenchmarkId::B3;
+    let b = Benchmark::B3;
     let (_, task) = model_and_task(b, &world);
     let place = [op(&task, "(place left f handover)")];
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
@@ -1258,7 +1255,7 @@ fn soak_1234_1323_a_hand_over_spot_is_found_beside_a_tower_in_the_hand_over_regi
 
 /// B2's template world with the arm holding the hook (the demonstration's pick, learned skills).
 fn b2_holding_hook() -> (World, Task) {
-    let b = BenchmarkId::B2;
+    let b = Benchmark::B2;
     let mut world = template(b);
     let (_, task) = model_and_task(b, &world);
     assert_eq!(

@@ -8,54 +8,22 @@
 use serde::{Deserialize, Serialize};
 
 use crate::lfd::control::{FailReason, Replan};
+pub use crate::lfd::disturb::Level;
 use crate::lfd::session::{
-    mix, BenchmarkId, EpisodeLog, Injection, Session, SessionError, SessionOptions, SessionParams,
-    SkillKind,
+    mix, EpisodeLog, Injection, Session, SessionError, SessionOptions, SessionParams, SkillKind,
 };
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
+use crate::sim::benchmark::Benchmark;
 
-/// Disturbance levels of the paper (§IV-B).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Level {
-    /// Motion level: positions change, facts do not.
-    L1,
-    /// Slight task level: facts change to a state seen in the demonstration.
-    L2,
-    /// Severe task level: facts change to a state the demonstration never visits.
-    L3,
-    /// Extreme task level: a new block appears in the way.
-    L4,
-}
-
-impl Level {
-    /// All levels.
-    pub const ALL: [Level; 4] = [Level::L1, Level::L2, Level::L3, Level::L4];
-
-    /// `l1`..`l4`.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Level::L1 => "l1",
-            Level::L2 => "l2",
-            Level::L3 => "l3",
-            Level::L4 => "l4",
-        }
-    }
-
-    /// Parses `l1`..`l4` (case-insensitive).
-    pub fn parse(s: &str) -> Option<Level> {
-        Level::ALL
-            .into_iter()
-            .find(|l| l.as_str().eq_ignore_ascii_case(s))
-    }
-}
+/// The draw of the episode's seed that picks the action after which the disturbance comes.
+const INJECT_AFTER_DRAW: u64 = 77;
 
 /// What to run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EpisodeSpec {
     /// Benchmark.
-    pub benchmark: BenchmarkId,
+    pub benchmark: Benchmark,
     /// Disturbance injected during execution (`None`: undisturbed).
     pub level: Option<Level>,
     /// Method.
@@ -117,7 +85,7 @@ pub fn run_episode(
     let sources = spec.benchmark.sources()?;
     let mut s = Session::with_sources(options, &sources, spec.scene.as_deref(), None, params)?;
     let n = s.controller().trace().len().max(3);
-    let inject_after = 1 + (mix(spec.seed, 77) % (n as u64 - 2)) as usize;
+    let inject_after = 1 + (mix(spec.seed, INJECT_AFTER_DRAW) % (n as u64 - 2)) as usize;
     let mut injection = None;
     let mut next_try = inject_after;
     let max_ticks = (params.max_time / s.world().dt()).ceil() as u64 + 10;

@@ -2,8 +2,8 @@
 //! initial states) and Table II (reactivity to disturbances L1–L4), with report writers that put
 //! the measured numbers beside the paper's.
 //!
-//! * Table I: per benchmark, `tasks` random initial states (levels L1–L4 in turn, from the
-//!   simulator's task generator); methods `linear`, `tamp`, `logic-lfd` (both modes) run the
+//! * Table I: per benchmark, `tasks` random initial states (levels L1–L4 in turn, drawn by
+//!   [`tasks`]); methods `linear`, `tamp`, `logic-lfd` (both modes) run the
 //!   whole closed-loop episode from that state; success rate, and planning time of the first plan
 //!   (mean ± sd and median, caller's clock).
 //! * Table II: per benchmark and level, `trials` episodes from the template scene with one

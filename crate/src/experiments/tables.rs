@@ -5,9 +5,10 @@ use serde::{Deserialize, Serialize};
 
 use nalgebra::{Isometry3, Translation3, Vector3};
 
-use crate::lfd::session::{mix, BenchmarkId, SessionError, SessionParams};
+use crate::lfd::session::{mix, SessionError, SessionParams};
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
+use crate::sim::benchmark::Benchmark;
 use crate::sim::demo::{pull_hook_poses, PULL_TARGET_RADIUS};
 use crate::sim::geometry::grasp_pose;
 use crate::sim::snapshot::BodyKind;
@@ -124,7 +125,7 @@ pub const PAPER_TABLE2: [(&str, [[MeanSd; 3]; 4]); 3] = [
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Table1Cell {
     /// Benchmark.
-    pub benchmark: BenchmarkId,
+    pub benchmark: Benchmark,
     /// Method.
     pub method: Method,
     /// Multi-goal mode (Logic-LfD; `paper` for the others).
@@ -169,7 +170,7 @@ pub struct Table1 {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Redraw {
     /// Benchmark.
-    pub benchmark: BenchmarkId,
+    pub benchmark: Benchmark,
     /// Task index.
     pub task: usize,
     /// Draws made (the last one is used).
@@ -298,7 +299,7 @@ pub fn infeasible(world: &World) -> Option<String> {
 /// `task_seed` itself). Returns the scene JSON and the draw used; an error names the task when
 /// every draw is infeasible (tasks are never dropped silently).
 pub fn table1_scene(
-    b: BenchmarkId,
+    b: Benchmark,
     level: Level,
     task_seed: u64,
 ) -> Result<(String, usize), SessionError> {
@@ -324,14 +325,14 @@ pub fn table1_scene(
 }
 
 /// The seed of Table I task `index` of benchmark `b` in a run seeded `seed`.
-pub fn table1_task_seed(b: BenchmarkId, index: usize, seed: u64) -> u64 {
+pub fn table1_task_seed(b: Benchmark, index: usize, seed: u64) -> u64 {
     mix(seed, (b as u64) << 32 | index as u64)
 }
 
 /// Runs Table I: `tasks` initial states per benchmark ([`table1_scene`]), levels L1..L4 in
 /// turn; every method runs the closed loop from each state.
 pub fn table1(
-    benchmarks: &[BenchmarkId],
+    benchmarks: &[Benchmark],
     tasks: usize,
     seed: u64,
     params: SessionParams,
@@ -483,7 +484,7 @@ pub struct Table2Cell {
     /// Method.
     pub method: Method,
     /// Benchmark.
-    pub benchmark: BenchmarkId,
+    pub benchmark: Benchmark,
     /// Execution times of successful trials (s).
     pub times: Vec<f64>,
     /// Trials run.
@@ -510,7 +511,7 @@ pub const TABLE2_METHODS: [Method; 3] = [Method::Linear, Method::Rlds, Method::L
 
 /// Runs Table II: `trials` disturbed episodes per level, method and benchmark.
 pub fn table2(
-    benchmarks: &[BenchmarkId],
+    benchmarks: &[Benchmark],
     trials: usize,
     seed: u64,
     params: SessionParams,
@@ -578,7 +579,7 @@ impl Table2 {
             self.seed,
             self.seed + self.trials as u64 - 1
         ));
-        let mut benches: Vec<BenchmarkId> = self.cells.iter().map(|c| c.benchmark).collect();
+        let mut benches: Vec<Benchmark> = self.cells.iter().map(|c| c.benchmark).collect();
         benches.dedup();
         benches.sort_by_key(|b| *b as usize);
         benches.dedup();

@@ -7,17 +7,19 @@
 //! visits, L4 with an extra block in the way.
 
 use crate::lfd::demo::DemoTrace;
-use crate::lfd::disturb;
-use crate::lfd::session::{demo_actions, mix, BenchmarkId, SessionError};
+use crate::lfd::disturb::{self, Level};
+use crate::lfd::session::{demo_actions, mix, SessionError};
 use crate::lfd::TaskBuilder as _;
+use crate::sim::benchmark::Benchmark;
 use crate::sim::{SceneGraph, World};
 
-use super::episode::Level;
+/// Seeded attempts at a level before a task falls back to a motion-level variant.
+const ATTEMPTS: u64 = 8;
 
-/// The initial world (as scene JSON) of a Table I task.
-pub fn initial_scene(b: BenchmarkId, level: Level, seed: u64) -> Result<String, SessionError> {
+/// The benchmark's demonstration trace L_0..L_N, derived on its template task: what "seen in
+/// the demonstration" means to the injector.
+pub fn demo_trace(b: Benchmark) -> Result<DemoTrace, SessionError> {
     let files = b.sources()?;
-    let mut world = World::from_json(&files.scene)?;
     let template = World::from_json(&files.scene)?;
     let model = crate::lfd::model::DomainModel::new(
         &files.domain,
@@ -31,17 +33,24 @@ pub fn initial_scene(b: BenchmarkId, level: Level, seed: u64) -> Result<String, 
         .map(|o| (o.name, o.kind))
         .collect();
     let task = model.build(&objects, &SceneGraph::from_world(&template).to_strings())?;
-    let trace = DemoTrace::derive(&task, &demo_actions(&files.demo)?)?;
+    Ok(DemoTrace::derive(&task, &demo_actions(&files.demo)?)?)
+}
+
+/// The initial world (as scene JSON) of a Table I task.
+pub fn initial_scene(b: Benchmark, level: Level, seed: u64) -> Result<String, SessionError> {
+    let files = b.sources()?;
+    let mut world = World::from_json(&files.scene)?;
+    let trace = demo_trace(b)?;
     // Up to a few attempts with derived seeds: a level may be impossible from some draws.
     let mut last = String::new();
-    for attempt in 0..8 {
+    for attempt in 0..ATTEMPTS {
         let s = mix(seed, attempt);
         let mut w = world.clone();
-        match disturb::inject(&mut w, level.as_str(), &trace, &[], s) {
+        match disturb::inject(&mut w, level, &trace, &[], s) {
             Ok(_) => {
                 // L1 tasks get a second motion-level variation for spread.
                 if level == Level::L1 {
-                    let _ = disturb::inject(&mut w, "l1", &trace, &[], mix(s, 1));
+                    let _ = disturb::inject(&mut w, Level::L1, &trace, &[], mix(s, 1));
                 }
                 world = w;
                 return serde_json::to_string(&world.snapshot())

@@ -379,7 +379,7 @@ impl RawRecording {
         let mut o = serde_json::Map::new();
         match &self.scene {
             RecordingScene::Benchmark(b) => {
-                o.insert("benchmark".into(), Value::String(b.id().into()));
+                o.insert("benchmark".into(), Value::String(b.as_str().into()));
             }
             RecordingScene::Scene(s) => {
                 o.insert(

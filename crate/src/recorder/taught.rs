@@ -20,12 +20,14 @@ use serde::{Deserialize, Serialize};
 
 use super::{RecorderError, SkillFit, TaughtDemo};
 use crate::lfd::demo::DemoTrace;
+use crate::lfd::disturb::Level;
 use crate::lfd::model::DomainModel;
 use crate::lfd::session::{
-    mix, BenchmarkId, BenchmarkSources, Session, SessionOptions, SessionParams, SkillKind,
+    mix, BenchmarkSources, Session, SessionOptions, SessionParams, SkillKind,
 };
 use crate::lfd::{Method, Mode, TaskBuilder as _};
 use crate::lqt::{Skill, SkillParams};
+use crate::sim::benchmark::Benchmark;
 use crate::sim::demo::Demonstration;
 use crate::sim::{SceneGraph, World};
 use nalgebra::{Isometry3, Point3};
@@ -34,7 +36,7 @@ use nalgebra::{Isometry3, Point3};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TaughtInfo {
     /// `b1`, `b2` or `b3`: the benchmark whose world and domain the demonstration uses.
-    pub benchmark: BenchmarkId,
+    pub benchmark: Benchmark,
     /// a_1..a_N.
     pub actions: Vec<String>,
     /// The arm of each action.
@@ -95,8 +97,8 @@ pub fn parse(demo_json: &str) -> Result<TaughtDemo, RecorderError> {
 }
 
 /// The benchmark whose world (by the scene's name) a taught demo uses.
-pub fn benchmark_of(t: &TaughtDemo) -> Result<BenchmarkId, RecorderError> {
-    BenchmarkId::parse(&t.scene.name).ok_or_else(|| {
+pub fn benchmark_of(t: &TaughtDemo) -> Result<Benchmark, RecorderError> {
+    Benchmark::parse(&t.scene.name).ok_or_else(|| {
         refused(format!(
             "the demonstration's world `{}` is none of the benchmarks b1, b2, b3: a taught task runs \
              in a benchmark's workcell",
@@ -139,12 +141,7 @@ fn sources_with_goal(
             objects.push_str(&format!(" {} - {}", o.name, o.kind));
         }
     }
-    let statics: Vec<String> = b
-        .sim()
-        .static_facts()
-        .iter()
-        .map(|f| f.to_string())
-        .collect();
+    let statics: Vec<String> = b.static_facts().iter().map(|f| f.to_string()).collect();
     let problem = format!(
         "(define (problem taught) (:domain {})\n  (:objects{})\n  (:init {} {})\n  (:goal (and {})))\n",
         domain.name.text,
@@ -240,7 +237,6 @@ pub fn load(demo_json: &str) -> Result<(TaughtDemo, TaughtInfo), RecorderError> 
         .collect();
     let last = states.last().cloned().unwrap_or_default();
     let statics: Vec<String> = benchmark
-        .sim()
         .static_facts()
         .iter()
         .map(|f| f.to_string())
@@ -280,7 +276,7 @@ pub fn random_scene(demo_json: &str, seed: u64) -> Result<String, RecorderError>
     for attempt in 0..8u64 {
         let s = mix(seed, attempt);
         let mut w = template.clone();
-        let changed = ["l3", "l2"].iter().any(|level| {
+        let changed = [Level::L3, Level::L2].into_iter().any(|level| {
             match crate::lfd::disturb::inject(&mut w, level, &trace, &[], s) {
                 Ok(_) => true,
                 Err(e) => {
@@ -290,7 +286,7 @@ pub fn random_scene(demo_json: &str, seed: u64) -> Result<String, RecorderError>
             }
         });
         if changed {
-            let _ = crate::lfd::disturb::inject(&mut w, "l1", &trace, &[], mix(s, 1));
+            let _ = crate::lfd::disturb::inject(&mut w, Level::L1, &trace, &[], mix(s, 1));
             return serde_json::to_string(&w.snapshot())
                 .map_err(|e| RecorderError::Model(e.to_string()));
         }

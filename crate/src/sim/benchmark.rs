@@ -16,13 +16,16 @@ use super::panda::{self, DOF};
 use super::scene_graph::{Fact, SceneGraph};
 use super::snapshot::*;
 use super::world::World;
+use super::SceneError;
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+use serde::{Deserialize, Serialize};
 
 /// Side of a block (m).
 pub const BLOCK_SIZE: f64 = 0.06;
 
-/// One of the paper's benchmarks.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+/// One of the paper's benchmarks (JSON and CLI: `b1`, `b2`, `b3`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Benchmark {
     /// Tower construction: one arm, four blocks.
     B1,
@@ -51,8 +54,8 @@ impl Benchmark {
         }
     }
 
-    /// Short id (`b1`, `b2`, `b3`).
-    pub fn id(self) -> &'static str {
+    /// Short name (`b1`, `b2`, `b3`), as on the CLI and in JSON.
+    pub fn as_str(self) -> &'static str {
         match self {
             Benchmark::B1 => "b1",
             Benchmark::B2 => "b2",
@@ -85,6 +88,31 @@ impl Benchmark {
             Benchmark::B2 => include_str!("../../../domains/b2-workspace-reach/problem.pddl"),
             Benchmark::B3 => include_str!("../../../domains/b3-dual-arm/problem.pddl"),
         }
+    }
+
+    /// The demonstration (`domains/<dir>/demo.json`).
+    pub fn demo_json(self) -> &'static str {
+        match self {
+            Benchmark::B1 => include_str!("../../../domains/b1-tower/demo.json"),
+            Benchmark::B2 => include_str!("../../../domains/b2-workspace-reach/demo.json"),
+            Benchmark::B3 => include_str!("../../../domains/b3-dual-arm/demo.json"),
+        }
+    }
+
+    /// The benchmark's files (embedded in the library), the scene as the JSON of
+    /// [`Benchmark::scene_snapshot`].
+    pub fn sources(self) -> Result<BenchmarkSources, SceneError> {
+        let scene = serde_json::to_string(&self.scene_snapshot()).map_err(|e| SceneError {
+            path: "snapshot".into(),
+            message: e.to_string(),
+        })?;
+        Ok(BenchmarkSources {
+            dir: self.dir_name().to_string(),
+            domain: self.domain_pddl().to_string(),
+            problem: self.problem_pddl().to_string(),
+            scene,
+            demo: self.demo_json().to_string(),
+        })
     }
 
     /// The goal facts (the same for every task of the benchmark).
@@ -254,6 +282,21 @@ impl Benchmark {
         }
         s
     }
+}
+
+/// The text of a benchmark's files (a taught task's too: its own problem, scene and demo).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BenchmarkSources {
+    /// Directory name under `domains/` (for error messages).
+    pub dir: String,
+    /// `domain.pddl`.
+    pub domain: String,
+    /// `problem.pddl` (the template task).
+    pub problem: String,
+    /// `scene.json` (the template task's initial world).
+    pub scene: String,
+    /// `demo.json` (the demonstration).
+    pub demo: String,
 }
 
 /// A pose snapshot at `p` with yaw `yaw`.

@@ -1,6 +1,6 @@
 //! A small deterministic kinematic world: tables, a shelf, 6 cm blocks, a hook and 7-DoF
-//! Panda-like arms (paper §IV, benchmarks B1–B3), its scene graph of PDDL facts, the
-//! disturbances L1–L4 and the benchmark task generator.
+//! Panda-like arms (paper §IV, benchmarks B1–B3), its scene graph of PDDL facts and the reach
+//! queries that say whether an arm can work a block where it lies.
 //!
 //! # Model
 //!
@@ -67,12 +67,11 @@
 
 pub mod benchmark;
 pub mod demo;
-pub mod disturb;
 pub mod geometry;
 pub mod panda;
+pub mod reach;
 pub mod scene_graph;
 pub mod snapshot;
-pub mod tasks;
 mod world;
 
 pub use scene_graph::{Fact, SceneGraph};

@@ -3,8 +3,9 @@
 
 use super::{js_err, PerformanceClock};
 use crate::experiments::{run_episode, EpisodeSpec, Level};
-use crate::lfd::session::{BenchmarkId, SessionParams};
+use crate::lfd::session::SessionParams;
 use crate::lfd::{Method, Mode};
+use crate::sim::benchmark::Benchmark;
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 
@@ -43,7 +44,7 @@ impl Default for EpisodeOptions {
 }
 
 fn spec_of(o: EpisodeOptions) -> Result<(EpisodeSpec, bool), String> {
-    let benchmark = BenchmarkId::parse(&o.benchmark).ok_or_else(|| {
+    let benchmark = Benchmark::parse(&o.benchmark).ok_or_else(|| {
         format!(
             "benchmark: unknown benchmark {:?} (b1, b2, b3)",
             o.benchmark

@@ -142,7 +142,7 @@ impl Teacher {
     fn state(&self) -> TeachState {
         TeachState {
             t: self.inner.time(),
-            benchmark: self.benchmark.id().to_string(),
+            benchmark: self.benchmark.as_str().to_string(),
             segments: self.inner.segments(),
             states: self.inner.demo_states(),
             facts: self.inner.facts().to_vec(),

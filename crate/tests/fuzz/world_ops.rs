@@ -4,7 +4,8 @@
 //! hold (oracle: `experiments::fuzz::check`, target `world-ops`).
 
 use logic_lfd::experiments::fuzz::{Target, WorldOp};
-use logic_lfd::lfd::session::{BenchmarkId, Session, SessionOptions};
+use logic_lfd::lfd::session::{Session, SessionOptions};
+use logic_lfd::sim::benchmark::Benchmark;
 use proptest::prelude::*;
 use rand::SeedableRng;
 
@@ -23,7 +24,7 @@ fn refused_world_operations_change_nothing_accepted_ones_keep_the_invariants() {
 fn a_refused_session_perturb_changes_neither_world_nor_log() {
     let s = std::cell::RefCell::new(
         Session::new(SessionOptions {
-            benchmark: BenchmarkId::B1,
+            benchmark: Benchmark::B1,
             method: Default::default(),
             mode: Default::default(),
             seed: 3,

@@ -6,13 +6,14 @@ use std::cell::Cell;
 
 use logic_lfd::experiments::{run_episode, EpisodeSpec, Level};
 use logic_lfd::lfd::control::FailReason;
-use logic_lfd::lfd::session::{BenchmarkId, SessionParams};
+use logic_lfd::lfd::session::SessionParams;
 use logic_lfd::lfd::{Method, Mode};
 use logic_lfd::pddl::{parse_domain, parse_problem};
 use logic_lfd::plan::{
     ground, search, search_multi_goal, Algorithm, Budget, Clock, HeuristicKind, MultiGoalMode,
     NoClock, SearchConfig, SearchOutcome, Task,
 };
+use logic_lfd::sim::benchmark::Benchmark;
 
 /// A clock that advances by `step` seconds every time it is read.
 struct SteppingClock {
@@ -135,7 +136,7 @@ fn an_episode_out_of_planning_budget_states_it_instead_of_hanging() {
     let mut params = SessionParams::default();
     params.control.search.max_nodes = Some(1);
     let spec = EpisodeSpec {
-        benchmark: BenchmarkId::B1,
+        benchmark: Benchmark::B1,
         // L3 leaves the demonstration: the replan must search.
         level: Some(Level::L3),
         method: Method::LogicLfd,
@@ -164,7 +165,7 @@ fn an_episode_out_of_simulated_time_states_it() {
         ..SessionParams::default()
     };
     let spec = EpisodeSpec {
-        benchmark: BenchmarkId::B1,
+        benchmark: Benchmark::B1,
         level: None,
         method: Method::LogicLfd,
         mode: Mode::Paper,

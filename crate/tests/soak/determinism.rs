@@ -4,11 +4,12 @@
 
 use logic_lfd::experiments::soak::{soak, SoakParams};
 use logic_lfd::experiments::{run_episode, EpisodeSpec, Level};
-use logic_lfd::lfd::session::{BenchmarkId, Session, SessionParams};
+use logic_lfd::lfd::session::{Session, SessionParams};
 use logic_lfd::lfd::{Method, Mode};
 use logic_lfd::plan::NoClock;
+use logic_lfd::sim::benchmark::Benchmark;
 
-fn episode_json(b: BenchmarkId, level: Option<Level>, seed: u64) -> String {
+fn episode_json(b: Benchmark, level: Option<Level>, seed: u64) -> String {
     let spec = EpisodeSpec {
         benchmark: b,
         level,
@@ -24,9 +25,9 @@ fn episode_json(b: BenchmarkId, level: Option<Level>, seed: u64) -> String {
 #[test]
 fn same_seed_gives_byte_identical_episode_json_across_runs() {
     for (b, level, seed) in [
-        (BenchmarkId::B1, Some(Level::L3), 5),
-        (BenchmarkId::B2, Some(Level::L1), 6),
-        (BenchmarkId::B3, Some(Level::L4), 7),
+        (Benchmark::B1, Some(Level::L3), 5),
+        (Benchmark::B2, Some(Level::L1), 6),
+        (Benchmark::B3, Some(Level::L4), 7),
     ] {
         let a = episode_json(b, level, seed);
         let c = episode_json(b, level, seed);
@@ -34,17 +35,17 @@ fn same_seed_gives_byte_identical_episode_json_across_runs() {
     }
     // And the seed matters: another seed gives another episode.
     assert_ne!(
-        episode_json(BenchmarkId::B1, Some(Level::L3), 5),
-        episode_json(BenchmarkId::B1, Some(Level::L3), 9)
+        episode_json(Benchmark::B1, Some(Level::L3), 5),
+        episode_json(Benchmark::B1, Some(Level::L3), 9)
     );
 }
 
 #[test]
 fn a_logged_episode_replays_to_byte_identical_json() {
     for (b, level, seed) in [
-        (BenchmarkId::B1, None, 1),
-        (BenchmarkId::B1, Some(Level::L2), 3),
-        (BenchmarkId::B1, Some(Level::L4), 4),
+        (Benchmark::B1, None, 1),
+        (Benchmark::B1, Some(Level::L2), 3),
+        (Benchmark::B1, Some(Level::L4), 4),
     ] {
         let json = episode_json(b, level, seed);
         let replayed = Session::replay(&json).unwrap().episode_json();
@@ -94,7 +95,7 @@ fn every_f64_round_trips_through_json_bit_for_bit() {
 fn an_episode_with_full_precision_drags_replays_to_identical_json() {
     use logic_lfd::lfd::session::SessionOptions;
     use rand::{Rng, SeedableRng};
-    for (b, seed) in [(BenchmarkId::B1, 21), (BenchmarkId::B3, 22)] {
+    for (b, seed) in [(Benchmark::B1, 21), (Benchmark::B3, 22)] {
         let mut s = Session::new(SessionOptions {
             benchmark: b,
             method: Method::LogicLfd,

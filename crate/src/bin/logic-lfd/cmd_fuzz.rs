@@ -18,6 +18,9 @@ use logic_lfd::experiments::fuzz::{self, FuzzParams, Target};
 
 use crate::exit;
 
+/// Elapsed time below which a rate is not divided by the time itself (s).
+const MIN_ELAPSED_S: f64 = 1e-9;
+
 /// Arguments of `fuzz`.
 #[derive(clap::Args)]
 pub struct Args {
@@ -143,7 +146,7 @@ pub fn run(args: Args) -> ExitCode {
                 target.as_str(),
                 report.inputs,
                 secs,
-                report.inputs as f64 / secs.max(1e-9),
+                report.inputs as f64 / secs.max(MIN_ELAPSED_S),
                 slowest.0,
                 slowest.1,
                 report.accepted,

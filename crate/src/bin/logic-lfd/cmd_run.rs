@@ -11,8 +11,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use logic_lfd::experiments::{run_episode, EpisodeReport, EpisodeSpec, Level};
-use logic_lfd::lfd::session::{BenchmarkId, EpisodeLog, Session, SessionParams};
+use logic_lfd::lfd::session::{EpisodeLog, Session, SessionParams};
 use logic_lfd::lfd::{Method, Mode};
+use logic_lfd::sim::benchmark::Benchmark;
 
 use crate::cmd_plan::WallClock;
 use crate::exit;
@@ -56,7 +57,7 @@ pub fn run(args: Args) -> ExitCode {
     if let Some(path) = &args.replay {
         return replay(path);
     }
-    let Some(benchmark) = BenchmarkId::parse(&args.benchmark) else {
+    let Some(benchmark) = Benchmark::parse(&args.benchmark) else {
         return bad(format!(
             "--benchmark: unknown benchmark {:?} (b1, b2, b3)",
             args.benchmark

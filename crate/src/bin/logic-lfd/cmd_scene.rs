@@ -4,13 +4,14 @@
 //! * `scene check SCENE.json` — load with validation, then check the invariants;
 //! * `scene template b1|b2|b3` — print a benchmark's template scene;
 //! * `scene problem SCENE.json --benchmark b1` — the PDDL problem of that world and the goal;
-//! * `scene disturb SCENE.json --benchmark b1 --level l3 [--seed N]` — apply an injector, print
-//!   `{"disturbance": …, "scene": …}`.
+//! * `scene disturb SCENE.json --benchmark b1 --level l3 [--seed N]` — apply the injector of
+//!   Tables I/II, the soak and the page (`lfd::disturb`, "seen" meaning a state of the
+//!   benchmark's demonstration), print `{"disturbance": …, "scene": …}`.
 
 use crate::exit;
+use logic_lfd::experiments::tasks::demo_trace;
+use logic_lfd::lfd::disturb::{inject, Level};
 use logic_lfd::sim::benchmark::Benchmark;
-use logic_lfd::sim::demo::demo_states;
-use logic_lfd::sim::disturb::{inject, Level};
 use logic_lfd::sim::{SceneGraph, World};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -50,7 +51,10 @@ enum Action {
         #[arg(long)]
         benchmark: String,
     },
-    /// Apply a disturbance (L1–L4) and print it with the new scene.
+    /// Apply a disturbance (L1–L4) as Tables I/II, the soak and the page do, and print it with
+    /// the new scene. L1 moves one block by 2–5 cm keeping the facts; L2 moves one block to a
+    /// state of the demonstration; L3 to a state it never visits; L4 adds a block on top of a
+    /// clear block (B1, B3) or on the table (B2).
     Disturb {
         /// Scene JSON.
         scene: PathBuf,
@@ -138,11 +142,11 @@ fn run_inner(args: Args) -> Result<(), ExitCode> {
                 return Err(ExitCode::from(exit::BAD_INPUT));
             };
             let mut w = load(&scene)?;
-            let states = demo_states(b).map_err(|e| {
+            let trace = demo_trace(b).map_err(|e| {
                 eprintln!("{}: {e}", b.dir_name());
                 ExitCode::from(exit::BAD_INPUT)
             })?;
-            match inject(&mut w, b, level, &states, seed) {
+            match inject(&mut w, level, &trace, &[], seed) {
                 Ok(d) => {
                     let out = serde_json::json!({ "disturbance": d, "scene": w.snapshot() });
                     println!("{out}");

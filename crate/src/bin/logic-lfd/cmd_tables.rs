@@ -6,7 +6,8 @@ use std::process::ExitCode;
 
 use logic_lfd::experiments::tables::{table1, table1_scene, table1_task_seed, table2};
 use logic_lfd::experiments::Level;
-use logic_lfd::lfd::session::{BenchmarkId, SessionError, SessionParams};
+use logic_lfd::lfd::session::{SessionError, SessionParams};
+use logic_lfd::sim::benchmark::Benchmark;
 
 use crate::cmd_plan::WallClock;
 use crate::exit;
@@ -55,11 +56,11 @@ pub struct Table2Args {
     json: bool,
 }
 
-fn benchmarks(names: &[String]) -> Result<Vec<BenchmarkId>, String> {
+fn benchmarks(names: &[String]) -> Result<Vec<Benchmark>, String> {
     names
         .iter()
         .map(|n| {
-            BenchmarkId::parse(n).ok_or_else(|| format!("--benchmarks: unknown benchmark {n:?}"))
+            Benchmark::parse(n).ok_or_else(|| format!("--benchmarks: unknown benchmark {n:?}"))
         })
         .collect()
 }

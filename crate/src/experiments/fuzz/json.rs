@@ -6,10 +6,11 @@ use rand_pcg::Pcg64Mcg;
 use serde_json::{json, Value};
 
 use super::{ensure, idx, Verdict};
-use crate::lfd::session::{BenchmarkId, EpisodeLog, Session, SessionError, SessionOptions};
+use crate::lfd::session::{EpisodeLog, Session, SessionError, SessionOptions};
 use crate::lqt::case::{run_case, CaseInput};
 use crate::lqt::LqtError;
 use crate::plan::NoClock;
+use crate::sim::benchmark::Benchmark;
 use crate::sim::{SceneGraph, Violation, World};
 
 // ------------------------------------------------------------------------------ base inputs
@@ -37,7 +38,7 @@ pub(super) fn base_case() -> String {
 /// A short B1 episode (a drag and an injection) as JSON.
 pub(super) fn base_episode() -> Result<String, String> {
     let mut s = Session::new(SessionOptions {
-        benchmark: BenchmarkId::B1,
+        benchmark: Benchmark::B1,
         method: Default::default(),
         mode: Default::default(),
         seed: 11,

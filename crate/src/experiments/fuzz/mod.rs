@@ -44,7 +44,8 @@ use rand_pcg::Pcg64Mcg;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
-use crate::lfd::session::{demo_actions, mix, BenchmarkId};
+use crate::lfd::session::{demo_actions, mix};
+use crate::sim::benchmark::Benchmark;
 
 /// An input format under test.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -114,10 +115,10 @@ pub enum Verdict {
 // ------------------------------------------------------------------------------ base inputs
 
 /// The benchmark folders whose files are base inputs, with the benchmark each one holds.
-const BENCH_DIRS: [(&str, BenchmarkId); 3] = [
-    ("b1-tower", BenchmarkId::B1),
-    ("b2-workspace-reach", BenchmarkId::B2),
-    ("b3-dual-arm", BenchmarkId::B3),
+const BENCH_DIRS: [(&str, Benchmark); 3] = [
+    ("b1-tower", Benchmark::B1),
+    ("b2-workspace-reach", Benchmark::B2),
+    ("b3-dual-arm", Benchmark::B3),
 ];
 
 /// The base inputs of a target (mutations start from one of them).
@@ -224,7 +225,7 @@ fn ensure(ok: bool, msg: impl FnOnce() -> String) -> Result<(), String> {
 }
 
 /// The benchmark a `; fuzz <dir> …` header names (B1 without a header), and the header's words.
-fn header(input: &str) -> (BenchmarkId, Vec<String>) {
+fn header(input: &str) -> (Benchmark, Vec<String>) {
     let first = input.lines().next().unwrap_or("");
     let words: Vec<String> = first
         .strip_prefix("; fuzz ")
@@ -234,7 +235,7 @@ fn header(input: &str) -> (BenchmarkId, Vec<String>) {
         .first()
         .and_then(|d| BENCH_DIRS.iter().find(|(n, _)| n == d))
         .map(|(_, b)| *b)
-        .unwrap_or(BenchmarkId::B1);
+        .unwrap_or(Benchmark::B1);
     (b, words)
 }
 

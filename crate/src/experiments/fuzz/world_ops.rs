@@ -8,7 +8,7 @@ use rand_pcg::Pcg64Mcg;
 use serde::{Deserialize, Serialize};
 
 use super::{ensure, Verdict};
-use crate::lfd::session::BenchmarkId;
+use crate::sim::benchmark::Benchmark;
 use crate::sim::World;
 
 /// A coordinate in a world-ops input: a number, or `"nan"`, `"inf"`, `"-inf"` (JSON has none).
@@ -170,10 +170,10 @@ pub(super) fn check_world_ops(input: &str) -> Result<Verdict, String> {
             return Ok(Verdict::Refused);
         }
     };
-    let Some(b) = BenchmarkId::parse(&ops.benchmark) else {
+    let Some(b) = Benchmark::parse(&ops.benchmark) else {
         return Ok(Verdict::Refused);
     };
-    let mut w = b.sim().scene();
+    let mut w = b.scene();
     let snap = |w: &World| serde_json::to_string(&w.snapshot()).unwrap_or_default();
     let mut accepted = false;
     for (i, op) in ops.ops.iter().enumerate() {

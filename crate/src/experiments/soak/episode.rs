@@ -14,10 +14,11 @@ use super::reasons::{
 };
 use super::{SoakFinding, SoakParams, SoakReport};
 use crate::lfd::control::FailReason;
-use crate::lfd::session::{mix, BenchmarkId, Session, SessionOptions, SkillKind};
+use crate::lfd::session::{mix, Session, SessionOptions, SkillKind};
 use crate::lfd::{Method, Mode};
 use crate::plan::NoClock;
-use crate::sim::disturb::handleable;
+use crate::sim::benchmark::Benchmark;
+use crate::sim::reach::handleable;
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
 
@@ -128,7 +129,7 @@ fn draw_drag(world: &World, kind: DragKind, rng: &mut Pcg64Mcg) -> (String, [f64
 
 /// What an episode draws from its seed before it starts, in this order.
 struct EpisodeDraw {
-    bench: BenchmarkId,
+    bench: Benchmark,
     mode: Mode,
     session_seed: u64,
     /// Disturbances by tick, sorted.
@@ -136,7 +137,7 @@ struct EpisodeDraw {
 }
 
 fn draw_episode(params: &SoakParams, rng: &mut Pcg64Mcg) -> EpisodeDraw {
-    let bench = BenchmarkId::ALL[rng.random_range(0..3)];
+    let bench = Benchmark::ALL[rng.random_range(0..3)];
     let mode = if rng.random_bool(0.5) {
         Mode::Paper
     } else {
@@ -166,7 +167,7 @@ struct EpisodeRun<'a> {
     models: &'a Models,
     /// Episode index within the soak.
     e: usize,
-    bench: BenchmarkId,
+    bench: Benchmark,
     session_seed: u64,
     s: Session,
     /// The episode's generator (drags draw their targets from it when they happen).

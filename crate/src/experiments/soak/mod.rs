@@ -19,7 +19,7 @@
 //!   [`FailReason`](crate::lfd::control::FailReason) that is *legitimate*: the planner's "no
 //!   plan" is confirmed by an independent exhaustive search that proves the disturbed task
 //!   unsolvable, or a block a user dragged is now where no arm can grasp it or pull it with the
-//!   hook (checked with IK, [`handleable`](crate::sim::disturb::handleable)), or the failed action
+//!   hook (checked with IK, [`handleable`](crate::sim::reach::handleable)), or the failed action
 //!   (or the one the planner could not bind) is on a block that its last drag left where no arm
 //!   can work it (an arm that still closed on a block inside its minimum reach gets stuck with
 //!   it elsewhere), or a block the goal puts on a shelf has no room left on it (the footprints

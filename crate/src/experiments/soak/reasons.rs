@@ -9,14 +9,14 @@ use parry3d_f64::query;
 use parry3d_f64::shape::Cuboid;
 
 use crate::lfd::control::FailReason;
-use crate::lfd::session::BenchmarkId;
 use crate::pddl::{parse_domain, parse_problem, Domain};
 use crate::plan::fact_args;
 use crate::plan::{
     ground, search, validate_names, Algorithm, HeuristicKind, NoClock, Outcome, SearchConfig,
     SearchOutcome,
 };
-use crate::sim::disturb::handleable;
+use crate::sim::benchmark::Benchmark;
+use crate::sim::reach::handleable;
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
 
@@ -159,15 +159,15 @@ pub(super) const DRAGGED_AWAY: &str =
 
 /// Parsed benchmark domains (for the validator and the unsolvability check).
 pub(super) struct Models {
-    domains: Vec<(BenchmarkId, Domain)>,
+    domains: Vec<(Benchmark, Domain)>,
 }
 
 impl Models {
     pub(super) fn new() -> Result<Models, String> {
-        let domains = BenchmarkId::ALL
+        let domains = Benchmark::ALL
             .into_iter()
             .map(|b| {
-                parse_domain(b.sim().domain_pddl(), "domain.pddl")
+                parse_domain(b.domain_pddl(), "domain.pddl")
                     .map(|d| (b, d))
                     .map_err(|e| e.to_string())
             })
@@ -175,7 +175,7 @@ impl Models {
         Ok(Models { domains })
     }
 
-    fn domain(&self, b: BenchmarkId) -> &Domain {
+    fn domain(&self, b: Benchmark) -> &Domain {
         &self
             .domains
             .iter()
@@ -187,11 +187,11 @@ impl Models {
     /// Validates `plan` from the world's observed state to the benchmark's goal.
     pub(super) fn validate(
         &self,
-        b: BenchmarkId,
+        b: Benchmark,
         world: &World,
         plan: &[String],
     ) -> Result<(), String> {
-        let text = b.sim().problem_for(world, "observed");
+        let text = b.problem_for(world, "observed");
         let d = self.domain(b);
         let p = parse_problem(&text, "observed.pddl", d).map_err(|e| e.to_string())?;
         let r = validate_names(d, &p, plan);
@@ -215,8 +215,8 @@ impl Models {
 
     /// Whether the benchmark's goal is provably unreachable from the world's observed state
     /// (`Some(true)`), reachable (`Some(false)`), or undecided within `nodes` expansions.
-    pub(super) fn unsolvable(&self, b: BenchmarkId, world: &World, nodes: u64) -> Option<bool> {
-        let text = b.sim().problem_for(world, "observed");
+    pub(super) fn unsolvable(&self, b: Benchmark, world: &World, nodes: u64) -> Option<bool> {
+        let text = b.problem_for(world, "observed");
         let d = self.domain(b);
         let p = parse_problem(&text, "observed.pddl", d).ok()?;
         let task = ground(d, &p).ok()?;

@@ -1,0 +1,205 @@
+//! The episode log: every external event with its tick, every replan and action, the result;
+//! and its replay, which re-runs the loop tick by tick and reproduces the episode exactly.
+
+use serde::{Deserialize, Serialize};
+
+use crate::lfd::control::{FailReason, Replan};
+use crate::plan::NoClock;
+use crate::sim::snapshot::WorldSnapshot;
+
+use super::{facts_of, BenchmarkSources, Session, SessionError, SessionOptions, SessionParams};
+
+/// An external event of the episode, with the tick before which it happened.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "event", rename_all = "snake_case")]
+pub enum EpisodeEvent {
+    /// A user drag.
+    Perturb {
+        /// Tick.
+        tick: u64,
+        /// Body.
+        body: String,
+        /// Requested centre (m).
+        position: [f64; 3],
+    },
+    /// An injected disturbance.
+    Inject {
+        /// Tick.
+        tick: u64,
+        /// `l1`..`l4`.
+        level: String,
+        /// What it did.
+        description: String,
+    },
+    /// The plan was dropped.
+    Cancel {
+        /// Tick.
+        tick: u64,
+    },
+}
+
+/// One executed (or interrupted) action.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ActionRecord {
+    /// The action.
+    pub action: String,
+    /// Tick it started.
+    pub start_tick: u64,
+    /// Tick it ended.
+    pub end_tick: Option<u64>,
+    /// `done`, `interrupted: …`, `failed: …`, `no effect`.
+    pub outcome: String,
+}
+
+/// The end of an episode.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EpisodeResult {
+    /// The goal holds.
+    pub success: bool,
+    /// Why it failed.
+    pub reason: Option<FailReason>,
+    /// Simulated execution time (s).
+    pub time_s: f64,
+    /// Ticks.
+    pub ticks: u64,
+    /// Actions completed.
+    pub actions_executed: usize,
+    /// Replans (including the initial plan).
+    pub replans: usize,
+}
+
+/// The full log of an episode; replays exactly.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EpisodeLog {
+    /// Format version (1).
+    pub version: u32,
+    /// The session options (benchmark, method, mode, seed, skill).
+    pub options: SessionOptions,
+    /// The initial world.
+    pub scene: WorldSnapshot,
+    /// The demonstration JSON if not the benchmark's own.
+    pub demo_json: Option<String>,
+    /// External events.
+    pub events: Vec<EpisodeEvent>,
+    /// Every replan.
+    pub replans: Vec<Replan>,
+    /// Every action started.
+    pub actions: Vec<ActionRecord>,
+    /// Ticks simulated so far.
+    pub ticks: u64,
+    /// The result, when the episode ended.
+    pub result: Option<EpisodeResult>,
+    /// The final facts.
+    pub final_facts: Vec<String>,
+    /// The final world.
+    pub final_world: WorldSnapshot,
+}
+
+impl EpisodeLog {
+    /// The log with wall-clock planning times zeroed: equal for two runs of the same episode.
+    pub fn canonical(&self) -> EpisodeLog {
+        let mut c = self.clone();
+        for r in &mut c.replans {
+            r.time_ms = 0.0;
+        }
+        c
+    }
+}
+
+impl Session {
+    /// Re-runs a logged episode tick by tick (see [`Session::replay_with_sources`]).
+    pub fn replay(episode_json: &str) -> Result<Session, SessionError> {
+        let log: EpisodeLog = serde_json::from_str(episode_json)
+            .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
+        let files = log.options.benchmark.sources()?;
+        Session::replay_with_sources(&files, episode_json)
+    }
+
+    /// The full log of the episode so far.
+    pub fn log(&self) -> EpisodeLog {
+        let result = self.outcome.as_ref().map(|o| EpisodeResult {
+            success: o.is_ok(),
+            reason: o.as_ref().err().cloned(),
+            time_s: self.world.time(),
+            ticks: self.tick,
+            actions_executed: self.actions_done,
+            replans: self.controller.replans().len(),
+        });
+        EpisodeLog {
+            version: 1,
+            options: self.options.clone(),
+            scene: self.initial.clone(),
+            demo_json: self.demo_json.clone(),
+            events: self.events.clone(),
+            replans: self.controller.replans().to_vec(),
+            actions: self.actions.clone(),
+            ticks: self.tick,
+            result,
+            final_facts: facts_of(&self.world),
+            final_world: self.world.snapshot(),
+        }
+    }
+
+    /// The full log as JSON; [`Session::replay`] reproduces the episode from it.
+    pub fn episode_json(&self) -> String {
+        serde_json::to_string(&self.log()).unwrap_or_default()
+    }
+
+    /// Re-runs a logged episode tick by tick, applying its events at their ticks.
+    pub fn replay_with_sources(
+        files: &BenchmarkSources,
+        episode_json: &str,
+    ) -> Result<Session, SessionError> {
+        let log: EpisodeLog = serde_json::from_str(episode_json)
+            .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
+        let scene = serde_json::to_string(&log.scene)
+            .map_err(|e| SessionError::Json(format!("episode: scene: {e}")))?;
+        let mut s = Session::with_sources(
+            log.options.clone(),
+            files,
+            Some(&scene),
+            log.demo_json.as_deref(),
+            SessionParams::default(),
+        )?;
+        let mut events = log.events.iter().peekable();
+        let clock = NoClock;
+        loop {
+            while let Some(e) = events.peek() {
+                let t = match e {
+                    EpisodeEvent::Perturb { tick, .. }
+                    | EpisodeEvent::Inject { tick, .. }
+                    | EpisodeEvent::Cancel { tick } => *tick,
+                };
+                if t > s.tick {
+                    break;
+                }
+                match e {
+                    EpisodeEvent::Perturb { body, position, .. } => {
+                        let _ = s.perturb(body, *position);
+                    }
+                    EpisodeEvent::Inject { level, .. } => {
+                        let _ = s.inject(level);
+                    }
+                    EpisodeEvent::Cancel { .. } => s.cancel(),
+                }
+                events.next();
+            }
+            if s.outcome.is_some() {
+                break;
+            }
+            if s.tick >= log.ticks {
+                // The final decision (done / failed) takes no tick.
+                if log.result.is_some() {
+                    s.tick_once(&clock);
+                }
+                break;
+            }
+            let before = s.tick;
+            s.tick_once(&clock);
+            if s.tick == before && s.outcome.is_none() && s.exec.is_none() {
+                break;
+            }
+        }
+        Ok(s)
+    }
+}

@@ -1,0 +1,134 @@
+//! How a session is set up: its options (JSON), tunables and errors, the demonstration's
+//! actions and placements as a `demo.json` gives them, and the seed of each random draw.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use crate::lfd::control::ControlParams;
+use crate::lfd::exec::ExecParams;
+use crate::lfd::logic::Mode;
+use crate::lfd::{LfdError, Method};
+use crate::sim::benchmark::Benchmark;
+use crate::tamp::streams::StreamParams;
+
+/// Which motion skill family executes the actions.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SkillKind {
+    /// LQT-CP (the paper's).
+    #[default]
+    Lqt,
+    /// Classic DMP (the comparison).
+    Dmp,
+}
+
+/// How a session is set up (JSON: snake_case keys, defaults for all but `benchmark`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SessionOptions {
+    /// `b1`, `b2` or `b3`.
+    pub benchmark: Benchmark,
+    /// `logic-lfd`, `linear`, `rlds` or `tamp`.
+    #[serde(default)]
+    pub method: Method,
+    /// `paper` or `prioritised`.
+    #[serde(default)]
+    pub mode: Mode,
+    /// Seed of every random choice of the episode.
+    #[serde(default)]
+    pub seed: u64,
+    /// `lqt` or `dmp`.
+    #[serde(default)]
+    pub skill: SkillKind,
+}
+
+/// What went wrong creating or replaying a session.
+#[derive(Debug, thiserror::Error)]
+pub enum SessionError {
+    /// The benchmark's PDDL or demonstration is unusable.
+    #[error(transparent)]
+    Lfd(#[from] LfdError),
+    /// The scene JSON is invalid.
+    #[error("scene: {0}")]
+    Scene(#[from] crate::sim::SceneError),
+    /// A JSON document (demo, episode) is malformed.
+    #[error("{0}")]
+    Json(String),
+}
+
+/// Tunables of a session.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SessionParams {
+    /// Task level.
+    pub control: ControlParams,
+    /// Action execution.
+    pub exec: ExecParams,
+    /// Streams.
+    pub streams: StreamParams,
+    /// Simulated time after which the episode fails (s).
+    pub max_time: f64,
+    /// Failed executions of the same action in a row before the episode fails.
+    pub max_action_failures: usize,
+}
+
+impl Default for SessionParams {
+    fn default() -> Self {
+        SessionParams {
+            control: ControlParams::default(),
+            exec: ExecParams::default(),
+            streams: StreamParams::default(),
+            max_time: 240.0,
+            max_action_failures: 3,
+        }
+    }
+}
+
+/// The demonstrated action sequence of a `demo.json` (`actions`: strings, or objects with an
+/// `action` / `name` field).
+pub fn demo_actions(demo_json: &str) -> Result<Vec<String>, SessionError> {
+    let v: serde_json::Value =
+        serde_json::from_str(demo_json).map_err(|e| SessionError::Json(format!("demo: {e}")))?;
+    let arr = v
+        .get("actions")
+        .and_then(|a| a.as_array())
+        .ok_or_else(|| SessionError::Json("demo: actions: missing array".into()))?;
+    arr.iter()
+        .enumerate()
+        .map(|(i, a)| {
+            let s = a
+                .as_str()
+                .or_else(|| a.get("action").and_then(|x| x.as_str()))
+                .or_else(|| a.get("name").and_then(|x| x.as_str()));
+            s.map(crate::lfd::demo::normalize_action).ok_or_else(|| {
+                SessionError::Json(format!("demo: actions[{i}]: expected an action string"))
+            })
+        })
+        .collect()
+}
+
+/// Where the demonstration put things down: action → `(x, y, yaw)` of the resting pose.
+pub(super) type PlacementHints = BTreeMap<String, (f64, f64, f64)>;
+
+/// The placements the demonstration used for its surface releases (`place`,
+/// `place-on-shelf`): action → `(x, y, yaw)` of the resting pose (`sim::demo` anchor poses).
+pub(super) fn demo_hints(demo_json: &str) -> PlacementHints {
+    let mut out = BTreeMap::new();
+    if let Ok(d) = crate::sim::demo::from_json(demo_json) {
+        for a in d.actions {
+            if a.name.starts_with("place") {
+                let p = a.anchor_pose.position;
+                out.entry(a.action.clone())
+                    .or_insert((p[0], p[1], a.anchor_pose.yaw));
+            }
+        }
+    }
+    out
+}
+
+/// A seed for the `n`-th random draw of an episode (SplitMix64 of `seed ⊕ n·φ`).
+pub fn mix(seed: u64, n: u64) -> u64 {
+    let mut z = seed ^ n.wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
