@@ -510,10 +510,10 @@ fn taught_reverse_tower_runs_to_success_under_l3() {
     assert_eq!(again.log().canonical(), log);
 }
 
-/// Regression: segment boundaries cut mid-lift made the skills learned from a taught B1 demo fit
-/// the recorded motion with 100–260 mm error. Every action's skill, and every approach/retreat
-/// skill the loop learns, must reproduce its recorded motion within 3 mm (RMS) and end within
-/// 3 mm of it.
+/// Segment boundaries fall where the hand rests, not mid-lift (a cut mid-lift leaves the skills
+/// learned from a taught B1 demo 100–260 mm off the recorded motion). Every action's skill, and
+/// every approach/retreat skill the loop learns, must reproduce its recorded motion within 3 mm
+/// (RMS) and end within 3 mm of it.
 #[test]
 fn skills_learned_from_a_taught_demo_fit_the_recorded_motion() {
     let mut rec = Recorder::for_benchmark(Benchmark::B1).unwrap();
@@ -631,8 +631,8 @@ fn taught_b3_hand_over_runs_from_a_random_world() {
 /// A pick and place taught in gripper mode the way the page's handle does it (the handle jumps
 /// to a few poses, the arm follows by IK at its joint-speed limits, G closes and opens) is
 /// segmented into (pick panda c), (stack panda c d), and the skills learned from it fit its
-/// motion within 3 mm RMS. Regression: when the arm jumped to each commanded pose at its joint
-/// speed limits (no interpolation), these fits were 20–410 mm.
+/// motion within 3 mm RMS. The arm interpolates towards each commanded pose: jumping to it at
+/// its joint speed limits would leave fits of 20–410 mm.
 #[test]
 fn gripper_mode_pick_and_place_is_segmented_and_learned() {
     let mut rec = Recorder::for_benchmark(Benchmark::B1).unwrap();

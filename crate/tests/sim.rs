@@ -1007,9 +1007,10 @@ fn the_hook_pulls_only_along_strokes_clear_of_the_shelf_and_within_the_arms_reac
 
 #[test]
 fn a_hand_stretching_out_at_the_joints_speed_limits_stays_on_its_level_path() {
-    // Regression (soak episode 26 of seed 2026): clamping each joint to its speed limit alone
-    // let the shoulder pitch on while the saturated elbow lagged, and a hand carried out to
-    // 0.8 m at 0.35 m/s sank 5 cm below its level path (the hook's blade into a block).
+    // Found by the soak.
+    // A hand carried out to 0.8 m at 0.35 m/s saturates the elbow's speed. Clamping each joint to
+    // its speed limit alone would let the shoulder pitch on while the elbow lags, and the hand
+    // would sink 5 cm below its level path (the hook's blade into a block).
     let mut w = Benchmark::B2.scene();
     let down = panda::down_orientation(0.1);
     let from = Isometry3::from_parts(Translation3::new(0.33, -0.02, 0.132), down);
@@ -1038,9 +1039,9 @@ fn a_hand_stretching_out_at_the_joints_speed_limits_stays_on_its_level_path() {
 
 #[test]
 fn whether_the_hook_can_pull_does_not_depend_on_how_the_carrying_hand_is_tilted_now() {
-    // Regression (soak episode 26 of seed 2026): the check derived the hook's grasp from the
-    // hand's pose at the moment; a hand tilted 7° mid-motion made a block at the edge of the
-    // stroke's reach count as pullable.
+    // Found by the soak.
+    // Derived from the hand's pose of the moment, the hook's grasp of a hand tilted 7° mid-motion
+    // would make a block at the edge of the stroke's reach count as pullable.
     let (mut w, _) = holding(Benchmark::B2, "hook");
     let level = w.joints(0).unwrap();
     let mut tilted = level;
@@ -1071,8 +1072,9 @@ fn whether_the_hook_can_pull_does_not_depend_on_how_the_carrying_hand_is_tilted_
 
 #[test]
 fn a_block_carried_into_one_the_other_arm_holds_stops_at_contact() {
-    // Regression (soak seed 77, episode 167): the contact stop skipped bodies held by the other
-    // arm, and in B3 the left arm carried a 2.2 mm into the b the right arm held.
+    // Found by the soak.
+    // The contact stop covers bodies held by the other arm: in B3 the left arm carrying a must
+    // not press it into the b the right arm holds.
     let mut w = Benchmark::B3.scene();
     w.move_block("a", Vector3::new(0.38, 0.09, 0.03)).unwrap();
     w.move_block("b", Vector3::new(0.38, -0.06, 0.03)).unwrap();
@@ -1174,8 +1176,8 @@ fn a_joint_space_move_names_what_it_sweeps_through_and_the_ready_posture_goes_ro
 fn a_block_dragged_under_an_overhang_rests_on_the_table_below_it() {
     // c stands on d and overhangs the spot by 4 mm. Dropped there, a rests on the table with
     // its top touching c's underside: what lies above a block's centre cannot hold it up. The
-    // settle probe starts 5 mm above the drop and used to find c "in the way": the drag was
-    // refused, and a block let go there (a pick under the overhang, undone) was lost.
+    // settle probe starts 5 mm above the drop, where c is; counting c "in the way" would refuse
+    // the drag and lose a block let go there (a pick under the overhang, undone).
     let mut w = b1_with(&[
         ("a", [0.30, 0.25, 0.03]),
         ("d", [0.4637, -0.2166, 0.03]),
@@ -1195,10 +1197,11 @@ fn a_block_dragged_under_an_overhang_rests_on_the_table_below_it() {
 
 #[test]
 fn ik_with_room_reaches_above_a_block_at_the_minimum_reach() {
-    // Soak finding (seed 31337, episodes 1997, 2724 and 2980): a block 25 cm from the right
-    // arm's base (B3), the pre-grasp 10 cm above it. The arm folds its elbow to its limit
-    // there, and neither the warm start nor the ready posture with 6 restarts each converged:
-    // the streams refused a pick the executor makes. More restarts before giving up reach it.
+    // Found by the soak.
+    // A block 25 cm from the right arm's base (B3), the pre-grasp 10 cm above it. The arm folds
+    // its elbow to its limit there, and neither the warm start nor the ready posture with 6
+    // restarts each converges, so the streams would refuse a pick the executor makes. More
+    // restarts before giving up reach it.
     let base = Isometry3::translation(0.0, -0.45, 0.0);
     let planning = IkParams::default();
     for yaw in [0.0, std::f64::consts::FRAC_PI_2] {

@@ -412,10 +412,10 @@ fn in_banned(b: &BannedTask, s0: &logic_lfd::plan::State, ops: &[usize]) -> logi
         .fold(b.lift(s0), |s, &o| b.task.operators[o].apply(&s))
 }
 
-/// A block under an overhang (seed 8080, episode 1354; seed 1234, episode 2823): c, on d with
-/// b on it, reaches over a, so a cannot be lifted until c has moved. Taking b off c changes
-/// c's facts but not where c is, and the goal puts c back on d: a ban on c's facts allowed the
-/// first and forbade every way to the goal (no plan); a ban until c has moved does neither.
+/// A block under an overhang: c, on d with b on it, reaches over a, so a cannot be lifted until
+/// c has moved. Taking b off c changes c's facts but not where c is, and the goal puts c back on
+/// d: a ban on c's facts would allow the first and forbid every way to the goal (no plan); a ban
+/// until c has moved does neither.
 #[test]
 fn an_action_banned_until_a_blocker_moves_waits_for_the_blocker_itself_not_its_facts() {
     let world = template(BenchmarkId::B1);
@@ -663,7 +663,7 @@ fn execute_bound_watching(
     }
 }
 
-/// The world a soak finding left, saved as `crate/tests/data/worlds/<name>.json`.
+/// A saved world, `crate/tests/data/worlds/<name>.json`.
 fn saved_world(name: &str) -> World {
     let path = format!(
         "{}/tests/data/worlds/{name}.json",
@@ -686,14 +686,14 @@ fn b2_bind_one(
 }
 
 #[test]
-fn soak_4242_2219_a_stroke_whose_hook_presses_into_the_shelf_is_neither_planned_nor_possible() {
-    // Soak finding (seed 4242, episode 2219): a user dragged a beside the shelf's corner. The
-    // streams certified the stroke turned by -0.79 rad, whose hook comes down 3.4 mm into the
-    // shelf's side: within the 2 mm contact slack of both boxes, deeper than the simulator lets a
-    // carried body press (1.8 mm). The simulator stops it; the pull failed three times. The
-    // streams and the soak's check of whether the hook can pull a now press into a shelf only as
-    // far as the simulator does.
-    let world = saved_world("soak-4242-2219");
+fn a_stroke_whose_hook_presses_into_the_shelf_is_neither_planned_nor_possible() {
+    // Found by the soak.
+    // a lies beside the shelf's corner. The stroke turned by -0.79 rad brings the hook 3.4 mm
+    // down into the shelf's side: within the 2 mm contact slack of both boxes, but deeper than
+    // the simulator lets a carried body press (1.8 mm), so the simulator stops it. The streams
+    // and the check of whether the hook can pull a press into a shelf only as far as the
+    // simulator does.
+    let world = saved_world("b2-hook-held-a-beside-shelf-corner");
     assert_eq!(world.held_by(0), Some("hook"));
     assert!(!logic_lfd::sim::disturb::hook_can_pull(
         &world, 0, "hook", "a"
@@ -718,13 +718,14 @@ fn soak_4242_2219_a_stroke_whose_hook_presses_into_the_shelf_is_neither_planned_
 }
 
 #[test]
-fn soak_4242_2388_an_arm_wound_to_a_joint_limit_unwinds_before_it_picks() {
-    // Soak finding (seed 4242, episode 2388): a learned approach to b beside the shelf stopped
-    // at the shelf, and the arm came out of it with its last joint at its limit; from there the
-    // hand reached b's grasp 55° from the grasp's turn, and every joint-space way to turn it
-    // swept the shelf, three times. An action whose arm starts with a joint at its limit now
-    // first moves, up where it rose to, to the joints with the most room for the same TCP pose.
-    let mut world = saved_world("soak-4242-2388");
+fn an_arm_wound_to_a_joint_limit_unwinds_before_it_picks() {
+    // Found by the soak.
+    // A learned approach to b beside the shelf, stopped at the shelf, leaves the arm's last joint
+    // at its limit; from there the hand would reach b's grasp 55° from the grasp's turn, and
+    // every joint-space way to turn it sweeps the shelf. An action whose arm starts with a joint
+    // at its limit first moves, up where it rose to, to the joints with the most room for the
+    // same TCP pose.
+    let mut world = saved_world("b2-arm-wound-b-beside-shelf");
     let wound = world.joints(0).unwrap();
     assert!(
         logic_lfd::sim::panda::limit_margin(&wound) < 1e-3,
@@ -737,13 +738,13 @@ fn soak_4242_2388_an_arm_wound_to_a_joint_limit_unwinds_before_it_picks() {
 }
 
 #[test]
-fn soak_2026_2939_a_pull_turns_the_hook_as_planned_before_it_lowers_it() {
-    // Soak finding (seed 2026, episode 2939): block a dragged behind the shelf's corner, the arm
-    // came over the pull's contact pose with the hand turned 134° from the planned stroke (the
-    // tracker follows the TCP's position first); lowered that way, the hook's blade came down
-    // on the shelf, three times. A pull's via-points now need the hand turned as planned, as a
-    // grasp does, and the joint-space recovery turns it.
-    let mut world = saved_world("soak-2026-2939");
+fn a_pull_turns_the_hook_as_planned_before_it_lowers_it() {
+    // Found by the soak.
+    // With block a behind the shelf's corner, the arm comes over the pull's contact pose with the
+    // hand turned 134° from the planned stroke (the tracker follows the TCP's position first);
+    // lowered that way, the hook's blade would come down on the shelf. A pull's via-points need
+    // the hand turned as planned, as a grasp's do, and the joint-space recovery turns it.
+    let mut world = saved_world("b2-hook-held-a-far-out");
     assert_eq!(world.held_by(0), Some("hook"));
     let (task, ops, bindings) = b2_bind_one(&world, "(pull panda hook a)");
     execute_bound(&mut world, &task, &ops, &bindings, &b2_skills());
@@ -751,13 +752,13 @@ fn soak_2026_2939_a_pull_turns_the_hook_as_planned_before_it_lowers_it() {
 }
 
 #[test]
-fn soak_2026_1970_a_hand_pressed_against_the_shelf_rises_with_the_hook_to_put_it_down() {
-    // Soak finding (seed 2026, episode 1970): a pull was interrupted with the hand pressed
-    // 1 cm into the shelf's side (the simulator lets a link press that far) and the hook's
-    // blade against block b. Putting the hook down goes up first; the streams' IK takes
-    // another null-space path than the tracker's, and the hand's depth in the shelf drifted
-    // up by 0.3 mm on the way: the streams refused what the simulator does.
-    let mut world = saved_world("soak-2026-1970");
+fn a_hand_pressed_against_the_shelf_rises_with_the_hook_to_put_it_down() {
+    // Found by the soak.
+    // An interrupted pull leaves the hand pressed 1 cm into the shelf's side (the simulator lets
+    // a link press that far) and the hook's blade against block b. Putting the hook down goes up
+    // first; the streams' IK takes another null-space path than the tracker's, along which the
+    // hand's depth in the shelf grows by 0.3 mm, and the streams accept what the simulator does.
+    let mut world = saved_world("b2-hook-held-against-shelf-and-b");
     assert_eq!(world.held_by(0), Some("hook"));
     let (task, ops, bindings) = b2_bind_one(&world, "(place panda hook)");
     assert!(bindings[0].transit.is_some(), "{bindings:?}");
@@ -767,13 +768,14 @@ fn soak_2026_1970_a_hand_pressed_against_the_shelf_rises_with_the_hook_to_put_it
 }
 
 #[test]
-fn soak_2026_2835_a_block_lifted_behind_the_base_with_a_joint_at_its_limit_reaches_the_shelf() {
-    // Soak finding (seed 2026, episode 2835): block a, grasped behind the arm's base with the
-    // base joint at its limit, could not be lifted: the tracker stalls against the limit, and
-    // both joint-space ways to the roomy solution sweep a into block f, 7 mm beside it. The
-    // recovery now goes to the solution nearest the arm's joints for a point on the way up
-    // (the other joints take the held joint's share), and the tracker follows from there.
-    let mut world = saved_world("soak-2026-2835");
+fn a_block_lifted_behind_the_base_with_a_joint_at_its_limit_reaches_the_shelf() {
+    // Found by the soak.
+    // Block a is grasped behind the arm's base with the base joint at its limit: the tracker
+    // stalls against the limit, and both joint-space ways to the roomy solution sweep a into
+    // block f, 7 mm beside it. The recovery goes to the solution nearest the arm's joints for a
+    // point on the way up (the other joints take the held joint's share), and the tracker
+    // follows from there.
+    let mut world = saved_world("b2-a-held-behind-base-beside-f");
     assert_eq!(world.held_by(0), Some("a"));
     let q = world.joints(0).unwrap();
     assert!(logic_lfd::sim::panda::JOINT_UPPER[0] - q[0] < 0.01, "{q:?}");
@@ -864,23 +866,25 @@ fn b2_pick_after_moving(block: &str, x: f64, y: f64) {
 
 #[test]
 fn a_block_beside_the_shelf_is_grasped_with_the_hand_along_the_shelf_not_across_it() {
-    // Soak finding (seed 31337, episode 1445): a block dragged 2 mm from the shelf's side. No
-    // grasp keeps the hand clear of the shelf; the one nearest the arm's heading reached
-    // across the shelf (the simulator stopped the hand 4 cm above the block, three times),
-    // the hand turned along the shelf's face grazes it by 3 mm, which the simulator allows.
+    // Found by the soak.
+    // A block dragged 2 mm from the shelf's side. No grasp keeps the hand clear of the shelf: the
+    // one nearest the arm's heading reaches across the shelf (the simulator stops the hand 4 cm
+    // above the block), the hand turned along the shelf's face grazes it by 3 mm, which the
+    // simulator allows.
     b2_pick_after_moving("a", 0.198, -0.435);
 }
 
 #[test]
 fn a_learned_approach_that_swings_the_hand_into_the_shelf_flies_over_and_comes_straight_down() {
-    // Soak finding (seed 31337, episode 835): a block dragged to the shelf's corner. The learned
-    // approach curves in from the side and the simulator stops the hand at the shelf; the
-    // executor now rises, crosses above the grasp and descends straight, as for a carried body.
+    // Found by the soak.
+    // A block dragged to the shelf's corner. The learned approach curves in from the side and the
+    // simulator stops the hand at the shelf; the executor rises, crosses above the grasp and
+    // descends straight, as for a carried body.
     b2_pick_after_moving("b", 0.162, -0.616);
 }
 
-/// B1 with block a on the table and c, on d beside it, overhanging a's corner by 4 mm (a user
-/// dragged d next to a, then an L1 nudged c; seed 31337, episode 554).
+/// B1 with block a on the table and c, on d beside it, overhanging a's corner by 4 mm (as when a
+/// user drags d next to a and an L1 then nudges c).
 fn b1_with_c_overhanging_a() -> World {
     let mut world = template(BenchmarkId::B1);
     world
@@ -907,10 +911,11 @@ fn b1_with_c_overhanging_a() -> World {
 
 #[test]
 fn a_block_under_an_overhang_is_not_picked_and_the_overhanging_block_is_named() {
-    // Soak finding (seed 31337, episode 554): the streams shrink each box by the contact slack,
-    // so they let a rise past c's 4 mm overhang, which stops the lift in the simulator (it
-    // lets a lifted body press 1.8 mm into another). The pick is now refused, certified or
-    // not, with c named as what is in the way (so the search moves c first).
+    // Found by the soak.
+    // The streams shrink each box by the contact slack, which would let a rise past c's 4 mm
+    // overhang; the simulator stops that lift (it lets a lifted body press 1.8 mm into another).
+    // The pick is refused, certified or not, with c named as what is in the way (so the search
+    // moves c first).
     let world = b1_with_c_overhanging_a();
     let (_, task) = model_and_task(BenchmarkId::B1, &world);
     let ops = [op(&task, "(pick panda a)")];
@@ -954,11 +959,11 @@ fn a_lift_stopped_by_an_overhang_puts_the_block_back_and_lets_go() {
 
 #[test]
 fn a_release_beside_a_tower_is_put_down_with_the_hand_where_it_was_certified() {
-    // Soak finding (seed 31337, episode 1398): b was put down 9 cm from a tower. The streams
-    // certified the hand lengthwise beside the tower, the executor turned the block so that
-    // the hand faced the arm's heading: across, its palm 2 cm inside the tower. The streams now
-    // try the hand nearest the heading first and the quarter turn next, and the executor puts
-    // the hand where they certified it.
+    // Found by the soak.
+    // b is put down 9 cm from a tower. The streams certify the hand lengthwise beside the tower;
+    // a hand facing the arm's heading would stand across, its palm 2 cm inside the tower. The
+    // streams try the hand nearest the heading first and the quarter turn next, and the executor
+    // puts the hand where they certified it.
     let mut world = template(BenchmarkId::B1);
     for (name, z) in [("d", 0.03), ("c", 0.09)] {
         world
@@ -1016,13 +1021,13 @@ fn a_release_beside_a_tower_is_put_down_with_the_hand_where_it_was_certified() {
 }
 
 #[test]
-fn soak_4242_1816_a_load_the_arm_cannot_bring_lower_is_let_go_just_above_its_support() {
-    // Soak finding (seed 4242, episode 1816): a user dragged d 26 cm from the base and the tower
-    // was built there. Stacking a on top of it, the elbow reaches its limit 4.1 mm above the
-    // release point (the tolerance is 4 mm), three times. The executor now lets go up to 1 cm
+fn a_load_the_arm_cannot_bring_lower_is_let_go_just_above_its_support() {
+    // Found by the soak.
+    // The tower stands 26 cm from the base. Stacking a on top of it, the elbow reaches its limit
+    // 4.1 mm above the release point (the tolerance is 4 mm). The executor lets go up to 1 cm
     // above the release point when the arm stops there and the body comes to rest on its
     // support from that height.
-    let mut world = saved_world("soak-4242-1816");
+    let mut world = saved_world("b1-a-held-over-tower-at-minimum-reach");
     assert_eq!(world.held_by(0), Some("a"));
     let (_, task) = model_and_task(BenchmarkId::B1, &world);
     let skills = b1_skills();
@@ -1056,32 +1061,33 @@ fn run_from_saved_world(b: BenchmarkId, name: &str) -> Option<Result<(), FailRea
 }
 
 #[test]
-fn soak_8080_1354_a_block_under_an_overhang_is_freed_by_moving_the_block_over_it() {
-    // Soak finding (seed 8080, episode 1354; the same on 1234/2823 and 4242/1230): L1s slid c,
-    // on d with b on it, 1.3 cm over a beside the tower, so a cannot be lifted. The pick was
-    // banned until c had moved, as a split on c's facts: taking b off c counted as moving c,
-    // and c put back on d, where the goal wants it, did not. No plan was left. Now c's moves
-    // are what count (and a's own, for a second ban with the tower rebuilt beside it).
-    let world = saved_world("soak-8080-1354");
+fn a_block_under_an_overhang_is_freed_by_moving_the_block_over_it() {
+    // Found by the soak.
+    // c, on d with b on it, reaches 1.3 cm over a beside the tower, so a cannot be lifted. The
+    // pick is banned until c has moved: c's own moves count (and a's, for a second ban with the
+    // tower rebuilt beside it), not changes of c's facts. Taking b off c does not move c, and c
+    // put back on d, where the goal wants it, does.
+    let world = saved_world("b1-tower-overhanging-a");
     let (_, task) = model_and_task(BenchmarkId::B1, &world);
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
     let pick_a = [op(&task, "(pick panda a)")];
     assert_eq!(binder.bind(&task, &pick_a, 1), Err(0));
     assert_eq!(binder.obstructions(0), vec!["c".to_string()]);
     assert_eq!(
-        run_from_saved_world(BenchmarkId::B1, "soak-8080-1354"),
+        run_from_saved_world(BenchmarkId::B1, "b1-tower-overhanging-a"),
         Some(Ok(()))
     );
 }
 
 #[test]
-fn soak_1234_996_the_hook_is_not_let_go_onto_a_block_in_a_scene_without_on() {
-    // Soak finding (seed 1234, episode 996): the pull left b where the demonstration puts the
-    // hook back, and the demonstration's (uncertified) placement let the hook go onto b. B2 has
-    // no `on`: the scene graph could not say where the hook was, b could not be picked from
-    // under it, and no plan was left. A release now keeps to what a drag may do: never onto a
-    // block in a scene without `on` (nor onto the hook or a held body); the executor checks
-    // before it opens the gripper, fails the action and the loop places the hook elsewhere.
+fn the_hook_is_not_let_go_onto_a_block_in_a_scene_without_on() {
+    // Found by the soak.
+    // A pull may leave b where the demonstration's (uncertified) placement puts the hook back.
+    // B2 has no `on`: with the hook on b the scene graph could not say where the hook is, b could
+    // not be picked from under it, and no plan would be left. A release keeps to what a drag may
+    // do: never onto a block in a scene without `on` (nor onto the hook or a held body); the
+    // executor checks before it opens the gripper, fails the action and the loop places the hook
+    // elsewhere.
     let (mut world, _) = b2_holding_hook();
     assert_eq!(world.release_check(0), Ok(()), "over the table");
     let (lo, _) = world.body_aabb("hook").unwrap();
@@ -1104,13 +1110,13 @@ fn soak_1234_996_the_hook_is_not_let_go_onto_a_block_in_a_scene_without_on() {
 }
 
 #[test]
-fn soak_8080_2819_a_block_is_not_put_down_where_the_arm_is_at_its_joint_limits() {
-    // Soak finding (seed 8080, episode 2819): d, unstacked from c, was put down 25.6 cm from the
-    // base, just inside the 25 cm minimum reach. The tower was built on it: there the elbow
-    // folds to its limit, the tracker stalled and its joint-space recovery came back to the
-    // limit, and b could not be stacked, three times. Blocks are now put down at least
-    // `placement_inner_margin` beyond the minimum reach.
-    let world = saved_world("soak-8080-2819");
+fn a_block_is_not_put_down_where_the_arm_is_at_its_joint_limits() {
+    // Found by the soak.
+    // d, unstacked from c, could be put down 25.6 cm from the base, just beyond the 25 cm minimum
+    // reach. A tower built on it there folds the elbow to its limit: the tracker stalls, its
+    // joint-space recovery comes back to the limit, and b cannot be stacked. Blocks are put down
+    // at least `placement_inner_margin` beyond the minimum reach.
+    let world = saved_world("b1-d-held-above-c");
     assert_eq!(world.held_by(0), Some("d"));
     let (_, task) = model_and_task(BenchmarkId::B1, &world);
     let place = [op(&task, "(place panda d)")];
@@ -1150,14 +1156,14 @@ fn place_hook_at(world: &mut World, x: f64, y: f64) {
 }
 
 #[test]
-fn soak_8080_2082_a_hand_that_cannot_rise_where_it_is_rises_by_the_ready_posture() {
-    // Soak finding (seed 8080, episodes 2082 and 730): after a pull near the base, the hand
-    // holding the hook was left 24 cm from the base (inside the 25 cm minimum reach) with the
-    // wrist at its limit. Putting the hook back starts with a rise of 1 cm, which no IK reaches
-    // from there, so no recovery was tried and the same rise failed three times. A rise or
-    // retreat the arm cannot make where it is now goes to the ready posture in joint space
-    // (when that move is clear), higher than the rise needs, and the transit goes on from there.
-    let mut world = saved_world("soak-8080-2082");
+fn a_hand_that_cannot_rise_where_it_is_rises_by_the_ready_posture() {
+    // Found by the soak.
+    // After a pull near the base, the hand holding the hook is 24 cm from the base (inside the
+    // 25 cm minimum reach) with the wrist at its limit. Putting the hook back starts with a rise
+    // of 1 cm, which no IK reaches from there. A rise or retreat the arm cannot make where it is
+    // goes to the ready posture in joint space (when that move is clear), higher than the rise
+    // needs, and the transit goes on from there.
+    let mut world = saved_world("b2-hook-held-inside-minimum-reach");
     assert_eq!(world.held_by(0), Some("hook"));
     let q = world.joints(0).unwrap();
     assert!(logic_lfd::sim::panda::JOINT_UPPER[5] - q[5] < 0.03, "{q:?}");
@@ -1167,12 +1173,12 @@ fn soak_8080_2082_a_hand_that_cannot_rise_where_it_is_rises_by_the_ready_posture
 }
 
 #[test]
-fn soak_1234_772_a_recovered_retreat_goes_where_its_learned_skill_ends() {
-    // Soak finding (seed 1234, episode 772): the hand's learned retreat after putting the hook
-    // down ends 11 mm from the straight-up via-point the executor computes; the joint-space
-    // recovery went to the via-point, and the segment, judged at the skill's end, failed there
-    // (three times). The recovery now goes where the segment is judged.
-    let mut world = saved_world("soak-1234-772");
+fn a_recovered_retreat_goes_where_its_learned_skill_ends() {
+    // Found by the soak.
+    // The hand's learned retreat after putting the hook down ends 11 mm from the straight-up
+    // via-point the executor computes. The segment is judged at the skill's end, so the
+    // joint-space recovery goes there, not to the via-point.
+    let mut world = saved_world("b2-hook-held-over-open-table");
     assert_eq!(world.held_by(0), Some("hook"));
     place_hook_at(
         &mut world,
@@ -1182,12 +1188,12 @@ fn soak_1234_772_a_recovered_retreat_goes_where_its_learned_skill_ends() {
 }
 
 #[test]
-fn soak_5150_623_the_hook_is_put_down_with_every_part_clear_of_the_shelf() {
-    // Soak findings (seed 5150, episode 623; seed 31337, episode 322): the hook was put down
-    // turned along the shelf with its frame 24 cm from it, clear of the 12 cm the streams kept
-    // between the frame and a shelf, and its handle 1 cm from the shelf's side. Picking it up
-    // again, the arm was stopped at the shelf three times. Every part of a put-down hook now
-    // keeps 8 cm from a shelf's footprint.
+fn the_hook_is_put_down_with_every_part_clear_of_the_shelf() {
+    // Found by the soak.
+    // A hook put down turned along the shelf with its frame 24 cm from it (clear of 12 cm between
+    // the frame and a shelf) can have its handle 1 cm from the shelf's side, where the arm that
+    // picks it up again is stopped at the shelf. Every part of a put-down hook keeps 8 cm from a
+    // shelf's footprint.
     let (world, task) = b2_holding_hook();
     let shelf = world.body_aabb("shelf").unwrap();
     let place = [op(&task, "(place panda hook)")];
@@ -1227,14 +1233,13 @@ fn soak_5150_623_the_hook_is_put_down_with_every_part_clear_of_the_shelf() {
 }
 
 #[test]
-fn soak_1234_1323_a_hand_over_spot_is_found_beside_a_tower_in_the_hand_over_region() {
-    // Soak findings (seed 1234, episode 1323; seed 5150, episodes 349 and 1621): L4 blocks
-    // appeared on b in the middle of the 20 cm hand-over region, and clearing them needs a
-    // spot in the region beside that tower. The candidates kept half a block and 1 cm from
-    // the region's edge, as from a real surface's, which left a 12 cm square mostly taken by
-    // the tower: no spot, no plan. A region holds a block by its centre, so its centre now only
-    // keeps 1 cm inside the region.
-    let world = saved_world("soak-1234-1323");
+fn a_hand_over_spot_is_found_beside_a_tower_in_the_hand_over_region() {
+    // Found by the soak.
+    // L4 blocks on b in the middle of the 20 cm hand-over region make a tower there, and clearing
+    // it needs a spot in the region beside the tower. Half a block and 1 cm kept from the
+    // region's edge, as from a real surface's, would leave a 12 cm square mostly taken by the
+    // tower. A region holds a block by its centre, so the centre keeps only 1 cm inside it.
+    let world = saved_world("b3-f-held-by-left-beside-handover-tower");
     assert_eq!(world.held_by(0), Some("f"));
     let b = BenchmarkId::B3;
     let (_, task) = model_and_task(b, &world);
