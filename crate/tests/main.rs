@@ -1,5 +1,6 @@
 //! Integration tests (one binary, one sub-module per area).
 
+mod exec;
 mod fuzz;
 mod ground;
 mod lfd;
@@ -10,5 +11,6 @@ mod recorder;
 mod search;
 mod sim;
 mod soak;
+mod support;
 mod tamp;
 mod validate;
