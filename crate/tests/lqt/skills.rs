@@ -152,7 +152,7 @@ fn dmp_reproduces_demo_and_reaches_new_goal() {
 }
 
 #[test]
-fn skill_serde_roundtrip_and_bad_input() {
+fn a_skill_round_trips_through_json_and_bad_input_is_refused() {
     let demo = demo_segment();
     let skill = Skill::learn(&demo, 0.01, SkillParams::default()).unwrap();
     let json = serde_json::to_string(&skill).unwrap();

@@ -29,7 +29,7 @@ fn temp_files(tag: &str, files: &[(&str, &str)]) -> std::path::PathBuf {
 }
 
 #[test]
-fn cli_plan_exit_codes_and_output() {
+fn cli_plan_exits_with_a_code_per_outcome_and_prints_a_replayable_plan() {
     let dir = temp_files(
         "exit",
         &[

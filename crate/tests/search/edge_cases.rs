@@ -12,7 +12,7 @@ use super::cases::{blocksworld, random_blocksworld};
 use super::{OPTIMAL, SATISFICING};
 
 #[test]
-fn names_parse_and_print() {
+fn algorithm_and_heuristic_names_parse_back_and_unknown_names_are_refused() {
     for a in Algorithm::ALL {
         assert_eq!(a.name().parse::<Algorithm>().unwrap(), a);
     }

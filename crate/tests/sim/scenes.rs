@@ -79,7 +79,7 @@ fn bad_scene_json_names_the_body_and_the_field() {
 }
 
 #[test]
-fn cli_scene_facts_and_check() {
+fn cli_scene_prints_the_facts_and_check_locates_a_bad_body() {
     let exe = env!("CARGO_BIN_EXE_logic-lfd");
     let scene = format!(
         "{}/../domains/b1-tower/scene.json",
