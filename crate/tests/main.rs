@@ -1,5 +1,6 @@
 //! Integration tests (one binary, one sub-module per area).
 
+mod exec;
 mod fuzz;
 mod ground;
 mod layers;
@@ -11,5 +12,6 @@ mod recorder;
 mod search;
 mod sim;
 mod soak;
+mod support;
 mod tamp;
 mod validate;

@@ -1,5 +1,5 @@
-//! Input hardening (issue 8, item 1): seeded, bounded property-based mutation tests for every
-//! input parser of the library. The mutators and the guarantees (the oracle) live in the library,
+//! Input hardening: seeded, bounded property-based mutation tests for every input parser of the
+//! library. The mutators and the guarantees (the oracle) live in the library,
 //! `logic_lfd::experiments::fuzz`, shared with `logic-lfd fuzz` (longer runs, saved corpus); here
 //! each target runs a bounded number of cases from a fixed seed. Each case asserts
 //!
@@ -12,7 +12,7 @@
 //! Case counts are sized so that the whole set runs ≥ 10 000 inputs in well under a minute in
 //! the test profile (`opt-level = 1`); `FUZZ_CASES_SCALE=N` multiplies them for longer runs.
 //! Every crash found by `logic-lfd fuzz` becomes a regression test in `regressions.rs`, named
-//! after the saved input.
+//! after the behaviour it protects.
 
 mod episode;
 mod lqt_case;

@@ -1,5 +1,6 @@
-//! Regression tests for inputs found by `logic-lfd fuzz` (each named after the saved input
-//! `<target>-<seed>-<index>`): the input is replayed through the same oracle.
+//! Regression tests for inputs found by `logic-lfd fuzz`: each is named after the behaviour it
+//! protects, regenerates its input from the saved `<target>-<seed>-<index>` and replays it
+//! through the same oracle.
 
 use logic_lfd::experiments::fuzz::{base_inputs, check_catching, generate, Target};
 

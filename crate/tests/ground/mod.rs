@@ -112,7 +112,7 @@ fn blocks_counts_match_the_formula() {
 /// fluents at-robby 2 + at 4·2 + free 2 + carry 4·2 = 20; operators move 2·2 + pick 4·2·2 +
 /// drop 4·2·2 = 36.
 #[test]
-fn gripper_prob01_counts() {
+fn gripper_prob01_grounds_to_the_counted_facts_and_operators() {
     let t = ground_ipc("gripper", "prob01.pddl");
     assert_eq!(t.facts.len(), 20);
     assert_eq!(t.operators.len(), 36);
@@ -128,7 +128,7 @@ fn gripper_prob01_counts() {
 /// Depot p01 (1 depot, 2 distributors → 3 places; 2 trucks; 3 pallets, 2 crates, 3 hoists):
 /// hoists and pallets never move, so their `at` facts are static; drive 2·3·3 = 18 operators.
 #[test]
-fn depot_p01_folds_facts_no_operator_changes() {
+fn depot_p01_folds_the_facts_no_operator_changes_into_statics() {
     let t = ground_ipc("depot-typed", "p01.pddl");
     assert!(t.static_facts.contains(&"(at hoist0 depot0)".to_string()));
     assert!(t.static_facts.contains(&"(at pallet0 depot0)".to_string()));
@@ -179,7 +179,7 @@ fn op<'t>(t: &'t Task, name: &str) -> &'t logic_lfd::plan::Operator {
 /// Fluents: at ×3, visited ×3, has k1, key-at k1 r1, locked r2 = 9. Static: 3 doors, opens,
 /// key-at k2 r3 (never taken) = 5.
 #[test]
-fn rooms_costs_negative_preconditions_equality_or() {
+fn rooms_grounds_action_costs_negative_preconditions_equality_and_or() {
     let t = rooms("p-costs.pddl");
     assert_eq!(t.facts.len(), 9, "{:?}", t.facts);
     assert_eq!(
@@ -229,7 +229,7 @@ fn rooms_costs_negative_preconditions_equality_or() {
 /// Without a metric every action costs 1; an or-goal gives two alternatives; a negative goal
 /// literal becomes `Condition::neg`; a true `(= r1 r1)` disappears.
 #[test]
-fn rooms_unit_costs_or_goal_negative_goal() {
+fn without_a_metric_actions_cost_one_and_an_or_goal_keeps_its_alternatives() {
     let t = rooms("p-unit.pddl");
     assert!(!t.uses_costs);
     assert!(t.operators.iter().all(|o| o.cost == 1));
@@ -311,7 +311,7 @@ fn exploding_dnf_is_a_typed_error() {
 
 /// Re-grounding from an observed state reaches facts the original init could not.
 #[test]
-fn regrounding_with_an_observed_init() {
+fn regrounding_from_an_observed_state_reaches_facts_the_init_could_not() {
     let dir = data_dir().join("rooms");
     let d = parse_domain(
         &std::fs::read_to_string(dir.join("domain.pddl")).unwrap(),

@@ -231,7 +231,7 @@ fn wrong_problems_are_located() {
 }
 
 #[test]
-fn case_insensitive_with_comments_anywhere() {
+fn pddl_is_read_case_insensitively_with_comments_anywhere() {
     let d = parse_domain(
         "; header\n(DEFINE (DOMAIN Mixed) ; c\n (:REQUIREMENTS :STRIPS :Typing)\n (:TYPES Block)\n \
          (:PREDICATES (On ?X - BLOCK ?y - block)) ; c\n (:ACTION Go :PARAMETERS (?A - Block) \

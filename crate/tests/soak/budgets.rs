@@ -1,6 +1,6 @@
-//! Budgets (issue 8, item 4, Rust side): every search honours its node budget and its time budget
-//! measured with the caller's clock, and an exhausted budget is a stated outcome, not a hang; a
-//! session under a tiny planning or simulated-time budget ends with a stated reason.
+//! Budgets (Rust side): every search honours its node budget and its time budget measured with
+//! the caller's clock, and an exhausted budget is a stated outcome, not a hang; a session under a
+//! tiny planning or simulated-time budget ends with a stated reason.
 
 use std::cell::Cell;
 

@@ -1,6 +1,6 @@
-//! Determinism (issue 8, item 3, native part): the same seed gives byte-identical episode JSON
-//! across two runs, a logged episode replays to the byte-identical JSON, and a soak's report is
-//! a function of its seed. (The wasm/node half of the check is in the npm package's tests.)
+//! Determinism (native part): the same seed gives byte-identical episode JSON across two runs, a
+//! logged episode replays to the byte-identical JSON, and a soak's report is a function of its
+//! seed. (The wasm/node half of the check is in the npm package's tests.)
 
 use logic_lfd::experiments::soak::{soak, SoakParams};
 use logic_lfd::experiments::{run_episode, EpisodeSpec, Level};
@@ -68,8 +68,8 @@ fn a_soak_report_is_a_function_of_its_seed() {
     assert_ne!(a, serde_json::to_string(&soak(&other).unwrap()).unwrap());
 }
 
-/// Regression (soak finding "replay differed"): serde_json's default float parser can be one ULP
-/// off, so a drag position read back from the episode JSON was not the position applied. With
+/// Found by the soak (a replay that differed). serde_json's default float parser can be one ULP
+/// off, and a drag position read back from the episode JSON must be the position applied: with
 /// the `float_roundtrip` feature every f64 reads back bit for bit.
 #[test]
 fn every_f64_round_trips_through_json_bit_for_bit() {

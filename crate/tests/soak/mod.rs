@@ -1,4 +1,4 @@
-//! Closed-loop soak (CI size), determinism and budgets (issue 8, items 2–4).
+//! Closed-loop soak (CI size), determinism and budgets.
 
 mod budgets;
 mod determinism;

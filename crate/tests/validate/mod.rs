@@ -49,7 +49,7 @@ fn hand_written_blocks_plan_is_valid() {
 }
 
 #[test]
-fn first_failing_step_and_its_false_literals() {
+fn an_invalid_plan_names_its_first_failing_step_and_its_false_literals() {
     // Without the first pick-up, step 1 (stack b a) lacks (holding b).
     let r = check(&BLOCKS_4_0.replace("(pick-up b)\n", ""));
     match &r.outcome {
@@ -154,7 +154,7 @@ fn malformed_steps_are_located() {
 }
 
 #[test]
-fn rooms_function_costs_or_and_negative_preconditions() {
+fn the_validator_sums_function_costs_and_prints_false_or_equality_and_negated_literals() {
     let dir = data_dir().join("rooms");
     let (d, p) = load(&dir, "p-costs.pddl");
     let plan = std::fs::read_to_string(dir.join("plan-costs.plan")).unwrap();
@@ -290,7 +290,7 @@ fn run(domain: &Path, problem: &Path, plan: &Path, json: bool) -> (i32, String, 
 }
 
 #[test]
-fn cli_valid_invalid_and_bad_input() {
+fn cli_validate_exits_with_a_code_per_verdict_and_locates_bad_input() {
     let dir = ipc_dir().join("blocks");
     let (dom, prob) = (dir.join("domain.pddl"), dir.join("probBLOCKS-4-0.pddl"));
     let good = tmp("good.plan", BLOCKS_4_0.as_bytes());

@@ -1,0 +1,75 @@
+//! The demonstration recorder: segmentation of recordings into the domain's actions, refusal of
+//! recordings the PDDL model cannot explain, the quick (drag) and gripper teaching modes, undo,
+//! taught tasks, and the `logic-lfd demo segment` CLI. This module holds the recordings, edits
+//! and paths its test files share.
+
+mod segmentation;
+mod taught;
+mod teaching;
+
+use std::path::PathBuf;
+
+use logic_lfd::recorder::recording::GripperState;
+use logic_lfd::recorder::synth::Edit;
+use logic_lfd::recorder::{
+    segment_recording, ArmRef, RawRecording, RecorderError, RecorderParams, Taught,
+};
+use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::{geometry, World};
+
+fn quick_params() -> RecorderParams {
+    RecorderParams {
+        learn_skills: false,
+        ..RecorderParams::default()
+    }
+}
+
+fn segment(rec: &RawRecording, b: Benchmark) -> Result<Taught, RecorderError> {
+    segment_recording(rec, b.domain_pddl(), "domain.pddl", None, quick_params())
+}
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/recordings")
+        .join(name)
+}
+
+fn domain_file(b: Benchmark) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../domains")
+        .join(b.dir_name())
+        .join("domain.pddl")
+}
+
+fn drag(body: &str, onto: &str) -> Edit {
+    Edit::Drag {
+        body: body.into(),
+        onto: Some(onto.into()),
+        position: None,
+        yaw: None,
+        arm: None,
+    }
+}
+
+fn gripper(position: [f64; 3], yaw: f64, g: GripperState, duration: f64) -> Edit {
+    Edit::Gripper {
+        arm: ArmRef::Index(0),
+        position,
+        yaw,
+        gripper: g,
+        duration,
+    }
+}
+
+/// The gripper yaw of the top grasp of `body` (the yaw `down_orientation` was built with).
+fn grasp_yaw(world: &World, body: &str) -> ([f64; 3], f64) {
+    let g = geometry::grasp_pose(world, 0, body).unwrap();
+    let r = g.rotation
+        * nalgebra::UnitQuaternion::from_axis_angle(
+            &nalgebra::Vector3::x_axis(),
+            std::f64::consts::PI,
+        );
+    let x = r * nalgebra::Vector3::x();
+    let p = g.translation.vector;
+    ([p.x, p.y, p.z], libm::atan2(x.y, x.x))
+}

@@ -1,0 +1,16 @@
+//! Running the `logic-lfd` binary.
+
+use std::process::Command;
+
+/// Runs `logic-lfd` with `args`: its exit code, stdout and stderr.
+pub(crate) fn run_cli(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_logic-lfd"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
