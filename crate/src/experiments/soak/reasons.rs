@@ -244,7 +244,7 @@ mod tests {
         // arm holds. Without an action that takes a block off the shelf, no plan exists: a
         // legitimate failure.
         let path = format!(
-            "{}/tests/data/worlds/soak-4242-2552.json",
+            "{}/tests/data/worlds/b2-b-held-over-full-shelf.json",
             env!("CARGO_MANIFEST_DIR")
         );
         let mut world = World::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
@@ -301,7 +301,7 @@ mod tests {
         // 25 cm); the arm closed on it and cannot lift it.
         let text = std::fs::read_to_string(concat!(
             env!("CARGO_MANIFEST_DIR"),
-            "/tests/data/worlds/soak-2026-2919.json"
+            "/tests/data/worlds/b1-a-held-inside-minimum-reach.json"
         ))
         .unwrap();
         let world = World::from_json(&text).unwrap();
