@@ -1,0 +1,170 @@
+//! The kinematic world's state: the [`World`] itself, its tunables ([`WorldParams`]) and the
+//! small types its stages share (arms, regions, gripper commands, errors of calls).
+//!
+//! See the module header of [`crate::sim`] for the contact rules in words. Each stage lives in
+//! its own file: loading and saving scenes (`load`), queries (`accessors`), path checks for
+//! planners (`path_checks`), the fixed step (`step`) and the hook's pushes (`hook`), settling
+//! released bodies (`settle`), user moves (`user_moves`) and the invariants (`invariants`).
+
+mod accessors;
+mod body;
+mod hook;
+mod invariants;
+mod load;
+mod path_checks;
+mod settle;
+mod step;
+mod user_moves;
+
+pub(crate) use body::Body;
+pub use invariants::Violation;
+pub use load::SceneError;
+pub use step::WorldEvent;
+pub use user_moves::{MoveOutcome, Refused};
+
+use super::panda::{self, IkParams, DOF};
+use super::snapshot::ReachSnapshot;
+use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+use serde::{Deserialize, Serialize};
+
+/// Tunables of the world (metres, seconds, radians).
+#[derive(Clone, Debug, PartialEq)]
+pub struct WorldParams {
+    /// Largest interpenetration depth between two bodies still accepted (m).
+    pub penetration_tolerance: f64,
+    /// Largest gap between a body's bottom and its support's top for "resting on" (m).
+    pub support_tolerance: f64,
+    /// A closing gripper grasps a body when its tool centre point is inside the body grown by this (m).
+    pub grasp_tolerance: f64,
+    /// Finger speed when opening or closing (m/s).
+    pub finger_speed: f64,
+    /// IK used to follow end-effector commands each step (few iterations, warm start, no restarts).
+    pub tracking_ik: IkParams,
+    /// IK used by [`World::reachable`] (with restarts).
+    pub planning_ik: IkParams,
+}
+
+impl WorldParams {
+    /// How deep a carried body (or a block the carried hook pushes) may press into another
+    /// before the arm stops at the contact (m): 0.9 of the penetration tolerance.
+    pub fn carried_stop_depth(&self) -> f64 {
+        0.9 * self.penetration_tolerance
+    }
+}
+
+impl Default for WorldParams {
+    fn default() -> Self {
+        WorldParams {
+            penetration_tolerance: 0.002,
+            support_tolerance: 0.005,
+            grasp_tolerance: 0.005,
+            finger_speed: 0.2,
+            tracking_ik: IkParams {
+                max_iterations: 6,
+                restarts: 0,
+                ..IkParams::default()
+            },
+            planning_ik: IkParams::default(),
+        }
+    }
+}
+
+/// What a gripper is told to do.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GripperCommand {
+    /// Open the fingers; a held body is released and drops onto the highest support below it.
+    Open,
+    /// Close the fingers; a block or hook between the fingertips is grasped.
+    Close,
+}
+/// Yaw (rotation about world `z`) of a pose's rotation.
+pub(crate) fn yaw_of(rot: &UnitQuaternion<f64>) -> f64 {
+    let x = rot * Vector3::x();
+    libm::atan2(x.y, x.x)
+}
+
+/// How deep an arm link may press into a table or shelf before the arm stops (m): the link
+/// capsules are rounded stand-ins for the real links.
+pub(crate) const LINK_TOLERANCE: f64 = 0.01;
+
+/// One arm with its gripper.
+#[derive(Clone, Debug)]
+pub(crate) struct Arm {
+    pub name: String,
+    pub base: Isometry3<f64>,
+    pub joints: [f64; DOF],
+    pub gripper_opening: f64,
+    /// Index of the held body and its pose in the TCP frame.
+    pub holding: Option<(usize, Isometry3<f64>)>,
+    pub reach: ReachSnapshot,
+    pub target: Option<Isometry3<f64>>,
+    pub gripper: GripperCommand,
+    /// The gripper command of the previous step (to see it change).
+    pub last_gripper: GripperCommand,
+    /// The body the held one touched when the last step was stopped at contact (not saved).
+    pub blocked_by: Option<String>,
+    /// A joint-space target (instead of `target`), followed at the joint velocity limits.
+    pub joint_target: Option<[f64; DOF]>,
+}
+
+impl Arm {
+    pub(crate) fn tcp(&self) -> Isometry3<f64> {
+        panda::forward_kinematics(&self.base, &self.joints)
+    }
+}
+
+/// A named rectangle of table top.
+#[derive(Clone, Debug)]
+pub(crate) struct Region {
+    pub name: String,
+    pub min: [f64; 2],
+    pub max: [f64; 2],
+    pub color: String,
+}
+
+impl Region {
+    pub(crate) fn contains(&self, x: f64, y: f64) -> bool {
+        x >= self.min[0] && x <= self.max[0] && y >= self.min[1] && y <= self.max[1]
+    }
+}
+
+/// Errors of world operations called by programs (bad indices, unknown names).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SimError {
+    /// No arm with this index.
+    #[error("no arm with index {0}")]
+    NoSuchArm(usize),
+    /// No body or arm with this name.
+    #[error("no body or arm named {0:?}")]
+    UnknownName(String),
+    /// A command with a non-finite number.
+    #[error("a command is not finite")]
+    NonFinite,
+}
+
+/// The kinematic world (see the module documentation of [`crate::sim`] for the rules).
+#[derive(Clone, Debug)]
+pub struct World {
+    pub(crate) name: String,
+    pub(crate) time: f64,
+    pub(crate) dt: f64,
+    pub(crate) floor_z: f64,
+    pub(crate) predicates: Vec<String>,
+    pub(crate) regions: Vec<Region>,
+    pub(crate) bodies: Vec<Body>,
+    pub(crate) arms: Vec<Arm>,
+    pub(crate) params: WorldParams,
+}
+
+/// The predicates a scene may ask the scene graph for.
+pub const KNOWN_PREDICATES: [&str; 8] = [
+    "on",
+    "ontable",
+    "onshelf",
+    "clear",
+    "holding",
+    "handempty",
+    "inreach",
+    "at",
+];
