@@ -1,0 +1,511 @@
+//! The scripted expert: minimum-jerk way-point motions with seeded human-like variation,
+//! executed in the simulator and recorded relative to each action's anchor frame.
+
+use super::template::{template_steps, TemplateAction};
+use super::{fail, AnchorPose, DemoAction, DemoError, Demonstration, GripperEvent, KeyPoint};
+use super::{pull_hook_poses, FRAME_CONVENTION, PULL_TARGET_RADIUS};
+use crate::sim::benchmark::Benchmark;
+use crate::sim::geometry::{self, wrap};
+use crate::sim::panda;
+use crate::sim::scene_graph::SceneGraph;
+use crate::sim::world::yaw_of;
+use crate::sim::world::{GripperCommand, World, WorldEvent};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+
+/// Tunables of the scripted expert.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExpertParams {
+    /// Mean Cartesian speed of transfer segments (m/s).
+    pub speed: f64,
+    /// Height of approach way-points above the grasp / place pose (m).
+    pub approach_height: f64,
+    /// Time the gripper is held still while closing or opening (s).
+    pub hold_time: f64,
+    /// Duration of the final approach and of the lift (s).
+    pub contact_time: f64,
+    /// Scale of the random variation (0: none, 1: the amounts in the module docs).
+    pub variation: f64,
+}
+
+impl Default for ExpertParams {
+    fn default() -> Self {
+        ExpertParams {
+            speed: 0.35,
+            approach_height: 0.12,
+            hold_time: 0.3,
+            contact_time: 0.6,
+            variation: 1.0,
+        }
+    }
+}
+
+/// One way-point segment of an expert motion.
+struct Seg {
+    to: Isometry3<f64>,
+    duration: f64,
+    gripper: Option<GripperCommand>,
+    key: Option<&'static str>,
+}
+
+/// What the expert does for one action.
+pub(super) enum Step {
+    Pick {
+        arm: usize,
+        x: String,
+    },
+    Place {
+        arm: usize,
+        x: String,
+        /// Where the carried body should rest.
+        target: Isometry3<f64>,
+        /// Go back to the home pose afterwards (B3 hand-over, so the arms keep apart).
+        retreat: bool,
+    },
+    Pull {
+        arm: usize,
+        hook: String,
+        x: String,
+    },
+}
+
+fn min_jerk(t: f64) -> f64 {
+    t * t * t * (10.0 + t * (-15.0 + 6.0 * t))
+}
+
+fn round_to(v: f64, q: f64) -> f64 {
+    (v / q).round() * q
+}
+
+struct Expert {
+    rng: Pcg64Mcg,
+    p: ExpertParams,
+}
+
+impl Expert {
+    fn jitter(&mut self, amount: f64) -> f64 {
+        if self.p.variation == 0.0 {
+            return 0.0;
+        }
+        self.rng.random_range(-1.0..1.0) * amount * self.p.variation
+    }
+
+    fn scale(&mut self) -> f64 {
+        1.0 + self.jitter(0.15)
+    }
+
+    fn offset(&mut self, amount: f64) -> Vector3<f64> {
+        Vector3::new(self.jitter(amount), self.jitter(amount), 0.0)
+    }
+
+    fn transfer_time(&mut self, from: &Isometry3<f64>, to: &Isometry3<f64>) -> f64 {
+        let d = (to.translation.vector - from.translation.vector).norm();
+        let ang = (to.rotation * from.rotation.inverse()).angle();
+        (d / self.p.speed).max(ang / 1.2).max(0.6) * self.scale()
+    }
+
+    fn lifted(&mut self, p: &Isometry3<f64>, h: f64) -> Isometry3<f64> {
+        let mut q = *p;
+        q.translation.vector += Vector3::new(0.0, 0.0, h) + self.offset(0.006);
+        q
+    }
+}
+
+/// Executes segments on `world` for `arm`, recording samples relative to `anchor`.
+fn execute(
+    world: &mut World,
+    arm: usize,
+    segs: &[Seg],
+    anchor: &Isometry3<f64>,
+    action: &str,
+    out: &mut DemoAction,
+) -> Result<(), DemoError> {
+    let dt = world.dt();
+    let mut from = world
+        .tcp_pose(arm)
+        .ok_or_else(|| fail(action, "no such arm"))?;
+    let (_, mut grip) = world
+        .arm_command(arm)
+        .ok_or_else(|| fail(action, "no such arm"))?;
+    let anchor_inv = anchor.inverse();
+    let anchor_yaw = yaw_of(&anchor.rotation);
+    for seg in segs {
+        let n = ((seg.duration / dt).round() as usize).max(1);
+        if let Some(g) = seg.gripper {
+            grip = g;
+            out.gripper.push(GripperEvent {
+                step: out.samples.len(),
+                command: g,
+            });
+        }
+        if let Some(k) = seg.key {
+            out.key_points.push(KeyPoint {
+                step: out.samples.len(),
+                label: k.to_string(),
+            });
+        }
+        for k in 1..=n {
+            let s = min_jerk(k as f64 / n as f64);
+            let p = from.translation.vector.lerp(&seg.to.translation.vector, s);
+            let r = from.rotation.slerp(&seg.to.rotation, s);
+            let cmd = Isometry3::from_parts(Translation3::from(p), r);
+            step_checked(world, arm, cmd, grip, action, out.samples.len())?;
+            let tcp = world
+                .tcp_pose(arm)
+                .ok_or_else(|| fail(action, "no such arm"))?;
+            out.samples
+                .push(anchor_sample(&tcp, &anchor_inv, anchor_yaw));
+        }
+        from = seg.to;
+    }
+    Ok(())
+}
+
+/// Commands arm `arm` to `cmd` and steps the world once: an error if the gripper closed on
+/// nothing, a body fell, or an invariant broke (at sample `sample`).
+fn step_checked(
+    world: &mut World,
+    arm: usize,
+    cmd: Isometry3<f64>,
+    grip: GripperCommand,
+    action: &str,
+    sample: usize,
+) -> Result<(), DemoError> {
+    world
+        .command_arm(arm, cmd, grip)
+        .map_err(|e| fail(action, e.to_string()))?;
+    let events = world.step();
+    for e in &events {
+        if matches!(
+            e,
+            WorldEvent::GraspedNothing { .. } | WorldEvent::Lost { .. }
+        ) {
+            return Err(fail(action, e.to_string()));
+        }
+    }
+    if let Err(v) = world.check_invariants() {
+        return Err(DemoError::Invariant {
+            action: action.to_string(),
+            step: sample,
+            violations: v,
+        });
+    }
+    Ok(())
+}
+
+/// The sample `[x, y, z, yaw]` of TCP pose `tcp` in the anchor frame (`anchor_inv` its inverse,
+/// `anchor_yaw` its yaw), rounded as the module docs say.
+fn anchor_sample(tcp: &Isometry3<f64>, anchor_inv: &Isometry3<f64>, anchor_yaw: f64) -> [f64; 4] {
+    let lp = anchor_inv * nalgebra::Point3::from(tcp.translation.vector);
+    let yaw = wrap(
+        yaw_of(
+            &(tcp.rotation
+                * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)),
+        ) - anchor_yaw,
+    );
+    [
+        round_to(lp.x, 1e-4),
+        round_to(lp.y, 1e-4),
+        round_to(lp.z, 1e-4),
+        round_to(yaw, 1e-3),
+    ]
+}
+
+/// Where an expert motion starts: the arm, its TCP pose, and the action (for errors).
+struct MotionStart<'a> {
+    arm: usize,
+    tcp: Isometry3<f64>,
+    action: &'a str,
+}
+
+/// The expert's motion for one action: its segments and the anchor frame they are recorded in.
+struct Motion {
+    segs: Vec<Seg>,
+    anchor: Isometry3<f64>,
+}
+
+/// Performs one expert step and records it.
+fn perform(
+    world: &mut World,
+    expert: &mut Expert,
+    step: &Step,
+    action: &str,
+) -> Result<DemoAction, DemoError> {
+    let words: Vec<String> = action
+        .trim_matches(|c| c == '(' || c == ')')
+        .split_whitespace()
+        .map(String::from)
+        .collect();
+    let (arm, anchor_name) = match step {
+        Step::Pick { arm, x } | Step::Place { arm, x, .. } | Step::Pull { arm, x, .. } => {
+            (*arm, x.clone())
+        }
+    };
+    let mut rec = DemoAction {
+        action: action.to_string(),
+        name: words.first().cloned().unwrap_or_default(),
+        args: words.iter().skip(1).cloned().collect(),
+        arm: world
+            .arm_names()
+            .get(arm)
+            .map(|s| s.to_string())
+            .unwrap_or_default(),
+        anchor: anchor_name.clone(),
+        anchor_pose: AnchorPose {
+            position: [0.0; 3],
+            yaw: 0.0,
+        },
+        samples: Vec::new(),
+        gripper: Vec::new(),
+        key_points: Vec::new(),
+    };
+    let start = world
+        .tcp_pose(arm)
+        .ok_or_else(|| fail(action, "no such arm"))?;
+    let from = MotionStart {
+        arm,
+        tcp: start,
+        action,
+    };
+    let motion = match step {
+        Step::Pick { x, .. } => expert.pick(world, &from, x)?,
+        Step::Place {
+            x, target, retreat, ..
+        } => expert.place(world, &from, x, target, *retreat)?,
+        Step::Pull { hook, x, .. } => expert.pull(world, &from, hook, x)?,
+    };
+    rec.anchor_pose = AnchorPose::from_pose(&motion.anchor);
+    execute(world, arm, &motion.segs, &motion.anchor, action, &mut rec)?;
+    Ok(rec)
+}
+
+impl Expert {
+    /// Picking `x` from `from`: above it (gripper open), down to the grasp, close,
+    /// lift; anchored at the body where it lies.
+    fn pick(&mut self, world: &World, from: &MotionStart, x: &str) -> Result<Motion, DemoError> {
+        let (arm, start, action) = (from.arm, &from.tcp, from.action);
+        let (h, ct, hold) = (
+            self.p.approach_height,
+            self.p.contact_time,
+            self.p.hold_time,
+        );
+        let body = world
+            .body_pose(x)
+            .ok_or_else(|| fail(action, format!("no body {x}")))?;
+        let mut g = geometry::grasp_pose(world, arm, x)
+            .ok_or_else(|| fail(action, format!("{x} cannot be grasped")))?;
+        g.translation.vector += self.offset(0.0015);
+        let hh = h + self.jitter(0.02);
+        let above = self.lifted(&g, hh);
+        let lift = self.lifted(&g, hh);
+        let t0 = self.transfer_time(start, &above);
+        let segs = vec![
+            Seg {
+                to: above,
+                duration: t0,
+                gripper: Some(GripperCommand::Open),
+                key: None,
+            },
+            Seg {
+                to: g,
+                duration: ct * self.scale(),
+                gripper: None,
+                key: None,
+            },
+            Seg {
+                to: g,
+                duration: hold,
+                gripper: Some(GripperCommand::Close),
+                key: Some("grasp"),
+            },
+            Seg {
+                to: lift,
+                duration: ct * self.scale(),
+                gripper: None,
+                key: None,
+            },
+        ];
+        Ok(Motion {
+            segs,
+            anchor: AnchorPose::from_pose(&body).isometry(),
+        })
+    }
+
+    /// Putting the held `x` down at `target` from `from`: above the place, down,
+    /// open, up, and home to the ready posture if `retreat`; anchored at `target`.
+    fn place(
+        &mut self,
+        world: &World,
+        from: &MotionStart,
+        x: &str,
+        target: &Isometry3<f64>,
+        retreat: bool,
+    ) -> Result<Motion, DemoError> {
+        let (arm, start, action) = (from.arm, &from.tcp, from.action);
+        let (h, ct, hold) = (
+            self.p.approach_height,
+            self.p.contact_time,
+            self.p.hold_time,
+        );
+        if world.arm_command(arm).is_none() || world.held_by(arm) != Some(x) {
+            return Err(fail(action, format!("the arm does not hold {x}")));
+        }
+        let mut t = *target;
+        t.translation.vector.z += 0.002;
+        let mut tcp = geometry::tcp_for_body_pose(world, arm, &t);
+        tcp.translation.vector += self.offset(0.0015);
+        let hh = h + self.jitter(0.02);
+        let above = self.lifted(&tcp, hh);
+        let up = self.lifted(&tcp, hh);
+        let t0 = self.transfer_time(start, &above);
+        let mut segs = vec![
+            Seg {
+                to: above,
+                duration: t0,
+                gripper: None,
+                key: None,
+            },
+            Seg {
+                to: tcp,
+                duration: ct * self.scale(),
+                gripper: None,
+                key: None,
+            },
+            Seg {
+                to: tcp,
+                duration: hold,
+                gripper: Some(GripperCommand::Open),
+                key: Some("release"),
+            },
+            Seg {
+                to: up,
+                duration: ct * self.scale(),
+                gripper: None,
+                key: None,
+            },
+        ];
+        if retreat {
+            let base = world
+                .arm_base(arm)
+                .ok_or_else(|| fail(action, "no such arm"))?;
+            let home = panda::forward_kinematics(&base, &panda::READY);
+            let tr = self.transfer_time(&up, &home);
+            segs.push(Seg {
+                to: home,
+                duration: tr,
+                gripper: None,
+                key: None,
+            });
+        }
+        Ok(Motion {
+            segs,
+            anchor: AnchorPose::from_pose(target).isometry(),
+        })
+    }
+
+    /// Pulling `x` with the held `hook` from `from`: above the contact pose, down
+    /// behind the block, the stroke towards the base, up; anchored at the block where it lies.
+    fn pull(
+        &mut self,
+        world: &World,
+        from: &MotionStart,
+        hook: &str,
+        x: &str,
+    ) -> Result<Motion, DemoError> {
+        let (arm, start, action) = (from.arm, &from.tcp, from.action);
+        let (h, ct) = (self.p.approach_height, self.p.contact_time);
+        if world.held_by(arm) != Some(hook) {
+            return Err(fail(action, format!("the arm does not hold {hook}")));
+        }
+        let bp = world
+            .body_pose(x)
+            .ok_or_else(|| fail(action, format!("no body {x}")))?;
+        let base = world
+            .arm_base(arm)
+            .ok_or_else(|| fail(action, "no such arm"))?;
+        let reach = PULL_TARGET_RADIUS;
+        let (contact, pulled) = pull_hook_poses(&base, &bp, reach);
+        let tcp_contact = geometry::tcp_for_body_pose(world, arm, &contact);
+        let tcp_pulled = geometry::tcp_for_body_pose(world, arm, &pulled);
+        let hh = h + self.jitter(0.02);
+        let above = self.lifted(&tcp_contact, hh);
+        let up = self.lifted(&tcp_pulled, hh);
+        let t0 = self.transfer_time(start, &above);
+        let tp = self.transfer_time(&tcp_contact, &tcp_pulled) * 1.5;
+        let segs = vec![
+            Seg {
+                to: above,
+                duration: t0,
+                gripper: None,
+                key: None,
+            },
+            Seg {
+                to: tcp_contact,
+                duration: ct * self.scale(),
+                gripper: None,
+                key: None,
+            },
+            Seg {
+                to: tcp_pulled,
+                duration: tp,
+                gripper: None,
+                key: Some("contact"),
+            },
+            Seg {
+                to: up,
+                duration: ct * self.scale(),
+                gripper: None,
+                key: Some("pulled"),
+            },
+        ];
+        Ok(Motion {
+            segs,
+            anchor: AnchorPose::from_pose(&bp).isometry(),
+        })
+    }
+}
+
+/// Records the template task's demonstration of `b` with the scripted expert (seeded variation),
+/// checking the world's invariants after every step and the goal at the end.
+pub fn record(b: Benchmark, seed: u64, params: &ExpertParams) -> Result<Demonstration, DemoError> {
+    let mut world = b.scene();
+    let mut expert = Expert {
+        rng: Pcg64Mcg::seed_from_u64(seed),
+        p: params.clone(),
+    };
+    let steps = template_steps(b, &world)?;
+    let mut actions = Vec::new();
+    for TemplateAction { action, mut step } in steps {
+        // Stacking targets depend on where the lower block is now.
+        if let Step::Place { x, target, .. } = &mut step {
+            if action.starts_with("(stack") {
+                let words: Vec<&str> = action
+                    .trim_matches(|c| c == '(' || c == ')')
+                    .split_whitespace()
+                    .collect();
+                let y = words[3];
+                *target = geometry::rest_pose_on(&world, x, y, 0.0)
+                    .ok_or_else(|| fail(&action, format!("nothing to stack on ({y})")))?;
+            }
+        }
+        let rec = perform(&mut world, &mut expert, &step, &action)?;
+        actions.push(rec);
+    }
+    let sg = SceneGraph::from_world(&world);
+    for g in b.goal() {
+        if !sg.facts.contains(&g) {
+            return Err(fail(
+                "goal",
+                format!("{g} does not hold after the demonstration"),
+            ));
+        }
+    }
+    Ok(Demonstration {
+        benchmark: b.dir_name().to_string(),
+        seed,
+        dt: world.dt(),
+        frame_convention: FRAME_CONVENTION.to_string(),
+        actions,
+    })
+}

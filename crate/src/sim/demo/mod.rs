@@ -1,0 +1,182 @@
+//! Demonstrations (`domains/*/demo.json`): the template task's action sequence and, per action,
+//! the end-effector trajectory expressed relative to the object it acts on; recorded by a
+//! scripted expert in the simulator, replayable in it.
+//!
+//! **Frame convention.** Each action has an *anchor* object and an anchor frame `F` = the anchor's
+//! centre with its yaw about world `z` (no tilt):
+//! * `pick`, `unstack`, `pull`: the picked / pulled block (or the hook) at the start of the action;
+//! * `place`, `place-on-shelf`, `stack`: the carried object at the pose where it is put down
+//!   (its resting pose at the end of the action).
+//!
+//! A sample `[x, y, z, yaw]` is the gripper's tool centre point in `F` (metres) and the gripper's
+//! yaw about `z` relative to `F`'s yaw (radians); the gripper always points straight down
+//! (`panda::down_orientation`). Samples are taken every `dt` = 10 ms after each simulator step,
+//! rounded to 0.1 mm / 1 mrad. A gripper event at sample `k` was commanded at the step that
+//! produced sample `k`. `key_points` name the samples that matter to a motion skill (grasp,
+//! release, hook contact) — the via-points of LQT-CP.
+//!
+//! **Expert.** Each motion is a chain of minimum-jerk segments `p(τ) = p₀ + (p₁ − p₀)(10τ³ −
+//! 15τ⁴ + 6τ⁵)` between way-points (approach above the object, the grasp / place pose, a lift),
+//! with seeded human-like variation of segment durations (±15 %), approach heights (±2 cm) and
+//! way-point offsets (±6 mm above, ±1.5 mm at contact).
+
+mod expert;
+mod pull;
+mod replay;
+mod template;
+
+pub use expert::{record, ExpertParams};
+pub use pull::{
+    pull_hook_poses, pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TURNS,
+};
+pub use replay::{demo_states, replay};
+
+use super::benchmark::Benchmark;
+use super::world::yaw_of;
+use super::world::{GripperCommand, Violation};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use serde::{Deserialize, Serialize};
+
+/// World pose of an anchor frame: position and yaw.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AnchorPose {
+    /// Anchor centre, world frame (m).
+    pub position: [f64; 3],
+    /// Yaw about world `z` (rad).
+    pub yaw: f64,
+}
+
+impl AnchorPose {
+    /// As an isometry (translation + yaw).
+    pub fn isometry(&self) -> Isometry3<f64> {
+        Isometry3::from_parts(
+            Translation3::from(Vector3::from(self.position)),
+            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), self.yaw),
+        )
+    }
+
+    /// The anchor frame of a world pose (tilt dropped).
+    pub fn from_pose(p: &Isometry3<f64>) -> AnchorPose {
+        AnchorPose {
+            position: p.translation.vector.into(),
+            yaw: yaw_of(&p.rotation),
+        }
+    }
+}
+
+/// A gripper command at a sample index.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GripperEvent {
+    /// Sample index (0-based, within the action).
+    pub step: usize,
+    /// The command from that step on.
+    pub command: GripperCommand,
+}
+
+/// A named sample of an action's trajectory (a via-point for the motion skill).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct KeyPoint {
+    /// Sample index (0-based, within the action).
+    pub step: usize,
+    /// What happens there: `grasp`, `release`, `contact` (hook behind the block), `pulled`.
+    pub label: String,
+}
+
+/// One demonstrated action with its motion.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DemoAction {
+    /// The grounded PDDL action, e.g. `(pick panda c)`.
+    pub action: String,
+    /// Action name (`pick`, `place`, `stack`, `unstack`, `place-on-shelf`, `pull`).
+    pub name: String,
+    /// Arguments in PDDL order.
+    pub args: Vec<String>,
+    /// The arm executing it.
+    pub arm: String,
+    /// The object whose frame the samples are expressed in (see the module docs).
+    pub anchor: String,
+    /// The anchor frame in the world during the demonstration.
+    pub anchor_pose: AnchorPose,
+    /// `[x, y, z, yaw]` of the TCP in the anchor frame, one per 10 ms step (see the module docs).
+    pub samples: Vec<[f64; 4]>,
+    /// Gripper commands and the samples they start at.
+    pub gripper: Vec<GripperEvent>,
+    /// Named samples (via-points).
+    pub key_points: Vec<KeyPoint>,
+}
+
+/// A demonstration of a benchmark's template task.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Demonstration {
+    /// Benchmark directory name (`b1-tower`, …).
+    pub benchmark: String,
+    /// Seed of the expert's variation.
+    pub seed: u64,
+    /// Sample period (s).
+    pub dt: f64,
+    /// The frame convention in words.
+    pub frame_convention: String,
+    /// The actions in order (the demo's states L0..LN are derived by applying them).
+    pub actions: Vec<DemoAction>,
+}
+
+impl Demonstration {
+    /// The grounded action strings in order.
+    pub fn plan(&self) -> Vec<&str> {
+        self.actions.iter().map(|a| a.action.as_str()).collect()
+    }
+}
+
+/// Why recording or replaying a demonstration failed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum DemoError {
+    /// The world broke an invariant.
+    #[error("action {action} step {step}: invariant broken: {violations:?}")]
+    Invariant {
+        /// The action.
+        action: String,
+        /// Sample index.
+        step: usize,
+        /// What broke.
+        violations: Vec<Violation>,
+    },
+    /// The motion did not have the intended effect or refers to unknown things.
+    #[error("action {action}: {message}")]
+    Failed {
+        /// The action.
+        action: String,
+        /// What went wrong.
+        message: String,
+    },
+    /// Malformed demo JSON.
+    #[error("demo JSON: {0}")]
+    Json(String),
+}
+
+const FRAME_CONVENTION: &str =
+    "samples are [x, y, z, yaw] of the gripper tool centre point in the \
+anchor frame (anchor centre + its yaw about world z; pick/unstack/pull: the object at the action's \
+start; place/place-on-shelf/stack: the carried object's resting pose at the action's end), every \
+10 ms; gripper pointing straight down; yaw relative to the anchor's yaw";
+
+fn fail(action: &str, message: impl Into<String>) -> DemoError {
+    DemoError::Failed {
+        action: action.to_string(),
+        message: message.into(),
+    }
+}
+
+/// Parses a demo JSON text.
+pub fn from_json(text: &str) -> Result<Demonstration, DemoError> {
+    serde_json::from_str(text)
+        .map_err(|e| DemoError::Json(format!("line {} column {}: {e}", e.line(), e.column())))
+}
+
+/// The committed demonstration of a benchmark (`domains/<dir>/demo.json`).
+pub fn committed(b: Benchmark) -> Result<Demonstration, DemoError> {
+    from_json(match b {
+        Benchmark::B1 => include_str!("../../../../domains/b1-tower/demo.json"),
+        Benchmark::B2 => include_str!("../../../../domains/b2-workspace-reach/demo.json"),
+        Benchmark::B3 => include_str!("../../../../domains/b3-dual-arm/demo.json"),
+    })
+}
