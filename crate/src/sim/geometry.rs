@@ -9,7 +9,7 @@
 
 use super::panda::{self, ArmFrames};
 use super::snapshot::BodyKind;
-use super::world::{yaw_of, Arm, World};
+use super::world::{Arm, World};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::shape::{Capsule, Cuboid};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -276,6 +276,18 @@ pub fn link_capsules(
         Some(base) => links_of(&panda::forward_frames(&base, q)),
         None => vec![],
     }
+}
+
+/// Yaw (rotation about world `z`) of a pose's rotation: the heading of its `x` axis.
+pub(crate) fn yaw_of(rot: &UnitQuaternion<f64>) -> f64 {
+    let x = rot * Vector3::x();
+    libm::atan2(x.y, x.x)
+}
+
+/// The gripper yaw of a TCP orientation: the yaw [`panda::down_orientation`] was given (its
+/// inverse for a gripper pointing down).
+pub(crate) fn gripper_yaw(rot: &UnitQuaternion<f64>) -> f64 {
+    yaw_of(&(rot * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), PI)))
 }
 
 /// Wraps an angle to (−π, π].

@@ -2,15 +2,14 @@
 //! executed in the simulator and recorded relative to each action's anchor frame.
 
 use super::template::{template_steps, TemplateAction};
+use super::{anchor_sample, min_jerk, pull_hook_poses, FRAME_CONVENTION, PULL_TARGET_RADIUS};
 use super::{fail, AnchorPose, DemoAction, DemoError, Demonstration, GripperEvent, KeyPoint};
-use super::{pull_hook_poses, FRAME_CONVENTION, PULL_TARGET_RADIUS};
 use crate::sim::benchmark::Benchmark;
-use crate::sim::geometry::{self, wrap};
+use crate::sim::geometry::{self, yaw_of};
 use crate::sim::panda;
 use crate::sim::scene_graph::SceneGraph;
-use crate::sim::world::yaw_of;
 use crate::sim::world::{GripperCommand, World, WorldEvent};
-use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Translation3, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
@@ -68,14 +67,6 @@ pub(super) enum Step {
         hook: String,
         x: String,
     },
-}
-
-fn min_jerk(t: f64) -> f64 {
-    t * t * t * (10.0 + t * (-15.0 + 6.0 * t))
-}
-
-fn round_to(v: f64, q: f64) -> f64 {
-    (v / q).round() * q
 }
 
 struct Expert {
@@ -192,24 +183,6 @@ fn step_checked(
         });
     }
     Ok(())
-}
-
-/// The sample `[x, y, z, yaw]` of TCP pose `tcp` in the anchor frame (`anchor_inv` its inverse,
-/// `anchor_yaw` its yaw), rounded as the module docs say.
-fn anchor_sample(tcp: &Isometry3<f64>, anchor_inv: &Isometry3<f64>, anchor_yaw: f64) -> [f64; 4] {
-    let lp = anchor_inv * nalgebra::Point3::from(tcp.translation.vector);
-    let yaw = wrap(
-        yaw_of(
-            &(tcp.rotation
-                * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)),
-        ) - anchor_yaw,
-    );
-    [
-        round_to(lp.x, 1e-4),
-        round_to(lp.y, 1e-4),
-        round_to(lp.z, 1e-4),
-        round_to(yaw, 1e-3),
-    ]
 }
 
 /// Where an expert motion starts: the arm, its TCP pose, and the action (for errors).

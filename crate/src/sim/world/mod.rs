@@ -17,6 +17,8 @@ mod step;
 mod user_moves;
 
 pub(crate) use body::Body;
+// Kept at its old path for the sim modules that import it from the world.
+pub(crate) use super::geometry::yaw_of;
 pub use invariants::Violation;
 pub use load::SceneError;
 pub use step::WorldEvent;
@@ -24,7 +26,7 @@ pub use user_moves::{MoveOutcome, Refused};
 
 use super::panda::{self, IkParams, DOF};
 use super::snapshot::ReachSnapshot;
-use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+use nalgebra::Isometry3;
 use serde::{Deserialize, Serialize};
 
 /// Tunables of the world (metres, seconds, radians).
@@ -78,12 +80,6 @@ pub enum GripperCommand {
     /// Close the fingers; a block or hook between the fingertips is grasped.
     Close,
 }
-/// Yaw (rotation about world `z`) of a pose's rotation.
-pub(crate) fn yaw_of(rot: &UnitQuaternion<f64>) -> f64 {
-    let x = rot * Vector3::x();
-    libm::atan2(x.y, x.x)
-}
-
 /// How deep an arm link may press into a table or shelf before the arm stops (m): the link
 /// capsules are rounded stand-ins for the real links.
 pub(crate) const LINK_TOLERANCE: f64 = 0.01;

@@ -2,7 +2,8 @@
 //! straight down onto the first body under it, supported if its centroid lies over a top face
 //! there), the stack resting on a body, releases, and bodies lost to the floor.
 
-use super::{yaw_of, World, WorldEvent};
+use super::{World, WorldEvent};
+use crate::sim::geometry::yaw_of;
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::query;
