@@ -148,8 +148,11 @@ pub fn rise_first(world: &World, arm: usize, dz: f64) -> Option<Isometry3<f64>> 
         .filter(|body| !body.lost && body.kind != BodyKind::Table)
         .flat_map(|body| body.world_parts().map(|(iso, c)| (iso, *c)))
         .collect();
-    hand_within(&tcp, &around, 0.01).then(|| raised(&tcp, dz))
+    hand_within(&tcp, &around, RISE_MARGIN).then(|| raised(&tcp, dz))
 }
+
+/// The hand rises first when it, grown by this (m), overlaps a body ([`rise_first`]).
+const RISE_MARGIN: f64 = 0.01;
 
 /// The top grasps of block `body` at `pose` for arm `arm`, best first: the fingers close along
 /// one of its horizontal face normals (yaw ∈ yaw_x + k·π/2) that the gripper can span, ordered
@@ -250,10 +253,13 @@ pub fn boxes_except(world: &World, except: &[&str]) -> Vec<(Isometry3<f64>, Cubo
         .collect()
 }
 
-/// `c` with every half extent `slack` smaller (at least 0.1 mm), so that touching faces and
-/// resting contacts do not count as overlaps.
+/// The smallest half extent [`shrunk`] leaves (m): a box never shrinks to nothing.
+const MIN_HALF_EXTENT: f64 = 1e-4;
+
+/// `c` with every half extent `slack` smaller (at least [`MIN_HALF_EXTENT`]), so that touching
+/// faces and resting contacts do not count as overlaps.
 pub(crate) fn shrunk(c: &Cuboid, slack: f64) -> Cuboid {
-    Cuboid::new((c.half_extents - Vector3::repeat(slack)).map(|h| h.max(1e-4)))
+    Cuboid::new((c.half_extents - Vector3::repeat(slack)).map(|h| h.max(MIN_HALF_EXTENT)))
 }
 
 /// `iso` moved up by `dz` along world `z` (orientation kept).
@@ -305,11 +311,15 @@ fn closest_yaw(yaw: f64, step: f64, preferred: f64) -> f64 {
     wrap(yaw + k * step)
 }
 
+/// A point closer than this to an arm's base axis (m) has no direction from the base; the
+/// base's own yaw stands in for it.
+const ON_BASE_AXIS: f64 = 1e-6;
+
 /// Yaw of the direction from arm `arm`'s base to the point `p`, in the world.
 fn yaw_from_base(world: &World, arm: usize, p: &Vector3<f64>) -> f64 {
     let base = world.arm_base(arm).unwrap_or_else(Isometry3::identity);
     let d = p - base.translation.vector;
-    if libm::hypot(d.x, d.y) < 1e-6 {
+    if libm::hypot(d.x, d.y) < ON_BASE_AXIS {
         yaw_of(&base.rotation)
     } else {
         libm::atan2(d.y, d.x)
@@ -431,6 +441,13 @@ pub fn quarter_turn_for_arm(
     }
 }
 
+/// A box whose two horizontal half extents differ by less than this (m) has a square footprint.
+const SQUARE_TOLERANCE: f64 = 1e-9;
+
+/// Quarter turns are ordered by their yaw offsets in whole nanoradians, so that offsets equal
+/// but for rounding keep the lesser turn first.
+const NANORADIANS_PER_RADIAN: f64 = 1e9;
+
 /// `body_pose` turned by each quarter turn, ordered by how close the yaw of the TCP holding
 /// `body` with grasp `g` (its pose in the TCP frame) comes to `toward` (`None`: the heading
 /// from arm `arm`'s base); just `body_pose` for a body without a square footprint. The first
@@ -447,7 +464,7 @@ pub(crate) fn quarter_turns(
         let b = &world.bodies[bi];
         b.kind == BodyKind::Block
             && b.parts.len() == 1
-            && (b.parts[0].1.half_extents.x - b.parts[0].1.half_extents.y).abs() < 1e-9
+            && (b.parts[0].1.half_extents.x - b.parts[0].1.half_extents.y).abs() < SQUARE_TOLERANCE
     });
     if !square {
         return vec![*body_pose];
@@ -465,7 +482,7 @@ pub(crate) fn quarter_turns(
         })
         .collect();
     // Of two turns equally close (to a nanoradian), the lesser turn first (a stable sort).
-    turned.sort_by_key(|(off, _)| (off * 1e9).round() as i64);
+    turned.sort_by_key(|(off, _)| (off * NANORADIANS_PER_RADIAN).round() as i64);
     turned.into_iter().map(|(_, p)| p).collect()
 }
 

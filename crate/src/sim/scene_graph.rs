@@ -81,7 +81,6 @@ impl SceneGraph {
     /// Derives the facts of `world` (see the module documentation for the definitions).
     pub fn from_world(world: &World) -> SceneGraph {
         let want = |p: &str| world.predicates.iter().any(|q| q == p);
-        let tol = world.params.support_tolerance;
         let mut facts = Vec::new();
         let held: Vec<Option<usize>> = world
             .arms
@@ -97,7 +96,6 @@ impl SceneGraph {
         let support: Vec<Option<usize>> = (0..world.bodies.len())
             .map(|i| if free(i) { world.support_of(i) } else { None })
             .collect();
-        let _ = tol;
         for (i, b) in world.bodies.iter().enumerate() {
             if !free(i) {
                 continue;

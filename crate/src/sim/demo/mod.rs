@@ -171,6 +171,12 @@ pub(crate) fn min_jerk(t: f64) -> f64 {
     t * t * t * (10.0 + t * (-15.0 + 6.0 * t))
 }
 
+/// Samples' positions are rounded to this (m): 0.1 mm.
+const SAMPLE_POSITION_STEP: f64 = 1e-4;
+
+/// Samples' yaws are rounded to this (rad): 1 mrad.
+const SAMPLE_YAW_STEP: f64 = 1e-3;
+
 /// `v` rounded to a whole multiple of `q`.
 fn round_to(v: f64, q: f64) -> f64 {
     (v / q).round() * q
@@ -186,10 +192,10 @@ pub(crate) fn anchor_sample(
     let lp = anchor_inv * Point3::from(tcp.translation.vector);
     let yaw = wrap(gripper_yaw(&tcp.rotation) - anchor_yaw);
     [
-        round_to(lp.x, 1e-4),
-        round_to(lp.y, 1e-4),
-        round_to(lp.z, 1e-4),
-        round_to(yaw, 1e-3),
+        round_to(lp.x, SAMPLE_POSITION_STEP),
+        round_to(lp.y, SAMPLE_POSITION_STEP),
+        round_to(lp.z, SAMPLE_POSITION_STEP),
+        round_to(yaw, SAMPLE_YAW_STEP),
     ]
 }
 

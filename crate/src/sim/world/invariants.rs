@@ -1,7 +1,7 @@
 //! The world's invariants: no interpenetration beyond the tolerance, every free body resting on
 //! a support, nothing lost, every joint within its limits; and the support a body rests on.
 
-use super::World;
+use super::{World, LIMIT_SLACK};
 use crate::sim::panda::{self, DOF};
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -128,7 +128,9 @@ impl World {
         for a in &self.arms {
             for k in 0..DOF {
                 let v = a.joints[k];
-                if !(panda::JOINT_LOWER[k] - 1e-9..=panda::JOINT_UPPER[k] + 1e-9).contains(&v) {
+                if !(panda::JOINT_LOWER[k] - LIMIT_SLACK..=panda::JOINT_UPPER[k] + LIMIT_SLACK)
+                    .contains(&v)
+                {
                     out.push(Violation::JointLimit {
                         arm: a.name.clone(),
                         joint: k,

@@ -52,6 +52,12 @@ impl WorldParams {
     pub fn carried_stop_depth(&self) -> f64 {
         0.9 * self.penetration_tolerance
     }
+
+    /// How deep a body settling under an overhang may press into the bodies above it and
+    /// still rest there (m): 0.9 of the penetration tolerance.
+    pub fn wedged_rest_depth(&self) -> f64 {
+        0.9 * self.penetration_tolerance
+    }
 }
 
 impl Default for WorldParams {
@@ -83,6 +89,14 @@ pub enum GripperCommand {
 /// How deep an arm link may press into a table or shelf before the arm stops (m): the link
 /// capsules are rounded stand-ins for the real links.
 pub(crate) const LINK_TOLERANCE: f64 = 0.01;
+
+/// How far a joint angle (rad) or a finger opening (m) may lie beyond its limit and still count
+/// as within it: room for the rounding of saved scenes.
+const LIMIT_SLACK: f64 = 1e-9;
+
+/// One penetration depth counts as deeper than another only by more than this (m): the contact
+/// queries' rounding noise is no deeper contact.
+const DEPTH_EPSILON: f64 = 1e-9;
 
 /// One arm with its gripper.
 #[derive(Clone, Debug)]
