@@ -423,11 +423,11 @@ pub fn rest_pose_on(world: &World, body: &str, support: &str, yaw: f64) -> Optio
 /// turn, so its facts and footprint do not change; any other body, or an arm that holds
 /// nothing, gets `body_pose` back.
 ///
-/// Regressions: a block picked with one quarter-turn grasp and placed with the placement's yaw
-/// as sampled put the wrist up to 180° away from the certified orientation, and the arm could
-/// not reach the place via-point ("the arm cannot reach its via-point (540 mm away)"). Turned
-/// towards the base's heading instead of the certified yaw, a hand certified lengthwise beside
-/// a tower was put down across it, its palm in the tower (seed 31337, episode 1398).
+/// Why the turn: placed with the placement's yaw as sampled, a block held with another
+/// quarter-turn grasp puts the wrist up to 180° away from the certified orientation, where the
+/// arm may not reach the place via-point. Why towards the certified yaw and not the base's
+/// heading: a hand certified lengthwise beside a tower would otherwise come down across it,
+/// its palm in the tower.
 pub fn quarter_turn_for_arm(
     world: &World,
     arm: usize,
