@@ -9,7 +9,7 @@
 
 use super::panda::{self, ArmFrames};
 use super::snapshot::BodyKind;
-use super::world::{yaw_of, Arm, World};
+use super::world::{Arm, World};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::shape::{Capsule, Cuboid};
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -148,8 +148,11 @@ pub fn rise_first(world: &World, arm: usize, dz: f64) -> Option<Isometry3<f64>> 
         .filter(|body| !body.lost && body.kind != BodyKind::Table)
         .flat_map(|body| body.world_parts().map(|(iso, c)| (iso, *c)))
         .collect();
-    hand_within(&tcp, &around, 0.01).then(|| raised(&tcp, dz))
+    hand_within(&tcp, &around, RISE_MARGIN).then(|| raised(&tcp, dz))
 }
+
+/// The hand rises first when it, grown by this (m), overlaps a body ([`rise_first`]).
+const RISE_MARGIN: f64 = 0.01;
 
 /// The top grasps of block `body` at `pose` for arm `arm`, best first: the fingers close along
 /// one of its horizontal face normals (yaw ∈ yaw_x + k·π/2) that the gripper can span, ordered
@@ -250,10 +253,13 @@ pub fn boxes_except(world: &World, except: &[&str]) -> Vec<(Isometry3<f64>, Cubo
         .collect()
 }
 
-/// `c` with every half extent `slack` smaller (at least 0.1 mm), so that touching faces and
-/// resting contacts do not count as overlaps.
+/// The smallest half extent [`shrunk`] leaves (m): a box never shrinks to nothing.
+const MIN_HALF_EXTENT: f64 = 1e-4;
+
+/// `c` with every half extent `slack` smaller (at least [`MIN_HALF_EXTENT`]), so that touching
+/// faces and resting contacts do not count as overlaps.
 pub(crate) fn shrunk(c: &Cuboid, slack: f64) -> Cuboid {
-    Cuboid::new((c.half_extents - Vector3::repeat(slack)).map(|h| h.max(1e-4)))
+    Cuboid::new((c.half_extents - Vector3::repeat(slack)).map(|h| h.max(MIN_HALF_EXTENT)))
 }
 
 /// `iso` moved up by `dz` along world `z` (orientation kept).
@@ -278,6 +284,18 @@ pub fn link_capsules(
     }
 }
 
+/// Yaw (rotation about world `z`) of a pose's rotation: the heading of its `x` axis.
+pub(crate) fn yaw_of(rot: &UnitQuaternion<f64>) -> f64 {
+    let x = rot * Vector3::x();
+    libm::atan2(x.y, x.x)
+}
+
+/// The gripper yaw of a TCP orientation: the yaw [`panda::down_orientation`] was given (its
+/// inverse for a gripper pointing down).
+pub(crate) fn gripper_yaw(rot: &UnitQuaternion<f64>) -> f64 {
+    yaw_of(&(rot * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), PI)))
+}
+
 /// Wraps an angle to (−π, π].
 pub(crate) fn wrap(a: f64) -> f64 {
     let mut x = (a + PI).rem_euclid(2.0 * PI) - PI;
@@ -293,11 +311,15 @@ fn closest_yaw(yaw: f64, step: f64, preferred: f64) -> f64 {
     wrap(yaw + k * step)
 }
 
+/// A point closer than this to an arm's base axis (m) has no direction from the base; the
+/// base's own yaw stands in for it.
+const ON_BASE_AXIS: f64 = 1e-6;
+
 /// Yaw of the direction from arm `arm`'s base to the point `p`, in the world.
 fn yaw_from_base(world: &World, arm: usize, p: &Vector3<f64>) -> f64 {
     let base = world.arm_base(arm).unwrap_or_else(Isometry3::identity);
     let d = p - base.translation.vector;
-    if libm::hypot(d.x, d.y) < 1e-6 {
+    if libm::hypot(d.x, d.y) < ON_BASE_AXIS {
         yaw_of(&base.rotation)
     } else {
         libm::atan2(d.y, d.x)
@@ -401,11 +423,11 @@ pub fn rest_pose_on(world: &World, body: &str, support: &str, yaw: f64) -> Optio
 /// turn, so its facts and footprint do not change; any other body, or an arm that holds
 /// nothing, gets `body_pose` back.
 ///
-/// Regressions: a block picked with one quarter-turn grasp and placed with the placement's yaw
-/// as sampled put the wrist up to 180° away from the certified orientation, and the arm could
-/// not reach the place via-point ("the arm cannot reach its via-point (540 mm away)"). Turned
-/// towards the base's heading instead of the certified yaw, a hand certified lengthwise beside
-/// a tower was put down across it, its palm in the tower (seed 31337, episode 1398).
+/// Why the turn: placed with the placement's yaw as sampled, a block held with another
+/// quarter-turn grasp puts the wrist up to 180° away from the certified orientation, where the
+/// arm may not reach the place via-point. Why towards the certified yaw and not the base's
+/// heading: a hand certified lengthwise beside a tower would otherwise come down across it,
+/// its palm in the tower.
 pub fn quarter_turn_for_arm(
     world: &World,
     arm: usize,
@@ -418,6 +440,13 @@ pub fn quarter_turn_for_arm(
         None => *body_pose,
     }
 }
+
+/// A box whose two horizontal half extents differ by less than this (m) has a square footprint.
+const SQUARE_TOLERANCE: f64 = 1e-9;
+
+/// Quarter turns are ordered by their yaw offsets in whole nanoradians, so that offsets equal
+/// but for rounding keep the lesser turn first.
+const NANORADIANS_PER_RADIAN: f64 = 1e9;
 
 /// `body_pose` turned by each quarter turn, ordered by how close the yaw of the TCP holding
 /// `body` with grasp `g` (its pose in the TCP frame) comes to `toward` (`None`: the heading
@@ -435,7 +464,7 @@ pub(crate) fn quarter_turns(
         let b = &world.bodies[bi];
         b.kind == BodyKind::Block
             && b.parts.len() == 1
-            && (b.parts[0].1.half_extents.x - b.parts[0].1.half_extents.y).abs() < 1e-9
+            && (b.parts[0].1.half_extents.x - b.parts[0].1.half_extents.y).abs() < SQUARE_TOLERANCE
     });
     if !square {
         return vec![*body_pose];
@@ -453,7 +482,7 @@ pub(crate) fn quarter_turns(
         })
         .collect();
     // Of two turns equally close (to a nanoradian), the lesser turn first (a stable sort).
-    turned.sort_by_key(|(off, _)| (off * 1e9).round() as i64);
+    turned.sort_by_key(|(off, _)| (off * NANORADIANS_PER_RADIAN).round() as i64);
     turned.into_iter().map(|(_, p)| p).collect()
 }
 

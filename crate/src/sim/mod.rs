@@ -74,8 +74,9 @@ pub mod scene_graph;
 pub mod snapshot;
 mod world;
 
+pub(crate) use geometry::yaw_of;
 pub use scene_graph::{Fact, SceneGraph};
-pub(crate) use world::{yaw_of, LINK_TOLERANCE};
+pub(crate) use world::LINK_TOLERANCE;
 pub use world::{
     GripperCommand, MoveOutcome, Refused, SceneError, SimError, Violation, World, WorldEvent,
     WorldParams, KNOWN_PREDICATES,

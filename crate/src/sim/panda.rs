@@ -156,6 +156,10 @@ pub(crate) fn jacobian(f: &ArmFrames) -> SMatrix<f64, 6, DOF> {
     j
 }
 
+/// Below this `sin θ` a rotation's axis is numerically undefined: the log map takes θ ≈ 0 or,
+/// when `cos θ` is negative, θ ≈ π.
+const SMALL_ROTATION: f64 = 1e-9;
+
 /// Rotation vector of `R_target R_currentᵀ` (radians, world frame).
 fn rotation_error(target: &Matrix3<f64>, current: &Matrix3<f64>) -> Vector3<f64> {
     let m = target * current.transpose();
@@ -167,7 +171,7 @@ fn rotation_error(target: &Matrix3<f64>, current: &Matrix3<f64>) -> Vector3<f64>
     ) * 0.5;
     let s = v.norm();
     let c = 0.5 * (m.trace() - 1.0);
-    if s < 1e-9 {
+    if s < SMALL_ROTATION {
         if c > 0.0 {
             return v;
         }
@@ -253,6 +257,10 @@ pub fn clamp_joints(q: &mut [f64; DOF]) {
     }
 }
 
+/// Weight of the orientation error against the position error when IK attempts are compared
+/// (m per rad): the best attempt minimises `position error + weight · orientation error`.
+const ORIENTATION_WEIGHT: f64 = 0.1;
+
 /// One DLS attempt from `q`; returns (q, position error, orientation error, iterations).
 /// `hold_limits`: a joint at a limit that a step drives further out is held there and left out
 /// of that step's Jacobian, so the other joints take up its share (otherwise the step is
@@ -274,7 +282,7 @@ fn dls_attempt(
         let ep = target.p - f.tcp.p;
         let er = rotation_error(&target.r, &f.tcp.r);
         let (np, nr) = (ep.norm(), er.norm());
-        let score = np + 0.1 * nr;
+        let score = np + ORIENTATION_WEIGHT * nr;
         if score < best_score {
             best_score = score;
             best = (q, np, nr);
@@ -331,7 +339,7 @@ fn dls_attempt(
     let f = forward_frames(base, &q);
     let np = (target.p - f.tcp.p).norm();
     let nr = rotation_error(&target.r, &f.tcp.r).norm();
-    if np + 0.1 * nr < best_score {
+    if np + ORIENTATION_WEIGHT * nr < best_score {
         best = (q, np, nr);
     }
     (best.0, best.1, best.2, max_iterations)
@@ -380,7 +388,7 @@ pub fn inverse_kinematics(
                 iterations: total,
             });
         }
-        if np + 0.1 * nr < best.1 + 0.1 * best.2 {
+        if np + ORIENTATION_WEIGHT * nr < best.1 + ORIENTATION_WEIGHT * best.2 {
             best = (q, np, nr);
         }
     }
@@ -455,6 +463,10 @@ pub(crate) fn joint_line(from: &[f64; DOF], to: &[f64; DOF]) -> impl Iterator<It
     })
 }
 
+/// One solution has more room to the limits than another only by more than this (a fraction
+/// of a joint range): equal solutions keep the warm start's.
+const MARGIN_EPSILON: f64 = 1e-9;
+
 /// [`inverse_kinematics`] warm-started at `from` and again at [`READY`] (each with its restarts);
 /// of the solutions found, the one farthest from the joint limits ([`limit_margin`]). For moves
 /// in joint space that must leave the tracker room to follow on: a wrist recovered to its limit
@@ -470,10 +482,9 @@ pub fn inverse_kinematics_with_room(
     for seed in [from, &READY] {
         match inverse_kinematics(base, target, seed, params) {
             Ok(sol) => {
-                if best
-                    .as_ref()
-                    .is_none_or(|b| limit_margin(&sol.joints) > limit_margin(&b.joints) + 1e-9)
-                {
+                if best.as_ref().is_none_or(|b| {
+                    limit_margin(&sol.joints) > limit_margin(&b.joints) + MARGIN_EPSILON
+                }) {
                     best = Some(sol);
                 }
             }

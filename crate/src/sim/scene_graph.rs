@@ -80,105 +80,15 @@ pub struct SceneGraph {
 impl SceneGraph {
     /// Derives the facts of `world` (see the module documentation for the definitions).
     pub fn from_world(world: &World) -> SceneGraph {
-        let want = |p: &str| world.predicates.iter().any(|q| q == p);
-        let tol = world.params.support_tolerance;
-        let mut facts = Vec::new();
-        let held: Vec<Option<usize>> = world
-            .arms
-            .iter()
-            .map(|a| a.holding.map(|(i, _)| i))
-            .collect();
-        let is_held = |i: usize| held.contains(&Some(i));
-        let free = |i: usize| {
-            let b = &world.bodies[i];
-            b.is_movable() && !b.lost && !is_held(i)
-        };
-        // support[i] = the body free body i rests on.
-        let support: Vec<Option<usize>> = (0..world.bodies.len())
-            .map(|i| if free(i) { world.support_of(i) } else { None })
-            .collect();
-        let _ = tol;
-        for (i, b) in world.bodies.iter().enumerate() {
-            if !free(i) {
-                continue;
-            }
-            let Some(s) = support[i] else { continue };
-            let sk = world.bodies[s].kind;
-            match (b.kind, sk) {
-                (BodyKind::Block, BodyKind::Block) if want("on") => {
-                    facts.push(Fact::new("on", &[&b.name, &world.bodies[s].name]))
-                }
-                (BodyKind::Block | BodyKind::Hook, BodyKind::Table) if want("ontable") => {
-                    facts.push(Fact::new("ontable", &[&b.name]))
-                }
-                (BodyKind::Block, BodyKind::Shelf) if want("onshelf") => {
-                    facts.push(Fact::new("onshelf", &[&b.name]))
-                }
-                _ => {}
-            }
-            if b.kind == BodyKind::Block
-                && want("at")
-                && matches!(sk, BodyKind::Table | BodyKind::Block)
-            {
-                let c = b.pose.translation.vector;
-                for r in &world.regions {
-                    if r.contains(c.x, c.y) {
-                        facts.push(Fact::new("at", &[&b.name, &r.name]));
-                    }
-                }
-            }
+        let mut d = Derivation::new(world);
+        d.support_facts();
+        d.clear_facts();
+        for ai in 0..world.arms.len() {
+            d.arm_facts(ai);
         }
-        if want("clear") {
-            for (i, b) in world.bodies.iter().enumerate() {
-                if b.kind == BodyKind::Block && free(i) && !support.contains(&Some(i)) {
-                    facts.push(Fact::new("clear", &[&b.name]));
-                }
-            }
+        SceneGraph {
+            facts: d.into_sorted(),
         }
-        for (ai, a) in world.arms.iter().enumerate() {
-            match held[ai] {
-                Some(i) if want("holding") => {
-                    facts.push(Fact::new("holding", &[&a.name, &world.bodies[i].name]))
-                }
-                None if want("handempty") => facts.push(Fact::new("handempty", &[&a.name])),
-                _ => {}
-            }
-            if want("inreach") {
-                let base = a.base.translation.vector;
-                for (i, b) in world.bodies.iter().enumerate() {
-                    let inreach = if held[ai] == Some(i) {
-                        true
-                    } else if free(i) {
-                        let p = match b.kind {
-                            BodyKind::Hook => {
-                                (b.pose * Point3::from(Vector3::from(HOOK_GRASP_POINT))).coords
-                            }
-                            _ => b.pose.translation.vector,
-                        };
-                        let r = libm::hypot(p.x - base.x, p.y - base.y);
-                        r >= a.reach.min_radius && r <= a.reach.max_radius
-                    } else {
-                        false
-                    };
-                    if inreach {
-                        facts.push(Fact::new("inreach", &[&a.name, &b.name]));
-                    }
-                }
-            }
-        }
-        let rank = |p: &str| {
-            KNOWN_PREDICATES
-                .iter()
-                .position(|q| *q == p)
-                .unwrap_or(usize::MAX)
-        };
-        facts.sort_by(|x, y| {
-            rank(&x.predicate)
-                .cmp(&rank(&y.predicate))
-                .then_with(|| x.args.cmp(&y.args))
-        });
-        facts.dedup();
-        SceneGraph { facts }
     }
 
     /// The facts as strings like `(on a b)`.
@@ -223,6 +133,149 @@ impl SceneGraph {
             kind: "region".into(),
         }));
         out
+    }
+}
+
+/// The facts of one world as they are derived: who holds what, what rests on what.
+struct Derivation<'a> {
+    world: &'a World,
+    /// held[a] = the body arm a holds.
+    held: Vec<Option<usize>>,
+    /// support[i] = the body free body i rests on.
+    support: Vec<Option<usize>>,
+    facts: Vec<Fact>,
+}
+
+impl<'a> Derivation<'a> {
+    fn new(world: &'a World) -> Self {
+        let held: Vec<Option<usize>> = world
+            .arms
+            .iter()
+            .map(|a| a.holding.map(|(i, _)| i))
+            .collect();
+        let mut d = Derivation {
+            world,
+            held,
+            support: Vec::new(),
+            facts: Vec::new(),
+        };
+        d.support = (0..world.bodies.len())
+            .map(|i| if d.free(i) { world.support_of(i) } else { None })
+            .collect();
+        d
+    }
+
+    /// Whether the scene reports predicate `p`.
+    fn want(&self, p: &str) -> bool {
+        self.world.predicates.iter().any(|q| q == p)
+    }
+
+    /// Whether body `i` is a block or the hook that is neither held nor lost.
+    fn free(&self, i: usize) -> bool {
+        let b = &self.world.bodies[i];
+        b.is_movable() && !b.lost && !self.held.contains(&Some(i))
+    }
+
+    /// `on`, `ontable`, `onshelf` and `at` of every free body.
+    fn support_facts(&mut self) {
+        let world = self.world;
+        for (i, b) in world.bodies.iter().enumerate() {
+            if !self.free(i) {
+                continue;
+            }
+            let Some(s) = self.support[i] else { continue };
+            let sk = world.bodies[s].kind;
+            match (b.kind, sk) {
+                (BodyKind::Block, BodyKind::Block) if self.want("on") => self
+                    .facts
+                    .push(Fact::new("on", &[&b.name, &world.bodies[s].name])),
+                (BodyKind::Block | BodyKind::Hook, BodyKind::Table) if self.want("ontable") => {
+                    self.facts.push(Fact::new("ontable", &[&b.name]))
+                }
+                (BodyKind::Block, BodyKind::Shelf) if self.want("onshelf") => {
+                    self.facts.push(Fact::new("onshelf", &[&b.name]))
+                }
+                _ => {}
+            }
+            if b.kind == BodyKind::Block
+                && self.want("at")
+                && matches!(sk, BodyKind::Table | BodyKind::Block)
+            {
+                let c = b.pose.translation.vector;
+                for r in &world.regions {
+                    if r.contains(c.x, c.y) {
+                        self.facts.push(Fact::new("at", &[&b.name, &r.name]));
+                    }
+                }
+            }
+        }
+    }
+
+    /// `clear` of every free block nothing rests on.
+    fn clear_facts(&mut self) {
+        if !self.want("clear") {
+            return;
+        }
+        for (i, b) in self.world.bodies.iter().enumerate() {
+            if b.kind == BodyKind::Block && self.free(i) && !self.support.contains(&Some(i)) {
+                self.facts.push(Fact::new("clear", &[&b.name]));
+            }
+        }
+    }
+
+    /// `holding`, `handempty` and `inreach` of arm `ai`.
+    fn arm_facts(&mut self, ai: usize) {
+        let world = self.world;
+        let a = &world.arms[ai];
+        match self.held[ai] {
+            Some(i) if self.want("holding") => self
+                .facts
+                .push(Fact::new("holding", &[&a.name, &world.bodies[i].name])),
+            None if self.want("handempty") => self.facts.push(Fact::new("handempty", &[&a.name])),
+            _ => {}
+        }
+        if !self.want("inreach") {
+            return;
+        }
+        let base = a.base.translation.vector;
+        for (i, b) in world.bodies.iter().enumerate() {
+            let inreach = if self.held[ai] == Some(i) {
+                true
+            } else if self.free(i) {
+                let p = match b.kind {
+                    BodyKind::Hook => {
+                        (b.pose * Point3::from(Vector3::from(HOOK_GRASP_POINT))).coords
+                    }
+                    _ => b.pose.translation.vector,
+                };
+                let r = libm::hypot(p.x - base.x, p.y - base.y);
+                r >= a.reach.min_radius && r <= a.reach.max_radius
+            } else {
+                false
+            };
+            if inreach {
+                self.facts.push(Fact::new("inreach", &[&a.name, &b.name]));
+            }
+        }
+    }
+
+    /// The facts sorted (predicate order of [`KNOWN_PREDICATES`], then arguments), without
+    /// repeats.
+    fn into_sorted(self) -> Vec<Fact> {
+        let mut facts = self.facts;
+        let rank = |p: &str| {
+            KNOWN_PREDICATES
+                .iter()
+                .position(|q| *q == p)
+                .unwrap_or(usize::MAX)
+        };
+        facts.sort_by(|x, y| {
+            rank(&x.predicate)
+                .cmp(&rank(&y.predicate))
+                .then_with(|| x.args.cmp(&y.args))
+        });
+        facts.dedup();
+        facts
     }
 }
 

@@ -2,15 +2,14 @@
 //! executed in the simulator and recorded relative to each action's anchor frame.
 
 use super::template::{template_steps, TemplateAction};
+use super::{anchor_sample, min_jerk, pull_hook_poses, FRAME_CONVENTION, PULL_TARGET_RADIUS};
 use super::{fail, AnchorPose, DemoAction, DemoError, Demonstration, GripperEvent, KeyPoint};
-use super::{pull_hook_poses, FRAME_CONVENTION, PULL_TARGET_RADIUS};
 use crate::sim::benchmark::Benchmark;
-use crate::sim::geometry::{self, wrap};
+use crate::sim::geometry::{self, yaw_of};
 use crate::sim::panda;
 use crate::sim::scene_graph::SceneGraph;
-use crate::sim::world::yaw_of;
 use crate::sim::world::{GripperCommand, World, WorldEvent};
-use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Translation3, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
@@ -70,20 +69,40 @@ pub(super) enum Step {
     },
 }
 
-fn min_jerk(t: f64) -> f64 {
-    t * t * t * (10.0 + t * (-15.0 + 6.0 * t))
-}
+/// Largest relative change of a segment's duration (at `variation` 1).
+const DURATION_JITTER: f64 = 0.15;
 
-fn round_to(v: f64, q: f64) -> f64 {
-    (v / q).round() * q
-}
+/// Largest change of an approach height (m, at `variation` 1).
+const HEIGHT_JITTER: f64 = 0.02;
 
+/// Largest horizontal offset of a way-point above the object (m, at `variation` 1).
+const WAYPOINT_JITTER: f64 = 0.006;
+
+/// Largest horizontal offset of the grasp or place pose (m, at `variation` 1).
+const CONTACT_JITTER: f64 = 0.0015;
+
+/// Turning speed of transfer segments (rad/s).
+const TURN_SPEED: f64 = 1.2;
+
+/// Shortest transfer segment (s).
+const MIN_TRANSFER_TIME: f64 = 0.6;
+
+/// A pull stroke takes this many times as long as a transfer of its length (the hook drags
+/// the block).
+const STROKE_SLOWDOWN: f64 = 1.5;
+
+/// The expert opens the gripper with the body this far above its resting pose (m): it drops
+/// onto its support instead of being pressed into it.
+const RELEASE_HEIGHT: f64 = 0.002;
+
+/// The scripted expert: its parameters and the random source of its variation.
 struct Expert {
     rng: Pcg64Mcg,
     p: ExpertParams,
 }
 
 impl Expert {
+    /// A uniform random amount in `±amount · variation` (0 without variation, no draw).
     fn jitter(&mut self, amount: f64) -> f64 {
         if self.p.variation == 0.0 {
             return 0.0;
@@ -91,23 +110,30 @@ impl Expert {
         self.rng.random_range(-1.0..1.0) * amount * self.p.variation
     }
 
+    /// A random factor for a segment's duration.
     fn scale(&mut self) -> f64 {
-        1.0 + self.jitter(0.15)
+        1.0 + self.jitter(DURATION_JITTER)
     }
 
+    /// A random horizontal offset, each coordinate within `±amount · variation`.
     fn offset(&mut self, amount: f64) -> Vector3<f64> {
         Vector3::new(self.jitter(amount), self.jitter(amount), 0.0)
     }
 
+    /// The duration of a transfer from `from` to `to` at the expert's speeds, varied.
     fn transfer_time(&mut self, from: &Isometry3<f64>, to: &Isometry3<f64>) -> f64 {
         let d = (to.translation.vector - from.translation.vector).norm();
         let ang = (to.rotation * from.rotation.inverse()).angle();
-        (d / self.p.speed).max(ang / 1.2).max(0.6) * self.scale()
+        (d / self.p.speed)
+            .max(ang / TURN_SPEED)
+            .max(MIN_TRANSFER_TIME)
+            * self.scale()
     }
 
+    /// `p` raised by `h` and offset at random horizontally (a way-point above it).
     fn lifted(&mut self, p: &Isometry3<f64>, h: f64) -> Isometry3<f64> {
         let mut q = *p;
-        q.translation.vector += Vector3::new(0.0, 0.0, h) + self.offset(0.006);
+        q.translation.vector += Vector3::new(0.0, 0.0, h) + self.offset(WAYPOINT_JITTER);
         q
     }
 }
@@ -194,24 +220,6 @@ fn step_checked(
     Ok(())
 }
 
-/// The sample `[x, y, z, yaw]` of TCP pose `tcp` in the anchor frame (`anchor_inv` its inverse,
-/// `anchor_yaw` its yaw), rounded as the module docs say.
-fn anchor_sample(tcp: &Isometry3<f64>, anchor_inv: &Isometry3<f64>, anchor_yaw: f64) -> [f64; 4] {
-    let lp = anchor_inv * nalgebra::Point3::from(tcp.translation.vector);
-    let yaw = wrap(
-        yaw_of(
-            &(tcp.rotation
-                * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)),
-        ) - anchor_yaw,
-    );
-    [
-        round_to(lp.x, 1e-4),
-        round_to(lp.y, 1e-4),
-        round_to(lp.z, 1e-4),
-        round_to(yaw, 1e-3),
-    ]
-}
-
 /// Where an expert motion starts: the arm, its TCP pose, and the action (for errors).
 struct MotionStart<'a> {
     arm: usize,
@@ -295,8 +303,8 @@ impl Expert {
             .ok_or_else(|| fail(action, format!("no body {x}")))?;
         let mut g = geometry::grasp_pose(world, arm, x)
             .ok_or_else(|| fail(action, format!("{x} cannot be grasped")))?;
-        g.translation.vector += self.offset(0.0015);
-        let hh = h + self.jitter(0.02);
+        g.translation.vector += self.offset(CONTACT_JITTER);
+        let hh = h + self.jitter(HEIGHT_JITTER);
         let above = self.lifted(&g, hh);
         let lift = self.lifted(&g, hh);
         let t0 = self.transfer_time(start, &above);
@@ -352,10 +360,10 @@ impl Expert {
             return Err(fail(action, format!("the arm does not hold {x}")));
         }
         let mut t = *target;
-        t.translation.vector.z += 0.002;
+        t.translation.vector.z += RELEASE_HEIGHT;
         let mut tcp = geometry::tcp_for_body_pose(world, arm, &t);
-        tcp.translation.vector += self.offset(0.0015);
-        let hh = h + self.jitter(0.02);
+        tcp.translation.vector += self.offset(CONTACT_JITTER);
+        let hh = h + self.jitter(HEIGHT_JITTER);
         let above = self.lifted(&tcp, hh);
         let up = self.lifted(&tcp, hh);
         let t0 = self.transfer_time(start, &above);
@@ -428,11 +436,11 @@ impl Expert {
         let (contact, pulled) = pull_hook_poses(&base, &bp, reach);
         let tcp_contact = geometry::tcp_for_body_pose(world, arm, &contact);
         let tcp_pulled = geometry::tcp_for_body_pose(world, arm, &pulled);
-        let hh = h + self.jitter(0.02);
+        let hh = h + self.jitter(HEIGHT_JITTER);
         let above = self.lifted(&tcp_contact, hh);
         let up = self.lifted(&tcp_pulled, hh);
         let t0 = self.transfer_time(start, &above);
-        let tp = self.transfer_time(&tcp_contact, &tcp_pulled) * 1.5;
+        let tp = self.transfer_time(&tcp_contact, &tcp_pulled) * STROKE_SLOWDOWN;
         let segs = vec![
             Seg {
                 to: above,

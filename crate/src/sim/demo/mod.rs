@@ -32,9 +32,9 @@ pub use pull::{
 pub use replay::{demo_states, replay};
 
 use super::benchmark::Benchmark;
-use super::world::yaw_of;
+use super::geometry::{gripper_yaw, wrap, yaw_of};
 use super::world::{GripperCommand, Violation};
-use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
 /// World pose of an anchor frame: position and yaw.
@@ -164,6 +164,39 @@ fn fail(action: &str, message: impl Into<String>) -> DemoError {
         action: action.to_string(),
         message: message.into(),
     }
+}
+
+/// The minimum-jerk profile `10τ³ − 15τ⁴ + 6τ⁵` at `t` ∈ [0, 1] (0 to 1, at rest at both ends).
+pub(crate) fn min_jerk(t: f64) -> f64 {
+    t * t * t * (10.0 + t * (-15.0 + 6.0 * t))
+}
+
+/// Samples' positions are rounded to this (m): 0.1 mm.
+const SAMPLE_POSITION_STEP: f64 = 1e-4;
+
+/// Samples' yaws are rounded to this (rad): 1 mrad.
+const SAMPLE_YAW_STEP: f64 = 1e-3;
+
+/// `v` rounded to a whole multiple of `q`.
+fn round_to(v: f64, q: f64) -> f64 {
+    (v / q).round() * q
+}
+
+/// The sample `[x, y, z, yaw]` of TCP pose `tcp` in an anchor frame (`anchor_inv` its inverse,
+/// `anchor_yaw` its yaw), rounded as the module docs say.
+pub(crate) fn anchor_sample(
+    tcp: &Isometry3<f64>,
+    anchor_inv: &Isometry3<f64>,
+    anchor_yaw: f64,
+) -> [f64; 4] {
+    let lp = anchor_inv * Point3::from(tcp.translation.vector);
+    let yaw = wrap(gripper_yaw(&tcp.rotation) - anchor_yaw);
+    [
+        round_to(lp.x, SAMPLE_POSITION_STEP),
+        round_to(lp.y, SAMPLE_POSITION_STEP),
+        round_to(lp.z, SAMPLE_POSITION_STEP),
+        round_to(yaw, SAMPLE_YAW_STEP),
+    ]
 }
 
 /// Parses a demo JSON text.

@@ -6,14 +6,14 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
 /// Distance from the arm's base axis (m) to which the expert pulls a block with the hook: inside
 /// the reach annulus, and far enough out that the hand holding the hook (31 cm behind the block)
-/// stays clear of the base, where the folded arm tilts the hook into the table (0.60: stopped
-/// strokes).
+/// stays clear of the base: nearer it, the folded arm tilts the hook into the table and the
+/// stroke stops at contact.
 pub const PULL_TARGET_RADIUS: f64 = 0.64;
 
 /// Height above a stroke's contact and pulled poses from which the hook comes down and to which
 /// it rises again (m). On its way there the blade passes over the block it is to pull; at far
 /// reach the tracker's orientation lag tilts the 40 cm hook by 2–3 cm at the blade, so it crosses
-/// 6 cm above the block's top (8 cm left 3 cm: the soak's "stopped by a" pulls).
+/// 6 cm above the block's top (much lower, the tilted blade catches the block and the arm stops).
 pub const PULL_LIFT: f64 = 0.11;
 
 /// Turns of the hook's pull strokes (rad, from the line through the arm's base, see
@@ -36,8 +36,8 @@ pub fn pull_hook_poses(
 
 /// Height of the hook's frame during a pull stroke (m): 12 mm of clearance, as the arm's
 /// tracking tilts the long hook by a few mm at the blade (more with the hand close to the base),
-/// and a blade that scrapes the table is stopped at contact (3 and 6 mm: stopped strokes). The
-/// blade (z 12–32 mm) still meets a 6 cm block below its middle.
+/// and a blade that scrapes the table is stopped at contact (a few mm of clearance are not
+/// enough). The blade (z 12–32 mm) still meets a 6 cm block below its middle.
 const PULL_HOOK_Z: f64 = 0.022;
 
 /// A pull stroke turned by `turn` (rad, about `z`) from the line through the base: the hook is

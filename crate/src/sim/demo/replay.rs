@@ -3,9 +3,9 @@
 
 use super::{committed, fail, AnchorPose, DemoAction, DemoError, Demonstration};
 use crate::sim::benchmark::Benchmark;
+use crate::sim::geometry::yaw_of;
 use crate::sim::panda;
 use crate::sim::scene_graph::SceneGraph;
-use crate::sim::world::yaw_of;
 use crate::sim::world::World;
 use nalgebra::{Isometry3, Translation3};
 

@@ -4,7 +4,7 @@
 use super::expert::Step;
 use super::{fail, DemoError};
 use crate::sim::benchmark::{Benchmark, BLOCK_SIZE};
-use crate::sim::world::yaw_of;
+use crate::sim::geometry::yaw_of;
 use crate::sim::world::World;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 

@@ -7,6 +7,20 @@ use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Vector3};
 use parry3d_f64::query;
 
+/// A hook moving less than this horizontally in a step pushes nothing (m).
+const MIN_HOOK_STROKE: f64 = 1e-9;
+
+/// A push shorter than this moves nothing and reports nothing (m).
+const MIN_PUSH: f64 = 1e-12;
+
+/// A contact pushes sideways only if the horizontal part of its unit normal is at least this
+/// long; a steeper normal is the hook resting on the block.
+const MIN_SIDEWAYS_NORMAL: f64 = 0.7;
+
+/// How far past the deepest contact a blade still inside a block drives it (m), so they end
+/// apart.
+const PUSH_CLEARANCE: f64 = 1e-4;
+
 impl World {
     /// The hook (body `hi`) moved from `before` to its current pose: blocks hit by the swept blade
     /// are pushed horizontally by the remaining part of the motion (with what stands on them).
@@ -19,7 +33,7 @@ impl World {
         let after = self.bodies[hi].pose;
         let d = after.translation.vector - before.translation.vector;
         let horiz = Vector3::new(d.x, d.y, 0.0);
-        if horiz.norm() < 1e-9 {
+        if horiz.norm() < MIN_HOOK_STROKE {
             return;
         }
         for bi in 0..self.bodies.len() {
@@ -56,7 +70,7 @@ impl World {
             // alone does not cover: a blade still inside the block after the push drives it
             // further along the contact's (horizontal) normal.
             push += self.hook_overlap_push(hi, bi, &push);
-            if push.norm() < 1e-12 {
+            if push.norm() < MIN_PUSH {
                 continue;
             }
             let stack = self.stack_above(bi);
@@ -99,10 +113,10 @@ impl World {
                 };
                 let n = k.normal1.into_inner();
                 let side = Vector3::new(n.x, n.y, 0.0);
-                if k.dist >= 0.0 || side.norm() < 0.7 {
+                if k.dist >= 0.0 || side.norm() < MIN_SIDEWAYS_NORMAL {
                     continue;
                 }
-                let step = side.normalize() * (-k.dist + 1e-4);
+                let step = side.normalize() * (-k.dist + PUSH_CLEARANCE);
                 if step.norm() > best.norm() {
                     best = step;
                 }

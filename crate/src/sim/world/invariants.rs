@@ -1,7 +1,7 @@
 //! The world's invariants: no interpenetration beyond the tolerance, every free body resting on
 //! a support, nothing lost, every joint within its limits; and the support a body rests on.
 
-use super::World;
+use super::{World, LIMIT_SLACK};
 use crate::sim::panda::{self, DOF};
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -69,9 +69,13 @@ impl fmt::Display for Violation {
 
 impl World {
     /// Checks the world's invariants: no two bodies interpenetrate deeper than
-    /// [`WorldParams::penetration_tolerance`] (parry contact test on every pair of boxes), every free
-    /// block and the hook rest on a support (bottom within [`WorldParams::support_tolerance`] of a
-    /// top face under its centre), no body is lost, every joint is within its limits.
+    /// [`WorldParams::penetration_tolerance`] (parry contact test on every pair of boxes), every
+    /// free block and the hook rest on a support (bottom within
+    /// [`WorldParams::support_tolerance`] of a top face under its centre), no body is lost, every
+    /// joint is within its limits.
+    ///
+    /// [`WorldParams::penetration_tolerance`]: super::WorldParams::penetration_tolerance
+    /// [`WorldParams::support_tolerance`]: super::WorldParams::support_tolerance
     pub fn check_invariants(&self) -> Result<(), Vec<Violation>> {
         let v = self.check_invariants_list();
         if v.is_empty() {
@@ -124,7 +128,9 @@ impl World {
         for a in &self.arms {
             for k in 0..DOF {
                 let v = a.joints[k];
-                if !(panda::JOINT_LOWER[k] - 1e-9..=panda::JOINT_UPPER[k] + 1e-9).contains(&v) {
+                if !(panda::JOINT_LOWER[k] - LIMIT_SLACK..=panda::JOINT_UPPER[k] + LIMIT_SLACK)
+                    .contains(&v)
+                {
                     out.push(Violation::JointLimit {
                         arm: a.name.clone(),
                         joint: k,

@@ -1,7 +1,9 @@
 //! Scenes in and out: a [`World`] as a JSON-ready snapshot, and a snapshot (or its JSON) read
 //! back into a world with every field and the geometry validated.
 
-use super::{Arm, Body, GripperCommand, Region, Violation, World, WorldParams, KNOWN_PREDICATES};
+use super::{
+    Arm, Body, GripperCommand, Region, Violation, World, WorldParams, KNOWN_PREDICATES, LIMIT_SLACK,
+};
 use crate::sim::panda::{self, DOF};
 use crate::sim::snapshot::*;
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
@@ -17,6 +19,12 @@ pub struct SceneError {
     /// What is wrong.
     pub message: String,
 }
+
+/// A loaded quaternion shorter than this counts as zero: it has no orientation to normalise to.
+const MIN_QUATERNION_NORM: f64 = 1e-9;
+
+/// A loaded arm holds a body only if its TCP lies inside the body grown by this (m).
+const HELD_TCP_MARGIN: f64 = 0.01;
 
 pub(super) fn scene_err(path: impl Into<String>, message: impl Into<String>) -> SceneError {
     SceneError {
@@ -43,7 +51,7 @@ fn pose_from_snapshot(p: &PoseSnapshot, path: &str) -> Result<Isometry3<f64>, Sc
     let [x, y, z, w] = p.quaternion;
     let q = nalgebra::Quaternion::new(w, x, y, z);
     let n = q.norm();
-    if !n.is_finite() || n < 1e-9 {
+    if !n.is_finite() || n < MIN_QUATERNION_NORM {
         return Err(scene_err(
             format!("{path}.quaternion"),
             "must be a non-zero quaternion [x, y, z, w]",
@@ -275,7 +283,7 @@ fn load_arms(
         let base = pose_from_snapshot(&a.base, &format!("{path}.base"))?;
         let joints = load_joints(&a.joints, &path)?;
         if !(a.gripper_opening.is_finite()
-            && (0.0..=panda::GRIPPER_MAX_OPENING + 1e-9).contains(&a.gripper_opening))
+            && (0.0..=panda::GRIPPER_MAX_OPENING + LIMIT_SLACK).contains(&a.gripper_opening))
         {
             return Err(scene_err(
                 format!("{path}.gripper_opening"),
@@ -324,7 +332,9 @@ fn load_joints(values: &[f64], path: &str) -> Result<[f64; DOF], SceneError> {
     }
     let mut joints = [0.0; DOF];
     for (k, v) in values.iter().enumerate() {
-        if !v.is_finite() || *v < panda::JOINT_LOWER[k] - 1e-9 || *v > panda::JOINT_UPPER[k] + 1e-9
+        if !v.is_finite()
+            || *v < panda::JOINT_LOWER[k] - LIMIT_SLACK
+            || *v > panda::JOINT_UPPER[k] + LIMIT_SLACK
         {
             return Err(scene_err(
                 format!("{path}.joints[{k}]"),
@@ -372,7 +382,7 @@ fn attach_held(
         ));
     }
     let tcp = arm.tcp();
-    if !b.contains_point(&Point3::from(tcp.translation.vector), 0.01) {
+    if !b.contains_point(&Point3::from(tcp.translation.vector), HELD_TCP_MARGIN) {
         return Err(scene_err(
             format!("{path}.holding"),
             format!("{h:?} is not between the fingers of {}", arm.name),

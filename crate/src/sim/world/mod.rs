@@ -24,7 +24,7 @@ pub use user_moves::{MoveOutcome, Refused};
 
 use super::panda::{self, IkParams, DOF};
 use super::snapshot::ReachSnapshot;
-use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+use nalgebra::Isometry3;
 use serde::{Deserialize, Serialize};
 
 /// Tunables of the world (metres, seconds, radians).
@@ -48,6 +48,12 @@ impl WorldParams {
     /// How deep a carried body (or a block the carried hook pushes) may press into another
     /// before the arm stops at the contact (m): 0.9 of the penetration tolerance.
     pub fn carried_stop_depth(&self) -> f64 {
+        0.9 * self.penetration_tolerance
+    }
+
+    /// How deep a body settling under an overhang may press into the bodies above it and
+    /// still rest there (m): 0.9 of the penetration tolerance.
+    pub fn wedged_rest_depth(&self) -> f64 {
         0.9 * self.penetration_tolerance
     }
 }
@@ -78,15 +84,17 @@ pub enum GripperCommand {
     /// Close the fingers; a block or hook between the fingertips is grasped.
     Close,
 }
-/// Yaw (rotation about world `z`) of a pose's rotation.
-pub(crate) fn yaw_of(rot: &UnitQuaternion<f64>) -> f64 {
-    let x = rot * Vector3::x();
-    libm::atan2(x.y, x.x)
-}
-
 /// How deep an arm link may press into a table or shelf before the arm stops (m): the link
 /// capsules are rounded stand-ins for the real links.
 pub(crate) const LINK_TOLERANCE: f64 = 0.01;
+
+/// How far a joint angle (rad) or a finger opening (m) may lie beyond its limit and still count
+/// as within it: room for the rounding of saved scenes.
+const LIMIT_SLACK: f64 = 1e-9;
+
+/// One penetration depth counts as deeper than another only by more than this (m): the contact
+/// queries' rounding noise is no deeper contact.
+const DEPTH_EPSILON: f64 = 1e-9;
 
 /// One arm with its gripper.
 #[derive(Clone, Debug)]

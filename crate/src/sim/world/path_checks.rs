@@ -1,12 +1,16 @@
 //! Path checks for planners and the executor: what a hand moved along TCP poses, or an arm
 //! moved along a straight joint-space line, would sweep through (without moving anything).
 
-use super::{Body, World, LINK_TOLERANCE};
+use super::{Body, World, DEPTH_EPSILON, LINK_TOLERANCE};
 use crate::sim::panda::{self, DOF};
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Point3};
 use parry3d_f64::query;
 use parry3d_f64::shape::{Capsule, Cuboid};
+
+/// Bodies' boxes are shrunk by this before a path check (m), so that touching faces and resting
+/// contacts do not count as overlaps.
+const TOUCH_SLACK: f64 = 0.002;
 
 impl World {
     /// The world boxes of the bodies (not lost) that `keep` accepts (index, body), each with its
@@ -21,7 +25,7 @@ impl World {
             .filter(|(j, b)| !b.lost && keep(*j, b))
             .flat_map(|(j, b)| {
                 b.world_parts()
-                    .map(move |(iso, c)| (j, iso, crate::sim::geometry::shrunk(c, 0.002)))
+                    .map(move |(iso, c)| (j, iso, crate::sim::geometry::shrunk(c, TOUCH_SLACK)))
             })
             .collect()
     }
@@ -120,7 +124,7 @@ impl World {
         let mut furniture_depth = self.link_penetration(arm, from).0;
         panda::joint_line(from, to).find_map(|q| {
             let (depth, with) = self.link_penetration(arm, &q);
-            if depth > LINK_TOLERANCE && depth > furniture_depth + 1e-9 {
+            if depth > LINK_TOLERANCE && depth > furniture_depth + DEPTH_EPSILON {
                 if let Some(j) = with {
                     return Some(self.bodies[j].name.clone());
                 }

@@ -2,7 +2,8 @@
 //! straight down onto the first body under it, supported if its centroid lies over a top face
 //! there), the stack resting on a body, releases, and bodies lost to the floor.
 
-use super::{yaw_of, World, WorldEvent};
+use super::{World, WorldEvent};
+use crate::sim::geometry::yaw_of;
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::query;
@@ -16,6 +17,14 @@ pub(super) enum Settle {
     /// It overlaps a body already at its start height.
     Blocked(usize),
 }
+
+/// A settling body's downward shape cast starts this far above its pose (m), so that resting
+/// on its support is no hit at the start.
+const SETTLE_LIFT: f64 = 0.005;
+
+/// A body that overlaps another even when lifted may still settle if that other's top is at
+/// most this far above its lifted bottom (m): it lies below, not in the way.
+const LIFTED_OVERLAP_SLACK: f64 = 0.003;
 
 impl World {
     /// Blocks resting (transitively) on body `bi`, bottom to top.
@@ -82,7 +91,7 @@ impl World {
                     (0..self.bodies.len())
                         .filter(|&k| k != bi && self.bodies[k].aabb().0.z > centre),
                 );
-                let tol = self.params.penetration_tolerance;
+                let limit = self.params.wedged_rest_depth();
                 match self.settle_probe_once(bi, pose, &above, held_obstacles) {
                     Settle::On { support, drop } => {
                         // Only if, at rest, it presses into none of them beyond the tolerance.
@@ -90,7 +99,7 @@ impl World {
                         rest.pose = *pose;
                         rest.pose.translation.z -= drop;
                         let clear = above[ignore.len()..].iter().all(|&k| {
-                            self.bodies[k].lost || rest.penetration(&self.bodies[k]) <= 0.9 * tol
+                            self.bodies[k].lost || rest.penetration(&self.bodies[k]) <= limit
                         });
                         if clear {
                             Settle::On { support, drop }
@@ -114,7 +123,7 @@ impl World {
         held_obstacles: bool,
     ) -> Settle {
         let b = &self.bodies[bi];
-        let lift = 0.005;
+        let lift = SETTLE_LIFT;
         let start = Isometry3::from_parts(
             Translation3::from(pose.translation.vector + Vector3::new(0.0, 0.0, lift)),
             pose.rotation,
@@ -151,9 +160,8 @@ impl World {
         };
         if toi <= 0.0 {
             // Overlapping something even when lifted: only acceptable if that body is below.
-            let (olo, ohi) = self.bodies[j].aabb();
-            let _ = olo;
-            if ohi.z > lo.z + 0.003 {
+            let (_, ohi) = self.bodies[j].aabb();
+            if ohi.z > lo.z + LIFTED_OVERLAP_SLACK {
                 return Settle::Blocked(j);
             }
         }

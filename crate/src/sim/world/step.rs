@@ -2,7 +2,7 @@
 //! following their target within the velocity limits, the stops at furniture and at contacts,
 //! and the held body carried along.
 
-use super::{Body, GripperCommand, SimError, World, LINK_TOLERANCE};
+use super::{Body, GripperCommand, SimError, World, DEPTH_EPSILON, LINK_TOLERANCE};
 use crate::sim::panda::{self, DOF};
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Point3, Vector3};
@@ -84,6 +84,20 @@ impl fmt::Display for WorldEvent {
         }
     }
 }
+
+/// An arm is at its joint target when every joint is within this of it (rad).
+const JOINT_TARGET_REACHED: f64 = 1e-9;
+
+/// An arm is at its TCP target when its TCP is within this of it (m) and turned from it by
+/// less than [`TCP_TARGET_TURNED`].
+const TCP_TARGET_REACHED: f64 = 1e-5;
+
+/// The turn (rad) below which a TCP at [`TCP_TARGET_REACHED`] is at its target.
+const TCP_TARGET_TURNED: f64 = 1e-4;
+
+/// Only the parts of a held body whose centres lie within this of the TCP (m) are between the
+/// fingers (the hook's handle, not its blade).
+const FINGER_REACH: f64 = 0.05;
 
 impl World {
     /// Sets the joint angles of an arm directly (clamped to the limits); a held body follows.
@@ -218,7 +232,7 @@ impl World {
         let mut w: f64 = 0.0;
         for (p, c) in &b.parts {
             let iso = grasp * p;
-            if iso.translation.vector.norm() > 0.05 {
+            if iso.translation.vector.norm() > FINGER_REACH {
                 continue;
             }
             let m = iso.rotation.to_rotation_matrix().matrix().abs();
@@ -241,7 +255,7 @@ impl World {
         // LINK_TOLERANCE and deeper than before): the arm cannot reach through furniture.
         let after = self.arms[ai].joints;
         let (depth, with) = self.link_penetration(ai, &after);
-        if depth > LINK_TOLERANCE && depth > self.link_penetration(ai, &before).0 + 1e-9 {
+        if depth > LINK_TOLERANCE && depth > self.link_penetration(ai, &before).0 + DEPTH_EPSILON {
             self.arms[ai].joints = before;
             self.arms[ai].blocked_by = with.map(|j| self.bodies[j].name.clone());
             return;
@@ -274,7 +288,7 @@ impl World {
     fn desired_joints(&self, ai: usize) -> Option<[f64; DOF]> {
         let a = &self.arms[ai];
         if let Some(q) = a.joint_target {
-            if (0..DOF).all(|k| (q[k] - a.joints[k]).abs() < 1e-9) {
+            if (0..DOF).all(|k| (q[k] - a.joints[k]).abs() < JOINT_TARGET_REACHED) {
                 return None;
             }
             Some(q)
@@ -283,7 +297,7 @@ impl World {
             let current = a.tcp();
             let pos_err = (target.translation.vector - current.translation.vector).norm();
             let rot_err = (target.rotation * current.rotation.inverse()).angle();
-            if pos_err < 1e-5 && rot_err < 1e-4 {
+            if pos_err < TCP_TARGET_REACHED && rot_err < TCP_TARGET_TURNED {
                 return None;
             }
             Some(
@@ -339,7 +353,7 @@ impl World {
     ) -> Option<Option<usize>> {
         let limit = self.params.carried_stop_depth();
         let (depth, with) = self.held_penetration(bi);
-        if depth > limit.max(depth_before + 1e-9) {
+        if depth > limit.max(depth_before + DEPTH_EPSILON) {
             return Some(with);
         }
         // A block the carried hook pushed may not be driven into another body, nor off its
@@ -360,7 +374,7 @@ impl World {
                     std::mem::swap(&mut self.bodies, before);
                     let was = self.held_penetration(pi).0;
                     std::mem::swap(&mut self.bodies, before);
-                    if d > was + 1e-9 {
+                    if d > was + DEPTH_EPSILON {
                         return Some(w.or(Some(pi)));
                     }
                 }

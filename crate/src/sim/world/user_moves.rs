@@ -4,7 +4,8 @@
 
 use super::load::{check_color, check_name};
 use super::settle::Settle;
-use super::{yaw_of, Body, World};
+use super::{Body, World};
+use crate::sim::geometry::yaw_of;
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::query;
