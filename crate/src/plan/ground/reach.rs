@@ -101,29 +101,12 @@ pub(super) fn reach(
     schemas: &Schemas,
     fluent_pred: &[bool],
 ) -> Result<Reached, GroundError> {
-    let nobj = objs.names.len();
-    // Initial facts: static ones preloaded into the index, fluent ones queued.
-    let mut statics: HashSet<GAtom> = HashSet::default();
-    let mut index = FactIndex::new(domain, nobj);
-    let mut frontier = Frontier {
-        fact_ids: HashMap::default(),
-        fact_list: Vec::new(),
-        queue: VecDeque::new(),
-    };
-    let mut init_fluent: Vec<u32> = Vec::new();
-    for a in &problem.init {
-        let g: GAtom = (
-            a.predicate,
-            a.args.iter().map(|t| value(arg(objs, t), &[])).collect(),
-        );
-        if fluent_pred[a.predicate] {
-            if let Some(id) = frontier.reach(g) {
-                init_fluent.push(id);
-            }
-        } else if statics.insert(g.clone()) {
-            index.insert(g.0, &g.1);
-        }
-    }
+    let Initial {
+        statics,
+        mut index,
+        mut frontier,
+        init_fluent,
+    } = load_init(domain, problem, objs, fluent_pred);
     let (triggers, untriggered) = trigger_lists(domain, schemas, fluent_pred);
     let mut found = Found {
         domain,
@@ -178,6 +161,46 @@ pub(super) fn reach(
         statics,
         init_fluent,
     })
+}
+
+/// The initial facts, split: static ones preloaded into the index, fluent ones queued.
+struct Initial {
+    statics: HashSet<GAtom>,
+    index: FactIndex,
+    frontier: Frontier,
+    init_fluent: Vec<u32>,
+}
+
+/// Loads the problem's initial facts (see [`Initial`]).
+fn load_init(domain: &Domain, problem: &Problem, objs: &Objects, fluent_pred: &[bool]) -> Initial {
+    let nobj = objs.names.len();
+    let mut statics: HashSet<GAtom> = HashSet::default();
+    let mut index = FactIndex::new(domain, nobj);
+    let mut frontier = Frontier {
+        fact_ids: HashMap::default(),
+        fact_list: Vec::new(),
+        queue: VecDeque::new(),
+    };
+    let mut init_fluent: Vec<u32> = Vec::new();
+    for a in &problem.init {
+        let g: GAtom = (
+            a.predicate,
+            a.args.iter().map(|t| value(arg(objs, t), &[])).collect(),
+        );
+        if fluent_pred[a.predicate] {
+            if let Some(id) = frontier.reach(g) {
+                init_fluent.push(id);
+            }
+        } else if statics.insert(g.clone()) {
+            index.insert(g.0, &g.1);
+        }
+    }
+    Initial {
+        statics,
+        index,
+        frontier,
+        init_fluent,
+    }
 }
 
 /// Per fluent predicate, the `(schema, positive atom)` pairs a new fact of it triggers; and the

@@ -12,8 +12,19 @@
 //! grasp ([`geometry::grasp_pose`]), close and hold, lift, transfer at the safe height, descend to
 //! the pose that puts the body at rest 2 mm above its new support, open and hold, lift; with more
 //! than one arm, the arm then returns to its ready pose (so it leaves the hand-over region free).
-//! A hook pull picks the hook, puts its blade behind the block ([`pull_hook_poses`]), drags it
-//! towards the arm, lifts, and puts the hook back where it was.
+//! A hook pull picks the hook, puts its blade behind the block
+//! ([`pull_hook_poses`](crate::sim::demo::pull_hook_poses)), drags it towards the arm, lifts,
+//! and puts the hook back where it was.
+//!
+//! This file holds the edits, the gripper mode and the drag; `motion.rs` the motion builder and
+//! the pick-and-place, `pull.rs` the hook pull.
+
+mod motion;
+mod pull;
+
+pub use pull::{pull_samples, HookGrip};
+
+use motion::{go_home, min_jerk, motion_start, pick_and_place, reaches, resolve_arms};
 
 use super::engine::gripper_sample;
 use super::recording::{
@@ -21,12 +32,10 @@ use super::recording::{
 };
 use super::{Recorder, RecorderError, RecorderEvent};
 use crate::sim::benchmark::Benchmark;
-use crate::sim::demo::{self, pull_hook_poses, Demonstration, PULL_TARGET_RADIUS};
+use crate::sim::demo::{self, Demonstration};
 use crate::sim::geometry;
-use crate::sim::panda;
 use crate::sim::snapshot::BodyKind;
-use crate::sim::{GripperCommand, World};
-use nalgebra::{Isometry3, Vector3};
+use crate::sim::World;
 use serde::{Deserialize, Serialize};
 
 /// Tunables of the synthesised motions.
@@ -236,147 +245,9 @@ impl Recorder {
     }
 }
 
-/// Height above its resting pose at which a carried body is released (m).
-const PUT_DOWN_CLEARANCE: f64 = 0.002;
-/// Shortest horizontal pull stroke (m) that still gives the blade a direction to back off along.
-const MIN_BACK_OFF_DIRECTION: f64 = 1e-9;
-
 /// A refusal with the message `m`.
 fn refused(m: impl Into<String>) -> RecorderError {
     RecorderError::Refused(m.into())
-}
-
-/// The minimum-jerk profile `10τ³ − 15τ⁴ + 6τ⁵` at `τ = t`.
-fn min_jerk(t: f64) -> f64 {
-    t * t * t * (10.0 + t * (-15.0 + 6.0 * t))
-}
-
-/// `p` moved to the height `z` (orientation and x, y kept). Unlike `sim::geometry::raised`,
-/// which moves a pose up by an offset, this sets the height itself.
-fn at_height(p: &Isometry3<f64>, z: f64) -> Isometry3<f64> {
-    let mut q = *p;
-    q.translation.vector.z = z;
-    q
-}
-
-/// Builds samples segment by segment.
-struct Motion {
-    arm: usize,
-    dt: f64,
-    t: f64,
-    at: Isometry3<f64>,
-    grip: GripperCommand,
-    out: Vec<RawSample>,
-}
-
-impl Motion {
-    fn to(&mut self, target: Isometry3<f64>, duration: f64, grip: Option<GripperCommand>) {
-        if let Some(g) = grip {
-            self.grip = g;
-        }
-        let n = ((duration / self.dt).round() as usize).max(1);
-        let from = self.at;
-        for k in 1..=n {
-            let s = min_jerk(k as f64 / n as f64);
-            let p = from.translation.vector.lerp(&target.translation.vector, s);
-            let r = from.rotation.slerp(&target.rotation, s);
-            let pose = Isometry3::from_parts(p.into(), r);
-            self.out
-                .push(gripper_sample(self.t, self.arm, &pose, self.grip));
-            self.t += self.dt;
-        }
-        self.at = target;
-    }
-
-    fn transfer(&mut self, target: Isometry3<f64>, speed: f64) {
-        let d = (target.translation.vector - self.at.translation.vector).norm();
-        let a = (target.rotation * self.at.rotation.inverse()).angle();
-        self.to(target, (d / speed).max(a / 1.2).max(0.5), None);
-    }
-}
-
-fn resolve_arms(world: &World, arm: &Option<ArmRef>) -> Result<Vec<usize>, RecorderError> {
-    match arm {
-        Some(a) => a
-            .resolve(world)
-            .map(|i| vec![i])
-            .ok_or_else(|| refused(format!("no such arm {a:?}"))),
-        None => Ok((0..world.arm_names().len()).collect()),
-    }
-}
-
-fn motion_start(rec: &Recorder, arm: usize) -> Result<Motion, RecorderError> {
-    let w = rec.world();
-    let at = w.tcp_pose(arm).ok_or_else(|| refused("no such arm"))?;
-    Ok(Motion {
-        arm,
-        dt: w.dt(),
-        t: rec.time(),
-        at,
-        grip: GripperCommand::Open,
-        out: vec![],
-    })
-}
-
-/// The highest top face of any block or the hook (m), for safe transfers.
-fn highest_top(world: &World) -> f64 {
-    world
-        .block_names()
-        .iter()
-        .filter(|b| !world.is_lost(b))
-        .filter_map(|b| world.body_aabb(b).map(|(_, hi)| hi.z))
-        .fold(0.0, f64::max)
-}
-
-/// Pick `body` with `m.arm`, carry it to `rest` (its resting pose), release, lift.
-fn pick_and_place(
-    world: &World,
-    m: &mut Motion,
-    body: &str,
-    rest: &Isometry3<f64>,
-    p: &SynthParams,
-) -> Result<(), RecorderError> {
-    let bp = world
-        .body_pose(body)
-        .ok_or_else(|| refused(format!("no body {body}")))?;
-    let g = geometry::grasp_pose(world, m.arm, body)
-        .ok_or_else(|| refused(format!("{body} cannot be grasped")))?;
-    let grasp = g.inverse() * bp; // the body in the TCP frame
-    let mut put = *rest;
-    put.translation.vector.z += PUT_DOWN_CLEARANCE;
-    let place = put * grasp.inverse();
-    let safe = g
-        .translation
-        .z
-        .max(place.translation.z)
-        .max(highest_top(world) + 0.05)
-        + p.approach_height;
-    m.transfer(at_height(&g, safe), p.speed);
-    m.grip = GripperCommand::Open;
-    m.to(g, p.contact_time, Some(GripperCommand::Open));
-    m.to(g, p.hold_time, Some(GripperCommand::Close));
-    m.to(at_height(&g, safe), p.contact_time, None);
-    m.transfer(at_height(&place, safe), p.speed);
-    m.to(place, p.contact_time, None);
-    m.to(place, p.hold_time, Some(GripperCommand::Open));
-    m.to(
-        at_height(&place, place.translation.z + p.approach_height),
-        p.contact_time,
-        None,
-    );
-    Ok(())
-}
-
-fn reaches(world: &World, arm: usize, poses: &[Isometry3<f64>]) -> bool {
-    poses.iter().all(|q| world.reachable(arm, q).is_ok())
-}
-
-fn go_home(world: &World, m: &mut Motion, p: &SynthParams) {
-    if world.arm_names().len() > 1 {
-        if let Some(base) = world.arm_base(m.arm) {
-            m.transfer(panda::forward_kinematics(&base, &panda::READY), p.speed);
-        }
-    }
 }
 
 /// Where a drag puts a body: its new centre `x`, `y` (m, world) and yaw (rad).
@@ -482,155 +353,6 @@ pub fn drag_samples(
         return Ok(m.out);
     }
     Err(cannot(why.join("; ")))
-}
-
-/// The arm that picked the hook and the hook's pose before the pick.
-pub type HookGrip = (usize, Isometry3<f64>);
-
-/// Samples of a hook pull (see [`Edit::Pull`]), in two phases: with `holding = None`, picking
-/// the hook and lifting it (returns the arm used); with `holding = Some((arm, home))` (the arm
-/// now holds the hook, using its actual grasp), putting the blade behind `body`, dragging it into
-/// reach, lifting, and putting the hook back at `home`, where it was picked.
-pub fn pull_samples(
-    rec: &Recorder,
-    body: &str,
-    hook: Option<&str>,
-    arm: &Option<ArmRef>,
-    holding: Option<HookGrip>,
-    p: &SynthParams,
-) -> Result<(Vec<RawSample>, HookGrip), RecorderError> {
-    let world = rec.world();
-    let cannot = |why: String| refused(format!("cannot pull {body}: {why}"));
-    if world.body_kind(body) != Some(BodyKind::Block) {
-        return Err(cannot("there is no such block".into()));
-    }
-    let hook_name = match hook {
-        Some(h) => h.to_string(),
-        None => SceneHook::first(world).ok_or_else(|| cannot("the scene has no hook".into()))?,
-    };
-    if world.body_kind(&hook_name) != Some(BodyKind::Hook) {
-        return Err(cannot(format!("{hook_name} is not a hook")));
-    }
-    let hp = world
-        .body_pose(&hook_name)
-        .ok_or_else(|| cannot("no hook pose".into()))?;
-    let bp = world
-        .body_pose(body)
-        .ok_or_else(|| cannot("no pose".into()))?;
-    let safe = highest_top(world) + 0.05 + p.approach_height;
-    match holding {
-        Some(grip) => pull_stroke(rec, &hook_name, grip, &bp, safe, p, &cannot),
-        None => pick_hook(rec, body, &hook_name, &hp, &bp, safe, arm, p, &cannot),
-    }
-}
-
-/// The first phase of a pull: the first arm (of `arm`, or any) that can grasp the hook and
-/// reach behind `body` with it picks the hook and lifts it to the height `safe`.
-#[allow(clippy::too_many_arguments)]
-fn pick_hook(
-    rec: &Recorder,
-    body: &str,
-    hook_name: &str,
-    hp: &Isometry3<f64>,
-    bp: &Isometry3<f64>,
-    safe: f64,
-    arm: &Option<ArmRef>,
-    p: &SynthParams,
-    cannot: &dyn Fn(String) -> RecorderError,
-) -> Result<(Vec<RawSample>, HookGrip), RecorderError> {
-    let world = rec.world();
-    let arms = resolve_arms(world, arm)?;
-    let mut why = vec![];
-    for &r in &arms {
-        let name = world.arm_names()[r].to_string();
-        if let Some(h) = world.held_by(r) {
-            why.push(format!("{name} holds {h}"));
-            continue;
-        }
-        let Some(g) = geometry::grasp_pose(world, r, hook_name) else {
-            return Err(cannot("the hook cannot be grasped".into()));
-        };
-        let grasp_inv = (g.inverse() * hp).inverse();
-        let base = world
-            .arm_base(r)
-            .ok_or_else(|| cannot("no arm base".into()))?;
-        let (contact, pulled) = pull_hook_poses(&base, bp, PULL_TARGET_RADIUS);
-        if !reaches(world, r, &[g, contact * grasp_inv, pulled * grasp_inv]) {
-            why.push(format!(
-                "{name} cannot reach behind {body} with {hook_name}"
-            ));
-            continue;
-        }
-        let mut m = motion_start(rec, r)?;
-        let safe = g.translation.z.max(safe);
-        m.transfer(at_height(&g, safe), p.speed);
-        m.to(g, p.contact_time, Some(GripperCommand::Open));
-        m.to(g, p.hold_time, Some(GripperCommand::Close));
-        m.to(at_height(&g, safe), p.contact_time, None);
-        return Ok((m.out, (r, *hp)));
-    }
-    Err(cannot(why.join("; ")))
-}
-
-/// The second phase of a pull, with the grasp the hook actually got: the blade goes behind the
-/// block (`bp`), drags it into reach, backs off and lifts; the hook goes back to `home`.
-fn pull_stroke(
-    rec: &Recorder,
-    hook_name: &str,
-    (r, home): HookGrip,
-    bp: &Isometry3<f64>,
-    safe: f64,
-    p: &SynthParams,
-    cannot: &dyn Fn(String) -> RecorderError,
-) -> Result<(Vec<RawSample>, HookGrip), RecorderError> {
-    let world = rec.world();
-    let grasp = world
-        .grasp_transform(r)
-        .filter(|_| world.held_by(r) == Some(hook_name))
-        .ok_or_else(|| cannot(format!("the arm does not hold {hook_name}")))?;
-    let grasp_inv = grasp.inverse();
-    let base = world
-        .arm_base(r)
-        .ok_or_else(|| cannot("no arm base".into()))?;
-    let (contact, pulled) = pull_hook_poses(&base, bp, PULL_TARGET_RADIUS);
-    let tc = contact * grasp_inv;
-    let tp = pulled * grasp_inv;
-    let mut m = motion_start(rec, r)?;
-    m.grip = GripperCommand::Close;
-    m.transfer(at_height(&tc, safe), p.speed);
-    m.to(tc, p.contact_time, None);
-    let d = (tp.translation.vector - tc.translation.vector).norm();
-    m.to(tp, (d / p.pull_speed).max(0.6), None);
-    // Back the blade off the block before lifting, so the lift cannot scrape it.
-    let mut off = tp;
-    let back = tc.translation.vector - tp.translation.vector;
-    let back = Vector3::new(back.x, back.y, 0.0);
-    if back.norm() > MIN_BACK_OFF_DIRECTION {
-        off.translation.vector += back.normalize() * 0.015;
-    }
-    m.to(off, p.hold_time, None);
-    m.to(at_height(&off, safe), p.contact_time, None);
-    // Put the hook back where it was before the pick (kept in the first phase's log).
-    let mut put = home;
-    put.translation.vector += Vector3::new(0.0, 0.0, PUT_DOWN_CLEARANCE);
-    let place = put * grasp_inv;
-    m.transfer(at_height(&place, safe), p.speed);
-    m.to(place, p.contact_time, None);
-    m.to(place, p.hold_time, Some(GripperCommand::Open));
-    m.to(at_height(&place, safe), p.contact_time, None);
-    Ok((m.out, (r, home)))
-}
-
-struct SceneHook;
-
-impl SceneHook {
-    fn first(world: &World) -> Option<String> {
-        let s = world.snapshot();
-        s.bodies
-            .iter()
-            .find(|b| b.kind == BodyKind::Hook && !b.lost)
-            .map(|b| b.name.clone())
-    }
 }
 
 /// A raw recording of a demonstration: `demo` is replayed from the benchmark's template scene
