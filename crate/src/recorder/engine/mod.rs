@@ -13,9 +13,10 @@ use super::{RecorderError, RecorderEvent, RecorderParams, Segment};
 use crate::pddl;
 use crate::plan::{self, State, Task};
 use crate::sim::benchmark::Benchmark;
+pub(crate) use crate::sim::geometry::gripper_yaw;
 use crate::sim::snapshot::{BodyKind, WorldSnapshot};
-use crate::sim::{yaw_of, GripperCommand, SceneGraph, World, WorldEvent};
-use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+use crate::sim::{GripperCommand, SceneGraph, World, WorldEvent};
+use nalgebra::Isometry3;
 
 /// How a [`Recorder`] is set up.
 #[derive(Clone, Debug, PartialEq)]
@@ -129,12 +130,6 @@ pub struct Recorder {
 /// A model error carrying `e`'s message.
 fn model_err(e: impl std::fmt::Display) -> RecorderError {
     RecorderError::Model(e.to_string())
-}
-
-/// The gripper yaw of a TCP orientation (inverse of
-/// [`panda::down_orientation`](crate::sim::panda::down_orientation)).
-pub(crate) fn gripper_yaw(rot: &UnitQuaternion<f64>) -> f64 {
-    yaw_of(&(rot * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::PI)))
 }
 
 /// The world's facts (fluents), sorted.

@@ -24,7 +24,8 @@ mod pull;
 
 pub use pull::{pull_samples, HookGrip};
 
-use motion::{go_home, min_jerk, motion_start, pick_and_place, reaches, resolve_arms};
+use crate::sim::demo::min_jerk;
+use motion::{go_home, motion_start, pick_and_place, reaches, resolve_arms};
 
 use super::engine::gripper_sample;
 use super::recording::{

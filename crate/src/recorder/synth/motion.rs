@@ -5,6 +5,7 @@ use super::{refused, SynthParams};
 use crate::recorder::engine::gripper_sample;
 use crate::recorder::recording::{ArmRef, RawSample};
 use crate::recorder::{Recorder, RecorderError};
+use crate::sim::demo::min_jerk;
 use crate::sim::geometry;
 use crate::sim::panda;
 use crate::sim::{GripperCommand, World};
@@ -12,11 +13,6 @@ use nalgebra::Isometry3;
 
 /// Height above its resting pose at which a carried body is released (m).
 pub(super) const PUT_DOWN_CLEARANCE: f64 = 0.002;
-
-/// The minimum-jerk profile `10τ³ − 15τ⁴ + 6τ⁵` at `τ = t`.
-pub(super) fn min_jerk(t: f64) -> f64 {
-    t * t * t * (10.0 + t * (-15.0 + 6.0 * t))
-}
 
 /// `p` moved to the height `z` (orientation and x, y kept). Unlike `sim::geometry::raised`,
 /// which moves a pose up by an offset, this sets the height itself.
