@@ -111,10 +111,7 @@ fn imports(source: &str, module: &[String]) -> Vec<(usize, String)> {
     let depth = module.len();
     let climb = "super::".repeat(depth);
     let mut at = 0;
-    while depth > 0 {
-        let Some(i) = text[at..].find(&climb) else {
-            break;
-        };
+    while let Some(i) = (depth > 0).then(|| text[at..].find(&climb)).flatten() {
         let start = at + i;
         at = start + climb.len();
         if text[..start].ends_with("super::") {

@@ -121,11 +121,12 @@ fn tamp_from_scratch_binds_every_benchmark_with_certified_motions() {
         let (_, task) = model_and_task(b, &world);
         let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
         let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::HMax);
-        let ops = plan_from_scratch(&task, &task.init, &mut binder, &cfg, 4, &NoClock)
+        let plan = plan_from_scratch(&task, &task.init, &mut binder, &cfg, 4, &NoClock)
             .unwrap_or_else(|e| panic!("{b:?}: {e}"));
+        let ops = plan.ops;
         let end = replay(&task, &task.init, &ops).unwrap();
         assert!(task.goal.holds(&end), "{b:?}");
-        assert_eq!(binder.bindings.len(), ops.len());
+        assert_eq!(plan.bindings.len(), ops.len());
         // Every motion was sampled along its path (1.5 cm steps: dozens per action).
         assert!(
             binder.stats.path_samples >= 10 * ops.len(),
@@ -150,7 +151,13 @@ fn a_carried_block_crosses_a_tower_in_a_transit_that_the_executor_follows() {
             .collect();
         let mut binder = StreamBinder::new(world, 3, StreamParams::default()).with_hints(&hints);
         let r = binder.bind(&task, &ops, ops.len());
-        (r, binder.predicted_pose("a"), binder.stats, binder.bindings)
+        let bindings = r.clone().unwrap_or_default();
+        (
+            r.map(|_| ()),
+            binder.predicted_pose("a"),
+            binder.stats,
+            bindings,
+        )
     };
     let at_hint = |p: Vector3<f64>| (p.x - hint.0).abs() < 1e-9 && (p.y - hint.1).abs() < 1e-9;
     let free = template(BenchmarkId::B1);
@@ -222,8 +229,8 @@ fn an_empty_hand_low_beside_a_tower_reaches_its_top_through_a_transit() {
     let (_, task) = model_and_task(BenchmarkId::B1, &world);
     let ops = [op(&task, "(unstack panda a c)")];
     let mut binder = StreamBinder::new(&world, 5, StreamParams::default());
-    binder.bind(&task, &ops, ops.len()).expect("certified");
-    let z = binder.bindings[0].transit.expect("a transit");
+    let bindings = binder.bind(&task, &ops, ops.len()).expect("certified");
+    let z = bindings[0].transit.expect("a transit");
     let c_box = world.body_shapes("c");
 
     let skills = b1_skills();
@@ -509,19 +516,15 @@ fn a_block_in_the_way_of_a_pull_is_named_and_moved_out_of_the_way_first() {
         op(&task, "(pull panda hook b)"),
     ];
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
-    assert_eq!(binder.bind(&task, &pull, 0), Err(1));
-    assert_eq!(
-        binder.obstructions(1),
-        ["a"],
-        "{:?}",
-        binder.last_rejection()
-    );
-    assert!(binder.obstructions(0).is_empty());
+    let failure = binder.bind(&task, &pull, 0).unwrap_err();
+    assert_eq!(failure.action, 1);
+    assert_eq!(failure.blockers, ["a"], "{:?}", failure.reason);
     // TAMP from scratch puts a on the shelf before it pulls b, and every action binds.
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
     let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::HMax);
-    let ops = plan_from_scratch(&task, &task.init, &mut binder, &cfg, 10, &NoClock)
+    let plan = plan_from_scratch(&task, &task.init, &mut binder, &cfg, 10, &NoClock)
         .unwrap_or_else(|e| panic!("{e}"));
+    let ops = plan.ops;
     let names: Vec<&str> = ops
         .iter()
         .map(|&o| task.operators[o].name.as_str())
@@ -533,7 +536,7 @@ fn a_block_in_the_way_of_a_pull_is_named_and_moved_out_of_the_way_first() {
         "{names:?}"
     );
     assert!(task.goal.holds(&replay(&task, &task.init, &ops).unwrap()));
-    assert_eq!(binder.bindings.len(), ops.len());
+    assert_eq!(plan.bindings.len(), ops.len());
 }
 
 #[test]
@@ -552,8 +555,9 @@ fn two_blocks_side_by_side_beyond_reach_block_each_others_pulls_and_the_check_ag
             op(&task, &format!("(pull panda hook {x})")),
         ];
         let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
-        assert_eq!(binder.bind(&task, &ops, 0), Err(1), "pull {x}");
-        assert_eq!(binder.obstructions(1), [other], "pull {x}");
+        let failure = binder.bind(&task, &ops, 0).unwrap_err();
+        assert_eq!(failure.action, 1, "pull {x}");
+        assert_eq!(failure.blockers, [other], "pull {x}");
         // The soak's and the disturbances' check says so too (the hook's sweep is checked).
         assert!(
             !logic_lfd::sim::disturb::hook_can_pull(&world, 0, "hook", x),
@@ -586,7 +590,8 @@ fn five_blocks_fit_on_the_b2_shelf_when_placements_are_packed() {
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
     let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::HMax);
     let ops = plan_from_scratch(&task, &task.init, &mut binder, &cfg, 10, &NoClock)
-        .unwrap_or_else(|e| panic!("{e}"));
+        .unwrap_or_else(|e| panic!("{e}"))
+        .ops;
     assert!(task.goal.holds(&replay(&task, &task.init, &ops).unwrap()));
     // Every block has its own spot on the shelf.
     let (lo, hi) = world.body_aabb("shelf").unwrap();
@@ -680,8 +685,8 @@ fn b2_bind_one(world: &World, name: &str) -> (Task, [usize; 1], Vec<logic_lfd::t
     let ops = [op(&task, name)];
     let mut binder = StreamBinder::new(world, 1, StreamParams::default());
     let r = binder.bind(&task, &ops, ops.len());
-    assert_eq!(r, Ok(()), "{:?}", binder.last_rejection());
-    (task, ops, binder.bindings)
+    let bindings = r.unwrap_or_else(|e| panic!("{:?}", e.reason));
+    (task, ops, bindings)
 }
 
 #[test]
@@ -700,7 +705,10 @@ fn soak_4242_2219_a_stroke_whose_hook_presses_into_the_shelf_is_neither_planned_
     let (_, task) = model_and_task(BenchmarkId::B2, &world);
     let ops = [op(&task, "(pull panda hook a)")];
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
-    assert_eq!(binder.bind(&task, &ops, ops.len()), Err(0));
+    assert_eq!(
+        binder.bind(&task, &ops, ops.len()).map_err(|e| e.action),
+        Err(0)
+    );
     // What the simulator does with that stroke.
     let mut world = world;
     let mut kind = classify(&task, &task.operators[ops[0]], &world).unwrap();
@@ -915,9 +923,10 @@ fn a_block_under_an_overhang_is_not_picked_and_the_overhanging_block_is_named() 
     let ops = [op(&task, "(pick panda a)")];
     for demo_from in [0, 1] {
         let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
-        assert_eq!(binder.bind(&task, &ops, demo_from), Err(0));
-        assert_eq!(binder.obstructions(0), vec!["c".to_string()]);
-        let why = binder.last_rejection().unwrap_or_default();
+        let failure = binder.bind(&task, &ops, demo_from).unwrap_err();
+        assert_eq!(failure.action, 0);
+        assert_eq!(failure.blockers, vec!["c".to_string()]);
+        let why = failure.reason.unwrap_or_default();
         assert!(why.contains("c overhangs a"), "{why}");
     }
     // Without the overhang the same pick binds (as the demonstration's: certified, the wrist
@@ -927,7 +936,7 @@ fn a_block_under_an_overhang_is_not_picked_and_the_overhanging_block_is_named() 
         .unwrap();
     let mut binder = StreamBinder::new(&free, 1, StreamParams::default());
     let r = binder.bind(&task, &ops, 0);
-    assert_eq!(r, Ok(()), "{:?}", binder.last_rejection());
+    assert!(r.is_ok(), "{:?}", r.map_err(|e| e.reason));
 }
 
 #[test]
@@ -971,8 +980,7 @@ fn a_release_beside_a_tower_is_put_down_with_the_hand_where_it_was_certified() {
         .into_iter()
         .collect();
     let mut binder = StreamBinder::new(&world, 3, StreamParams::default()).with_hints(&hints);
-    assert_eq!(binder.bind(&task, &ops, ops.len()), Ok(()));
-    let bindings = binder.bindings.clone();
+    let bindings = binder.bind(&task, &ops, ops.len()).unwrap();
     let Some(logic_lfd::tamp::Placement::At { x, y, .. }) = bindings[1].placement else {
         panic!("{bindings:?}");
     };
@@ -1065,8 +1073,9 @@ fn soak_8080_1354_a_block_under_an_overhang_is_freed_by_moving_the_block_over_it
     let (_, task) = model_and_task(BenchmarkId::B1, &world);
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
     let pick_a = [op(&task, "(pick panda a)")];
-    assert_eq!(binder.bind(&task, &pick_a, 1), Err(0));
-    assert_eq!(binder.obstructions(0), vec!["c".to_string()]);
+    let failure = binder.bind(&task, &pick_a, 1).unwrap_err();
+    assert_eq!(failure.action, 0);
+    assert_eq!(failure.blockers, vec!["c".to_string()]);
     assert_eq!(
         run_from_saved_world(BenchmarkId::B1, "soak-8080-1354"),
         Some(Ok(()))
@@ -1121,8 +1130,8 @@ fn soak_8080_2819_a_block_is_not_put_down_where_the_arm_is_at_its_joint_limits()
             ..StreamParams::default()
         };
         let mut binder = StreamBinder::new(&world, 1, params).with_hints(&hints);
-        assert_eq!(binder.bind(&task, &place, 1), Ok(()));
-        match binder.bindings[0].placement {
+        let bindings = binder.bind(&task, &place, 1).unwrap();
+        match bindings[0].placement {
             Some(Placement::At { x, y, .. }) => (x, y),
             ref p => panic!("{p:?}"),
         }
@@ -1197,10 +1206,10 @@ fn soak_5150_623_the_hook_is_put_down_with_every_part_clear_of_the_shelf() {
     for seed in 0..40 {
         let mut binder =
             StreamBinder::new(&world, seed, StreamParams::default()).with_hints(&hints);
-        if binder.bind(&task, &place, 1).is_err() {
+        let Ok(bindings) = binder.bind(&task, &place, 1) else {
             continue;
-        }
-        let Some(Placement::At { x, y, yaw }) = binder.bindings[0].placement else {
+        };
+        let Some(Placement::At { x, y, yaw }) = bindings[0].placement else {
             continue;
         };
         if (x, y, yaw) == (0.25, -0.2, 0.0) {
@@ -1239,20 +1248,17 @@ fn soak_1234_1323_a_hand_over_spot_is_found_beside_a_tower_in_the_hand_over_regi
     let (_, task) = model_and_task(b, &world);
     let place = [op(&task, "(place left f handover)")];
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
-    assert_eq!(
-        binder.bind(&task, &place, 1),
-        Ok(()),
-        "{:?}",
-        binder.last_rejection()
-    );
-    let Some(Placement::At { x, y, .. }) = binder.bindings[0].placement else {
-        panic!("{:?}", binder.bindings);
+    let bindings = binder
+        .bind(&task, &place, 1)
+        .unwrap_or_else(|e| panic!("{:?}", e.reason));
+    let Some(Placement::At { x, y, .. }) = bindings[0].placement else {
+        panic!("{bindings:?}");
     };
     let tower = world.body_pose("b").unwrap().translation.vector;
     assert!(libm::hypot(x - tower.x, y - tower.y) > 0.064, "({x}, {y})");
     let skills = SkillLibrary::learn(&b.sources().unwrap().demo, SkillKind::Lqt, &[]);
     let mut after = world.clone();
-    execute_bound(&mut after, &task, &place, &binder.bindings, &skills);
+    execute_bound(&mut after, &task, &place, &bindings, &skills);
     assert!(SceneGraph::from_world(&after).contains("(at f handover)"));
 }
 

@@ -753,7 +753,7 @@ impl Session {
                     // The demonstration's placements, as demonstrated (no task-level feedback,
                     // nothing re-sampled); blocks are re-targeted by the skills.
                     let task = self.controller.task();
-                    binder.bindings = self
+                    self.bindings = self
                         .controller
                         .plan_ops()
                         .iter()
@@ -777,13 +777,14 @@ impl Session {
                     // No new actions: only surface placements are re-targeted.
                     let ops = self.controller.plan_ops().to_vec();
                     let task = self.controller.task().clone();
-                    if binder.bind(&task, &ops, 0).is_err() {
-                        binder.bindings = vec![Binding::default(); ops.len()];
-                    }
+                    self.bindings = binder
+                        .bind(&task, &ops, 0)
+                        .unwrap_or_else(|_| vec![Binding::default(); ops.len()]);
                 }
-                Method::LogicLfd | Method::Tamp => {}
+                Method::LogicLfd | Method::Tamp => {
+                    self.bindings = self.controller.bindings().to_vec();
+                }
             }
-            self.bindings = std::mem::take(&mut binder.bindings);
         }
         drop(binder);
         match decision {

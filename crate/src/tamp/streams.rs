@@ -51,7 +51,7 @@ use rand_pcg::Pcg64Mcg;
 
 use super::action::{classify, ActionKind, Binding, Placement};
 use super::motion::NEAR_RECOVERY_FRACTIONS;
-use super::Binder;
+use super::{BindFailure, Binder};
 use crate::plan::{fact_args, Task};
 use crate::sim::demo::{pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TURNS};
 use crate::sim::geometry::{
@@ -192,7 +192,7 @@ impl Geo {
     }
 }
 
-/// Binds skeletons against a world with certified samples; remembers the last bindings.
+/// Binds skeletons against a world with certified samples.
 pub struct StreamBinder<'w> {
     world: &'w World,
     fixed: Vec<FixedBody>,
@@ -204,12 +204,10 @@ pub struct StreamBinder<'w> {
     params: StreamParams,
     track_ik: IkParams,
     settle_ik: IkParams,
-    /// What was bound per action of the last successfully bound skeleton.
-    pub bindings: Vec<Binding>,
     /// Certifications (IK + collision tests of a candidate) done so far.
     pub certifications: usize,
     /// Why the last rejected candidate was rejected, in words (for failure reports).
-    pub last_rejection: Option<String>,
+    last_rejection: Option<String>,
     /// The movable bodies in the way of the candidate being certified (the last rejections').
     last_blockers: Vec<String>,
     /// The action (index into the skeleton) being bound.
@@ -291,7 +289,6 @@ impl<'w> StreamBinder<'w> {
             rng: Pcg64Mcg::seed_from_u64(seed),
             params,
             track_ik,
-            bindings: vec![],
             certifications: 0,
             last_rejection: None,
             last_blockers: vec![],
@@ -1694,7 +1691,12 @@ type Transit = Option<f64>;
 type Candidate = (usize, f64, f64, f64, f64);
 
 impl Binder for StreamBinder<'_> {
-    fn bind(&mut self, task: &Task, ops: &[usize], demo_from: usize) -> Result<(), usize> {
+    fn bind(
+        &mut self,
+        task: &Task,
+        ops: &[usize],
+        demo_from: usize,
+    ) -> Result<Vec<Binding>, BindFailure> {
         let mut geo = self.geo();
         // An empty hand down among bodies rises first (as the executor's next action does).
         for arm in 0..geo.tcp.len() {
@@ -1709,25 +1711,25 @@ impl Binder for StreamBinder<'_> {
         self.last_rejection = None;
         self.blockers.clear();
         self.budget_end = self.certifications + self.params.certification_budget;
-        let end = self.bind_from(task, ops, demo_from, 0, geo, &mut out)?;
-        self.bindings = out;
-        self.predicted = end.poses;
-        Ok(())
+        match self.bind_from(task, ops, demo_from, 0, geo, &mut out) {
+            Ok(end) => {
+                self.predicted = end.poses;
+                Ok(out)
+            }
+            Err(action) => Err(BindFailure {
+                action,
+                reason: self.last_rejection.clone(),
+                blockers: self
+                    .blockers
+                    .get(&action)
+                    .map(|b| b.iter().cloned().collect())
+                    .unwrap_or_default(),
+            }),
+        }
     }
 
     fn widen(&mut self) {
         self.params.placement_samples =
             (self.params.placement_samples * 2).min(self.widest_placement_samples);
-    }
-
-    fn last_rejection(&self) -> Option<String> {
-        self.last_rejection.clone()
-    }
-
-    fn obstructions(&self, i: usize) -> Vec<String> {
-        self.blockers
-            .get(&i)
-            .map(|b| b.iter().cloned().collect())
-            .unwrap_or_default()
     }
 }
