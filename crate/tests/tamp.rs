@@ -16,7 +16,7 @@ use logic_lfd::sim::snapshot::ShapeSnapshot;
 use logic_lfd::sim::{SceneGraph, World};
 use logic_lfd::tamp::plan_from_scratch;
 use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
-use logic_lfd::tamp::{classify, moves_body, ActionKind, Binder, Placement};
+use logic_lfd::tamp::{classify, moves_body, ActionKind, Binder, Placement, PlanarPose};
 use nalgebra::Vector3;
 
 fn model_and_task(b: BenchmarkId, world: &World) -> (DomainModel, Task) {
@@ -146,7 +146,8 @@ fn a_carried_block_crosses_a_tower_in_a_transit_that_the_executor_follows() {
     let bind = |world: &World| {
         let (_, task) = model_and_task(BenchmarkId::B1, world);
         let ops = ops_of(&task);
-        let hints = [("(place panda a)".to_string(), hint)]
+        let (x, y, yaw) = hint;
+        let hints = [("(place panda a)".to_string(), PlanarPose { x, y, yaw })]
             .into_iter()
             .collect();
         let mut binder = StreamBinder::new(world, 3, StreamParams::default()).with_hints(&hints);
@@ -976,7 +977,8 @@ fn a_release_beside_a_tower_is_put_down_with_the_hand_where_it_was_certified() {
     let hint = (0.562, 0.171, 0.0);
     let (_, task) = model_and_task(BenchmarkId::B1, &world);
     let ops = [op(&task, "(pick panda b)"), op(&task, "(place panda b)")];
-    let hints = [("(place panda b)".to_string(), hint)]
+    let (x, y, yaw) = hint;
+    let hints = [("(place panda b)".to_string(), PlanarPose { x, y, yaw })]
         .into_iter()
         .collect();
     let mut binder = StreamBinder::new(&world, 3, StreamParams::default()).with_hints(&hints);
@@ -1122,7 +1124,11 @@ fn soak_8080_2819_a_block_is_not_put_down_where_the_arm_is_at_its_joint_limits()
     assert_eq!(world.held_by(0), Some("d"));
     let (_, task) = model_and_task(BenchmarkId::B1, &world);
     let place = [op(&task, "(place panda d)")];
-    let cramped = (0.2562, -0.0040, std::f64::consts::FRAC_PI_2);
+    let cramped = PlanarPose {
+        x: 0.2562,
+        y: -0.0040,
+        yaw: std::f64::consts::FRAC_PI_2,
+    };
     let hints = std::collections::BTreeMap::from([("(place panda d)".to_string(), cramped)]);
     let bind = |margin: f64| {
         let params = StreamParams {
@@ -1137,7 +1143,7 @@ fn soak_8080_2819_a_block_is_not_put_down_where_the_arm_is_at_its_joint_limits()
         }
     };
     // Without the margin the cramped spot is certified (collision-free, reachable by IK).
-    assert_eq!(bind(0.0), (cramped.0, cramped.1));
+    assert_eq!(bind(0.0), (cramped.x, cramped.y));
     let margin = StreamParams::default().placement_inner_margin;
     let (x, y) = bind(margin);
     assert!(libm::hypot(x, y) >= 0.25 + margin, "({x}, {y})");
@@ -1200,8 +1206,12 @@ fn soak_5150_623_the_hook_is_put_down_with_every_part_clear_of_the_shelf() {
     let shelf = world.body_aabb("shelf").unwrap();
     let place = [op(&task, "(place panda hook)")];
     // Spots away from the demonstration's, as when its spot is taken.
-    let hints =
-        std::collections::BTreeMap::from([("(place panda hook)".to_string(), (0.25, -0.2, 0.0))]);
+    let spot = PlanarPose {
+        x: 0.25,
+        y: -0.2,
+        yaw: 0.0,
+    };
+    let hints = std::collections::BTreeMap::from([("(place panda hook)".to_string(), spot)]);
     let mut near = 0;
     for seed in 0..40 {
         let mut binder =

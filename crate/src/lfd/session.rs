@@ -25,7 +25,7 @@ use crate::plan::{Clock, NoClock};
 use crate::sim::snapshot::WorldSnapshot;
 use crate::sim::{MoveOutcome, Refused, SceneGraph, World};
 use crate::tamp::streams::{StreamBinder, StreamParams};
-use crate::tamp::{classify, ActionKind, Binder, Binding, Placement};
+use crate::tamp::{classify, ActionKind, Binder, Binding, Placement, PlanarPose};
 
 use super::control::{ControlParams, Controller, Decision, FailReason, Replan};
 use super::demo::DemoTrace;
@@ -379,15 +379,18 @@ pub fn demo_actions(demo_json: &str) -> Result<Vec<String>, SessionError> {
 }
 
 /// The placements the demonstration used for its surface releases (`place`,
-/// `place-on-shelf`): action → `(x, y, yaw)` of the resting pose (`sim::demo` anchor poses).
-fn demo_hints(demo_json: &str) -> std::collections::BTreeMap<String, (f64, f64, f64)> {
+/// `place-on-shelf`): action → the resting pose (`sim::demo` anchor poses).
+fn demo_hints(demo_json: &str) -> std::collections::BTreeMap<String, PlanarPose> {
     let mut out = std::collections::BTreeMap::new();
     if let Ok(d) = crate::sim::demo::from_json(demo_json) {
         for a in d.actions {
             if a.name.starts_with("place") {
                 let p = a.anchor_pose.position;
-                out.entry(a.action.clone())
-                    .or_insert((p[0], p[1], a.anchor_pose.yaw));
+                out.entry(a.action.clone()).or_insert(PlanarPose {
+                    x: p[0],
+                    y: p[1],
+                    yaw: a.anchor_pose.yaw,
+                });
             }
         }
     }
@@ -402,7 +405,7 @@ pub struct Session {
     model: DomainModel,
     trace: DemoTrace,
     skills: SkillLibrary,
-    hints: std::collections::BTreeMap<String, (f64, f64, f64)>,
+    hints: std::collections::BTreeMap<String, PlanarPose>,
     initial: WorldSnapshot,
     demo_json: Option<String>,
     world: World,
@@ -763,10 +766,13 @@ impl Session {
                                 Some(ActionKind::Release {
                                     placement: Some(p), ..
                                 }) => Some(p),
-                                Some(ActionKind::Release { .. }) => self
-                                    .hints
-                                    .get(&op.name)
-                                    .map(|&(x, y, yaw)| Placement::At { x, y, yaw }),
+                                Some(ActionKind::Release { .. }) => {
+                                    self.hints.get(&op.name).map(|h| Placement::At {
+                                        x: h.x,
+                                        y: h.y,
+                                        yaw: h.yaw,
+                                    })
+                                }
                                 _ => None,
                             }
                             .into()
@@ -1058,7 +1064,7 @@ impl Session {
     /// number of injections so far); what it did, in words and data.
     pub fn inject(&mut self, level: &str) -> Result<Injection, SessionError> {
         let n = self.injections;
-        let spots: Vec<(f64, f64)> = self.hints.values().map(|h| (h.0, h.1)).collect();
+        let spots: Vec<(f64, f64)> = self.hints.values().map(|h| (h.x, h.y)).collect();
         let inj = super::disturb::inject(
             &mut self.world,
             level,

@@ -21,7 +21,7 @@ mod binder;
 pub mod motion;
 pub mod streams;
 
-pub use action::{classify, moves_body, ActionKind, Binding, Placement};
+pub use action::{classify, moves_body, ActionKind, Binding, Placement, PlanarPose};
 pub use binder::{BindFailure, Binder};
 
 use crate::plan::{replay, search, BannedTask, Clock, SearchConfig, SearchOutcome, State, Task};

@@ -49,7 +49,7 @@ use parry3d_f64::shape::{Capsule, Cuboid, Shape};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
-use super::action::{classify, ActionKind, Binding, Placement};
+use super::action::{classify, ActionKind, Binding, Placement, PlanarPose};
 use super::motion::NEAR_RECOVERY_FRACTIONS;
 use super::{BindFailure, Binder};
 use crate::plan::{fact_args, Task};
@@ -127,13 +127,68 @@ fn fmt_point(p: &Vector3<f64>) -> String {
     format!("({:.0}, {:.0}, {:.0}) mm", p.x * 1e3, p.y * 1e3, p.z * 1e3)
 }
 
-/// A part of a carried body: its pose in the TCP frame, its box grown by the transfer margin,
-/// its box shrunk by the contact slack, its box as far as it may press into a shelf
-/// ([`HELD_OVERLAP`]).
-type LoadPart = (Isometry3<f64>, Cuboid, Cuboid, Cuboid);
+/// A part of a carried body as a certification tests it.
+#[derive(Clone, Copy, Debug)]
+struct LoadPart {
+    /// Its pose in the TCP frame.
+    offset: Isometry3<f64>,
+    /// Its box grown by the transfer margin (shrunk by the contact slack without one).
+    wide: Cuboid,
+    /// Its box shrunk by the contact slack.
+    plain: Cuboid,
+    /// Its box as far as it may press into a shelf ([`HELD_OVERLAP`]).
+    pressed: Cuboid,
+}
 
-/// A fixed body: name, kind and its boxes in the world.
-type FixedBody = (String, BodyKind, Vec<(Isometry3<f64>, Cuboid)>);
+/// A table or shelf: no action moves it.
+#[derive(Clone, Debug)]
+struct FixedBody {
+    name: String,
+    kind: BodyKind,
+    /// Its boxes in the world.
+    parts: Vec<(Isometry3<f64>, Cuboid)>,
+}
+
+/// What a motion hits: in words, and the name of the body hit.
+#[derive(Clone, Debug, PartialEq)]
+struct Hit {
+    words: String,
+    body: String,
+}
+
+/// What an arm carries: the body and its pose in the TCP frame.
+#[derive(Clone, Debug)]
+struct Held {
+    body: String,
+    grasp: Isometry3<f64>,
+}
+
+/// A support surface a body may be put down on: its top face's x and y ranges and its height
+/// (m).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Surface {
+    x: [f64; 2],
+    y: [f64; 2],
+    z: f64,
+}
+
+impl Surface {
+    /// Whether `(x, y)` lies on the surface (edges included).
+    fn contains(&self, x: f64, y: f64) -> bool {
+        self.x[0] <= x && x <= self.x[1] && self.y[0] <= y && y <= self.y[1]
+    }
+}
+
+/// A candidate resting spot for a body put down on a surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Spot {
+    /// Which sample it is: 0 for the demonstration's hint.
+    sample: usize,
+    /// Centre and yaw of the resting body.
+    at: PlanarPose,
+    /// Height of the surface's top (m).
+    top: f64,
+}
 
 /// Why a candidate was not certified (counted in [`StreamStats`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -178,8 +233,8 @@ struct Obstacle {
 struct Geo {
     /// Every movable body (held ones where they are carried).
     poses: BTreeMap<String, Isometry3<f64>>,
-    /// Arm → (held body, its pose in the TCP frame).
-    held: BTreeMap<usize, (String, Isometry3<f64>)>,
+    /// What each arm that holds something holds.
+    held: BTreeMap<usize, Held>,
     /// TCP pose per arm.
     tcp: Vec<Isometry3<f64>>,
     /// Joint angles per arm.
@@ -188,7 +243,7 @@ struct Geo {
 
 impl Geo {
     fn is_held(&self, body: &str) -> bool {
-        self.held.values().any(|(b, _)| b == body)
+        self.held.values().any(|h| h.body == body)
     }
 }
 
@@ -224,8 +279,8 @@ pub struct StreamBinder<'w> {
     pub stats: StreamStats,
     /// Poses of the movable bodies after the last successfully bound skeleton (predicted).
     predicted: BTreeMap<String, Isometry3<f64>>,
-    /// Placements the demonstration used, by action: `(x, y, yaw)` of the resting pose.
-    hints: BTreeMap<String, (f64, f64, f64)>,
+    /// Placements the demonstration used, by action: where the resting body's centre was.
+    hints: BTreeMap<String, PlanarPose>,
 }
 
 /// World AABB of a box at a pose.
@@ -254,7 +309,11 @@ impl<'w> StreamBinder<'w> {
             .bodies
             .iter()
             .filter(|b| matches!(b.kind, BodyKind::Table | BodyKind::Shelf))
-            .map(|b| (b.name.clone(), b.kind, world.body_shapes(&b.name)))
+            .map(|b| FixedBody {
+                name: b.name.clone(),
+                kind: b.kind,
+                parts: world.body_shapes(&b.name),
+            })
             .collect();
         let local = snap
             .bodies
@@ -302,8 +361,8 @@ impl<'w> StreamBinder<'w> {
         }
     }
 
-    /// Placements to try first for these actions (the demonstration's), `(x, y, yaw)`.
-    pub fn with_hints(mut self, hints: &BTreeMap<String, (f64, f64, f64)>) -> Self {
+    /// Placements to try first for these actions (the demonstration's).
+    pub fn with_hints(mut self, hints: &BTreeMap<String, PlanarPose>) -> Self {
         self.hints = hints.clone();
         self
     }
@@ -329,7 +388,13 @@ impl<'w> StreamBinder<'w> {
         let mut held = BTreeMap::new();
         for a in 0..n {
             if let (Some(h), Some(g)) = (self.world.held_by(a), self.world.grasp_transform(a)) {
-                held.insert(a, (h.to_string(), g));
+                held.insert(
+                    a,
+                    Held {
+                        body: h.to_string(),
+                        grasp: g,
+                    },
+                );
             }
         }
         Geo {
@@ -349,7 +414,7 @@ impl<'w> StreamBinder<'w> {
             Some((lo, hi)) if self.world.body_kind(body) == Some(BodyKind::Block) => {
                 0.5 * (hi - lo)
             }
-            _ => Vector3::repeat(0.03),
+            _ => Vector3::repeat(NON_BLOCK_HALF_EXTENT),
         }
     }
 
@@ -377,7 +442,7 @@ impl<'w> StreamBinder<'w> {
     fn fixed_boxes(&self) -> Vec<(Isometry3<f64>, Cuboid)> {
         self.fixed
             .iter()
-            .flat_map(|(_, _, parts)| parts.iter().copied())
+            .flat_map(|b| b.parts.iter().copied())
             .collect()
     }
 
@@ -387,13 +452,13 @@ impl<'w> StreamBinder<'w> {
     /// hand-over), so they are not obstacles.
     fn obstacles(&self, geo: &Geo, arm: usize, exclude: &[&str]) -> Vec<Obstacle> {
         let mut out = vec![];
-        for (name, kind, parts) in &self.fixed {
-            for (iso, c) in parts {
+        for b in &self.fixed {
+            for (iso, c) in &b.parts {
                 let shape = self.shrink(c);
                 let (lo, hi) = box_aabb(iso, &shape);
                 out.push(Obstacle {
-                    name: name.clone(),
-                    support: *kind == BodyKind::Table,
+                    name: b.name.clone(),
+                    support: b.kind == BodyKind::Table,
                     fixed: true,
                     iso: *iso,
                     shape,
@@ -402,7 +467,7 @@ impl<'w> StreamBinder<'w> {
                 });
             }
         }
-        let mine = geo.held.get(&arm).map(|(b, _)| b.as_str());
+        let mine = geo.held.get(&arm).map(|h| h.body.as_str());
         for (name, pose) in &geo.poses {
             if Some(name.as_str()) == mine || exclude.contains(&name.as_str()) {
                 continue;
@@ -443,9 +508,9 @@ impl<'w> StreamBinder<'w> {
         let load: Vec<LoadPart> = geo
             .held
             .get(&arm)
-            .map(|(b, g)| {
+            .map(|h| {
                 self.local
-                    .get(b)
+                    .get(&h.body)
                     .map(|v| {
                         v.iter()
                             .map(|(off, c)| {
@@ -455,7 +520,12 @@ impl<'w> StreamBinder<'w> {
                                 } else {
                                     plain
                                 };
-                                (g * off, wide, plain, self.pressed(c, load_margin))
+                                LoadPart {
+                                    offset: h.grasp * off,
+                                    wide,
+                                    plain,
+                                    pressed: self.pressed(c, load_margin),
+                                }
                             })
                             .collect()
                     })
@@ -489,13 +559,14 @@ impl<'w> StreamBinder<'w> {
                             .joint_recovery(arm, &base, &tcp, &q, &load, &obstacles, &start)
                         {
                             Some(Ok(qg)) => qg,
-                            Some(Err((hit, body))) => {
+                            Some(Err(hit)) => {
                                 let why = format!(
-                                    "{hit} on the {} arm's joint-space move to {}",
+                                    "{} on the {} arm's joint-space move to {}",
+                                    hit.words,
                                     self.arm_name(arm),
                                     fmt_point(&tcp.translation.vector)
                                 );
-                                return Err(self.collision(why, &body));
+                                return Err(self.collision(why, &hit.body));
                             }
                             None => {
                                 self.stats.rejected_ik += 1;
@@ -509,15 +580,14 @@ impl<'w> StreamBinder<'w> {
                         },
                     },
                 };
-                if let Some((hit, body)) =
-                    self.sample_hits(arm, &q, &tcp, &load, &obstacles, &start)
-                {
+                if let Some(hit) = self.sample_hits(arm, &q, &tcp, &load, &obstacles, &start) {
                     let why = format!(
-                        "{hit} with the {} arm's TCP at {}",
+                        "{} with the {} arm's TCP at {}",
+                        hit.words,
                         self.arm_name(arm),
                         fmt_point(&tcp.translation.vector)
                     );
-                    return Err(self.collision(why, &body));
+                    return Err(self.collision(why, &hit.body));
                 }
             }
             from = *to;
@@ -607,14 +677,16 @@ impl<'w> StreamBinder<'w> {
     /// over the predicted bodies; the executor computes the same from the world).
     fn transit_height(&self, geo: &Geo, arm: usize, goal: &Isometry3<f64>) -> f64 {
         // The load's world AABB where the arm carries it now.
-        let load = geo.held.get(&arm).map(|(body, g)| {
-            self.parts_at(body, &(geo.tcp[arm] * g)).iter().fold(
-                (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN)),
-                |(lo, hi), (iso, c)| {
-                    let (l, h) = box_aabb(iso, c);
-                    (lo.inf(&l), hi.sup(&h))
-                },
-            )
+        let load = geo.held.get(&arm).map(|h| {
+            self.parts_at(&h.body, &(geo.tcp[arm] * h.grasp))
+                .iter()
+                .fold(
+                    (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN)),
+                    |(lo, hi), (iso, c)| {
+                        let (l, h) = box_aabb(iso, c);
+                        (lo.inf(&l), hi.sup(&h))
+                    },
+                )
         });
         let obstacles = self.obstacles(geo, arm, &[]);
         let a = geo.tcp[arm].translation.vector;
@@ -644,7 +716,7 @@ impl<'w> StreamBinder<'w> {
         load: &[LoadPart],
         obstacles: &[Obstacle],
         start: &StartContacts,
-    ) -> Option<Result<[f64; DOF], (String, String)>> {
+    ) -> Option<Result<[f64; DOF], Hit>> {
         let sol =
             panda::inverse_kinematics_with_room(base, goal, q, &self.world.params().planning_ik)
                 .ok()?;
@@ -719,7 +791,7 @@ impl<'w> StreamBinder<'w> {
     }
 
     /// What arm `arm` (carrying `load`) hits on the straight joint-space move from `from` to
-    /// `to`, in words and by name; `None` if nothing.
+    /// `to`; `None` if nothing.
     #[allow(clippy::too_many_arguments)]
     fn joint_leg_hits(
         &mut self,
@@ -730,7 +802,7 @@ impl<'w> StreamBinder<'w> {
         load: &[LoadPart],
         obstacles: &[Obstacle],
         start: &StartContacts,
-    ) -> Option<(String, String)> {
+    ) -> Option<Hit> {
         for qk in panda::joint_line(from, to) {
             self.stats.path_samples += 1;
             let tcp = panda::forward_kinematics(base, &qk);
@@ -752,7 +824,7 @@ impl<'w> StreamBinder<'w> {
         tcp: &Isometry3<f64>,
         load: &[LoadPart],
         obstacles: &[Obstacle],
-    ) -> Vec<(Part, usize, Isometry3<f64>, PartShape)> {
+    ) -> Vec<Overlap> {
         let mut out = vec![];
         for (i, (a, b, r)) in link_capsules(self.world, arm, q)
             .into_iter()
@@ -764,26 +836,35 @@ impl<'w> StreamBinder<'w> {
             let hi = a.sup(&b) + Vector3::repeat(r);
             for (oi, o) in obstacles.iter().enumerate() {
                 if overlaps(&lo, &hi, o) {
-                    out.push((
-                        Part::Link(i),
-                        oi,
-                        Isometry3::identity(),
-                        PartShape::Capsule(cap),
-                    ));
+                    out.push(Overlap {
+                        contact: Contact {
+                            part: Part::Link(i),
+                            obstacle: oi,
+                        },
+                        iso: Isometry3::identity(),
+                        shape: PartShape::Capsule(cap),
+                    });
                 }
             }
         }
-        for (pi, (off, wide, plain, pressed)) in load.iter().enumerate() {
-            let iso = tcp * off;
-            let (lo, hi) = box_aabb(&iso, wide);
+        for (pi, part) in load.iter().enumerate() {
+            let iso = tcp * part.offset;
+            let (lo, hi) = box_aabb(&iso, &part.wide);
             for (oi, o) in obstacles.iter().enumerate() {
                 if overlaps(&lo, &hi, o) {
                     let c = match (o.support, o.fixed) {
-                        (true, _) => plain,
-                        (false, true) => pressed,
-                        (false, false) => wide,
+                        (true, _) => part.plain,
+                        (false, true) => part.pressed,
+                        (false, false) => part.wide,
                     };
-                    out.push((Part::Load(pi), oi, iso, PartShape::Cuboid(*c)));
+                    out.push(Overlap {
+                        contact: Contact {
+                            part: Part::Load(pi),
+                            obstacle: oi,
+                        },
+                        iso,
+                        shape: PartShape::Cuboid(c),
+                    });
                 }
             }
         }
@@ -802,15 +883,15 @@ impl<'w> StreamBinder<'w> {
     ) -> StartContacts {
         self.overlapping_pairs(arm, q, tcp, load, obstacles)
             .into_iter()
-            .filter_map(|(part, oi, iso, shape)| {
-                depth_in(&iso, shape.as_shape(), &obstacles[oi]).map(|d| ((part, oi), d))
+            .filter_map(|o| {
+                depth_in(&o.iso, o.shape.as_shape(), &obstacles[o.contact.obstacle])
+                    .map(|d| (o.contact, d))
             })
             .collect()
     }
 
-    /// What the arm at joints `q` (TCP `tcp`, carrying `load` in the TCP frame) hits, in words.
+    /// What the arm at joints `q` (TCP `tcp`, carrying `load` in the TCP frame) hits.
     /// `start`: contacts at the start of the path, allowed as long as they get no deeper.
-    /// Also the name of what it hits.
     fn sample_hits(
         &self,
         arm: usize,
@@ -819,30 +900,34 @@ impl<'w> StreamBinder<'w> {
         load: &[LoadPart],
         obstacles: &[Obstacle],
         start: &StartContacts,
-    ) -> Option<(String, String)> {
-        let (part, oi, _, _) = self
+    ) -> Option<Hit> {
+        let Contact { part, obstacle: oi } = self
             .overlapping_pairs(arm, q, tcp, load, obstacles)
             .into_iter()
-            .find(|(part, oi, iso, shape)| {
-                let o = &obstacles[*oi];
-                let allowed = start.get(&(*part, *oi)).map(|&d0| {
+            .find(|pair| {
+                let o = &obstacles[pair.contact.obstacle];
+                let allowed = start.get(&pair.contact).map(|&d0| {
                     // A link already pressed into a table or shelf moves as the simulator lets
                     // it: deeper only while within its tolerance (the tracker's redundant joints
                     // take another path than this IK's, so the depth drifts either way).
-                    let tolerated = match part {
+                    let tolerated = match pair.contact.part {
                         Part::Link(_) if o.fixed => LINK_TOLERANCE - self.params.contact_slack,
                         _ => 0.0,
                     };
-                    (d0 + 1e-4).max(tolerated)
+                    (d0 + START_CONTACT_DRIFT).max(tolerated)
                 });
-                hits(iso, shape.as_shape(), o, allowed)
-            })?;
+                hits(&pair.iso, pair.shape.as_shape(), o, allowed)
+            })?
+            .contact;
         let o = &obstacles[oi].name;
         let words = match part {
             Part::Link(i) => format!("link {i} hits {o}"),
             Part::Load(_) => format!("the carried body hits {o}"),
         };
-        Some((words, o.clone()))
+        Some(Hit {
+            words,
+            body: o.clone(),
+        })
     }
 
     fn arm_name(&self, arm: usize) -> String {
@@ -861,7 +946,7 @@ impl<'w> StreamBinder<'w> {
         let grow = Vector3::new(self.params.clearance, self.params.clearance, 0.0);
         for (iso, c) in self.parts_at(body, pose) {
             let h = c.half_extents;
-            let me = Cuboid::new((h - slack).sup(&(h * 0.5)));
+            let me = self.shrink(&c);
             let grown = Cuboid::new((h + grow - slack).sup(&(h * 0.5)));
             for (name, p) in &geo.poses {
                 if name == body || geo.is_held(name) {
@@ -879,8 +964,8 @@ impl<'w> StreamBinder<'w> {
                     }
                 }
             }
-            for (_, _, parts) in &self.fixed {
-                for (fiso, fc) in parts {
+            for b in &self.fixed {
+                for (fiso, fc) in &b.parts {
                     if query::intersection_test(&iso, &me, fiso, fc).unwrap_or(true) {
                         return false;
                     }
@@ -894,8 +979,7 @@ impl<'w> StreamBinder<'w> {
     /// than the simulator's contact stop lets a lifted body press into another, the box `body`
     /// sweeps rising straight up by the lift height: what would stop its lift.
     fn overhang(&self, geo: &Geo, body: &str, pose: &Isometry3<f64>) -> Option<String> {
-        // Each box shrunk by half of the overlap the contact stop allows (with a margin).
-        let slack = 0.4 * self.world.params().penetration_tolerance;
+        let slack = self.overhang_slack();
         let rise = self.params.lift_height;
         let swept: Vec<(Isometry3<f64>, Cuboid)> = self
             .parts_at(body, pose)
@@ -921,6 +1005,13 @@ impl<'w> StreamBinder<'w> {
                 });
                 hit.then(|| name.clone())
             })
+    }
+
+    /// How much [`StreamBinder::overhang`] shrinks each box (m): a little less than half of the
+    /// overlap the simulator's contact stop allows ([`OVERHANG_SLACK_OF_TOLERANCE`] of the
+    /// world's penetration tolerance).
+    fn overhang_slack(&self) -> f64 {
+        OVERHANG_SLACK_OF_TOLERANCE * self.world.params().penetration_tolerance
     }
 
     /// The boxes of every body in `geo` but `body` and the held ones, unshrunk (what the
@@ -964,17 +1055,26 @@ impl<'w> StreamBinder<'w> {
             let mut after = geo.clone();
             after.tcp[arm] = tcp;
             after.q[arm] = q;
-            after
-                .held
-                .insert(arm, (body.to_string(), tcp.inverse() * pose));
+            after.held.insert(
+                arm,
+                Held {
+                    body: body.to_string(),
+                    grasp: tcp.inverse() * pose,
+                },
+            );
             let q = self.certify_path(&after, arm, &[lifted], &[], 0.0).ok()?;
             geo.q[arm] = q;
         } else if let Ok(sol) = self.world.reachable(arm, &lifted) {
             geo.q[arm] = sol.joints;
         }
         geo.tcp[arm] = lifted;
-        geo.held
-            .insert(arm, (body.to_string(), tcp.inverse() * pose));
+        geo.held.insert(
+            arm,
+            Held {
+                body: body.to_string(),
+                grasp: tcp.inverse() * pose,
+            },
+        );
         geo.poses
             .insert(body.to_string(), raised(&pose, self.params.lift_height));
         Some(transit)
@@ -994,7 +1094,7 @@ impl<'w> StreamBinder<'w> {
         pose: &Isometry3<f64>,
         certify: bool,
     ) -> Option<(Transit, Option<f64>)> {
-        let (body, g) = geo.held.get(&arm).cloned()?;
+        let Held { body, grasp: g } = geo.held.get(&arm).cloned()?;
         let turns = quarter_turns(self.world, arm, &body, pose, &g, None);
         let tries = if certify { CERTIFIED_TURNS } else { 1 };
         turns
@@ -1011,7 +1111,7 @@ impl<'w> StreamBinder<'w> {
         pose: &Isometry3<f64>,
         certify: bool,
     ) -> Option<(Transit, Option<f64>)> {
-        let (body, g) = geo.held.get(&arm).cloned()?;
+        let Held { body, grasp: g } = geo.held.get(&arm).cloned()?;
         let tcp = pose * g.inverse();
         let hand_yaw = certify.then(|| yaw_of(&tcp.rotation));
         let retreat = raised(&tcp, self.params.approach_height);
@@ -1094,7 +1194,10 @@ impl<'w> StreamBinder<'w> {
         turn: f64,
     ) -> Option<Transit> {
         let bp = geo.poses.get(body).copied()?;
-        let (hook, g) = geo.held.get(&arm).cloned()?;
+        let Held {
+            body: hook,
+            grasp: g,
+        } = geo.held.get(&arm).cloned()?;
         let base = self.world.arm_base(arm)?;
         let (contact, pulled) = pull_hook_poses_turned(&base, &bp, PULL_TARGET_RADIUS, turn)?;
         let tc = contact * g.inverse();
@@ -1135,7 +1238,7 @@ impl<'w> StreamBinder<'w> {
                 obs.into_iter()
                     .filter(|o| {
                         // Its support (the table top it slides on) is not in the way.
-                        o.hi.z > bp.translation.z - self.half_extents(body).z + 0.005
+                        o.hi.z > bp.translation.z - self.half_extents(body).z + SUPPORT_TOP_MARGIN
                     })
                     .collect()
             };
@@ -1165,9 +1268,9 @@ impl<'w> StreamBinder<'w> {
                 }
             }
             let p = moved.translation.vector;
-            let on_table = self.fixed.iter().any(|(n, k, _)| {
-                *k == BodyKind::Table
-                    && self.world.body_aabb(n).is_some_and(|(lo, hi)| {
+            let on_table = self.fixed.iter().any(|b| {
+                b.kind == BodyKind::Table
+                    && self.world.body_aabb(&b.name).is_some_and(|(lo, hi)| {
                         lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y
                     })
             });
@@ -1201,9 +1304,9 @@ impl<'w> StreamBinder<'w> {
         Some(transit)
     }
 
-    /// The support surfaces a release adding `adds` may use: (x-range, y-range, top z). A region
+    /// The support surfaces a release adding `adds` may use. A region
     /// (`(at x p)`) narrows the table it lies on: then only the region is used.
-    fn surfaces(&self, adds: &[String], body: &str) -> Vec<([f64; 2], [f64; 2], f64)> {
+    fn surfaces(&self, adds: &[String], body: &str) -> Vec<Surface> {
         let regions = self.region_surfaces(adds, body);
         if !regions.is_empty() {
             return regions;
@@ -1220,9 +1323,13 @@ impl<'w> StreamBinder<'w> {
                 _ => None,
             };
             if let Some(kind) = kind {
-                for (name, _, _) in self.fixed.iter().filter(|b| b.1 == kind) {
-                    if let Some((lo, hi)) = self.world.body_aabb(name) {
-                        out.push(([lo.x, hi.x], [lo.y, hi.y], hi.z));
+                for b in self.fixed.iter().filter(|b| b.kind == kind) {
+                    if let Some((lo, hi)) = self.world.body_aabb(&b.name) {
+                        out.push(Surface {
+                            x: [lo.x, hi.x],
+                            y: [lo.y, hi.y],
+                            z: hi.z,
+                        });
                     }
                 }
             }
@@ -1231,7 +1338,7 @@ impl<'w> StreamBinder<'w> {
     }
 
     /// The regions `(at body p)` of `adds`, as surfaces.
-    fn region_surfaces(&self, adds: &[String], body: &str) -> Vec<([f64; 2], [f64; 2], f64)> {
+    fn region_surfaces(&self, adds: &[String], body: &str) -> Vec<Surface> {
         let mut out = vec![];
         for f in adds {
             let (p, a) = fact_args(f);
@@ -1246,8 +1353,8 @@ impl<'w> StreamBinder<'w> {
                     let top = self
                         .fixed
                         .iter()
-                        .filter(|b| b.1 == BodyKind::Table)
-                        .filter_map(|b| self.world.body_aabb(&b.0))
+                        .filter(|b| b.kind == BodyKind::Table)
+                        .filter_map(|b| self.world.body_aabb(&b.name))
                         .filter(|(lo, hi)| lo.x <= cx && cx <= hi.x && lo.y <= cy && cy <= hi.y)
                         .map(|(_, hi)| hi.z)
                         .fold(f64::NEG_INFINITY, f64::max);
@@ -1257,11 +1364,11 @@ impl<'w> StreamBinder<'w> {
                     let h = self.half_extents(body);
                     let grow = (h.x.max(h.y) + SURFACE_EDGE_MARGIN - REGION_INSET).max(0.0);
                     if top.is_finite() {
-                        out.push((
-                            [r.min[0] - grow, r.max[0] + grow],
-                            [r.min[1] - grow, r.max[1] + grow],
-                            top,
-                        ));
+                        out.push(Surface {
+                            x: [r.min[0] - grow, r.max[0] + grow],
+                            y: [r.min[1] - grow, r.max[1] + grow],
+                            z: top,
+                        });
                     }
                 }
             }
@@ -1278,8 +1385,8 @@ impl<'w> StreamBinder<'w> {
             .collect();
         self.fixed
             .iter()
-            .filter(|b| b.1 == BodyKind::Shelf)
-            .filter_map(|b| self.world.body_aabb(&b.0))
+            .filter(|b| b.kind == BodyKind::Shelf)
+            .filter_map(|b| self.world.body_aabb(&b.name))
             .any(|(lo, hi)| {
                 parts.iter().any(|(plo, phi)| {
                     phi.x > lo.x - margin
@@ -1311,7 +1418,7 @@ impl<'w> StreamBinder<'w> {
         }
     }
 
-    /// Candidate resting spots `(sample, x, y, yaw, top)` for the body `arm` holds on one of
+    /// Candidate resting spots for the body `arm` holds on one of
     /// `surfaces`: the demonstration's `hint` first (sample 0), then uniform samples ordered by
     /// horizontal distance from where the arm carries the body now (short transfers first: long
     /// sweeps across the workspace are where the joint tracker can get stuck).
@@ -1319,10 +1426,10 @@ impl<'w> StreamBinder<'w> {
         &mut self,
         geo: &Geo,
         arm: usize,
-        surfaces: &[([f64; 2], [f64; 2], f64)],
-        hint: Option<(f64, f64, f64)>,
-    ) -> Vec<Candidate> {
-        let Some(body) = geo.held.get(&arm).map(|h| h.0.clone()) else {
+        surfaces: &[Surface],
+        hint: Option<PlanarPose>,
+    ) -> Vec<Spot> {
+        let Some(body) = geo.held.get(&arm).map(|h| h.body.clone()) else {
             return vec![];
         };
         if surfaces.is_empty() {
@@ -1330,18 +1437,23 @@ impl<'w> StreamBinder<'w> {
         }
         let h = self.half_extents(&body);
         let margin = h.x.max(h.y) + SURFACE_EDGE_MARGIN;
-        let mut candidates: Vec<Candidate> = vec![];
-        if let Some((x, y, yaw)) = hint {
-            if let Some(&(_, _, top)) = surfaces
-                .iter()
-                .find(|(xr, yr, _)| xr[0] <= x && x <= xr[1] && yr[0] <= y && y <= yr[1])
-            {
-                candidates.push((0, x, y, yaw, top));
+        let mut candidates: Vec<Spot> = vec![];
+        if let Some(at) = hint {
+            if let Some(s) = surfaces.iter().find(|s| s.contains(at.x, at.y)) {
+                candidates.push(Spot {
+                    sample: 0,
+                    at,
+                    top: s.z,
+                });
             }
         }
         let mut drawn = vec![];
         for n in 1..=self.params.placement_samples {
-            let (xr, yr, top) = surfaces[self.rng.random_range(0..surfaces.len())];
+            let Surface {
+                x: xr,
+                y: yr,
+                z: top,
+            } = surfaces[self.rng.random_range(0..surfaces.len())];
             if xr[1] - xr[0] <= 2.0 * margin || yr[1] - yr[0] <= 2.0 * margin {
                 continue;
             }
@@ -1352,7 +1464,11 @@ impl<'w> StreamBinder<'w> {
             } else {
                 std::f64::consts::FRAC_PI_2
             };
-            drawn.push((n, x, y, yaw, top));
+            drawn.push(Spot {
+                sample: n,
+                at: PlanarPose { x, y, yaw },
+                top,
+            });
         }
         let at = geo
             .poses
@@ -1360,13 +1476,19 @@ impl<'w> StreamBinder<'w> {
             .map(|p| p.translation.vector)
             .unwrap_or_default();
         drawn.sort_by(|a, b| {
-            libm::hypot(a.1 - at.x, a.2 - at.y).total_cmp(&libm::hypot(b.1 - at.x, b.2 - at.y))
+            libm::hypot(a.at.x - at.x, a.at.y - at.y)
+                .total_cmp(&libm::hypot(b.at.x - at.x, b.at.y - at.y))
         });
         // On a small surface (a shelf) random spots waste room a later body needs: its spots
         // on a lattice at the packing pitch come first, nearest first.
-        let pitch = 2.0 * h.x.max(h.y) + self.params.clearance + 0.002;
+        let pitch = 2.0 * h.x.max(h.y) + self.params.clearance + LATTICE_GAP;
         let mut lattice = vec![];
-        for &(xr, yr, top) in surfaces {
+        for &Surface {
+            x: xr,
+            y: yr,
+            z: top,
+        } in surfaces
+        {
             let nx = ((xr[1] - xr[0] - 2.0 * margin) / pitch).floor();
             let ny = ((yr[1] - yr[0] - 2.0 * margin) / pitch).floor();
             if nx < 0.0 || ny < 0.0 || (nx + 1.0) * (ny + 1.0) > SMALL_SURFACE_SPOTS as f64 {
@@ -1376,15 +1498,20 @@ impl<'w> StreamBinder<'w> {
                 for j in 0..=ny as usize {
                     let x = xr[0] + margin + i as f64 * pitch;
                     let y = yr[0] + margin + j as f64 * pitch;
-                    lattice.push((0, x, y, 0.0, top));
+                    lattice.push(Spot {
+                        sample: 0,
+                        at: PlanarPose { x, y, yaw: 0.0 },
+                        top,
+                    });
                 }
             }
         }
         lattice.sort_by(|a, b| {
-            libm::hypot(a.1 - at.x, a.2 - at.y).total_cmp(&libm::hypot(b.1 - at.x, b.2 - at.y))
+            libm::hypot(a.at.x - at.x, a.at.y - at.y)
+                .total_cmp(&libm::hypot(b.at.x - at.x, b.at.y - at.y))
         });
         for (k, c) in lattice.iter_mut().enumerate() {
-            c.0 = self.params.placement_samples + 1 + k;
+            c.sample = self.params.placement_samples + 1 + k;
         }
         if self.world.body_kind(&body) == Some(BodyKind::Block) {
             lattice.extend(drawn);
@@ -1393,8 +1520,8 @@ impl<'w> StreamBinder<'w> {
         // The hook goes back near where the demonstration left it first (spots within
         // HOOK_HINT_RADIUS of its hint), anywhere else after.
         if self.world.body_kind(&body) != Some(BodyKind::Block) {
-            if let Some((hx, hy, _)) = hint {
-                drawn.sort_by_key(|c| libm::hypot(c.1 - hx, c.2 - hy) >= HOOK_HINT_RADIUS);
+            if let Some(h) = hint {
+                drawn.sort_by_key(|c| libm::hypot(c.at.x - h.x, c.at.y - h.y) >= HOOK_HINT_RADIUS);
             }
         }
         candidates.extend(drawn);
@@ -1410,11 +1537,16 @@ impl<'w> StreamBinder<'w> {
         &mut self,
         geo: &Geo,
         arm: usize,
-        (n, x, y, yaw, top): Candidate,
-        hint: Option<(f64, f64, f64)>,
+        spot: Spot,
+        hint: Option<PlanarPose>,
         certify: bool,
     ) -> Option<(Geo, Transit, Option<f64>)> {
-        let body = geo.held.get(&arm)?.0.clone();
+        let Spot {
+            sample: n,
+            at: PlanarPose { x, y, yaw },
+            top,
+        } = spot;
+        let body = geo.held.get(&arm)?.body.clone();
         // Height of the body's frame above its lowest point (the hook's frame is not centred).
         let (lo, _) = self.world.body_aabb(&body)?;
         let lift = self.world.body_pose(&body)?.translation.z - lo.z;
@@ -1437,8 +1569,7 @@ impl<'w> StreamBinder<'w> {
         // The carried hook keeps every part of it clear of shelves and, unless its motion is
         // certified, stays near where the demonstration left it.
         if !is_block && n > 0 {
-            let far =
-                hint.is_some_and(|(hx, hy, _)| libm::hypot(x - hx, y - hy) >= HOOK_HINT_RADIUS);
+            let far = hint.is_some_and(|h| libm::hypot(x - h.x, y - h.y) >= HOOK_HINT_RADIUS);
             if self.near_shelf(&body, &pose, HOOK_SHELF_CLEARANCE) || (far && !certify) {
                 return None;
             }
@@ -1555,9 +1686,9 @@ impl<'w> StreamBinder<'w> {
                     certified += 1;
                     out.push(Binding {
                         placement: Some(Placement::At {
-                            x: c.1,
-                            y: c.2,
-                            yaw: c.3,
+                            x: c.at.x,
+                            y: c.at.y,
+                            yaw: c.at.yaw,
                         }),
                         transit,
                         hand_yaw,
@@ -1593,6 +1724,21 @@ enum Part {
     Load(usize),
 }
 
+/// A part of an arm and an obstacle (by index) it may touch.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Contact {
+    part: Part,
+    obstacle: usize,
+}
+
+/// A part of an arm whose world AABB overlaps an obstacle's: the pair, the part's pose and its
+/// shape.
+struct Overlap {
+    contact: Contact,
+    iso: Isometry3<f64>,
+    shape: PartShape,
+}
+
 /// The shape of a [`Part`]: a link's capsule or a load part's box.
 enum PartShape {
     Capsule(Capsule),
@@ -1608,7 +1754,8 @@ impl PartShape {
     }
 }
 
-/// `c` with every half extent `slack` smaller, but at least half of what it was.
+/// `c` with every half extent `slack` smaller, but at least half of what it was (where
+/// `sim::geometry::shrunk` keeps at least 0.1 mm: the two differ on thin boxes).
 fn shrunk_by(c: &Cuboid, slack: f64) -> Cuboid {
     let h = c.half_extents;
     Cuboid::new((h - Vector3::repeat(slack)).sup(&(h * 0.5)))
@@ -1633,8 +1780,8 @@ fn line_samples(
 }
 
 /// Contacts at the start of a certified path, which the path may leave but not deepen:
-/// penetration depth per (part, obstacle index).
-type StartContacts = BTreeMap<(Part, usize), f64>;
+/// penetration depth per part and obstacle.
+type StartContacts = BTreeMap<Contact, f64>;
 
 /// Whether shape `c` at `iso` hits obstacle `o`: overlaps it, or, when it started the path
 /// inside it, is now deeper than `allowed_depth`.
@@ -1657,6 +1804,25 @@ fn depth_in(iso: &Isometry3<f64>, c: &dyn Shape, o: &Obstacle) -> Option<f64> {
 /// simulator's stop for a carried body (0.9 of its 2 mm penetration tolerance), where the
 /// contact slack alone would let it press up to twice the slack.
 const HELD_OVERLAP: f64 = 0.001;
+
+/// How much deeper than at its start a contact may get along a certified path (m): numerical
+/// noise of the depth, not a motion into the obstacle.
+const START_CONTACT_DRIFT: f64 = 1e-4;
+
+/// The half extents assumed for a body that is not a block (the hook) where only its size
+/// matters (m).
+const NON_BLOCK_HALF_EXTENT: f64 = 0.03;
+
+/// The fraction of the world's penetration tolerance by which [`StreamBinder::overhang`]
+/// shrinks each box: a little less than half of the overlap the contact stop allows.
+const OVERHANG_SLACK_OF_TOLERANCE: f64 = 0.4;
+
+/// A fixed body whose top is at most this far above a pushed body's bottom is its support, not
+/// in the way of its push (m).
+const SUPPORT_TOP_MARGIN: f64 = 0.005;
+
+/// Gap between neighbouring spots of a surface's packing lattice beyond the clearance (m).
+const LATTICE_GAP: f64 = 0.002;
 
 /// [`Binder::widen`] raises the samples per placement to at most this many times the initial.
 pub const WIDEN_LIMIT: usize = 16;
@@ -1686,9 +1852,6 @@ const CERTIFIED_TURNS: usize = 2;
 
 /// The TCP height of the transit an action's approach needs (`None`: straight is clear).
 type Transit = Option<f64>;
-
-/// A candidate resting spot: (sample index, 0 for the hint; x; y; yaw; top of the surface).
-type Candidate = (usize, f64, f64, f64, f64);
 
 impl Binder for StreamBinder<'_> {
     fn bind(
