@@ -22,7 +22,7 @@ use std::collections::BTreeSet;
 use serde::{Deserialize, Serialize};
 
 use crate::plan::{replay, BannedTask, Clock, SearchConfig, State, Task};
-use crate::tamp::{moves_body, Binder};
+use crate::tamp::{moves_body, Binder, Binding, BoundPlan};
 
 use super::demo::{DemoTrace, MultiGoalSpec};
 use super::logic::{plan_logic_lfd_avoiding, Mode};
@@ -144,6 +144,15 @@ impl Default for ControlParams {
     }
 }
 
+/// A new plan: its operators, the demonstration state it joins, how many of its leading actions
+/// are new, and what the streams bound for each action (empty when nothing was bound).
+struct Planned {
+    ops: Vec<usize>,
+    k: Option<usize>,
+    new_actions: usize,
+    bindings: Vec<Binding>,
+}
+
 /// The task-level controller of one episode.
 pub struct Controller {
     method: Method,
@@ -155,6 +164,9 @@ pub struct Controller {
     objects: Vec<(String, String)>,
     plan: Vec<usize>,
     plan_names: Vec<String>,
+    /// What the streams bound for each action of the plan (empty when the method binds
+    /// nothing itself: linear, rlds).
+    bindings: Vec<Binding>,
     /// States predicted by the plan: `predicted[i]` before `plan[i]`.
     predicted: Vec<State>,
     cursor: usize,
@@ -216,6 +228,7 @@ impl Controller {
             objects,
             plan: vec![],
             plan_names: vec![],
+            bindings: vec![],
             predicted: vec![],
             cursor: 0,
             plan_k: None,
@@ -250,6 +263,12 @@ impl Controller {
         &self.plan
     }
 
+    /// What the streams bound for each action of the current plan, as the replan that made it
+    /// bound them (empty for linear and rlds, which bind nothing themselves).
+    pub fn bindings(&self) -> &[Binding] {
+        &self.bindings
+    }
+
     /// Index of the next action to execute in the plan.
     pub fn cursor(&self) -> usize {
         self.cursor
@@ -269,6 +288,7 @@ impl Controller {
     pub fn cancel(&mut self) {
         self.plan.clear();
         self.plan_names.clear();
+        self.bindings.clear();
         self.predicted.clear();
         self.cursor = 0;
         self.plan_k = None;
@@ -435,8 +455,14 @@ impl Controller {
         };
         let time_ms = (clock.now_secs() - t0) * 1e3;
         match planned {
-            Ok((ops, k, new_actions)) => {
+            Ok(Planned {
+                ops,
+                k,
+                new_actions,
+                bindings,
+            }) => {
                 self.install(&s, ops, k);
+                self.bindings = bindings;
                 self.replans.push(Replan {
                     reason,
                     time_ms,
@@ -497,6 +523,7 @@ impl Controller {
             self.started = true;
             let ops: Vec<usize> = self.spec.actions.iter().flatten().copied().collect();
             self.install(s, ops, Some(0));
+            self.bindings.clear();
             self.replans.push(Replan {
                 reason: "start".into(),
                 time_ms: (clock.now_secs() - t0) * 1e3,
@@ -531,7 +558,7 @@ impl Controller {
             .unwrap_or_default()
     }
 
-    fn plan_with_rlds(&self, s: &State) -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
+    fn plan_with_rlds(&self, s: &State) -> Result<Planned, FailReason> {
         // RLDS moves along the demonstration to the step whose state *is* the current one (the
         // latest such step); it never plans.
         let names: BTreeSet<String> = super::demo::state_names(&self.task, s)
@@ -541,7 +568,12 @@ impl Controller {
         if let Some(k) = exact {
             if let Some(ops) = self.spec.suffix(k) {
                 if replay(&self.task, s, &ops).is_ok_and(|e| self.task.goal.holds(&e)) {
-                    return Ok((ops, Some(k), 0));
+                    return Ok(Planned {
+                        ops,
+                        k: Some(k),
+                        new_actions: 0,
+                        bindings: vec![],
+                    });
                 }
             }
         }
@@ -555,7 +587,7 @@ impl Controller {
         s: &State,
         binder: &mut dyn Binder,
         clock: &dyn Clock,
-    ) -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
+    ) -> Result<Planned, FailReason> {
         let mut banned = BannedTask::new(&self.task);
         let mut first_k = 0;
         for _ in 0..self.params.max_skeletons.max(1) {
@@ -572,8 +604,16 @@ impl Controller {
                 break;
             };
             match binder.bind(&self.task, &p.ops, p.prefix_len) {
-                Ok(()) => return Ok((p.ops, p.k, p.prefix_len)),
-                Err(i) if i < p.prefix_len => {
+                Ok(bindings) => {
+                    return Ok(Planned {
+                        ops: p.ops,
+                        k: p.k,
+                        new_actions: p.prefix_len,
+                        bindings,
+                    })
+                }
+                Err(failure) if failure.action < p.prefix_len => {
+                    let i = failure.action;
                     // A new action could not be bound where the plan puts it: ban it there (or,
                     // when movable bodies were in its way, until one of them has moved), and
                     // sample more.
@@ -582,7 +622,7 @@ impl Controller {
                             p.ops[i],
                             &at,
                             &p.ops[..i],
-                            &binder.obstructions(i),
+                            &failure.blockers,
                             &moves_body,
                         );
                     }
@@ -591,7 +631,8 @@ impl Controller {
                 // An action of the demonstration's suffix, a_{k+1+(i−prefix)}: join the
                 // demonstration after it (the search plans that step itself, with certified
                 // actions), and sample more.
-                Err(i) => {
+                Err(failure) => {
+                    let i = failure.action;
                     let k = p.k.unwrap_or(self.spec.len());
                     first_k = first_k.max(k + 1 + (i - p.prefix_len));
                     binder.widen();
@@ -608,8 +649,8 @@ impl Controller {
         s: &State,
         binder: &mut dyn Binder,
         clock: &dyn Clock,
-    ) -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
-        let r = crate::tamp::plan_from_scratch(
+    ) -> Result<Planned, FailReason> {
+        let BoundPlan { ops, bindings } = crate::tamp::plan_from_scratch(
             &self.task,
             s,
             binder,
@@ -620,12 +661,16 @@ impl Controller {
         .map_err(|e| FailReason::NoPlan {
             message: e.to_string(),
         })?;
-        let n = r.len();
-        Ok((r, None, n))
+        Ok(Planned {
+            new_actions: ops.len(),
+            ops,
+            k: None,
+            bindings,
+        })
     }
 }
 
-fn unreachable_linear() -> Result<(Vec<usize>, Option<usize>, usize), FailReason> {
+fn unreachable_linear() -> Result<Planned, FailReason> {
     Err(FailReason::NoPlan {
         message: "linear never replans".into(),
     })

@@ -55,6 +55,19 @@ pub struct ExecParams {
     pub orientation_tolerance: f64,
 }
 
+impl ExecParams {
+    /// How long a joint-space recovery may move before Cartesian tracking takes over again (s):
+    /// twice `settle_timeout`.
+    pub fn joint_recovery_timeout(&self) -> f64 {
+        2.0 * self.settle_timeout
+    }
+
+    /// Mean speed of a pull's stroke and of the lift after it (m/s): half `speed`.
+    pub fn stroke_speed(&self) -> f64 {
+        0.5 * self.speed
+    }
+}
+
 impl Default for ExecParams {
     fn default() -> Self {
         ExecParams {
@@ -606,9 +619,11 @@ impl ActionExec {
                         // Joint-space recovery: back to Cartesian tracking once there (or after
                         // `settle_timeout` more), to settle on the goal.
                         seg.joint_ticks += 1;
-                        let there = world
-                            .joints(self.arm)
-                            .is_none_or(|j| j.iter().zip(&q).all(|(a, b)| (a - b).abs() < 1e-6));
+                        let there = world.joints(self.arm).is_none_or(|j| {
+                            j.iter()
+                                .zip(&q)
+                                .all(|(a, b)| (a - b).abs() < JOINT_GOAL_TOLERANCE)
+                        });
                         let stopped = world.arm_blocked_by(self.arm).is_some();
                         if there && seg.rise_by_ready {
                             self.next_phase();
@@ -619,7 +634,7 @@ impl ActionExec {
                             seg.joint_ticks = 0;
                         } else if there
                             || stopped
-                            || seg.joint_ticks as f64 * dt > 2.0 * p.settle_timeout
+                            || seg.joint_ticks as f64 * dt > p.joint_recovery_timeout()
                         {
                             seg.joint_goals.clear();
                             seg.lag = 0;
@@ -753,7 +768,7 @@ impl ActionExec {
         // its base, where the joint tracker falls behind at full speed (the lagging hand lifts
         // the blade over the block, or drifts into it as it rises).
         let speed = match via {
-            Via::Pull { stage: 2.., .. } => 0.5 * p.speed,
+            Via::Pull { stage: 2.., .. } => p.stroke_speed(),
             _ => p.speed,
         };
         let duration = (dist / speed).max(p.min_segment);
@@ -805,7 +820,7 @@ impl ActionExec {
                 path.iter().any(|tcp| {
                     world
                         .overlap_at(held, &(tcp * g))
-                        .is_some_and(|(d, _)| d > 0.5 * tol)
+                        .is_some_and(|(d, _)| d > LOAD_OVERLAP_OF_TOLERANCE * tol)
                 })
             })
         });
@@ -1045,6 +1060,19 @@ const RELEASE_SLACK: f64 = 0.01;
 /// on (by a transit) rather than undone (m).
 const STUCK_LIFT: f64 = 0.01;
 
+/// A joint-space move has reached its joint goal when every joint is this close to it (rad).
+const JOINT_GOAL_TOLERANCE: f64 = 1e-6;
+
+/// A planned path of a carried body counts as hitting another body where it goes deeper into it
+/// than this fraction of the world's penetration tolerance.
+const LOAD_OVERLAP_OF_TOLERANCE: f64 = 0.5;
+
+/// How much more room to its joint limits ([`panda::limit_margin`]) an unwound posture must
+/// leave than the arm's posture now.
+///
+/// [`panda::limit_margin`]: crate::sim::panda::limit_margin
+const UNWIND_GAIN: f64 = 1e-3;
+
 /// Below this [`panda::limit_margin`] (of a joint's range) an action starts by unwinding the
 /// arm ([`Via::Unwind`]).
 ///
@@ -1063,7 +1091,7 @@ fn unwound(
     use crate::sim::panda::limit_margin;
     let now = world.joints(arm)?;
     let sol = world.reachable_with_room(arm, tcp).ok()?.joints;
-    (limit_margin(&sol) > limit_margin(&now) + 1e-3
+    (limit_margin(&sol) > limit_margin(&now) + UNWIND_GAIN
         && world.joint_move_hits(arm, &now, &sol, &[touches]).is_none())
     .then_some(sol)
 }

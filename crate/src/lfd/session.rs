@@ -289,7 +289,7 @@ impl Session {
             )));
         };
         let n = self.injections;
-        let spots: Vec<(f64, f64)> = self.hints.values().map(|h| (h.0, h.1)).collect();
+        let spots: Vec<(f64, f64)> = self.hints.values().map(|h| (h.x, h.y)).collect();
         let inj = super::disturb::inject(
             &mut self.world,
             parsed,

@@ -26,6 +26,17 @@ use crate::lqt::{Dmp, DmpParams, FeedbackController, Skill, SkillParams};
 
 use super::session::SkillKind;
 
+/// A measured TCP this far off a learned skill's commanded position is fed back to its
+/// controller (m): a perturbation, not tracking lag.
+const FEEDBACK_DEVIATION: f64 = 0.01;
+
+/// A demonstrated retreat is learned only when it ends within this distance of where it starts
+/// (m): an object-centric lift, not a return to a home pose.
+const LOCAL_RETREAT_SPAN: f64 = 0.2;
+
+/// Fewest samples a demonstrated segment needs to learn a skill from.
+const MIN_SKILL_SAMPLES: usize = 8;
+
 /// A learned motion skill of either family.
 #[derive(Clone, Debug)]
 pub enum LearnedSkill {
@@ -104,7 +115,7 @@ impl SkillSegment {
             SkillSegment::Closed { ctrl, .. } => {
                 let cur = ctrl.position().coords;
                 let m = Point3::from(*measured);
-                let fb = ((cur - measured).norm() > 0.01).then_some(&m);
+                let fb = ((cur - measured).norm() > FEEDBACK_DEVIATION).then_some(&m);
                 ctrl.step(fb).coords
             }
         }
@@ -192,7 +203,7 @@ impl SkillLibrary {
             let local = |seg: &[Point3<f64>]| {
                 seg.first()
                     .zip(seg.last())
-                    .is_some_and(|(a, b)| (a - b).norm() < 0.2)
+                    .is_some_and(|(a, b)| (a - b).norm() < LOCAL_RETREAT_SPAN)
             };
             let prefix = if hooks.contains(&a.anchor) {
                 "hook-"
@@ -204,7 +215,7 @@ impl SkillLibrary {
                     continue;
                 }
                 let name = &format!("{prefix}{name}");
-                if skills.contains_key(name.as_str()) || seg.len() < 8 {
+                if skills.contains_key(name.as_str()) || seg.len() < MIN_SKILL_SAMPLES {
                     continue;
                 }
                 let learned = match kind {

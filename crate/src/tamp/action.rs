@@ -35,6 +35,18 @@ impl From<Option<Placement>> for Binding {
     }
 }
 
+/// Where a body rests on a surface: its centre's `(x, y)` and its yaw, the height left to
+/// whatever is below (a demonstration's placement, a candidate spot).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PlanarPose {
+    /// x (m).
+    pub x: f64,
+    /// y (m).
+    pub y: f64,
+    /// Yaw (rad).
+    pub yaw: f64,
+}
+
 /// Where a stream puts an action's body: where a released body goes, or how a pull strokes.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Placement {

@@ -3,25 +3,35 @@
 
 use crate::plan::Task;
 
+use super::action::Binding;
+
+/// Why a skeleton could not be bound: the action no certified sample was found for, why its
+/// last candidate was rejected and the movable bodies that were in its way.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct BindFailure {
+    /// Index in the skeleton (`ops`) of the action that could not be bound (with backtracking,
+    /// the deepest one reached).
+    pub action: usize,
+    /// Why the last rejected candidate was rejected, in words (`None` if nothing was rejected
+    /// with a reason).
+    pub reason: Option<String>,
+    /// The movable bodies that were in the way of the action's candidates (empty if nothing
+    /// movable blocked it).
+    pub blockers: Vec<String>,
+}
+
 /// Binds the continuous parameters of a plan (TAMP streams) or reports the first unbindable action.
 pub trait Binder {
-    /// Binds `ops` (operator indices of `task`) executed from the current world. Actions from
-    /// `demo_from` on come from the demonstration and may reuse its parameters.
-    fn bind(&mut self, task: &Task, ops: &[usize], demo_from: usize) -> Result<(), usize>;
+    /// Binds `ops` (operator indices of `task`) executed from the current world: one binding
+    /// per action. Actions from `demo_from` on come from the demonstration and may reuse its
+    /// parameters.
+    fn bind(
+        &mut self,
+        task: &Task,
+        ops: &[usize],
+        demo_from: usize,
+    ) -> Result<Vec<Binding>, BindFailure>;
 
     /// Draws more samples per parameter from now on (a retry after a failed binding).
     fn widen(&mut self) {}
-
-    /// Why the last candidate was rejected, in words (`None` if nothing was rejected).
-    fn last_rejection(&self) -> Option<String> {
-        None
-    }
-
-    /// The movable bodies that were in the way of action `i` of the last skeleton [`bind`]
-    /// could not bind (empty if nothing movable blocked it).
-    ///
-    /// [`bind`]: Binder::bind
-    fn obstructions(&self, _i: usize) -> Vec<String> {
-        vec![]
-    }
 }

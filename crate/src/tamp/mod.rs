@@ -21,8 +21,8 @@ mod binder;
 pub mod motion;
 pub mod streams;
 
-pub use action::{classify, moves_body, ActionKind, Binding, Placement};
-pub use binder::Binder;
+pub use action::{classify, moves_body, ActionKind, Binding, Placement, PlanarPose};
+pub use binder::{BindFailure, Binder};
 
 use crate::plan::{replay, search, BannedTask, Clock, SearchConfig, SearchOutcome, State, Task};
 
@@ -44,6 +44,15 @@ pub enum TampError {
     },
 }
 
+/// A plan whose continuous parameters are bound: the operators and one binding per operator.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BoundPlan {
+    /// Operator indices of the task, in order.
+    pub ops: Vec<usize>,
+    /// What the streams bound for each operator of `ops`.
+    pub bindings: Vec<Binding>,
+}
+
 /// TAMP from scratch: skeletons from `s` to the task's goal, bound by `binder`.
 pub fn plan_from_scratch(
     task: &Task,
@@ -52,11 +61,12 @@ pub fn plan_from_scratch(
     config: &SearchConfig,
     max_skeletons: usize,
     clock: &dyn Clock,
-) -> Result<Vec<usize>, TampError> {
+) -> Result<BoundPlan, TampError> {
     let mut t = task.clone();
     t.init = s.clone();
     let mut banned = BannedTask::new(&t);
     let mut last = String::new();
+    let mut why = None;
     let mut tries = 0;
     for tried in 0..max_skeletons.max(1) {
         tries = tried + 1;
@@ -72,12 +82,14 @@ pub fn plan_from_scratch(
             }
         };
         match binder.bind(&t, &ops, ops.len()) {
-            Ok(()) => return Ok(ops),
-            Err(i) => {
+            Ok(bindings) => return Ok(BoundPlan { ops, bindings }),
+            Err(failure) => {
+                let i = failure.action;
                 last = t.operators[ops[i]].name.clone();
                 if let Ok(at) = replay(&t, s, &ops[..i]) {
-                    banned.ban_failed(ops[i], &at, &ops[..i], &binder.obstructions(i), &moves_body);
+                    banned.ban_failed(ops[i], &at, &ops[..i], &failure.blockers, &moves_body);
                 }
+                why = failure.reason;
                 binder.widen();
             }
         }
@@ -85,6 +97,6 @@ pub fn plan_from_scratch(
     Err(TampError::Unbindable {
         skeletons: tries,
         action: last,
-        why: binder.last_rejection(),
+        why,
     })
 }

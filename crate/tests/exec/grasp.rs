@@ -39,8 +39,8 @@ fn an_empty_hand_low_beside_a_tower_reaches_its_top_through_a_transit() {
     let (_, task) = model_and_task(Benchmark::B1, &world);
     let ops = [op(&task, "(unstack panda a c)")];
     let mut binder = StreamBinder::new(&world, 5, StreamParams::default());
-    binder.bind(&task, &ops, ops.len()).expect("certified");
-    let z = binder.bindings[0].transit.expect("a transit");
+    let bindings = binder.bind(&task, &ops, ops.len()).expect("certified");
+    let z = bindings[0].transit.expect("a transit");
     let c_box = world.body_shapes("c");
 
     let skills = b1_skills();

@@ -61,8 +61,8 @@ pub(crate) fn b2_bind_one(
     let ops = [op(&task, name)];
     let mut binder = StreamBinder::new(world, 1, StreamParams::default());
     let r = binder.bind(&task, &ops, ops.len());
-    assert_eq!(r, Ok(()), "{:?}", binder.last_rejection());
-    (task, ops, binder.bindings)
+    let bindings = r.unwrap_or_else(|e| panic!("{:?}", e.reason));
+    (task, ops, bindings)
 }
 
 /// Executes one action of `task` in `world` the way the loop does for the demonstration's

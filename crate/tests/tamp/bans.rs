@@ -284,8 +284,9 @@ fn a_block_under_an_overhang_is_freed_by_moving_the_block_over_it() {
     let (_, task) = model_and_task(Benchmark::B1, &world);
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
     let pick_a = [op(&task, "(pick panda a)")];
-    assert_eq!(binder.bind(&task, &pick_a, 1), Err(0));
-    assert_eq!(binder.obstructions(0), vec!["c".to_string()]);
+    let failure = binder.bind(&task, &pick_a, 1).unwrap_err();
+    assert_eq!(failure.action, 0);
+    assert_eq!(failure.blockers, vec!["c".to_string()]);
     assert_eq!(
         run_from_saved_world(Benchmark::B1, "b1-tower-overhanging-a"),
         Some(Ok(()))

@@ -13,6 +13,7 @@ use logic_lfd::tamp::plan_from_scratch;
 use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
 use logic_lfd::tamp::Binder;
 use logic_lfd::tamp::Placement;
+use logic_lfd::tamp::PlanarPose;
 use nalgebra::Vector3;
 
 use crate::support::bench::{
@@ -28,11 +29,12 @@ fn tamp_from_scratch_binds_every_benchmark_with_certified_motions() {
         let (_, task) = model_and_task(b, &world);
         let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
         let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::HMax);
-        let ops = plan_from_scratch(&task, &task.init, &mut binder, &cfg, 4, &NoClock)
+        let plan = plan_from_scratch(&task, &task.init, &mut binder, &cfg, 4, &NoClock)
             .unwrap_or_else(|e| panic!("{b:?}: {e}"));
+        let ops = plan.ops;
         let end = replay(&task, &task.init, &ops).unwrap();
         assert!(task.goal.holds(&end), "{b:?}");
-        assert_eq!(binder.bindings.len(), ops.len());
+        assert_eq!(plan.bindings.len(), ops.len());
         // Every motion was sampled along its path (1.5 cm steps: dozens per action).
         assert!(
             binder.stats.path_samples >= 10 * ops.len(),
@@ -62,19 +64,15 @@ fn a_block_in_the_way_of_a_pull_is_named_and_moved_out_of_the_way_first() {
         op(&task, "(pull panda hook b)"),
     ];
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
-    assert_eq!(binder.bind(&task, &pull, 0), Err(1));
-    assert_eq!(
-        binder.obstructions(1),
-        ["a"],
-        "{:?}",
-        binder.last_rejection()
-    );
-    assert!(binder.obstructions(0).is_empty());
+    let failure = binder.bind(&task, &pull, 0).unwrap_err();
+    assert_eq!(failure.action, 1);
+    assert_eq!(failure.blockers, ["a"], "{:?}", failure.reason);
     // TAMP from scratch puts a on the shelf before it pulls b, and every action binds.
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
     let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::HMax);
-    let ops = plan_from_scratch(&task, &task.init, &mut binder, &cfg, 10, &NoClock)
+    let plan = plan_from_scratch(&task, &task.init, &mut binder, &cfg, 10, &NoClock)
         .unwrap_or_else(|e| panic!("{e}"));
+    let ops = plan.ops;
     let names: Vec<&str> = ops
         .iter()
         .map(|&o| task.operators[o].name.as_str())
@@ -86,7 +84,7 @@ fn a_block_in_the_way_of_a_pull_is_named_and_moved_out_of_the_way_first() {
         "{names:?}"
     );
     assert!(task.goal.holds(&replay(&task, &task.init, &ops).unwrap()));
-    assert_eq!(binder.bindings.len(), ops.len());
+    assert_eq!(plan.bindings.len(), ops.len());
 }
 
 #[test]
@@ -105,8 +103,9 @@ fn two_blocks_side_by_side_beyond_reach_block_each_others_pulls_and_the_check_ag
             op(&task, &format!("(pull panda hook {x})")),
         ];
         let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
-        assert_eq!(binder.bind(&task, &ops, 0), Err(1), "pull {x}");
-        assert_eq!(binder.obstructions(1), [other], "pull {x}");
+        let failure = binder.bind(&task, &ops, 0).unwrap_err();
+        assert_eq!(failure.action, 1, "pull {x}");
+        assert_eq!(failure.blockers, [other], "pull {x}");
         // The soak's and the disturbances' check says so too (the hook's sweep is checked).
         assert!(
             !logic_lfd::sim::reach::hook_can_pull(&world, 0, "hook", x),
@@ -139,7 +138,8 @@ fn five_blocks_fit_on_the_b2_shelf_when_placements_are_packed() {
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
     let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::HMax);
     let ops = plan_from_scratch(&task, &task.init, &mut binder, &cfg, 10, &NoClock)
-        .unwrap_or_else(|e| panic!("{e}"));
+        .unwrap_or_else(|e| panic!("{e}"))
+        .ops;
     assert!(task.goal.holds(&replay(&task, &task.init, &ops).unwrap()));
     // Every block has its own spot on the shelf.
     let (lo, hi) = world.body_aabb("shelf").unwrap();
@@ -191,9 +191,10 @@ fn a_block_under_an_overhang_is_not_picked_and_the_overhanging_block_is_named() 
     let ops = [op(&task, "(pick panda a)")];
     for demo_from in [0, 1] {
         let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
-        assert_eq!(binder.bind(&task, &ops, demo_from), Err(0));
-        assert_eq!(binder.obstructions(0), vec!["c".to_string()]);
-        let why = binder.last_rejection().unwrap_or_default();
+        let failure = binder.bind(&task, &ops, demo_from).unwrap_err();
+        assert_eq!(failure.action, 0);
+        assert_eq!(failure.blockers, vec!["c".to_string()]);
+        let why = failure.reason.unwrap_or_default();
         assert!(why.contains("c overhangs a"), "{why}");
     }
     // Without the overhang the same pick binds (as the demonstration's: certified, the wrist
@@ -203,7 +204,7 @@ fn a_block_under_an_overhang_is_not_picked_and_the_overhanging_block_is_named() 
         .unwrap();
     let mut binder = StreamBinder::new(&free, 1, StreamParams::default());
     let r = binder.bind(&task, &ops, 0);
-    assert_eq!(r, Ok(()), "{:?}", binder.last_rejection());
+    assert!(r.is_ok(), "{:?}", r.map_err(|e| e.reason));
 }
 
 #[test]
@@ -217,7 +218,11 @@ fn a_block_is_not_put_down_where_the_arm_is_at_its_joint_limits() {
     assert_eq!(world.held_by(0), Some("d"));
     let (_, task) = model_and_task(Benchmark::B1, &world);
     let place = [op(&task, "(place panda d)")];
-    let cramped = (0.2562, -0.0040, std::f64::consts::FRAC_PI_2);
+    let cramped = PlanarPose {
+        x: 0.2562,
+        y: -0.0040,
+        yaw: std::f64::consts::FRAC_PI_2,
+    };
     let hints = std::collections::BTreeMap::from([("(place panda d)".to_string(), cramped)]);
     let bind = |margin: f64| {
         let params = StreamParams {
@@ -225,14 +230,14 @@ fn a_block_is_not_put_down_where_the_arm_is_at_its_joint_limits() {
             ..StreamParams::default()
         };
         let mut binder = StreamBinder::new(&world, 1, params).with_hints(&hints);
-        assert_eq!(binder.bind(&task, &place, 1), Ok(()));
-        match binder.bindings[0].placement {
+        let bindings = binder.bind(&task, &place, 1).unwrap();
+        match bindings[0].placement {
             Some(Placement::At { x, y, .. }) => (x, y),
             ref p => panic!("{p:?}"),
         }
     };
     // Without the margin the cramped spot is certified (collision-free, reachable by IK).
-    assert_eq!(bind(0.0), (cramped.0, cramped.1));
+    assert_eq!(bind(0.0), (cramped.x, cramped.y));
     let margin = StreamParams::default().placement_inner_margin;
     let (x, y) = bind(margin);
     assert!(libm::hypot(x, y) >= 0.25 + margin, "({x}, {y})");
@@ -249,16 +254,20 @@ fn the_hook_is_put_down_with_every_part_clear_of_the_shelf() {
     let shelf = world.body_aabb("shelf").unwrap();
     let place = [op(&task, "(place panda hook)")];
     // Spots away from the demonstration's, as when its spot is taken.
-    let hints =
-        std::collections::BTreeMap::from([("(place panda hook)".to_string(), (0.25, -0.2, 0.0))]);
+    let spot = PlanarPose {
+        x: 0.25,
+        y: -0.2,
+        yaw: 0.0,
+    };
+    let hints = std::collections::BTreeMap::from([("(place panda hook)".to_string(), spot)]);
     let mut near = 0;
     for seed in 0..40 {
         let mut binder =
             StreamBinder::new(&world, seed, StreamParams::default()).with_hints(&hints);
-        if binder.bind(&task, &place, 1).is_err() {
+        let Ok(bindings) = binder.bind(&task, &place, 1) else {
             continue;
-        }
-        let Some(Placement::At { x, y, yaw }) = binder.bindings[0].placement else {
+        };
+        let Some(Placement::At { x, y, yaw }) = bindings[0].placement else {
             continue;
         };
         if (x, y, yaw) == (0.25, -0.2, 0.0) {
@@ -296,19 +305,16 @@ fn a_hand_over_spot_is_found_beside_a_tower_in_the_hand_over_region() {
     let (_, task) = model_and_task(b, &world);
     let place = [op(&task, "(place left f handover)")];
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());
-    assert_eq!(
-        binder.bind(&task, &place, 1),
-        Ok(()),
-        "{:?}",
-        binder.last_rejection()
-    );
-    let Some(Placement::At { x, y, .. }) = binder.bindings[0].placement else {
-        panic!("{:?}", binder.bindings);
+    let bindings = binder
+        .bind(&task, &place, 1)
+        .unwrap_or_else(|e| panic!("{:?}", e.reason));
+    let Some(Placement::At { x, y, .. }) = bindings[0].placement else {
+        panic!("{bindings:?}");
     };
     let tower = world.body_pose("b").unwrap().translation.vector;
     assert!(libm::hypot(x - tower.x, y - tower.y) > 0.064, "({x}, {y})");
     let skills = SkillLibrary::learn(&b.sources().unwrap().demo, SkillKind::Lqt, &[]);
     let mut after = world.clone();
-    execute_bound(&mut after, &task, &place, &binder.bindings, &skills);
+    execute_bound(&mut after, &task, &place, &bindings, &skills);
     assert!(SceneGraph::from_world(&after).contains("(at f handover)"));
 }

@@ -1,6 +1,7 @@
 //! How a session is set up: its options (JSON), tunables and errors, the demonstration's
 //! actions and placements as a `demo.json` gives them, and the seed of each random draw.
 
+use crate::tamp::PlanarPose;
 use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
@@ -106,19 +107,22 @@ pub fn demo_actions(demo_json: &str) -> Result<Vec<String>, SessionError> {
         .collect()
 }
 
-/// Where the demonstration put things down: action → `(x, y, yaw)` of the resting pose.
-pub(super) type PlacementHints = BTreeMap<String, (f64, f64, f64)>;
+/// Where the demonstration put things down: action → the resting pose.
+pub(super) type PlacementHints = BTreeMap<String, PlanarPose>;
 
 /// The placements the demonstration used for its surface releases (`place`,
-/// `place-on-shelf`): action → `(x, y, yaw)` of the resting pose (`sim::demo` anchor poses).
+/// `place-on-shelf`): action → the resting pose (`sim::demo` anchor poses).
 pub(super) fn demo_hints(demo_json: &str) -> PlacementHints {
     let mut out = BTreeMap::new();
     if let Ok(d) = crate::sim::demo::from_json(demo_json) {
         for a in d.actions {
             if a.name.starts_with("place") {
                 let p = a.anchor_pose.position;
-                out.entry(a.action.clone())
-                    .or_insert((p[0], p[1], a.anchor_pose.yaw));
+                out.entry(a.action.clone()).or_insert(PlanarPose {
+                    x: p[0],
+                    y: p[1],
+                    yaw: a.anchor_pose.yaw,
+                });
             }
         }
     }

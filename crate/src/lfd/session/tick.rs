@@ -166,14 +166,13 @@ impl Session {
                 .decide(&facts, &objects, &self.model, &mut binder, clock, self.tick);
         let replanned = self.controller.replans().len() > before;
         if replanned {
-            baseline_bindings(
+            self.bindings = plan_bindings(
                 self.options.method,
                 &self.controller,
                 &self.world,
                 &self.hints,
                 &mut binder,
             );
-            self.bindings = std::mem::take(&mut binder.bindings);
         }
         drop(binder);
         match decision {
@@ -235,21 +234,21 @@ impl Session {
     }
 }
 
-/// The bindings of a new plan for the baselines that sample nothing: Linear keeps the
-/// demonstration's placements as demonstrated, RLDS re-targets only surface placements.
-/// Logic-LfD and TAMP keep what the streams bound while planning.
-fn baseline_bindings(
+/// The bindings of a new plan. Logic-LfD and TAMP keep what the streams bound while planning;
+/// the baselines sample nothing: Linear keeps the demonstration's placements as demonstrated,
+/// RLDS re-targets only surface placements.
+fn plan_bindings(
     method: Method,
     controller: &Controller,
     world: &World,
     hints: &PlacementHints,
     binder: &mut StreamBinder<'_>,
-) {
+) -> Vec<Binding> {
     match method {
         Method::Linear => {
             // No task-level feedback, nothing re-sampled; blocks are re-targeted by the skills.
             let task = controller.task();
-            binder.bindings = controller
+            controller
                 .plan_ops()
                 .iter()
                 .map(|&o| {
@@ -258,23 +257,27 @@ fn baseline_bindings(
                         Some(ActionKind::Release {
                             placement: Some(p), ..
                         }) => Some(p),
-                        Some(ActionKind::Release { .. }) => hints
-                            .get(&op.name)
-                            .map(|&(x, y, yaw)| Placement::At { x, y, yaw }),
+                        Some(ActionKind::Release { .. }) => {
+                            hints.get(&op.name).map(|h| Placement::At {
+                                x: h.x,
+                                y: h.y,
+                                yaw: h.yaw,
+                            })
+                        }
                         _ => None,
                     }
                     .into()
                 })
-                .collect();
+                .collect()
         }
         Method::Rlds => {
             // No new actions: only surface placements are re-targeted.
             let ops = controller.plan_ops().to_vec();
             let task = controller.task().clone();
-            if binder.bind(&task, &ops, 0).is_err() {
-                binder.bindings = vec![Binding::default(); ops.len()];
-            }
+            binder
+                .bind(&task, &ops, 0)
+                .unwrap_or_else(|_| vec![Binding::default(); ops.len()])
         }
-        Method::LogicLfd | Method::Tamp => {}
+        Method::LogicLfd | Method::Tamp => controller.bindings().to_vec(),
     }
 }
