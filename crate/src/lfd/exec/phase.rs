@@ -1,0 +1,255 @@
+//! The phase/via model of an action's motion: each action kind is a list of phases (moves to
+//! via-points and gripper events), begun, when the arm needs it, by a rise out from among
+//! bodies or an unwinding of a joint at its limit; a transit is inserted as two more moves.
+
+use super::params::ExecParams;
+use super::ActionExec;
+use crate::sim::geometry::rise_first;
+use crate::sim::{GripperCommand, World};
+use crate::tamp::action::{ActionKind, Placement};
+
+use crate::lfd::skill::SkillLibrary;
+
+/// One step of an action's motion.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum Phase {
+    /// Move the TCP to a via-point defined relative to the anchor.
+    Move(Via),
+    /// Open or close the gripper and wait.
+    Gripper(GripperCommand),
+}
+
+/// A via-point: where the TCP goes, computed from the world when the segment starts (and again
+/// when its anchor moves).
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum Via {
+    /// Above the grasp pose of `body` by `dz` (`skill`: run the learned grasp-approach skill).
+    Grasp { body: String, dz: f64, skill: bool },
+    /// The TCP pose that puts the held body at the placement, raised by `dz` (`skill`: the
+    /// learned place-approach skill).
+    Place {
+        placement: Placement,
+        dz: f64,
+        skill: bool,
+    },
+    /// Straight up by `dz` from where the TCP is (`skill`: the learned retreat of the action,
+    /// in the frame recorded at the gripper event).
+    Up { dz: f64, skill: bool },
+    /// A pull stroke: hook blade behind `body`, then dragged towards the base (`stage` 0..3),
+    /// the stroke turned by `turn` rad.
+    Pull { body: String, stage: u8, turn: f64 },
+    /// Transit: straight up (or down) to TCP height `z`.
+    Rise { z: f64 },
+    /// Where the TCP is, with the joints that leave the most room to their limits: a joint-space
+    /// move that unwinds an arm left with a joint at its limit ([`unwound`](super::recovery::unwound); none if that move
+    /// would sweep the arm through something).
+    Unwind,
+    /// Transit: above the goal of `inner`, at TCP height `z`.
+    Over { inner: Box<Via>, z: f64 },
+}
+
+impl Via {
+    /// A learned skill's approach to a grasp or a release (its shape is the demonstration's, not
+    /// the straight line the streams certify).
+    pub(super) fn is_learned_approach(&self) -> bool {
+        matches!(
+            self,
+            Via::Grasp { skill: true, .. } | Via::Place { skill: true, .. }
+        )
+    }
+}
+
+/// Whether a segment to `via` must not be replaced by a transit: the hook's stroke itself (from
+/// its contact pose on), and transits.
+pub(super) fn no_transit(via: &Via) -> bool {
+    matches!(via, Via::Rise { .. } | Via::Over { .. } | Via::Unwind)
+        || matches!(via, Via::Pull { stage, .. } if *stage > 0)
+}
+
+/// Below this [`panda::limit_margin`] (of a joint's range) an action starts by unwinding the
+/// arm ([`Via::Unwind`]).
+///
+/// [`panda::limit_margin`]: crate::sim::panda::limit_margin
+const UNWIND_MARGIN: f64 = 0.01;
+
+impl ActionExec {
+    /// Inserts a transit (rise, over at height `z`) before phase `at` (whose move is `via`); that
+    /// phase then descends straight (the learned approach's shape would swing the load back into
+    /// what the transit avoids).
+    pub(super) fn insert_transit(&mut self, at: usize, via: &Via, z: f64) {
+        self.transit_at = Some(at);
+        if let Some(Phase::Move(Via::Grasp { skill, .. } | Via::Place { skill, .. })) =
+            self.phases.get_mut(at)
+        {
+            *skill = false;
+        }
+        self.phases.splice(
+            at..at,
+            [
+                Phase::Move(Via::Rise { z }),
+                Phase::Move(Via::Over {
+                    inner: Box::new(via.clone()),
+                    z,
+                }),
+            ],
+        );
+        self.segment = None;
+    }
+
+    pub(super) fn skill_name(&self, via: &Via) -> String {
+        let grasping = matches!(self.kind, ActionKind::Grasp { .. });
+        let base = match via {
+            Via::Grasp { skill: true, .. } => "grasp-approach",
+            Via::Place { skill: true, .. } => "place-approach",
+            Via::Up { skill: true, .. } if grasping => "grasp-retreat",
+            Via::Up { skill: true, .. } => "place-retreat",
+            _ => return "profile".into(),
+        };
+        if self.hook {
+            format!("hook-{base}")
+        } else {
+            base.to_string()
+        }
+    }
+}
+
+/// The arm that executes `kind` and its phases: the learned skills' segments where the library
+/// has them (`hook`: the `hook-…` ones), straight moves otherwise.
+pub(super) fn action_phases(
+    kind: &ActionKind,
+    skills: &SkillLibrary,
+    p: &ExecParams,
+    hook: bool,
+) -> (usize, Vec<Phase>) {
+    let pre = if hook { "hook-" } else { "" };
+    match kind {
+        ActionKind::Grasp { arm, body } => (*arm, grasp_phases(body, skills, p, pre)),
+        ActionKind::Release { arm, placement, .. } => {
+            let placement = placement.clone().unwrap_or(Placement::At {
+                x: 0.0,
+                y: 0.0,
+                yaw: 0.0,
+            });
+            (*arm, release_phases(placement, skills, p, pre))
+        }
+        ActionKind::Pull {
+            arm, body, turn, ..
+        } => (
+            *arm,
+            (0..4)
+                .map(|stage| {
+                    Phase::Move(Via::Pull {
+                        body: body.clone(),
+                        stage,
+                        turn: *turn,
+                    })
+                })
+                .collect(),
+        ),
+    }
+}
+
+/// A grasp of `body`: open, approach (the learned one, or above and down), close, lift.
+fn grasp_phases(body: &str, skills: &SkillLibrary, p: &ExecParams, pre: &str) -> Vec<Phase> {
+    if skills.has(&format!("{pre}grasp-approach")) {
+        return vec![
+            Phase::Gripper(GripperCommand::Open),
+            Phase::Move(Via::Grasp {
+                body: body.to_string(),
+                dz: 0.0,
+                skill: true,
+            }),
+            Phase::Gripper(GripperCommand::Close),
+            Phase::Move(Via::Up {
+                dz: p.lift_height,
+                skill: skills.has(&format!("{pre}grasp-retreat")),
+            }),
+        ];
+    }
+    vec![
+        Phase::Gripper(GripperCommand::Open),
+        Phase::Move(Via::Grasp {
+            body: body.to_string(),
+            dz: p.approach_height,
+            skill: false,
+        }),
+        Phase::Move(Via::Grasp {
+            body: body.to_string(),
+            dz: 0.0,
+            skill: false,
+        }),
+        Phase::Gripper(GripperCommand::Close),
+        Phase::Move(Via::Up {
+            dz: p.lift_height,
+            skill: false,
+        }),
+    ]
+}
+
+/// A release at `placement`: approach (the learned one, or above and down) to the release
+/// height, open, retreat up.
+fn release_phases(
+    placement: Placement,
+    skills: &SkillLibrary,
+    p: &ExecParams,
+    pre: &str,
+) -> Vec<Phase> {
+    if skills.has("place-approach") && skills.has("place-retreat") {
+        return vec![
+            Phase::Move(Via::Place {
+                placement,
+                dz: p.release_clearance,
+                skill: true,
+            }),
+            Phase::Gripper(GripperCommand::Open),
+            Phase::Move(Via::Up {
+                dz: p.approach_height,
+                skill: skills.has(&format!("{pre}place-retreat")),
+            }),
+        ];
+    }
+    vec![
+        Phase::Move(Via::Place {
+            placement: placement.clone(),
+            dz: p.approach_height,
+            skill: false,
+        }),
+        Phase::Move(Via::Place {
+            placement,
+            dz: p.release_clearance,
+            skill: false,
+        }),
+        Phase::Gripper(GripperCommand::Open),
+        Phase::Move(Via::Up {
+            dz: p.approach_height,
+            skill: false,
+        }),
+    ]
+}
+
+/// Puts in front of `phases` what arm `arm` must do first where the last action left it.
+pub(super) fn prepare_arm(world: &World, arm: usize, p: &ExecParams, phases: &mut Vec<Phase>) {
+    // An empty hand left down among bodies (the last action was interrupted at its
+    // gripper event) first rises straight up, clear of them.
+    if let Some(up) = rise_first(world, arm, p.approach_height) {
+        phases.insert(
+            0,
+            Phase::Move(Via::Rise {
+                z: up.translation.z,
+            }),
+        );
+    }
+    // An arm the last action left with a joint at its limit (a recovery that failed, a
+    // tracker wound up against a shelf) unwinds first, up there: from such a posture the
+    // tracker comes down the same way and fails the same way again.
+    if world
+        .joints(arm)
+        .is_some_and(|q| crate::sim::panda::limit_margin(&q) < UNWIND_MARGIN)
+    {
+        let at = usize::from(matches!(
+            phases.first(),
+            Some(Phase::Move(Via::Rise { .. }))
+        ));
+        phases.insert(at, Phase::Move(Via::Unwind));
+    }
+}
