@@ -25,6 +25,7 @@ use nalgebra::{Isometry3, Vector3};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::{GripperCommand, World, WorldEvent};
 use crate::tamp::action::ActionKind;
+use crate::tamp::motion::MotionParams;
 
 use super::skill::{SkillLibrary, SkillSegment};
 pub use params::ExecParams;
@@ -54,8 +55,9 @@ pub struct ActionExec {
     transit_at: Option<usize>,
     /// The body acted on is the hook (its skills are the `hook-…` ones).
     hook: bool,
-    /// The approach height (m): the grasp is chosen with the hand clear up to half of it.
-    approach_height: f64,
+    /// The motion's heights: the grasp is chosen with the hand clear up to half the approach
+    /// height.
+    motion: MotionParams,
     /// The yaw of the TCP's x axis a release was certified with (`None`: the heading from the
     /// base).
     hand_yaw: Option<f64>,
@@ -132,7 +134,7 @@ impl ActionExec {
             event_frame: None,
             transit_at: None,
             hook,
-            approach_height: p.approach_height,
+            motion: p.motion,
             hand_yaw: None,
             abort: None,
             grasped_z: None,
@@ -140,10 +142,8 @@ impl ActionExec {
     }
 
     /// Puts a released square block down with the hand at yaw `yaw` (of the TCP's x axis, as the
-    /// streams certified it; [`quarter_turn_for_arm`]) rather than the yaw nearest the heading
-    /// from the base. `None` keeps the heading.
-    ///
-    /// [`quarter_turn_for_arm`]: crate::sim::geometry::quarter_turn_for_arm
+    /// streams certified it; `tamp::motion::release_turns`) rather than the yaw nearest the
+    /// heading from the base. `None` keeps the heading.
     pub fn with_hand_yaw(mut self, yaw: Option<f64>) -> Self {
         self.hand_yaw = yaw;
         self

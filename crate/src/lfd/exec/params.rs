@@ -1,13 +1,13 @@
 //! Tunables of action execution: speeds, tolerances and timeouts of the executor's segments
 //! and gripper events, in one struct with the few values derived from them.
 
+use crate::tamp::motion::MotionParams;
+
 /// Tunables of action execution (metres, seconds).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ExecParams {
-    /// Height of the approach / retreat via-points above a grasp or placement (m).
-    pub approach_height: f64,
-    /// Height the held block is lifted to after a grasp (m).
-    pub lift_height: f64,
+    /// The heights of the motion (the streams certify the same).
+    pub motion: MotionParams,
     /// Mean Cartesian speed of the end effector along a segment (m/s).
     pub speed: f64,
     /// Shortest duration of a segment (s).
@@ -20,8 +20,6 @@ pub struct ExecParams {
     pub gripper_time: f64,
     /// An anchor object moving more than this re-plans the segment (m).
     pub reanchor_tolerance: f64,
-    /// Clearance left under a released block (m).
-    pub release_clearance: f64,
     /// A segment whose end lags by more than `recovery_distance` (m) for `recovery_after` (s)
     /// recovers in joint space (planning IK) once. Equal to `reach_tolerance`: a tracker stuck a
     /// few mm short (a wrist at its limit) recovers too (1 cm left such arms stuck).
@@ -49,15 +47,13 @@ impl ExecParams {
 impl Default for ExecParams {
     fn default() -> Self {
         ExecParams {
-            approach_height: 0.10,
-            lift_height: 0.12,
+            motion: MotionParams::default(),
             speed: 0.35,
             min_segment: 0.3,
             reach_tolerance: 0.004,
             settle_timeout: 1.5,
             gripper_time: 0.15,
             reanchor_tolerance: 0.005,
-            release_clearance: 0.003,
             recovery_distance: 0.004,
             recovery_after: 0.25,
             orientation_tolerance: 0.1,

@@ -4,9 +4,9 @@
 
 use super::params::ExecParams;
 use super::ActionExec;
-use crate::sim::geometry::rise_first;
 use crate::sim::{GripperCommand, World};
 use crate::tamp::action::{ActionKind, Placement};
+use crate::tamp::motion::rise_before_action;
 
 use crate::lfd::skill::SkillLibrary;
 
@@ -161,7 +161,7 @@ fn grasp_phases(body: &str, skills: &SkillLibrary, p: &ExecParams, pre: &str) ->
             }),
             Phase::Gripper(GripperCommand::Close),
             Phase::Move(Via::Up {
-                dz: p.lift_height,
+                dz: p.motion.lift_height,
                 skill: skills.has(&format!("{pre}grasp-retreat")),
             }),
         ];
@@ -170,7 +170,7 @@ fn grasp_phases(body: &str, skills: &SkillLibrary, p: &ExecParams, pre: &str) ->
         Phase::Gripper(GripperCommand::Open),
         Phase::Move(Via::Grasp {
             body: body.to_string(),
-            dz: p.approach_height,
+            dz: p.motion.approach_height,
             skill: false,
         }),
         Phase::Move(Via::Grasp {
@@ -180,7 +180,7 @@ fn grasp_phases(body: &str, skills: &SkillLibrary, p: &ExecParams, pre: &str) ->
         }),
         Phase::Gripper(GripperCommand::Close),
         Phase::Move(Via::Up {
-            dz: p.lift_height,
+            dz: p.motion.lift_height,
             skill: false,
         }),
     ]
@@ -198,12 +198,12 @@ fn release_phases(
         return vec![
             Phase::Move(Via::Place {
                 placement,
-                dz: p.release_clearance,
+                dz: p.motion.release_clearance,
                 skill: true,
             }),
             Phase::Gripper(GripperCommand::Open),
             Phase::Move(Via::Up {
-                dz: p.approach_height,
+                dz: p.motion.approach_height,
                 skill: skills.has(&format!("{pre}place-retreat")),
             }),
         ];
@@ -211,17 +211,17 @@ fn release_phases(
     vec![
         Phase::Move(Via::Place {
             placement: placement.clone(),
-            dz: p.approach_height,
+            dz: p.motion.approach_height,
             skill: false,
         }),
         Phase::Move(Via::Place {
             placement,
-            dz: p.release_clearance,
+            dz: p.motion.release_clearance,
             skill: false,
         }),
         Phase::Gripper(GripperCommand::Open),
         Phase::Move(Via::Up {
-            dz: p.approach_height,
+            dz: p.motion.approach_height,
             skill: false,
         }),
     ]
@@ -231,7 +231,7 @@ fn release_phases(
 pub(super) fn prepare_arm(world: &World, arm: usize, p: &ExecParams, phases: &mut Vec<Phase>) {
     // An empty hand left down among bodies (the last action was interrupted at its
     // gripper event) first rises straight up, clear of them.
-    if let Some(up) = rise_first(world, arm, p.approach_height) {
+    if let Some(up) = rise_before_action(world, arm, &p.motion) {
         phases.insert(
             0,
             Phase::Move(Via::Rise {

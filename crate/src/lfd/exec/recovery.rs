@@ -6,10 +6,9 @@ use nalgebra::{Isometry3, Translation3};
 
 use super::phase::{no_transit, Via};
 use super::{ActionExec, Running};
-use crate::sim::geometry::transit_z;
 use crate::sim::World;
 use crate::tamp::action::ActionKind;
-use crate::tamp::motion::NEAR_RECOVERY_FRACTIONS;
+use crate::tamp::motion::transit_height;
 
 impl ActionExec {
     /// When the planned segment `r` would sweep a carried body into another body, or a learned
@@ -44,7 +43,7 @@ impl ActionExec {
             })
         });
         if load_hits {
-            return safe_transit_z(world, self.arm, &r.goal);
+            return transit_height(world, self.arm, &r.goal);
         }
         if !via.is_learned_approach() || world.hand_path_hits(&path, &[self.kind.body()]).is_none()
         {
@@ -52,28 +51,11 @@ impl ActionExec {
         }
         // The hand's transit only where the arm reaches above the goal (near the base, the
         // learned path may reach a goal the transit's corner cannot).
-        let z = safe_transit_z(world, self.arm, &r.goal)?;
+        let z = transit_height(world, self.arm, &r.goal)?;
         let mut over = r.goal;
         over.translation.z = z;
         world.reachable(self.arm, &over).is_ok().then_some(z)
     }
-}
-
-/// The TCP height of a safe transit of arm `arm` from where it is to `goal`
-/// ([`transit_z`]): a held body's bottom, or the empty hand, clears every top between them,
-/// "between" widened by how far the held body (at least 8 cm) or the hand reaches around the
-/// TCP.
-pub(super) fn safe_transit_z(world: &World, arm: usize, goal: &Isometry3<f64>) -> Option<f64> {
-    let a = world.tcp_pose(arm)?.translation.vector;
-    let held = world.held_by(arm).map(str::to_string);
-    let load = match &held {
-        Some(h) => Some(world.body_aabb(h)?),
-        None => None,
-    };
-    let except = held.unwrap_or_default();
-    Some(transit_z(&a, &goal.translation.vector, load, |lo, hi| {
-        world.highest_top_in(lo, hi, &except)
-    }))
 }
 
 /// Why the lift of the body that `arm` just grasped (action `kind`, move `via`, the TCP's height
@@ -152,53 +134,4 @@ pub(super) fn rise_by_ready(
             .joint_move_hits(arm, &now, &ready, &[touches])
             .is_none())
     .then_some(ready)
-}
-
-/// The joint goals of a joint-space recovery of `arm` to the TCP pose `pose`, whose solution
-/// with the most room to the limits is `goal`: straight there, or, when that move would sweep
-/// the arm or its load through something ([`World::joint_move_hits`]) and the way by the ready
-/// posture would not, by way of [`panda::READY`]; failing both, straight to the solution
-/// nearest the arm's joints ([`World::reachable_near`]) for the goal, or for a point on the
-/// way to it ([`NEAR_RECOVERY_FRACTIONS`]), if that move is clear. The streams certify the same
-/// choice. `touches`: the body the action grasps, releases or pulls, which the hand may touch.
-///
-/// [`panda::READY`]: crate::sim::panda::READY
-pub(super) fn joint_recovery_route(
-    world: &World,
-    arm: usize,
-    pose: &Isometry3<f64>,
-    goal: [f64; crate::sim::panda::DOF],
-    touches: &str,
-) -> Vec<[f64; crate::sim::panda::DOF]> {
-    let ready = crate::sim::panda::READY;
-    let Some(now) = world.joints(arm) else {
-        return vec![goal];
-    };
-    let except = [touches];
-    if world.joint_move_hits(arm, &now, &goal, &except).is_none() {
-        return vec![goal];
-    }
-    if world.joint_move_hits(arm, &now, &ready, &except).is_none()
-        && world.joint_move_hits(arm, &ready, &goal, &except).is_none()
-    {
-        return vec![ready, goal];
-    }
-    let Some(tcp) = world.tcp_pose(arm) else {
-        return vec![goal];
-    };
-    for s in NEAR_RECOVERY_FRACTIONS {
-        let mut part = *pose;
-        part.translation.vector = tcp.translation.vector.lerp(&pose.translation.vector, s);
-        match world.reachable_near(arm, &part) {
-            Ok(near)
-                if world
-                    .joint_move_hits(arm, &now, &near.joints, &except)
-                    .is_none() =>
-            {
-                return vec![near.joints];
-            }
-            _ => {}
-        }
-    }
-    vec![goal]
 }

@@ -5,12 +5,13 @@
 use nalgebra::{Isometry3, Translation3};
 
 use super::phase::{no_transit, Phase, Via};
-use super::recovery::{joint_recovery_route, rise_by_ready, safe_transit_z, stuck_lift, unwound};
+use super::recovery::{rise_by_ready, stuck_lift, unwound};
 use super::via::{anchor_frame, ViaPose};
 use super::{ActionExec, ExecParams, ExecStatus, Running};
 use crate::lfd::skill::SkillLibrary;
 use crate::sim::{GripperCommand, World, WorldEvent};
 use crate::tamp::action::ActionKind;
+use crate::tamp::motion::{joint_recovery, transit_height, LiveArm, RecoveryRoute};
 
 impl ActionExec {
     /// Commands the arm for this tick, steps the world once, and reports.
@@ -270,7 +271,7 @@ impl ActionExec {
             Phase::Move(Via::Rise { z }),
             Phase::Gripper(GripperCommand::Open),
             Phase::Move(Via::Up {
-                dz: self.approach_height,
+                dz: self.motion.approach_height,
                 skill: false,
             }),
         ]);
@@ -289,7 +290,7 @@ impl ActionExec {
             && !no_transit(via)
         {
             let goal = self.segment.as_ref()?.goal;
-            if let Some(z) = safe_transit_z(world, self.arm, &goal) {
+            if let Some(z) = transit_height(world, self.arm, &goal) {
                 self.insert_transit(self.phase, via, z);
                 return Some(ExecStatus::Running);
             }
@@ -510,20 +511,29 @@ struct Miss {
 
 /// Starts the joint-space recovery of `arm` for segment `seg` (a move to `via`; `body` may be
 /// touched), once per segment: to the planning IK's solution with the most room to the
-/// limits ([`joint_recovery_route`]), or, for a rise the arm cannot make where it is, by way of
+/// limits by the route the streams certify ([`joint_recovery`]), or, for a rise the arm cannot make where it is, by way of
 /// the ready posture ([`rise_by_ready`]).
 fn start_joint_recovery(world: &World, arm: usize, via: &Via, seg: &mut Running, body: &str) {
     seg.recovered = true;
     // Where the segment is judged: the end of its trajectory (a learned skill's own, in its
     // object frame), turned as the via-point.
     let target = Isometry3::from_parts(Translation3::from(seg.traj.goal()), seg.goal.rotation);
-    match world.reachable_with_room(arm, &target) {
-        Ok(sol) => {
-            seg.joint_goals = joint_recovery_route(world, arm, &target, sol.joints, body);
+    let mut live = LiveArm {
+        world,
+        arm,
+        touches: body,
+    };
+    match joint_recovery(&mut live, &target) {
+        Some(recovery) => {
+            seg.joint_goals = match recovery.route {
+                RecoveryRoute::Straight | RecoveryRoute::Blocked(_) => vec![recovery.goal],
+                RecoveryRoute::ByReady => vec![crate::sim::panda::READY, recovery.goal],
+                RecoveryRoute::Near { joints, .. } => vec![joints],
+            };
             seg.joint_ticks = 0;
             seg.lag = 0;
         }
-        Err(_) if matches!(via, Via::Rise { .. } | Via::Up { .. }) => {
+        None if matches!(via, Via::Rise { .. } | Via::Up { .. }) => {
             if let Some(q) = rise_by_ready(world, arm, &target, body) {
                 seg.joint_goals = vec![q];
                 seg.rise_by_ready = true;
@@ -531,7 +541,7 @@ fn start_joint_recovery(world: &World, arm: usize, via: &Via, seg: &mut Running,
                 seg.lag = 0;
             }
         }
-        Err(_) => {}
+        None => {}
     }
 }
 

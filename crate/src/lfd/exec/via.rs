@@ -5,12 +5,10 @@ use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 
 use super::phase::Via;
 use super::ActionExec;
-use crate::sim::geometry::{
-    boxes_except, clear_grasp_at, quarter_turn_for_arm, raised, rest_pose, rest_pose_on,
-    tcp_for_body_pose,
-};
+use crate::sim::geometry::{raised, rest_pose, rest_pose_on, tcp_for_body_pose};
 use crate::sim::World;
 use crate::tamp::action::{ActionKind, Placement};
+use crate::tamp::motion::{grasp_pose, release_turns};
 
 /// Centre + yaw of a pose (the demo's anchor-frame convention).
 pub(super) fn anchor_frame(p: &Isometry3<f64>) -> Isometry3<f64> {
@@ -33,10 +31,7 @@ impl ActionExec {
             Via::Grasp { body, dz, .. } => {
                 let bp = world.body_pose(body);
                 let g = bp
-                    .and_then(|at| {
-                        let boxes = boxes_except(world, &[body]);
-                        clear_grasp_at(world, self.arm, body, &at, &boxes, self.approach_height)
-                    })
+                    .and_then(|at| grasp_pose(world, world, self.arm, body, &at, &self.motion))
                     .ok_or_else(|| format!("{body} cannot be grasped"))?;
                 let at = bp.map(|q| q.translation.vector);
                 Ok(ViaPose {
@@ -54,7 +49,12 @@ impl ActionExec {
                     _ => return Err("not a release".into()),
                 };
                 let (pose, anchor) = placement_pose(world, &body, placement)?;
-                let pose = quarter_turn_for_arm(world, self.arm, &body, &pose, self.hand_yaw);
+                // The hand turned as the streams certified it (nearest `hand_yaw`), else nearest
+                // the heading from the base.
+                let pose = match world.grasp_transform(self.arm) {
+                    Some(g) => release_turns(world, self.arm, &body, &pose, &g, self.hand_yaw)[0],
+                    None => pose,
+                };
                 let tcp = tcp_for_body_pose(world, self.arm, &pose);
                 Ok(ViaPose {
                     goal: raised(&tcp, *dz),

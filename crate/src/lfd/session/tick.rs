@@ -148,11 +148,9 @@ impl Session {
         let facts = facts_of(&self.world);
         let objects = objects_of(&self.world);
         let before = self.controller.replans().len();
-        // The streams certify the executor's motions: same approach and lift heights.
+        // The streams certify the executor's motions: the same heights.
         let streams = StreamParams {
-            approach_height: self.params.exec.approach_height,
-            lift_height: self.params.exec.lift_height,
-            release_clearance: self.params.exec.release_clearance,
+            motion: self.params.exec.motion,
             ..self.params.streams
         };
         let mut binder = StreamBinder::new(

@@ -9,11 +9,11 @@ use parry3d_f64::query;
 use parry3d_f64::shape::{Capsule, Cuboid, Shape};
 
 use super::obstacles::{box_aabb, overlaps, Obstacle};
-use super::{fmt_point, Geo, StreamBinder};
-use crate::sim::geometry::{link_capsules, transit_z};
+use super::{fmt_point, Geo, Predicted, StreamBinder};
+use crate::sim::geometry::link_capsules;
 use crate::sim::panda::{self, DOF};
 use crate::sim::LINK_TOLERANCE;
-use crate::tamp::motion::NEAR_RECOVERY_FRACTIONS;
+use crate::tamp::motion::{joint_recovery, transit_height, JointMoves, RecoveryRoute};
 
 /// Why a candidate was not certified (counted in [`StreamStats`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -42,6 +42,60 @@ pub(super) struct LoadPart {
 pub(super) struct Hit {
     pub(super) words: String,
     pub(super) body: String,
+}
+
+/// Arm `arm` of a certification at joints `q`, carrying `load` among `obstacles` (`start`: its
+/// contacts at the start of the path), as a joint-space recovery sees it.
+struct TrackedArm<'a, 'w> {
+    binder: &'a mut StreamBinder<'w>,
+    arm: usize,
+    base: &'a Isometry3<f64>,
+    q: [f64; DOF],
+    load: &'a [LoadPart],
+    obstacles: &'a [Obstacle],
+    start: &'a StartContacts,
+}
+
+impl JointMoves for TrackedArm<'_, '_> {
+    type Hit = Hit;
+
+    fn joints(&self) -> Option<[f64; DOF]> {
+        Some(self.q)
+    }
+
+    fn tcp_position(&self) -> Option<Vector3<f64>> {
+        Some(
+            panda::forward_kinematics(self.base, &self.q)
+                .translation
+                .vector,
+        )
+    }
+
+    fn solve_with_room(&self, pose: &Isometry3<f64>) -> Option<[f64; DOF]> {
+        let ik = &self.binder.world.params().planning_ik;
+        panda::inverse_kinematics_with_room(self.base, pose, &self.q, ik)
+            .ok()
+            .map(|s| s.joints)
+    }
+
+    fn solve_near(&self, pose: &Isometry3<f64>) -> Option<[f64; DOF]> {
+        let ik = &self.binder.world.params().planning_ik;
+        panda::inverse_kinematics_near(self.base, pose, &self.q, ik)
+            .ok()
+            .map(|s| s.joints)
+    }
+
+    fn joint_move_hits(&mut self, from: &[f64; DOF], to: &[f64; DOF]) -> Option<Hit> {
+        self.binder.joint_leg_hits(
+            self.arm,
+            self.base,
+            from,
+            to,
+            self.load,
+            self.obstacles,
+            self.start,
+        )
+    }
 }
 
 /// A part of an arm in a certification: one of its links (by index) or a part of its load.
@@ -224,7 +278,7 @@ impl StreamBinder<'_> {
 
     /// Certifies the path through `via`, whose first point is the goal of the action's
     /// approach: straight, or, when that hits something, as a transit (straight up to
-    /// [`transit_z`], across above `via[0]`, straight down to it: the executor's
+    /// [`transit_height`], across above `via[0]`, straight down to it: the executor's
     /// `ActionExec::with_transit`). The joints at the end and the transit's TCP height, if one
     /// was needed. A rejection tells why both were refused.
     pub(super) fn certify_approach(
@@ -245,7 +299,9 @@ impl StreamBinder<'_> {
             return Err(Reject::Collision);
         };
         let why = self.last_rejection.clone();
-        let z = self.transit_height(geo, arm, goal);
+        let Some(z) = transit_height(&Predicted { binder: self, geo }, arm, goal) else {
+            return Err(Reject::Collision);
+        };
         let mut up = *from;
         up.translation.z = z;
         let mut over = *goal;
@@ -270,39 +326,10 @@ impl StreamBinder<'_> {
         }
     }
 
-    /// The TCP height of a transit of `arm` from where `geo` has it to `goal` ([`transit_z`]
-    /// over the predicted bodies; the executor computes the same from the world).
-    fn transit_height(&self, geo: &Geo, arm: usize, goal: &Isometry3<f64>) -> f64 {
-        // The load's world AABB where the arm carries it now.
-        let load = geo.held.get(&arm).map(|h| {
-            self.parts_at(&h.body, &(geo.tcp[arm] * h.grasp))
-                .iter()
-                .fold(
-                    (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN)),
-                    |(lo, hi), (iso, c)| {
-                        let (l, h) = box_aabb(iso, c);
-                        (lo.inf(&l), hi.sup(&h))
-                    },
-                )
-        });
-        let obstacles = self.obstacles(geo, arm, &[]);
-        let a = geo.tcp[arm].translation.vector;
-        transit_z(&a, &goal.translation.vector, load, |lo, hi| {
-            obstacles
-                .iter()
-                .filter(|o| {
-                    o.lo.x <= hi[0] && o.hi.x >= lo[0] && o.lo.y <= hi[1] && o.hi.y >= lo[1]
-                })
-                .fold(f64::MIN, |m, o| m.max(o.hi.z))
-        })
-    }
-
     /// The executor's joint-space recovery from joints `q` to the TCP pose `goal`
-    /// (`lfd::exec`: the planning IK from `q` and from the ready posture, the solution with the
-    /// most room to the joint limits, then a straight move in joint space, or, where that
-    /// sweeps through something, two by way of the ready posture, or, failing both, one to the
-    /// solution nearest `q`): `None` if the planning IK finds no solution, else the goal joints
-    /// or what the straight move hits.
+    /// ([`joint_recovery`], the route the executor takes): `None` if the planning IK finds no
+    /// solution, else the joints where the recovery ends, after the tracker's line from a
+    /// solution on the way, or what the straight move to the solution hits.
     #[allow(clippy::too_many_arguments)]
     fn joint_recovery(
         &mut self,
@@ -314,43 +341,23 @@ impl StreamBinder<'_> {
         obstacles: &[Obstacle],
         start: &StartContacts,
     ) -> Option<Result<[f64; DOF], Hit>> {
-        let sol =
-            panda::inverse_kinematics_with_room(base, goal, q, &self.world.params().planning_ik)
-                .ok()?;
-        let Some(hit) = self.joint_leg_hits(arm, base, q, &sol.joints, load, obstacles, start)
-        else {
-            return Some(Ok(sol.joints));
+        let mut tracked = TrackedArm {
+            binder: self,
+            arm,
+            base,
+            q: *q,
+            load,
+            obstacles,
+            start,
         };
-        // The straight move sweeps through something: by way of the ready posture instead.
-        let via = panda::READY;
-        let around = self
-            .joint_leg_hits(arm, base, q, &via, load, obstacles, start)
-            .or_else(|| self.joint_leg_hits(arm, base, &via, &sol.joints, load, obstacles, start));
-        if around.is_none() {
-            return Some(Ok(sol.joints));
-        }
-        // Failing both, straight to the solution nearest `q` for the goal or a point on the way
-        // to it, the first a clear move reaches; the tracker then follows the rest of the way.
-        let from = panda::forward_kinematics(base, q).translation.vector;
-        let ik = self.world.params().planning_ik.clone();
-        for s in NEAR_RECOVERY_FRACTIONS {
-            let mut part = *goal;
-            part.translation.vector = from.lerp(&goal.translation.vector, s);
-            let Ok(near) = panda::inverse_kinematics_near(base, &part, q, &ik) else {
-                continue;
-            };
-            if self
-                .joint_leg_hits(arm, base, q, &near.joints, load, obstacles, start)
-                .is_some()
-            {
-                continue;
-            }
-            return Some(
-                self.track_line(arm, base, &near.joints, &part, goal, load, obstacles, start)
-                    .ok_or(hit),
-            );
-        }
-        Some(Err(hit))
+        let recovery = joint_recovery(&mut tracked, goal)?;
+        Some(match recovery.route {
+            RecoveryRoute::Straight | RecoveryRoute::ByReady => Ok(recovery.goal),
+            RecoveryRoute::Near { joints, pose, hit } => self
+                .track_line(arm, base, &joints, &pose, goal, load, obstacles, start)
+                .ok_or(hit),
+            RecoveryRoute::Blocked(hit) => Err(hit),
+        })
     }
 
     /// The joints at the end of the tracker's straight TCP line from `from` (joints `q`) to

@@ -6,8 +6,9 @@ use parry3d_f64::query;
 use parry3d_f64::shape::Cuboid;
 
 use super::obstacles::{box_aabb, shrunk_by};
-use super::{Geo, Held, StreamBinder, Transit};
-use crate::sim::geometry::{clear_grasp_at, raised};
+use super::{Geo, Held, Predicted, StreamBinder, Transit};
+use crate::sim::geometry::raised;
+use crate::tamp::motion::grasp_pose;
 
 impl StreamBinder<'_> {
     /// Certifies `arm` grasping `body` (approach from above, close, lift) and rolls `geo` on:
@@ -27,19 +28,19 @@ impl StreamBinder<'_> {
             self.collision(why, &over);
             return None;
         }
-        let boxes = self.boxes_except(geo, body);
-        let tcp = clear_grasp_at(
+        let motion = self.params.motion;
+        let tcp = grasp_pose(
+            &Predicted { binder: self, geo },
             self.world,
             arm,
             body,
             &pose,
-            &boxes,
-            self.params.approach_height,
+            &motion,
         )?;
-        let lifted = raised(&tcp, self.params.lift_height);
+        let lifted = raised(&tcp, motion.lift_height);
         let mut transit = None;
         if certify {
-            let via = [raised(&tcp, self.params.approach_height), tcp];
+            let via = [raised(&tcp, self.params.motion.approach_height), tcp];
             let (q, z) = self.certify_approach(geo, arm, &via, &[body], 0.0).ok()?;
             transit = z;
             let mut after = geo.clone();
@@ -65,8 +66,10 @@ impl StreamBinder<'_> {
                 grasp: tcp.inverse() * pose,
             },
         );
-        geo.poses
-            .insert(body.to_string(), raised(&pose, self.params.lift_height));
+        geo.poses.insert(
+            body.to_string(),
+            raised(&pose, self.params.motion.lift_height),
+        );
         Some(transit)
     }
 
@@ -75,7 +78,7 @@ impl StreamBinder<'_> {
     /// sweeps rising straight up by the lift height: what would stop its lift.
     fn overhang(&self, geo: &Geo, body: &str, pose: &Isometry3<f64>) -> Option<String> {
         let slack = self.overhang_slack();
-        let rise = self.params.lift_height;
+        let rise = self.params.motion.lift_height;
         let swept: Vec<(Isometry3<f64>, Cuboid)> = self
             .parts_at(body, pose)
             .into_iter()

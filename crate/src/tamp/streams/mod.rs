@@ -32,7 +32,7 @@
 //!
 //! **Transits.** When an action's approach (from where the arm is to its pre-grasp, pre-release
 //! or pre-stroke pose) hits something, it is certified again as a transit: straight up to the
-//! TCP height `z` of `sim::geometry::transit_z` (what the arm carries 3 cm above every top
+//! TCP height `z` of `tamp::motion::transit_height` (what the arm carries 3 cm above every top
 //! between the two), across, straight down. The binding records `z` and the executor flies
 //! exactly that (`ActionExec::with_transit`).
 //!
@@ -53,10 +53,10 @@ use rand::SeedableRng;
 use rand_pcg::Pcg64Mcg;
 
 use super::action::{classify, ActionKind, Binding, Placement, PlanarPose};
+use super::motion::{rise_before_action, MotionParams, Scene};
 use super::{BindFailure, Binder};
 use crate::plan::Task;
 use crate::sim::demo::PULL_LIFT;
-use crate::sim::geometry::rise_first;
 use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
@@ -67,18 +67,15 @@ mod obstacles;
 mod place;
 mod pull;
 
-use obstacles::FixedBody;
+use obstacles::{box_aabb, FixedBody};
 
 /// Tunables of the streams.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StreamParams {
     /// Samples drawn per surface placement before the action is declared unbindable.
     pub placement_samples: usize,
-    /// Height of the approach pose above grasps and placements, and of the retreat after a
-    /// release (m); the session keeps it equal to the executor's.
-    pub approach_height: f64,
-    /// Height the held body is lifted to after a grasp (m); kept equal to the executor's.
-    pub lift_height: f64,
+    /// The heights of the motions certified (the executor's: the session passes the same).
+    pub motion: MotionParams,
     /// Height of the hook above its contact and pulled poses at the ends of a stroke (m).
     pub pull_lift: f64,
     /// Spacing of the samples along a certified TCP path (m).
@@ -91,9 +88,6 @@ pub struct StreamParams {
     pub contact_slack: f64,
     /// Free space kept around a placed body (m).
     pub clearance: f64,
-    /// Height above its rest pose at which a released body is let go (m); kept equal to the
-    /// executor's.
-    pub release_clearance: f64,
     /// Free space kept around a carried body on its way to a placement's approach pose (m):
     /// the learned skill's path deviates from the straight line the streams check.
     pub transfer_margin: f64,
@@ -112,15 +106,13 @@ impl Default for StreamParams {
     fn default() -> Self {
         StreamParams {
             placement_samples: 48,
-            approach_height: 0.10,
-            lift_height: 0.12,
+            motion: MotionParams::default(),
             pull_lift: PULL_LIFT,
             path_step: 0.015,
             path_ik_iterations: 30,
             settle_ik_iterations: 300,
             contact_slack: 0.002,
             clearance: 0.008,
-            release_clearance: 0.003,
             transfer_margin: 0.015,
             max_alternatives: 3,
             placement_inner_margin: 0.05,
@@ -451,6 +443,48 @@ impl<'w> StreamBinder<'w> {
     }
 }
 
+/// The rolled-forward state `geo` as the motion policy's scene: tops are those of the
+/// obstacles (shrunk by the contact slack), a load's extent that of its boxes where it is
+/// carried.
+struct Predicted<'a, 'w> {
+    binder: &'a StreamBinder<'w>,
+    geo: &'a Geo,
+}
+
+impl Scene for Predicted<'_, '_> {
+    fn tcp(&self, arm: usize) -> Option<Isometry3<f64>> {
+        self.geo.tcp.get(arm).copied()
+    }
+
+    fn load_aabb(&self, arm: usize) -> Option<Option<(Vector3<f64>, Vector3<f64>)>> {
+        let geo = self.geo;
+        Some(geo.held.get(&arm).map(|h| {
+            self.binder
+                .parts_at(&h.body, &(geo.tcp[arm] * h.grasp))
+                .iter()
+                .fold(
+                    (Vector3::repeat(f64::MAX), Vector3::repeat(f64::MIN)),
+                    |(lo, hi), (iso, c)| {
+                        let (l, h) = box_aabb(iso, c);
+                        (lo.inf(&l), hi.sup(&h))
+                    },
+                )
+        }))
+    }
+
+    fn highest_top_in(&self, arm: usize, lo: [f64; 2], hi: [f64; 2]) -> f64 {
+        self.binder
+            .obstacles(self.geo, arm, &[])
+            .iter()
+            .filter(|o| o.lo.x <= hi[0] && o.hi.x >= lo[0] && o.lo.y <= hi[1] && o.hi.y >= lo[1])
+            .fold(f64::MIN, |m, o| m.max(o.hi.z))
+    }
+
+    fn boxes_except(&self, body: &str) -> Vec<(Isometry3<f64>, Cuboid)> {
+        self.binder.boxes_except(self.geo, body)
+    }
+}
+
 /// A skeleton being bound: the operators of `task`, the demonstration's from `demo_from` on.
 struct Skeleton<'a> {
     task: &'a Task,
@@ -479,7 +513,7 @@ impl Binder for StreamBinder<'_> {
         let mut geo = self.geo();
         // An empty hand down among bodies rises first (as the executor's next action does).
         for arm in 0..geo.tcp.len() {
-            if let Some(up) = rise_first(self.world, arm, self.params.approach_height) {
+            if let Some(up) = rise_before_action(self.world, arm, &self.params.motion) {
                 if let Ok(q) = self.certify_path(&geo, arm, &[up], &[], 0.0) {
                     geo.q[arm] = q;
                 }

@@ -9,10 +9,11 @@ use rand::Rng;
 use super::obstacles::box_aabb;
 use super::{Geo, Held, StreamBinder, Transit};
 use crate::plan::fact_args;
-use crate::sim::geometry::{grasp_pose_at, hand_within, quarter_turns, raised};
+use crate::sim::geometry::{grasp_pose_at, hand_within, raised};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::yaw_of;
 use crate::tamp::action::PlanarPose;
+use crate::tamp::motion::release_turns;
 
 /// A support surface a body may be put down on: its top face's x and y ranges and its height
 /// (m).
@@ -68,7 +69,7 @@ impl StreamBinder<'_> {
         certify: bool,
     ) -> Option<(Transit, Option<f64>)> {
         let Held { body, grasp: g } = geo.held.get(&arm).cloned()?;
-        let turns = quarter_turns(self.world, arm, &body, pose, &g, None);
+        let turns = release_turns(self.world, arm, &body, pose, &g, None);
         let tries = if certify { CERTIFIED_TURNS } else { 1 };
         turns
             .iter()
@@ -87,7 +88,7 @@ impl StreamBinder<'_> {
         let Held { body, grasp: g } = geo.held.get(&arm).cloned()?;
         let tcp = pose * g.inverse();
         let hand_yaw = certify.then(|| yaw_of(&tcp.rotation));
-        let retreat = raised(&tcp, self.params.approach_height);
+        let retreat = raised(&tcp, self.params.motion.approach_height);
         let mut transit = None;
         if certify {
             // The transfer to the approach pose is where the learned skill cuts corners (its
@@ -103,7 +104,7 @@ impl StreamBinder<'_> {
             at_above.tcp[arm] = above;
             at_above.q[arm] = q_above;
             // The executor opens the gripper `release_clearance` above the rest pose.
-            let drop = raised(&tcp, self.params.release_clearance);
+            let drop = raised(&tcp, self.params.motion.release_clearance);
             self.certify_path(&at_above, arm, &[drop], &[], 0.0).ok()?;
             let mut after = geo.clone();
             after.held.remove(&arm);
@@ -447,7 +448,7 @@ impl StreamBinder<'_> {
                     self.world.reachable(a, &g).is_ok()
                         && self
                             .world
-                            .reachable(a, &raised(&g, self.params.approach_height))
+                            .reachable(a, &raised(&g, self.params.motion.approach_height))
                             .is_ok()
                 })
             });
