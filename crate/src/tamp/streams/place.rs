@@ -482,7 +482,7 @@ const REGION_INSET: f64 = 0.01;
 
 /// Room a put-down hook keeps between every part of it and a shelf's footprint (m): the hand
 /// comes down on its handle to pick it up again, and the arm's links beside the shelf (a hook
-/// turned along the shelf left its handle 1 cm from it; the arm was stopped at the shelf).
+/// turned along the shelf with its handle 1 cm from it stops the arm at the shelf).
 const HOOK_SHELF_CLEARANCE: f64 = 0.08;
 
 /// How many quarter turns of a square block (nearest the arm's heading first) a certified
