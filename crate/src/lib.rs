@@ -29,3 +29,20 @@ pub mod sim;
 pub mod tamp;
 #[cfg(feature = "wasm-core")]
 pub mod wasm;
+
+/// What most programs need: Logic-LfD on a PDDL domain, the planner's configuration, and the
+/// clock a search budget runs on.
+///
+/// ```
+/// use logic_lfd::prelude::*;
+/// let cfg = SearchConfig::new(Algorithm::LazyGbfs, HeuristicKind::HFf);
+/// assert_eq!(Mode::default(), Mode::Paper);
+/// # let _ = cfg;
+/// ```
+pub mod prelude {
+    pub use crate::lfd::{LfdError, LfdPlan, LogicLfd, Mode, Perturbed, PlanSource};
+    pub use crate::plan::{
+        Algorithm, Clock, HeuristicKind, NoClock, SearchConfig, SearchOutcome, SearchStats, State,
+        ValidationReport,
+    };
+}

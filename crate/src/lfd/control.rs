@@ -24,8 +24,9 @@ use serde::{Deserialize, Serialize};
 use crate::plan::{replay, BannedTask, Clock, SearchConfig, State, Task};
 use crate::tamp::{moves_body, Binder, Binding, BoundPlan};
 
-use super::demo::{DemoTrace, MultiGoalSpec};
-use super::logic::{plan_logic_lfd_avoiding, Mode};
+use super::demo::DemoTrace;
+use super::logic::Mode;
+use super::symbolic::LogicLfd;
 use super::{LfdError, Method};
 
 /// Builds the grounded task for the current world: objects (name, PDDL type) and facts S_C.
@@ -158,9 +159,8 @@ pub struct Controller {
     method: Method,
     mode: Mode,
     params: ControlParams,
-    trace: DemoTrace,
-    task: Task,
-    spec: MultiGoalSpec,
+    /// The task level: the current grounding, the demonstration and its specification.
+    lfd: LogicLfd,
     objects: Vec<(String, String)>,
     plan: Vec<usize>,
     plan_names: Vec<String>,
@@ -217,14 +217,11 @@ impl Controller {
         task: Task,
         objects: Vec<(String, String)>,
     ) -> Self {
-        let spec = MultiGoalSpec::new(&task, &trace);
         Controller {
             method,
             mode,
             params,
-            trace,
-            task,
-            spec,
+            lfd: LogicLfd::from_task(task, trace),
             objects,
             plan: vec![],
             plan_names: vec![],
@@ -245,12 +242,12 @@ impl Controller {
 
     /// The current grounded task.
     pub fn task(&self) -> &Task {
-        &self.task
+        self.lfd.task()
     }
 
     /// The demonstration trace.
     pub fn trace(&self) -> &DemoTrace {
-        &self.trace
+        self.lfd.trace()
     }
 
     /// The current plan as action names.
@@ -314,13 +311,13 @@ impl Controller {
     /// Whether S_C is consistent with executing the action at the cursor: every fact that the
     /// action does not touch is as predicted. `None` if S_C cannot be expressed in the task.
     pub fn consistent_during_action(&self, facts: &[String]) -> bool {
-        let Some(s) = observe(&self.task, facts) else {
+        let Some(s) = observe(self.task(), facts) else {
             return false;
         };
         let (Some(before), Some(&op)) = (self.expected(), self.plan.get(self.cursor)) else {
             return true;
         };
-        let o = &self.task.operators[op];
+        let o = &self.task().operators[op];
         let touched: BTreeSet<u32> = o
             .pre
             .iter()
@@ -329,7 +326,7 @@ impl Controller {
             .chain(&o.del)
             .copied()
             .collect();
-        (0..self.task.facts.len() as u32)
+        (0..self.task().facts.len() as u32)
             .filter(|f| !touched.contains(f))
             .all(|f| s.contains(f) == before.contains(f))
     }
@@ -337,7 +334,7 @@ impl Controller {
     /// Whether the fact set, seen after the action at the cursor ended, is what the plan predicted.
     pub fn action_had_its_effect(&self, facts: &[String]) -> bool {
         match (
-            observe(&self.task, facts),
+            observe(self.task(), facts),
             self.predicted.get(self.cursor + 1),
         ) {
             (Some(s), Some(p)) => &s == p,
@@ -357,28 +354,27 @@ impl Controller {
     ) -> Decision {
         let t0 = clock.now_secs();
         let mut regrounded = false;
-        let s = match observe(&self.task, facts) {
+        let s = match observe(self.task(), facts) {
             Some(s) if objects == self.objects.as_slice() => s,
             _ => {
                 // New objects or facts outside the task: re-ground from the scene.
                 match builder.build(objects, facts) {
                     Ok(task) => {
-                        self.spec = MultiGoalSpec::new(&task, &self.trace);
-                        self.task = task;
+                        self.lfd = LogicLfd::from_task(task, self.lfd.trace().clone());
                         self.objects = objects.to_vec();
                         regrounded = true;
                         // Re-express the plan in the new task's operator indices.
                         let ops: Option<Vec<usize>> = self
                             .plan_names
                             .iter()
-                            .map(|n| super::demo::operator_index(&self.task, n))
+                            .map(|n| super::demo::operator_index(self.task(), n))
                             .collect();
                         match ops {
                             Some(ops) => self.plan = ops,
                             None => self.cancel(),
                         }
                         self.predicted.clear();
-                        match observe(&self.task, facts) {
+                        match observe(self.task(), facts) {
                             Some(s) => s,
                             None => {
                                 return Decision::Failed(FailReason::NoPlan {
@@ -395,7 +391,7 @@ impl Controller {
                 }
             }
         };
-        if self.task.goal.holds(&s) {
+        if self.task().goal.holds(&s) {
             return Decision::Done;
         }
         if self.method == Method::Linear {
@@ -418,7 +414,7 @@ impl Controller {
             } else {
                 self.expected().cloned()
             };
-            let op = &self.task.operators[self.plan[self.cursor]];
+            let op = &self.task().operators[self.plan[self.cursor]];
             match expected {
                 Some(e) if e == s && op.applicable(&s) => {
                     return Decision::Execute {
@@ -433,7 +429,7 @@ impl Controller {
                     op.pre
                         .iter()
                         .filter(|&&f| !s.contains(f))
-                        .map(|&f| self.task.facts[f as usize].clone())
+                        .map(|&f| self.task().facts[f as usize].clone())
                         .collect::<Vec<_>>()
                         .join(" ")
                 ),
@@ -487,12 +483,12 @@ impl Controller {
         let mut predicted = vec![s.clone()];
         let mut cur = s.clone();
         for &o in &ops {
-            cur = self.task.operators[o].apply(&cur);
+            cur = self.task().operators[o].apply(&cur);
             predicted.push(cur.clone());
         }
         self.plan_names = ops
             .iter()
-            .map(|&o| self.task.operators[o].name.clone())
+            .map(|&o| self.task().operators[o].name.clone())
             .collect();
         self.plan = ops;
         self.predicted = predicted;
@@ -504,12 +500,12 @@ impl Controller {
         let gone: Vec<&str> = expected
             .facts()
             .filter(|&f| !s.contains(f))
-            .map(|f| self.task.facts[f as usize].as_str())
+            .map(|f| self.task().facts[f as usize].as_str())
             .collect();
         let new: Vec<&str> = s
             .facts()
             .filter(|&f| !expected.contains(f))
-            .map(|f| self.task.facts[f as usize].as_str())
+            .map(|f| self.task().facts[f as usize].as_str())
             .collect();
         match (gone.is_empty(), new.is_empty()) {
             (false, _) => format!("{} no longer holds", gone.join(" ")),
@@ -521,7 +517,7 @@ impl Controller {
     fn decide_linear(&mut self, s: &State, clock: &dyn Clock, t0: f64, tick: u64) -> Decision {
         if !self.started {
             self.started = true;
-            let ops: Vec<usize> = self.spec.actions.iter().flatten().copied().collect();
+            let ops: Vec<usize> = self.lfd.spec().actions.iter().flatten().copied().collect();
             self.install(s, ops, Some(0));
             self.bindings.clear();
             self.replans.push(Replan {
@@ -544,7 +540,7 @@ impl Controller {
     }
 
     fn missing_goal_facts(&self, s: &State) -> Vec<String> {
-        self.task
+        self.task()
             .goal
             .alternatives
             .first()
@@ -552,7 +548,7 @@ impl Controller {
                 c.pos
                     .iter()
                     .filter(|&&f| !s.contains(f))
-                    .map(|&f| self.task.facts[f as usize].clone())
+                    .map(|&f| self.task().facts[f as usize].clone())
                     .collect()
             })
             .unwrap_or_default()
@@ -561,13 +557,13 @@ impl Controller {
     fn plan_with_rlds(&self, s: &State) -> Result<Planned, FailReason> {
         // RLDS moves along the demonstration to the step whose state *is* the current one (the
         // latest such step); it never plans.
-        let names: BTreeSet<String> = super::demo::state_names(&self.task, s)
+        let names: BTreeSet<String> = super::demo::state_names(self.task(), s)
             .into_iter()
             .collect();
-        let exact = self.trace.states.iter().rposition(|l| *l == names);
+        let exact = self.lfd.trace().states.iter().rposition(|l| *l == names);
         if let Some(k) = exact {
-            if let Some(ops) = self.spec.suffix(k) {
-                if replay(&self.task, s, &ops).is_ok_and(|e| self.task.goal.holds(&e)) {
+            if let Some(ops) = self.lfd.spec().suffix(k) {
+                if replay(self.task(), s, &ops).is_ok_and(|e| self.task().goal.holds(&e)) {
                     return Ok(Planned {
                         ops,
                         k: Some(k),
@@ -578,7 +574,7 @@ impl Controller {
             }
         }
         Err(FailReason::NoDemoStateMatches {
-            facts: super::demo::state_names(&self.task, s),
+            facts: super::demo::state_names(self.task(), s),
         })
     }
 
@@ -588,12 +584,10 @@ impl Controller {
         binder: &mut dyn Binder,
         clock: &dyn Clock,
     ) -> Result<Planned, FailReason> {
-        let mut banned = BannedTask::new(&self.task);
+        let mut banned = BannedTask::new(self.task());
         let mut first_k = 0;
         for _ in 0..self.params.max_skeletons.max(1) {
-            let Ok(p) = plan_logic_lfd_avoiding(
-                &self.task,
-                &self.spec,
+            let Ok(p) = self.lfd.replan_avoiding(
                 s,
                 self.mode,
                 &self.params.search,
@@ -603,7 +597,7 @@ impl Controller {
             ) else {
                 break;
             };
-            match binder.bind(&self.task, &p.ops, p.prefix_len) {
+            match binder.bind(self.task(), &p.ops, p.prefix_len) {
                 Ok(bindings) => {
                     return Ok(Planned {
                         ops: p.ops,
@@ -617,7 +611,7 @@ impl Controller {
                     // A new action could not be bound where the plan puts it: ban it there (or,
                     // when movable bodies were in its way, until one of them has moved), and
                     // sample more.
-                    if let Ok(at) = replay(&self.task, s, &p.ops[..i]) {
+                    if let Ok(at) = replay(self.task(), s, &p.ops[..i]) {
                         banned.ban_failed(
                             p.ops[i],
                             &at,
@@ -633,7 +627,7 @@ impl Controller {
                 // actions), and sample more.
                 Err(failure) => {
                     let i = failure.action;
-                    let k = p.k.unwrap_or(self.spec.len());
+                    let k = p.k.unwrap_or(self.lfd.spec().len());
                     first_k = first_k.max(k + 1 + (i - p.prefix_len));
                     binder.widen();
                 }
@@ -651,7 +645,7 @@ impl Controller {
         clock: &dyn Clock,
     ) -> Result<Planned, FailReason> {
         let BoundPlan { ops, bindings } = crate::tamp::plan_from_scratch(
-            &self.task,
+            self.task(),
             s,
             binder,
             &self.params.search,

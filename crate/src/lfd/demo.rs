@@ -74,6 +74,19 @@ impl DemoTrace {
                 return Err(LfdError::DemoNotApplicable {
                     index: i,
                     action: op.name.clone(),
+                    false_literals: op
+                        .pre
+                        .iter()
+                        .filter(|&&f| !s.contains(f))
+                        .map(|&f| task.facts[f as usize].clone())
+                        .chain(
+                            op.pre_neg
+                                .iter()
+                                .filter(|&&f| s.contains(f))
+                                .map(|&f| format!("(not {})", task.facts[f as usize])),
+                        )
+                        .collect(),
+                    location: None,
                 });
             }
             s = op.apply(&s);
@@ -81,7 +94,9 @@ impl DemoTrace {
             states.push(names_of(task, &s));
         }
         if !task.goal.holds(&s) {
-            return Err(LfdError::DemoMissesGoal);
+            return Err(LfdError::DemoMissesGoal {
+                false_literals: vec![],
+            });
         }
         Ok(DemoTrace {
             actions: names,

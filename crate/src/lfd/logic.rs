@@ -21,7 +21,8 @@
 use serde::{Deserialize, Serialize};
 
 use crate::plan::{
-    self, replay, BannedTask, Clock, MultiGoalMode, SearchConfig, SearchOutcome, State, Task,
+    self, replay, BannedTask, Clock, MultiGoalMode, SearchConfig, SearchOutcome, SearchStats,
+    State, Task,
 };
 
 use super::demo::MultiGoalSpec;
@@ -69,19 +70,57 @@ pub enum PlanSource {
     MultiGoal,
 }
 
-/// A plan produced by Logic-LfD.
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// A plan produced by Logic-LfD: a new prefix to L_k merged with the demonstration after L_k.
+#[derive(Clone, Debug, PartialEq)]
 pub struct LfdPlan {
     /// Operator indices into the task, in execution order.
     pub ops: Vec<usize>,
+    /// The same plan as `(action args)` names.
+    pub names: Vec<String>,
     /// The demonstration state index the plan joins (`None` when it goes to G directly).
     pub k: Option<usize>,
     /// How many leading actions are new (not from the demonstration).
     pub prefix_len: usize,
     /// Where the plan came from.
     pub source: PlanSource,
-    /// Nodes expanded by the search (0 without a search).
-    pub expanded: u64,
+    /// Cost of the whole merged plan (= cost of the prefix + c_k).
+    pub cost: u64,
+    /// The multi-goal search's statistics (all zero when no search ran).
+    pub stats: SearchStats,
+}
+
+impl LfdPlan {
+    /// The new actions that lead to L_k.
+    pub fn prefix(&self) -> &[String] {
+        &self.names[..self.prefix_len]
+    }
+
+    /// The demonstration's actions after L_k.
+    pub fn suffix(&self) -> &[String] {
+        &self.names[self.prefix_len..]
+    }
+
+    fn new(
+        task: &Task,
+        ops: Vec<usize>,
+        k: Option<usize>,
+        prefix_len: usize,
+        source: PlanSource,
+        stats: SearchStats,
+    ) -> Self {
+        LfdPlan {
+            names: ops
+                .iter()
+                .map(|&o| task.operators[o].name.clone())
+                .collect(),
+            cost: ops.iter().map(|&o| u64::from(task.operators[o].cost)).sum(),
+            ops,
+            k,
+            prefix_len,
+            source,
+            stats,
+        }
+    }
 }
 
 /// LogicIn(S_C, 𝒢): the largest k with L_k ⊆ S_C, if any.
@@ -140,23 +179,25 @@ pub fn plan_logic_lfd_avoiding(
     first_k: usize,
 ) -> Result<LfdPlan, LfdError> {
     if task.goal.holds(s) {
-        return Ok(LfdPlan {
-            ops: vec![],
-            k: None,
-            prefix_len: 0,
-            source: PlanSource::GoalHolds,
-            expanded: 0,
-        });
+        return Ok(LfdPlan::new(
+            task,
+            vec![],
+            None,
+            0,
+            PlanSource::GoalHolds,
+            SearchStats::default(),
+        ));
     }
     if let Some(k) = logic_in(spec, s).filter(|&k| k >= first_k) {
         if let Some(ops) = merge_suffix(task, spec, s, &[], k) {
-            return Ok(LfdPlan {
+            return Ok(LfdPlan::new(
+                task,
                 ops,
-                k: Some(k),
-                prefix_len: 0,
-                source: PlanSource::LogicIn,
-                expanded: 0,
-            });
+                Some(k),
+                0,
+                PlanSource::LogicIn,
+                SearchStats::default(),
+            ));
         }
     }
     let search_mode = match mode {
@@ -183,14 +224,13 @@ pub fn plan_logic_lfd_avoiding(
         config,
         clock,
     );
-    let expanded = found.stats.expanded;
     let (prefix, k) = match (&found.outcome, found.goal_index) {
         (SearchOutcome::Plan(p), Some(k)) => (
             banned.map_or_else(|| p.operators.clone(), |b| b.original(&p.operators)),
             k,
         ),
         (SearchOutcome::BudgetExhausted { which }, _) => {
-            return Err(LfdError::NoPlan(format!("{which} exhausted")))
+            return Err(LfdError::Budget(which.to_string()))
         }
         _ => {
             return Err(LfdError::NoPlan(
@@ -199,13 +239,14 @@ pub fn plan_logic_lfd_avoiding(
         }
     };
     let ops = merge_suffix(task, spec, s, &prefix, k).ok_or(LfdError::MergeFailed { k })?;
-    Ok(LfdPlan {
-        prefix_len: prefix.len(),
+    Ok(LfdPlan::new(
+        task,
         ops,
-        k: (k <= spec.len()).then_some(k),
-        source: PlanSource::MultiGoal,
-        expanded,
-    })
+        (k <= spec.len()).then_some(k),
+        prefix.len(),
+        PlanSource::MultiGoal,
+        found.stats,
+    ))
 }
 
 #[cfg(test)]
@@ -236,7 +277,9 @@ mod tests {
         let (task, mut demo) = b1_template();
         demo.swap(0, 1);
         match DemoTrace::derive(&task, &demo) {
-            Err(LfdError::DemoNotApplicable { index: 0, action }) => {
+            Err(LfdError::DemoNotApplicable {
+                index: 0, action, ..
+            }) => {
                 assert_eq!(action, "(stack c d)")
             }
             other => panic!("{other:?}"),

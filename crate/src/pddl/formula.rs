@@ -39,10 +39,13 @@ impl Scope<'_> {
             span: e.span(),
         };
         if a.starts_with('?') {
-            if self.params.is_empty() && self.context == "goal" {
+            if self.params.is_empty() && self.context != "precondition" {
                 return Err(self.src.error(
                     e.span(),
-                    format!("variable `{a}` in the goal (quantifiers are not supported)"),
+                    format!(
+                        "variable `{a}` in the {} (quantifiers are not supported)",
+                        self.context
+                    ),
                 ));
             }
             return match self.params.iter().position(|p| p.name.text == a) {

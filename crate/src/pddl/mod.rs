@@ -37,7 +37,7 @@ pub use ast::{
 };
 pub use domain::parse_domain;
 pub use error::{decode_source, read_source, PddlError};
-pub use problem::parse_problem;
+pub use problem::{parse_problem, LocatedFact};
 
 pub(crate) use error::Source;
 pub(crate) use lexer::{read_many, SExpr};

@@ -3,7 +3,7 @@
 
 use std::collections::HashMap;
 
-use super::ast::{Domain, FunctionValue, Problem, Span, TypedName};
+use super::ast::{Atom, Domain, FunctionValue, Problem, Span, TypedName};
 use super::common::{define, list, name, non_negative_integer, refuse, requirements, typed_list};
 use super::domain::{duplicate, resolve_type};
 use super::error::{PddlError, Source};
@@ -295,6 +295,17 @@ fn metric(src: &Source, domain: &Domain, items: &[SExpr], span: Span) -> Result<
     Ok(())
 }
 
+/// A ground atom read from a facts list, with where it was written.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LocatedFact {
+    /// The atom as printed by the grounder: `(on a b)`, lower case, single spaces.
+    pub name: String,
+    /// 1-based line of its `(`.
+    pub line: usize,
+    /// 1-based column of its `(`.
+    pub col: usize,
+}
+
 impl Problem {
     /// A copy of this problem whose initial atoms are `facts` (`"(on a b)"` each, any case; the
     /// cost-function values are kept). For re-grounding from an observed state — e.g. a scene
@@ -302,6 +313,55 @@ impl Problem {
     /// facts joined one per line, under the file name `<init>`.
     pub fn with_init(&self, domain: &Domain, facts: &[String]) -> Result<Problem, PddlError> {
         let src = Source::new(&facts.join("\n"), "<init>");
+        let init = self
+            .atoms_in(domain, &src)?
+            .into_iter()
+            .map(|(a, _)| a)
+            .collect();
+        Ok(Problem {
+            init,
+            ..self.clone()
+        })
+    }
+
+    /// Reads a list of ground atoms of this problem — a state written as a user would, one
+    /// `(predicate object …)` a line, `;` comments allowed.
+    ///
+    /// # Errors
+    /// `file:line:col` of the first atom naming an undeclared predicate or object, with the wrong
+    /// arity or a mistyped argument, or of anything that is not an atom.
+    ///
+    /// ```
+    /// use logic_lfd::pddl::{parse_domain, parse_problem};
+    /// let d = parse_domain("(define (domain d) (:predicates (p ?x)))", "d.pddl").unwrap();
+    /// let p = parse_problem("(define (problem q) (:domain d) (:objects o) (:init) (:goal (p o)))", "q.pddl", &d).unwrap();
+    /// let facts = p.read_facts(&d, "; now\n( P  O )", "s.facts").unwrap();
+    /// assert_eq!((facts[0].name.as_str(), facts[0].line, facts[0].col), ("(p o)", 2, 1));
+    /// let e = p.read_facts(&d, "(p x)", "s.facts").unwrap_err();
+    /// assert_eq!(e.to_string(), "s.facts:1:4: undeclared object or constant `x`");
+    /// ```
+    pub fn read_facts(
+        &self,
+        domain: &Domain,
+        text: &str,
+        file: &str,
+    ) -> Result<Vec<LocatedFact>, PddlError> {
+        let src = Source::new(text, file);
+        Ok(self
+            .atoms_in(domain, &src)?
+            .into_iter()
+            .map(|(a, span)| {
+                let (line, col) = src.line_col(span.start);
+                LocatedFact {
+                    name: domain.atom_text(&a, &[]),
+                    line,
+                    col,
+                }
+            })
+            .collect())
+    }
+
+    fn atoms_in(&self, domain: &Domain, src: &Source) -> Result<Vec<(Atom, Span)>, PddlError> {
         let names: HashMap<String, usize> = domain
             .constants
             .iter()
@@ -309,19 +369,15 @@ impl Problem {
             .map(|o| (o.name.text.clone(), o.ty))
             .collect();
         let scope = Scope {
-            src: &src,
+            src,
             domain,
             params: &[],
             objects: &names,
-            context: "goal",
+            context: "state",
         };
-        let init = super::lexer::read_many(&src)?
+        super::lexer::read_many(src)?
             .iter()
-            .map(|e| scope.atom(e))
-            .collect::<Result<Vec<_>, _>>()?;
-        Ok(Problem {
-            init,
-            ..self.clone()
-        })
+            .map(|e| scope.atom(e).map(|a| (a, e.span())))
+            .collect()
     }
 }

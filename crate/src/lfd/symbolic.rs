@@ -1,0 +1,446 @@
+//! Logic-LfD on any PDDL domain: a domain, a problem and one demonstration plan in, merged plans
+//! out (paper §III-C/D without the robot).
+//!
+//! [`LogicLfd`] is the one implementation of the method's task level: the reactive loop's
+//! `Controller` holds one, the CLI's `lfd` command, the npm `logicLfd` and the page's PDDL tab
+//! build one from text.
+
+use std::collections::BTreeSet;
+
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+
+use crate::pddl::{self, Domain, PddlError, Problem};
+use crate::plan::{
+    self, parse_plan, replay, validate, validate_names, BannedTask, Clock, Goal, MultiGoalMode,
+    Outcome, SearchConfig, SearchResult, State, Task, ValidationReport,
+};
+
+use super::demo::{DemoTrace, MultiGoalSpec};
+use super::logic::{plan_logic_lfd_avoiding, LfdPlan, Mode};
+use super::LfdError;
+
+/// Symbolic Logic-LfD: one demonstration of a PDDL task turned into the multi-goal
+/// specification L_0 … L_N, G, and replanning from any state to the best L_k it can reach.
+///
+/// - [`LogicLfd::new`] reads a domain, a problem and the demonstration as an IPC plan file;
+/// - [`LogicLfd::state`] / [`LogicLfd::state_after`] read a state (atoms, or a plan prefix);
+/// - [`LogicLfd::logic_in`] is LogicIn, [`LogicLfd::replan`] the multi-goal search merged with
+///   the demonstration's suffix; [`LogicLfd::validate`] replays a plan on the lifted domain.
+///
+/// ```
+/// use logic_lfd::prelude::*;
+/// let domain = "(define (domain corridor) (:requirements :strips :typing) (:types room)
+///   (:predicates (at ?r - room) (door ?a ?b - room) (lit ?r - room))
+///   (:action go :parameters (?a ?b - room) :precondition (and (at ?a) (door ?a ?b))
+///     :effect (and (at ?b) (not (at ?a))))
+///   (:action switch-on :parameters (?r - room) :precondition (at ?r) :effect (lit ?r)))";
+/// let problem = "(define (problem p) (:domain corridor) (:objects r1 r2 r3 - room)
+///   (:init (at r1) (door r1 r2) (door r2 r1) (door r2 r3) (door r3 r2))
+///   (:goal (and (lit r2) (lit r3))))";
+/// let demo = "(go r1 r2)\n(switch-on r2)\n(go r2 r3)\n(switch-on r3)\n";
+/// let lfd = LogicLfd::new(domain, problem, demo).unwrap();
+/// assert_eq!(lfd.demo_states().len(), 5); // L_0 … L_4
+/// // Someone carried the robot to r3 and it switched r3 on; r2 is still dark.
+/// let s = lfd.state("(at r3)\n(lit r3)").unwrap();
+/// assert_eq!(lfd.logic_in(&s), None); // no L_k ⊆ S_C
+/// let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::LmCut);
+/// // The paper's mode: the first demonstration state reached, then the rest of the demo.
+/// let r = lfd.replan(&s, Mode::Paper, &cfg, &NoClock).unwrap();
+/// assert_eq!((r.k, r.prefix()), (Some(1), &["(go r3 r2)".to_string()][..]));
+/// assert_eq!(r.suffix(), ["(switch-on r2)", "(go r2 r3)", "(switch-on r3)"]);
+/// // Prioritised: the cheapest prefix + demo left; here going to G directly (k = None).
+/// let p = lfd.replan(&s, Mode::Prioritised, &cfg, &NoClock).unwrap();
+/// assert_eq!((p.k, p.cost), (None, 2));
+/// assert!(lfd.validate(&s, &p.names).unwrap().is_valid());
+/// assert!(lfd.validate(&s, &r.names).unwrap().is_valid());
+/// ```
+#[derive(Clone, Debug)]
+pub struct LogicLfd {
+    task: Task,
+    trace: DemoTrace,
+    spec: MultiGoalSpec,
+    /// L_0 … L_N as states of `task` (`None`: not expressible in it).
+    demo_states: Vec<Option<State>>,
+    /// The lifted domain and problem, when built from text (states and plans can be read).
+    source: Option<Box<(Domain, Problem)>>,
+}
+
+/// One state drawn by [`LogicLfd::perturb`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Perturbed {
+    /// The state.
+    pub state: State,
+    /// The demonstration state the random walk started from.
+    pub from_k: usize,
+    /// Number of random actions walked.
+    pub steps: usize,
+}
+
+impl LogicLfd {
+    /// Reads the domain, the problem and the demonstration (one `(action args)` a line, `;`
+    /// comments); errors are located in `domain.pddl`, `problem.pddl` and `demo.plan`.
+    ///
+    /// # Errors
+    /// - [`LfdError::Input`]: a file does not parse, or a demonstration step names an unknown
+    ///   action or object (`file:line:col: message`);
+    /// - [`LfdError::DemoNotApplicable`]: a step's precondition is false where the demo applies it
+    ///   (the step and the false literals);
+    /// - [`LfdError::DemoMissesGoal`]: the demonstration ends where the goal does not hold;
+    /// - [`LfdError::Model`]: the task cannot be grounded.
+    pub fn new(domain: &str, problem: &str, demo: &str) -> Result<Self, LfdError> {
+        Self::named(
+            ("domain.pddl", domain),
+            ("problem.pddl", problem),
+            ("demo.plan", demo),
+        )
+    }
+
+    /// [`LogicLfd::new`] with the file names used in error locations: `(name, text)` each.
+    pub fn named(
+        domain: (&str, &str),
+        problem: (&str, &str),
+        demo: (&str, &str),
+    ) -> Result<Self, LfdError> {
+        let d = pddl::parse_domain(domain.1, domain.0)?;
+        let p = pddl::parse_problem(problem.1, problem.0, &d)?;
+        let steps = parse_plan(demo.1, demo.0)?;
+        let report = validate(&d, &p, &steps);
+        match report.outcome {
+            Outcome::Valid => {}
+            Outcome::Malformed(e) => return Err(e.into()),
+            Outcome::PreconditionFalse {
+                step,
+                action,
+                location,
+                false_literals,
+            } => {
+                return Err(LfdError::DemoNotApplicable {
+                    index: step - 1,
+                    action,
+                    false_literals,
+                    location: Some(location),
+                })
+            }
+            Outcome::GoalNotReached { false_literals } => {
+                return Err(LfdError::DemoMissesGoal { false_literals })
+            }
+        }
+        let task = plan::ground(&d, &p).map_err(|e| LfdError::Model(e.to_string()))?;
+        let actions: Vec<String> = steps.iter().map(|s| s.text()).collect();
+        let trace = DemoTrace::derive(&task, &actions)?;
+        let mut lfd = Self::from_task(task, trace);
+        lfd.source = Some(Box::new((d, p)));
+        Ok(lfd)
+    }
+
+    /// Logic-LfD on an already grounded task with a demonstration derived on it (or on another
+    /// grounding of the same domain: the trace is matched by fact and action names).
+    pub fn from_task(task: Task, trace: DemoTrace) -> Self {
+        let spec = MultiGoalSpec::new(&task, &trace);
+        let demo_states = trace
+            .states
+            .iter()
+            .map(|l| {
+                let mut s = task.empty_state();
+                for f in l {
+                    s.insert(task.fact_id(f)?);
+                }
+                Some(s)
+            })
+            .collect();
+        LogicLfd {
+            task,
+            trace,
+            spec,
+            demo_states,
+            source: None,
+        }
+    }
+
+    /// The grounded task.
+    pub fn task(&self) -> &Task {
+        &self.task
+    }
+
+    /// The demonstration: its actions a_1 … a_N and the states L_0 … L_N by fact name.
+    pub fn trace(&self) -> &DemoTrace {
+        &self.trace
+    }
+
+    /// The multi-goal specification compiled against [`LogicLfd::task`].
+    pub fn spec(&self) -> &MultiGoalSpec {
+        &self.spec
+    }
+
+    /// The demonstrated actions a_1 … a_N, `(action args)` each.
+    pub fn demo_actions(&self) -> &[String] {
+        &self.trace.actions
+    }
+
+    /// L_0 … L_N: the fluents that hold before a_1, after a_1, …, after a_N, sorted by name.
+    pub fn demo_states(&self) -> &[BTreeSet<String>] {
+        &self.trace.states
+    }
+
+    /// L_k as a state of the task (`None` when k > N or L_k has a fact the task cannot express).
+    pub fn demo_state(&self, k: usize) -> Option<&State> {
+        self.demo_states.get(k)?.as_ref()
+    }
+
+    /// The static facts of the problem (true in every state, never part of one).
+    pub fn static_facts(&self) -> &[String] {
+        &self.task.static_facts
+    }
+
+    /// The fluents of `s` by name, sorted.
+    pub fn names(&self, s: &State) -> Vec<String> {
+        super::demo::state_names(&self.task, s)
+    }
+
+    /// Reads a state written as PDDL atoms (one a line or space-separated; `;` comments), with
+    /// or without the problem's static facts. Locations refer to a file `state`.
+    ///
+    /// # Errors
+    /// [`LfdError::Input`] naming the atom, at `line:col`: an undeclared predicate or object, a
+    /// wrong arity or type, a static fact the problem does not make true (a state cannot change
+    /// it), or a fluent no action reachable from the problem's initial state can make true.
+    pub fn state(&self, facts: &str) -> Result<State, LfdError> {
+        self.state_in("state", facts)
+    }
+
+    /// [`LogicLfd::state`] with the file name used in error locations.
+    pub fn state_in(&self, file: &str, facts: &str) -> Result<State, LfdError> {
+        let located = match self.source.as_deref() {
+            Some((d, p)) => p.read_facts(d, facts, file)?,
+            None => unlocated_facts(facts, file)?,
+        };
+        let statics: BTreeSet<&str> = self.task.static_facts.iter().map(String::as_str).collect();
+        let fluent_preds: BTreeSet<&str> = self
+            .task
+            .facts
+            .iter()
+            .map(|f| plan::fact_args(f).0)
+            .collect();
+        let mut s = self.task.empty_state();
+        for f in located {
+            if let Some(id) = self.task.fact_id(&f.name) {
+                s.insert(id);
+                continue;
+            }
+            if statics.contains(f.name.as_str()) {
+                continue;
+            }
+            let message = if fluent_preds.contains(plan::fact_args(&f.name).0) {
+                format!(
+                    "`{}` can never hold in this problem: no action reachable from its initial \
+                     state adds it",
+                    f.name
+                )
+            } else {
+                format!(
+                    "`{}` contradicts the problem: `{}` is static (no action changes it) and \
+                     this atom is not in the problem's `:init`",
+                    f.name,
+                    plan::fact_args(&f.name).0
+                )
+            };
+            return Err(PddlError {
+                file: file.to_string(),
+                line: f.line,
+                col: f.col,
+                message,
+            }
+            .into());
+        }
+        Ok(s)
+    }
+
+    /// The state reached from the problem's initial state by a plan prefix (one `(action args)` a
+    /// line), e.g. a demonstration that was interrupted and then disturbed.
+    ///
+    /// # Errors
+    /// [`LfdError::Input`] for a malformed step; [`LfdError::PrefixNotApplicable`] naming the
+    /// step and its false preconditions.
+    pub fn state_after(&self, file: &str, plan_text: &str) -> Result<State, LfdError> {
+        let (d, p) = self.source()?;
+        let steps = parse_plan(plan_text, file)?;
+        match validate(d, p, &steps).outcome {
+            Outcome::Malformed(e) => return Err(e.into()),
+            Outcome::PreconditionFalse {
+                step,
+                action,
+                location,
+                false_literals,
+            } => {
+                return Err(LfdError::PrefixNotApplicable {
+                    step,
+                    action,
+                    location,
+                    false_literals,
+                })
+            }
+            Outcome::Valid | Outcome::GoalNotReached { .. } => {}
+        }
+        let mut s = self.task.init.clone();
+        for step in &steps {
+            let name = step.text();
+            let op = super::demo::operator_index(&self.task, &name)
+                .ok_or_else(|| LfdError::Model(format!("`{name}` was not grounded")))?;
+            s = self.task.operators[op].apply(&s);
+        }
+        Ok(s)
+    }
+
+    /// LogicIn(S_C, 𝒢): the largest k with L_k ⊆ S_C (the match closest to the goal), if any.
+    pub fn logic_in(&self, s: &State) -> Option<usize> {
+        super::logic::logic_in(&self.spec, s)
+    }
+
+    /// Logic-LfD from `s`: the demonstration's suffix when LogicIn holds, else one multi-goal
+    /// search to the first (`paper`) or cheapest-to-finish (`prioritised`) L_k, merged with the
+    /// rest of the demonstration. `config` bounds the search by nodes and seconds on `clock`.
+    ///
+    /// # Errors
+    /// [`LfdError::NoPlan`] (no demonstration state and not G reachable: proved) or
+    /// [`LfdError::Budget`].
+    pub fn replan(
+        &self,
+        s: &State,
+        mode: Mode,
+        config: &SearchConfig,
+        clock: &dyn Clock,
+    ) -> Result<LfdPlan, LfdError> {
+        plan_logic_lfd_avoiding(&self.task, &self.spec, s, mode, config, clock, None, 0)
+    }
+
+    /// [`LogicLfd::replan`] on `banned` (operators banned where their binding failed), joining
+    /// the demonstration at L_`first_k` or later (the reactive loop's retries).
+    pub(crate) fn replan_avoiding(
+        &self,
+        s: &State,
+        mode: Mode,
+        config: &SearchConfig,
+        clock: &dyn Clock,
+        banned: Option<&BannedTask>,
+        first_k: usize,
+    ) -> Result<LfdPlan, LfdError> {
+        plan_logic_lfd_avoiding(
+            &self.task, &self.spec, s, mode, config, clock, banned, first_k,
+        )
+    }
+
+    /// Classical planning from `s` to G with the same search (the baseline Logic-LfD is compared
+    /// with).
+    pub fn plan_from_scratch(
+        &self,
+        s: &State,
+        config: &SearchConfig,
+        clock: &dyn Clock,
+    ) -> SearchResult {
+        let goal = Goal {
+            alternatives: self.task.goal.alternatives.clone(),
+            terminal_cost: 0,
+        };
+        let r = plan::search_multi_goal(
+            &self.task,
+            s,
+            &[goal],
+            MultiGoalMode::FirstReached,
+            config,
+            clock,
+        );
+        SearchResult {
+            outcome: r.outcome,
+            stats: r.stats,
+        }
+    }
+
+    /// Replays `plan` (`(action args)` names) from `s` on the lifted domain — independent of the
+    /// grounding — and reports the first failing step or the goal literals left false.
+    pub fn validate(&self, s: &State, plan: &[String]) -> Result<ValidationReport, LfdError> {
+        let (d, p) = self.source()?;
+        let mut init = self.names(s);
+        init.extend(self.task.static_facts.iter().cloned());
+        let problem = p.with_init(d, &init)?;
+        Ok(validate_names(d, &problem, plan))
+    }
+
+    /// `count` states drawn by seeded random walks with the domain's own actions: even draws
+    /// walk from L_0, odd ones from a random L_k; each walks 1 … `max_steps` random applicable
+    /// actions and avoids states where the goal already holds (up to 20 tries each).
+    pub fn perturb(&self, count: usize, seed: u64, max_steps: usize) -> Vec<Perturbed> {
+        let mut rng = Pcg64Mcg::seed_from_u64(seed);
+        let starts: Vec<usize> = (0..self.demo_states.len())
+            .filter(|&k| self.demo_states[k].is_some())
+            .collect();
+        let mut out = Vec::with_capacity(count);
+        let mut applicable = Vec::new();
+        for i in 0..count {
+            let mut best = None;
+            for _ in 0..20 {
+                let from_k = if i % 2 == 0 || starts.is_empty() {
+                    0
+                } else {
+                    starts[rng.random_range(0..starts.len())]
+                };
+                let mut s = match self.demo_state(from_k) {
+                    Some(s) => s.clone(),
+                    None => self.task.init.clone(),
+                };
+                let len = rng.random_range(1..=max_steps.max(1));
+                let mut steps = 0;
+                for _ in 0..len {
+                    applicable.clear();
+                    applicable.extend(
+                        (0..self.task.operators.len())
+                            .filter(|&o| self.task.operators[o].applicable(&s)),
+                    );
+                    if applicable.is_empty() {
+                        break;
+                    }
+                    let o = applicable[rng.random_range(0..applicable.len())];
+                    s = self.task.operators[o].apply(&s);
+                    steps += 1;
+                }
+                let done = self.task.goal.holds(&s);
+                best = Some(Perturbed {
+                    state: s,
+                    from_k,
+                    steps,
+                });
+                if !done {
+                    break;
+                }
+            }
+            out.extend(best);
+        }
+        out
+    }
+
+    /// Whether `ops` is applicable from `s` and reaches the goal (grounded replay).
+    pub fn reaches_goal(&self, s: &State, ops: &[usize]) -> bool {
+        replay(&self.task, s, ops).is_ok_and(|e| self.task.goal.holds(&e))
+    }
+
+    fn source(&self) -> Result<(&Domain, &Problem), LfdError> {
+        self.source
+            .as_deref()
+            .map(|(d, p)| (d, p))
+            .ok_or_else(|| LfdError::Model("built from a grounded task: no PDDL to read".into()))
+    }
+}
+
+/// Atoms of a facts text without a domain to check them against (a [`LogicLfd`] built from a
+/// grounded task): names normalised, located.
+fn unlocated_facts(text: &str, file: &str) -> Result<Vec<pddl::LocatedFact>, LfdError> {
+    let steps = parse_plan(text, file)?;
+    Ok(steps
+        .into_iter()
+        .map(|s| pddl::LocatedFact {
+            name: s.text(),
+            line: s.line,
+            col: s.col,
+        })
+        .collect())
+}
