@@ -1,5 +1,6 @@
 //! Integration tests (one binary, one sub-module per area).
 
+mod any_domain;
 mod exec;
 mod fuzz;
 mod ground;

@@ -16,6 +16,11 @@
 //! ```
 //!
 //! so that the prioritised search minimises "cost to reach L_k + cost of the demo left after k".
+//! A search goal "L_k" is met by any superset of L_k — which is enough for the suffix a_{k+1}..a_N
+//! in STRIPS, but not when an action of the suffix needs a fact *false*. Goal k therefore also
+//! requires false the facts the suffix needs false (its negative preconditions and negative goal
+//! literals, regressed through the suffix); LogicIn uses the same conditions. Without negative
+//! preconditions this is exactly the paper's `L_k ⊆ S_C`.
 //! The specification is compiled against a particular task: when the world gains an object (L4),
 //! the task is re-grounded and the specification recompiled from the fact *names*.
 
@@ -119,11 +124,48 @@ fn names_of(task: &Task, s: &State) -> BTreeSet<String> {
     s.facts().map(|f| task.facts[f as usize].clone()).collect()
 }
 
+/// Per demonstration state k, the facts the rest of the demonstration needs *false* when it is
+/// run from a superset of L_k: the negative literals of the goal regressed through a_N … a_{k+1}
+/// (`¬f` is dropped by an action deleting f and added by one with `¬f` in its precondition).
+/// Without negative preconditions or goals every set is empty.
+fn needed_false(
+    task: &Task,
+    states: &[Option<Condition>],
+    actions: &[Option<usize>],
+) -> Vec<BTreeSet<crate::plan::FactId>> {
+    let n = actions.len();
+    let last = states
+        .get(n)
+        .and_then(Option::as_ref)
+        .map(|c| crate::plan::State::from_facts(task.facts.len(), c.pos.iter().copied()));
+    let mut need: BTreeSet<crate::plan::FactId> = task
+        .goal
+        .alternatives
+        .iter()
+        .find(|a| last.as_ref().is_some_and(|l| a.holds(l)))
+        .map(|a| a.neg.iter().copied().collect())
+        .unwrap_or_default();
+    let mut out = vec![BTreeSet::new(); n + 1];
+    for k in (0..n).rev() {
+        out[k + 1] = need.clone();
+        if let Some(o) = actions[k] {
+            let op = &task.operators[o];
+            need.retain(|f| !op.del.contains(f));
+            need.extend(op.pre_neg.iter().copied());
+        }
+    }
+    out[0] = need;
+    out
+}
+
 /// The multi-goal specification 𝒢 compiled against one grounded task.
 #[derive(Clone, Debug)]
 pub struct MultiGoalSpec {
     /// L_0..L_N as conditions over the task's fluents (`None`: L_k mentions a fact this task can
-    /// never make true, so it cannot be reached).
+    /// never make true, so it cannot be reached). Positive part: L_k. Negative part: the facts
+    /// false in L_k that the rest of the demonstration needs false (negative preconditions and
+    /// goals, regressed), so a state satisfying the condition is one from which a_{k+1} … a_N
+    /// apply and reach G — exactly the supersets of L_k the suffix works from.
     pub states: Vec<Option<Condition>>,
     /// Operator index of each demonstrated action a_1..a_N in this task (`None`: not grounded).
     pub actions: Vec<Option<usize>>,
@@ -160,6 +202,17 @@ impl MultiGoalSpec {
             .map(|a| operator_index(task, a))
             .collect();
         let n = actions.len();
+        let needed_false = needed_false(task, &states, &actions);
+        let states: Vec<Option<Condition>> = states
+            .into_iter()
+            .zip(needed_false)
+            .map(|(c, neg)| {
+                c.map(|mut c| {
+                    c.neg = neg.into_iter().filter(|f| !c.pos.contains(f)).collect();
+                    c
+                })
+            })
+            .collect();
         // c_k = Σ_{j>k} cost(a_j); an ungrounded action makes the suffix unusable (c = ∞ → drop).
         let mut suffix_cost = vec![Some(0u64); n + 1];
         for k in (0..n).rev() {
