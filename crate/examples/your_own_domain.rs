@@ -31,7 +31,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let config = SearchConfig::new(Algorithm::Astar, HeuristicKind::LmCut);
     for mode in [Mode::Paper, Mode::Prioritised] {
         let plan = lfd.replan(&now, mode, &config, &NoClock)?;
-        let joins = plan.k.map_or("G directly".to_string(), |k| format!("L_{k}"));
+        let joins = plan
+            .k
+            .map_or("G directly".to_string(), |k| format!("L_{k}"));
         println!(
             "\n{}: joins {joins} after {} new actions; {} actions, cost {}, {} states expanded",
             mode.as_str(),

@@ -6,6 +6,7 @@ mod fuzz;
 mod ground;
 mod layers;
 mod lfd;
+mod lfd_cli;
 mod lqt;
 mod multigoal;
 mod pddl;

@@ -444,3 +444,37 @@ fn unlocated_facts(text: &str, file: &str) -> Result<Vec<pddl::LocatedFact>, Lfd
         })
         .collect())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::{Algorithm, HeuristicKind, NoClock};
+
+    const DOMAIN: &str = "(define (domain prep) (:requirements :strips :negative-preconditions)
+      (:predicates (chopped ?v) (served ?v))
+      (:action chop :parameters (?v) :precondition (not (chopped ?v)) :effect (chopped ?v))
+      (:action serve :parameters (?v) :precondition (chopped ?v) :effect (served ?v)))";
+    const PROBLEM: &str = "(define (problem p) (:domain prep) (:objects a b) (:init)
+      (:goal (and (served a) (served b))))";
+    const DEMO: &str = "(chop a)\n(serve a)\n(chop b)\n(serve b)\n";
+
+    #[test]
+    fn a_state_holding_more_than_l_k_joins_where_the_suffix_still_applies() {
+        let lfd = LogicLfd::new(DOMAIN, PROBLEM, DEMO).unwrap();
+        // b was chopped early: L_0 ⊆ S_C, but a_3 (chop b) cannot apply any more, so LogicIn
+        // does not match L_0 and the search joins where the rest of the demo still applies.
+        let s = lfd.state("(chopped b)").unwrap();
+        assert_eq!(lfd.logic_in(&s), None);
+        let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::LmCut);
+        for mode in [Mode::Paper, Mode::Prioritised] {
+            let r = lfd.replan(&s, mode, &cfg, &NoClock).unwrap();
+            assert_eq!(r.k, Some(3), "{mode:?}");
+            assert_eq!(r.names, ["(chop a)", "(serve a)", "(serve b)"]);
+            assert!(lfd.validate(&s, &r.names).unwrap().is_valid());
+        }
+        // The reactive loop's instance (built from a grounded task) has the same goals.
+        let plain = LogicLfd::from_task(lfd.task().clone(), lfd.trace().clone());
+        let r = plain.replan(&s, Mode::Paper, &cfg, &NoClock).unwrap();
+        assert_eq!(r.k, Some(3));
+    }
+}

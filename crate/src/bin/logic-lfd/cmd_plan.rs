@@ -13,7 +13,7 @@ use std::time::Instant;
 use logic_lfd::pddl::{parse_domain, parse_problem, read_source, Domain, Problem};
 use logic_lfd::plan::{
     ground, search, Algorithm, Clock, HeuristicKind, SearchConfig, SearchOutcome, SearchResult,
-    Task,
+    SearchStats, Task,
 };
 
 use crate::exit;
@@ -25,6 +25,16 @@ pub struct Args {
     domain: PathBuf,
     /// The PDDL problem file.
     problem: PathBuf,
+    #[command(flatten)]
+    search: SearchArgs,
+    /// Print a JSON object on stdout instead of the plan text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The search options every planning command takes (`plan`, `lfd`), so they read the same.
+#[derive(clap::Args)]
+pub struct SearchArgs {
     /// Search algorithm: bfs|ucs|astar|gbfs|lazy-gbfs.
     #[arg(long, default_value = "astar")]
     search: Algorithm,
@@ -37,9 +47,22 @@ pub struct Args {
     /// Maximum search time in seconds.
     #[arg(long)]
     time_limit: Option<f64>,
-    /// Print a JSON object on stdout instead of the plan text.
-    #[arg(long)]
-    json: bool,
+}
+
+impl SearchArgs {
+    /// The search configuration, or the message for a time limit that is not a number of
+    /// seconds (clap reads `NaN` and negative numbers as `f64`).
+    pub fn config(&self) -> Result<SearchConfig, String> {
+        if self.time_limit.is_some_and(|t| t.is_nan() || t < 0.0) {
+            return Err("--time-limit: expected a non-negative number of seconds".into());
+        }
+        Ok(SearchConfig {
+            algorithm: self.search,
+            heuristic: self.heuristic,
+            max_nodes: self.max_nodes,
+            time_limit_secs: self.time_limit,
+        })
+    }
 }
 
 /// Wall-clock time for search budgets (the CLI side of [`Clock`]).
@@ -88,10 +111,13 @@ pub fn outcome_name(o: &SearchOutcome) -> &'static str {
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> ExitCode {
-    if args.time_limit.is_some_and(|t| t.is_nan() || t < 0.0) {
-        eprintln!("--time-limit: expected a non-negative number of seconds");
-        return ExitCode::from(exit::BAD_INPUT);
-    }
+    let config = match args.search.config() {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::from(exit::BAD_INPUT);
+        }
+    };
     let clock = WallClock::start();
     let task = match load(&args.domain, &args.problem) {
         Ok((_, _, t)) => t,
@@ -99,12 +125,6 @@ pub fn run(args: Args) -> ExitCode {
             eprintln!("{e}");
             return ExitCode::from(exit::BAD_INPUT);
         }
-    };
-    let config = SearchConfig {
-        algorithm: args.search,
-        heuristic: args.heuristic,
-        max_nodes: args.max_nodes,
-        time_limit_secs: args.time_limit,
     };
     let r = search(&task, &config, &clock);
     let total = clock.now_secs();
@@ -116,23 +136,31 @@ pub fn run(args: Args) -> ExitCode {
     ExitCode::from(outcome_code(&r.outcome))
 }
 
-fn print_text(task: &Task, config: &SearchConfig, r: &SearchResult) {
-    let s = &r.stats;
-    let stats = format!(
+/// The `;` statistics line printed under a plan.
+pub fn stats_line(config: &SearchConfig, s: &SearchStats) -> String {
+    format!(
         "; {} {}: expanded {}, generated {}, evaluated {}, search time {:.3} s",
         config.algorithm, config.heuristic, s.expanded, s.generated, s.evaluated, s.time_secs
-    );
+    )
+}
+
+/// `unit cost` or `general cost` (`:action-costs`), the kind printed after `; cost = N`.
+pub fn cost_kind(task: &Task) -> &'static str {
+    if task.uses_costs {
+        "general cost"
+    } else {
+        "unit cost"
+    }
+}
+
+fn print_text(task: &Task, config: &SearchConfig, r: &SearchResult) {
+    let stats = stats_line(config, &r.stats);
     match &r.outcome {
         SearchOutcome::Plan(p) => {
             for name in p.names(task) {
                 println!("{name}");
             }
-            let kind = if task.uses_costs {
-                "general cost"
-            } else {
-                "unit cost"
-            };
-            println!("; cost = {} ({kind})", p.cost);
+            println!("; cost = {} ({})", p.cost, cost_kind(task));
             println!("{stats}");
         }
         SearchOutcome::Unsolvable => {

@@ -6,6 +6,8 @@
 mod cmd_bench;
 mod cmd_demo;
 mod cmd_fuzz;
+mod cmd_lfd;
+mod cmd_lfd_perturb;
 mod cmd_lqt;
 mod cmd_plan;
 mod cmd_run;
@@ -46,6 +48,8 @@ enum Command {
     Validate(cmd_validate::Args),
     /// Ground a PDDL task and search for a plan (default: A* with LM-cut, optimal).
     Plan(cmd_plan::Args),
+    /// Logic-LfD on any PDDL domain: demonstration states, LogicIn, a new prefix, the merged plan.
+    Lfd(cmd_lfd::Args),
     /// Benchmarks: `bench planner` runs planner configurations over IPC folders.
     Bench(cmd_bench::Args),
     /// Inspect and perturb simulator scenes: facts, check, template, problem, disturb.
@@ -96,6 +100,7 @@ fn main() -> ExitCode {
         Command::Lqt(args) => cmd_lqt::run(args),
         Command::Validate(a) => cmd_validate::run(a),
         Command::Plan(args) => cmd_plan::run(args),
+        Command::Lfd(args) => cmd_lfd::run(args),
         Command::Bench(args) => cmd_bench::run(args),
         Command::Scene(args) => cmd_scene::run(args),
         Command::Run(args) => cmd_run::run(args),
