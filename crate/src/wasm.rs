@@ -535,6 +535,9 @@ pub struct BenchmarkInfo {
     pub domain: &'static str,
     /// `domains/<name>/problem.pddl`.
     pub problem: &'static str,
+    /// The demonstration's actions (`domains/<name>/demo.json`) as an IPC plan, one a line.
+    #[serde(rename = "demoPlan")]
+    pub demo_plan: String,
 }
 
 /// One of the paper's benchmarks (`b1` tower, `b2` workspace reach, `b3` two arms): its initial
@@ -550,6 +553,11 @@ pub fn benchmark(id: &str) -> Result<JsValue, JsError> {
         scene: b.scene_snapshot(),
         domain: b.domain_pddl(),
         problem: b.problem_pddl(),
+        demo_plan: crate::lfd::session::demo_actions(b.demo_json())
+            .map_err(js_err)?
+            .iter()
+            .map(|a| format!("{a}\n"))
+            .collect(),
     })
 }
 
