@@ -68,6 +68,8 @@ const handlers: Handlers = {
   version: () => lfd.version(),
   plan: ({ domain, problem, options }) => lfd.plan(domain, problem, options),
   check: ({ domain, problem }) => lfd.check(domain, problem),
+  logicLfd: ({ input }) => lfd.logicLfd(input),
+  logicLfdPerturb: ({ input }) => lfd.logicLfdPerturb(input),
   benchmark: ({ id }) => lfd.benchmark(id),
   open: ({ options, scene }) =>
     replace(scene === undefined ? new lfd.Session(options) : lfd.Session.fromScene(options, scene)),
