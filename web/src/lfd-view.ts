@@ -95,7 +95,7 @@ export class LfdView {
     this.timer = window.setTimeout(() => void this.inspect(), delayMs);
   }
 
-  private base(): Pick<LogicLfdInput, 'domain' | 'problem' | 'demo' | 'state'> {
+  private base(): { domain: string; problem: string; demo: string; state?: string } {
     const t = this.opts.texts();
     const state = this.state.text();
     return state === undefined ? t : { ...t, state };
@@ -104,7 +104,8 @@ export class LfdView {
   /** Reads the inputs and S_C (no search): the demonstration states, LogicIn, the applicable actions. */
   async inspect(): Promise<void> {
     clearTimeout(this.timer);
-    if (this.opts.busy()) return;
+    // Hidden (classical mode): showing Logic-LfD's diagnostics there would confuse.
+    if (this.root.hidden || this.opts.busy()) return;
     const seq = ++this.seq;
     let r: LogicLfdResult;
     try {
