@@ -46,6 +46,7 @@ describe('PDDL tab: Logic-LfD', () => {
     await page.click('#lfd-demo button.lfd-lk[data-k="2"]');
     await page.waitForSelector('#lfd-lk-facts:not([hidden]) .facts li');
     assert.match(await page.textContent('#lfd-lk-facts'), /\(on c d\)/);
+    await page.screenshot({ path: join(screenshots, 'pddl-lfd-state.png') });
 
     // Toggle a fact off: (clear d) leaves S_C, so L_0 no longer holds; toggling it back restores it.
     await factBox(page, '(clear d)').click();
@@ -98,12 +99,22 @@ describe('PDDL tab: Logic-LfD', () => {
     await page.close();
   });
 
-  test('a random walk sets S_C; a state error shows at its line', async () => {
+  test('a random walk sets S_C; paper mode may join an earlier L_k than prioritised; a state error shows at its line', async () => {
     const { page, errors } = await openLfd();
-    await page.fill('#lfd-seed', '3');
+    // Seed 9, at most 6 steps: a state from which the first demonstration state reached is not the best.
+    await page.fill('#lfd-seed', '9');
+    await page.fill('#lfd-steps', '6');
     await page.click('#lfd-walk');
-    await page.waitForFunction(() => /Random walk from L0, seed 3/.test(document.getElementById('lfd-state-note')?.textContent ?? ''));
-    await page.waitForSelector('#lfd-verdict:not(:empty)');
+    await page.waitForFunction(() => /Random walk from L0, seed 9/.test(document.getElementById('lfd-state-note')?.textContent ?? ''));
+    await verdictMatches(page, /No demonstration state holds/);
+    await page.click('#pddl-plan');
+    await page.waitForSelector('#lfd-col-prioritised .lfd-sum', { timeout: 60000 });
+    const paperK = Number(await page.getAttribute('#lfd-col-paper .lfd-sum', 'data-k'));
+    const prioK = Number(await page.getAttribute('#lfd-col-prioritised .lfd-sum', 'data-k'));
+    assert.ok(prioK > paperK, `prioritised joins L_${prioK}, paper L_${paperK}`);
+    assert.match(await page.textContent('#lfd-compare'), /prioritised is shorter/);
+    await page.locator('#lfd-results').scrollIntoViewIfNeeded();
+    await page.screenshot({ path: join(screenshots, 'pddl-lfd-modes.png') });
     // An atom with an unknown object on the state's first line.
     await page.locator('#lfd-state .cm-line').first().click();
     await page.keyboard.press('Home');
@@ -111,7 +122,7 @@ describe('PDDL tab: Logic-LfD', () => {
     await page.waitForSelector('#pddl-errors li[data-source="state"]', { timeout: 15000 });
     assert.match(await page.textContent('#pddl-errors li[data-source="state"]'), /state:1:\d+/);
     await page.waitForSelector('#lfd-state .cm-lint-marker-error', { timeout: 5000 });
-    assert.match(await verdict(page), /S_C does not read/);
+    assert.match(await verdict(page), /SC does not read/);
     assert.deepEqual(errors, []);
     await page.close();
   });
@@ -123,8 +134,10 @@ describe('PDDL tab: Logic-LfD', () => {
     await verdictMatches(page, /No demonstration state holds/);
     await page.click('#pddl-plan');
     await page.waitForSelector('#lfd-col-prioritised .lfd-sum', { timeout: 60000 });
+    await page.locator('#lfd-view').scrollIntoViewIfNeeded();
+    await page.screenshot({ path: join(screenshots, 'pddl-lfd-phone.png') });
     await page.locator('#lfd-results').scrollIntoViewIfNeeded();
-    await page.screenshot({ path: join(screenshots, 'pddl-lfd-mobile.png') });
+    await page.screenshot({ path: join(screenshots, 'pddl-lfd-phone-results.png') });
     // Nothing wider than the screen.
     const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
     assert.ok(overflow <= 0, `the page is ${overflow} px wider than the screen`);

@@ -118,8 +118,15 @@ export class EditorPanel {
     this.root = el(
       'section',
       { class: 'editor-panel', 'aria-label': 'PDDL editor', 'data-mode': this.mode },
-      el('div', { class: 'editor-modes', role: 'group', 'aria-label': 'Planning mode' }, this.modeButtons.classical, this.modeButtons.lfd),
-      el('div', { class: 'editor-tabs', role: 'tablist' }, this.tabs.domain, this.tabs.problem, this.tabs.demo, el('span', { class: 'grow' }), this.search, this.heuristic, this.planButton, this.cancelButton),
+      el(
+        'div',
+        { class: 'editor-modes' },
+        el('div', { class: 'seg-group', role: 'group', 'aria-label': 'Planning mode' }, this.modeButtons.classical, this.modeButtons.lfd),
+        el('span', { class: 'grow' }),
+        this.planButton,
+        this.cancelButton,
+      ),
+      el('div', { class: 'editor-tabs', role: 'tablist' }, this.tabs.domain, this.tabs.problem, this.tabs.demo, el('span', { class: 'grow' }), this.search, this.heuristic),
       el('div', { class: 'editor-body' }, this.hosts.domain, this.hosts.problem, this.hosts.demo),
       this.errorList,
       this.planOut,

@@ -6,12 +6,13 @@
 import type { LogicLfdResult, LogicLfdStats } from 'logic-lfd';
 import { el } from './dom';
 
-/** The two modes, as the result columns name and explain them. */
-export const MODES = [
-  ['paper', 'the first L_k the search reaches'],
-  ['prioritised', 'the cheapest prefix + demo left'],
-] as const;
-export type LfdMode = (typeof MODES)[number][0];
+export type LfdMode = 'paper' | 'prioritised';
+
+/** What each mode joins, as its column explains it. */
+const JOINS: Record<LfdMode, () => (Node | string)[]> = {
+  paper: () => ['the first ', lk('k'), ' reached'],
+  prioritised: () => ['cheapest prefix + demo left'],
+};
 
 /** `L` with subscript `k`. */
 export function lk(k: number | string, base = 'L'): HTMLElement {
@@ -29,8 +30,8 @@ function how(r: LogicLfdResult): (Node | string)[] {
 }
 
 /** One mode's column: summary, then the merged plan with prefix lines "new" and suffix lines "demo a_j". */
-function column(mode: LfdMode, what: string, r: LogicLfdResult | null, pending: boolean): HTMLElement {
-  const head = el('h3', {}, mode, el('span', { class: 'muted' }, ` · ${what}`));
+function column(mode: LfdMode, r: LogicLfdResult | null, pending: boolean): HTMLElement {
+  const head = el('h3', {}, mode, el('span', { class: 'lfd-joins muted' }, ...JOINS[mode]()));
   const col = el('div', { class: 'lfd-col', id: `lfd-col-${mode}`, 'data-mode': mode }, head);
   if (!r) {
     col.append(el('div', { class: 'muted' }, pending ? 'Searching…' : '—'));
@@ -52,9 +53,9 @@ function column(mode: LfdMode, what: string, r: LogicLfdResult | null, pending: 
   );
   if (!r.valid) col.append(el('div', { class: 'lfd-fail small' }, 'The validator rejected this plan from S_C.'));
   const first = (k ?? 0) + 1;
-  const items: HTMLElement[] = r.prefix.map((a) => el('li', { class: 'new' }, el('span', { class: 'tag new' }, 'new'), ' ', a));
-  if (k !== null && r.prefix.length > 0) items.push(el('li', { class: 'join' }, '↳ reaches ', lk(k), ', then the demo'));
-  r.suffix.forEach((a, i) => items.push(el('li', { class: 'demo' }, el('span', { class: 'tag demo' }, 'demo a', el('sub', {}, String(first + i))), ' ', a)));
+  const items: HTMLElement[] = r.prefix.map((a) => el('li', { class: 'new' }, el('span', { class: 'tag new' }, 'new'), el('span', {}, a)));
+  if (k !== null && r.prefix.length > 0) items.push(el('li', { class: 'join' }, '↳ reaches ', lk(k), ', demo follows'));
+  r.suffix.forEach((a, i) => items.push(el('li', { class: 'demo' }, el('span', { class: 'tag demo' }, 'demo a', el('sub', {}, String(first + i))), el('span', {}, a))));
   if (items.length === 0) items.push(el('li', { class: 'empty muted' }, 'empty plan: G holds'));
   col.append(el('ol', { class: 'plan-list lfd-plan', 'aria-label': `Logic-LfD plan, ${mode} mode` }, ...items));
   return col;
@@ -85,8 +86,8 @@ export function renderResults(paper: LogicLfdResult | null, prio: LogicLfdResult
   const cols = el(
     'div',
     { class: 'lfd-cols' },
-    column('paper', MODES[0][1], paper, running === 'paper'),
-    column('prioritised', MODES[1][1], prio, running === 'prioritised'),
+    column('paper', paper, running === 'paper'),
+    column('prioritised', prio, running === 'prioritised'),
   );
   const cmp = paper && prio ? verdict(paper, prio) : '';
   return [cols, el('div', { id: 'lfd-compare', class: 'lfd-compare' }, cmp), scratchLine(paper)];

@@ -76,8 +76,9 @@ export class StateEditor {
     this.root = el(
       'div',
       { class: 'lfd-state', id: 'lfd-state' },
-      el('div', { class: 'lfd-row' }, reset, this.setK, el('span', { class: 'grow' }), el('label', { class: 'lfd-inline' }, 'seed', this.seed), el('label', { class: 'lfd-inline' }, 'steps', this.steps), walk),
+      el('div', { class: 'lfd-row' }, reset, this.setK),
       el('div', { class: 'lfd-row' }, this.applySel, this.applyBtn),
+      el('div', { class: 'lfd-row' }, walk, el('label', { class: 'lfd-inline' }, 'seed', this.seed), el('label', { class: 'lfd-inline' }, 'at most', this.steps, 'steps')),
       host,
       el('div', { class: 'lfd-row' }, this.filter, this.factCount),
       this.factList,
@@ -119,7 +120,7 @@ export class StateEditor {
     this.applyBtn.disabled = applicable.length === 0;
     if (this.setK.options.length !== demoStates + 1) {
       this.setK.replaceChildren(
-        el('option', { value: '' }, 'Set S_C to…'),
+        el('option', { value: '' }, 'Set S_C to a demo state…'),
         ...Array.from({ length: demoStates }, (_, k) => el('option', { value: String(k) }, `Set to L${k}`)),
       );
     }

@@ -76,7 +76,7 @@ export class LfdView {
       el('h2', {}, 'Current state S', el('sub', {}, 'C')),
       this.state.root,
       this.verdict,
-      el('h2', {}, 'Logic-LfD from S', el('sub', {}, 'C'), el('span', { class: 'muted' }, ' · Plan runs both modes')),
+      el('h2', {}, 'Logic-LfD from S', el('sub', {}, 'C'), el('span', { class: 'muted' }, ' · Run compares both modes')),
       this.results,
     );
   }
@@ -129,17 +129,17 @@ export class LfdView {
     }
     this.renderDemo();
     if (!r.demo) this.verdict.replaceChildren(el('span', { class: 'lfd-fail' }, 'Fix the error above to see the demonstration states.'));
-    else if (r.kind === 'state') this.verdict.replaceChildren(el('span', { class: 'lfd-fail' }, 'S_C does not read: ', r.message));
+    else if (r.kind === 'state') this.verdict.replaceChildren(el('span', { class: 'lfd-fail' }, sc(), ' does not read: ', r.message));
     else this.verdict.replaceChildren(...this.verdictText(r));
   }
 
   private verdictText(r: LogicLfdResult): (Node | string)[] {
     const n = (this.demo?.states.length ?? 1) - 1;
     const k = r.logicIn;
-    if (r.source === 'goal-holds') return [el('strong', {}, 'G holds in S_C'), ': nothing to do.'];
-    if (k === null) return [el('strong', {}, 'No demonstration state holds'), ' (no L_k ⊆ S_C): search for one, then follow the demo.'];
+    if (r.source === 'goal-holds') return [el('strong', {}, 'G holds in ', sc()), ': nothing to do.'];
+    if (k === null) return [el('strong', {}, 'No demonstration state holds'), ' (no ', lk('k'), ' ⊆ ', sc(), '): search for one, then follow the demo.'];
     const then = k < n ? ['follow the demo from ', lk(k + 1, 'a'), '.'] : ['the demonstration is complete.'];
-    return [el('strong', {}, lk(k), ' ⊆ S', el('sub', {}, 'C')), ': LogicIn = ', String(k), ', ', ...then];
+    return [el('strong', {}, lk(k), ' ⊆ ', sc()), ': LogicIn = ', String(k), ', ', ...then];
   }
 
   private renderDemo(): void {
@@ -175,14 +175,14 @@ export class LfdView {
   private renderLk(k: number): void {
     const facts = this.demo?.states[k];
     if (!facts) return;
-    const sc = this.state.current();
-    const missing = facts.filter((f) => !sc.has(f)).length;
-    const set = el('button', { type: 'button', id: 'lfd-set-lk' }, 'Set S', el('sub', {}, 'C'), ' to ', lk(k));
+    const now = this.state.current();
+    const missing = facts.filter((f) => !now.has(f)).length;
+    const set = el('button', { type: 'button', id: 'lfd-set-lk' }, 'Set ', sc(), ' to ', lk(k));
     set.onclick = () => this.state.setToDemoState(k);
     this.lkFacts.hidden = false;
     this.lkFacts.replaceChildren(
-      el('div', { class: 'lfd-row' }, el('strong', {}, lk(k)), el('span', { class: 'muted' }, ` · ${facts.length} facts · ${missing ? `${missing} not in S_C` : 'all in S_C'}`), el('span', { class: 'grow' }), set),
-      el('ul', { class: 'facts' }, ...facts.map((f) => el('li', sc.has(f) ? {} : { class: 'missing', title: 'not in S_C' }, f))),
+      el('div', { class: 'lfd-row' }, el('strong', {}, lk(k)), el('span', { class: 'muted' }, ` · ${facts.length} facts · ${missing ? `${missing} not in ` : 'all in '}`, sc()), el('span', { class: 'grow' }), set),
+      el('ul', { class: 'facts' }, ...facts.map((f) => el('li', now.has(f) ? {} : { class: 'missing', title: 'not in S_C' }, f))),
     );
   }
 
@@ -243,27 +243,20 @@ export class LfdView {
   }
 }
 
+/** S_C, the current state. */
+function sc(): HTMLElement {
+  return lk('C', 'S');
+}
+
 function help(): HTMLElement {
   return el(
     'p',
     { class: 'lfd-help' },
-    'The demonstration passes through states L',
-    el('sub', {}, '0'),
-    ' … L',
-    el('sub', {}, 'N'),
-    ' (the facts before and after each action a',
-    el('sub', {}, 'k'),
-    '). From the current state S',
-    el('sub', {}, 'C'),
-    ', LogicIn takes the largest k with L',
-    el('sub', {}, 'k'),
-    ' ⊆ S',
-    el('sub', {}, 'C'),
-    ' and follows the demo from there; when none holds, one search runs to any L',
-    el('sub', {}, 'k'),
-    ' and the demo’s remaining actions follow. Paper mode joins the first L',
-    el('sub', {}, 'k'),
-    ' reached, which may leave a longer merged plan (the paper’s stated drawback); prioritised mode picks the cheapest prefix + demo left. ',
+    'The demonstration passes through states ', lk(0), ' … ', lk('N'), ' (before and after each action ', lk('k', 'a'), '). ',
+    'From the current state ', sc(), ', LogicIn takes the largest k with ', lk('k'), ' ⊆ ', sc(), ' and follows the demo from there; ',
+    'when none holds, one search runs to some ', lk('k'), ' and the rest of the demo follows. ',
+    'Paper mode joins the first ', lk('k'), ' reached, which may leave a longer merged plan (the paper’s stated drawback); ',
+    'prioritised mode picks the cheapest prefix + demo left. ',
     el('a', { href: 'docs/your-own-domain.md', target: '_blank', rel: 'noopener' }, 'Your own domain'),
     '.',
   );
