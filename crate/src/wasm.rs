@@ -16,6 +16,8 @@ use serde::{Deserialize, Serialize};
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
 
+mod args;
+mod logic_lfd;
 #[cfg(feature = "wasm")]
 pub mod reliability;
 #[cfg(feature = "wasm")]
