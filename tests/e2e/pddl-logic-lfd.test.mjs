@@ -3,10 +3,26 @@
 // and a located error in the demonstration editor. Real mouse and keyboard events only.
 import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
+import { readFile } from 'node:fs/promises';
 import { join } from 'node:path';
 import { openApp, screenshots, useBrowser } from './harness.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
+
+const ipc = (f) => readFile(new URL(`../../../shared/ipc/blocks/${f}`, import.meta.url), 'utf8');
+
+/** IPC blocks with `n` blocks in one tower, goal the reversed tower, and a demonstration that
+ * unstacks everything and builds the goal: planning from scratch with blind BFS cannot finish. */
+function bigBlocks(n) {
+  const b = Array.from({ length: n }, (_, i) => `b${i}`);
+  const init = ['(handempty)', `(ontable ${b[0]})`, `(clear ${b[n - 1]})`, ...b.slice(1).map((x, i) => `(on ${x} ${b[i]})`)];
+  const goal = b.slice(0, -1).map((x, i) => `(on ${x} ${b[i + 1]})`);
+  const problem = `(define (problem big-${n}) (:domain BLOCKS)\n (:objects ${b.join(' ')})\n (:init ${init.join(' ')})\n (:goal (and ${goal.join(' ')})))\n`;
+  const demo = [];
+  for (let i = n - 1; i > 0; i--) demo.push(`(unstack ${b[i]} ${b[i - 1]})`, `(put-down ${b[i]})`);
+  for (let i = n - 2; i >= 0; i--) demo.push(`(pick-up ${b[i]})`, `(stack ${b[i]} ${b[i + 1]})`);
+  return { problem, demo: demo.join('\n') + '\n' };
+}
 
 /** Opens B1's PDDL tab in Logic-LfD mode and waits for the demonstration states. */
 async function openLfd(viewport = undefined) {
@@ -141,6 +157,31 @@ describe('PDDL tab: Logic-LfD', () => {
     // Nothing wider than the screen.
     const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
     assert.ok(overflow <= 0, `the page is ${overflow} px wider than the screen`);
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
+
+  test('Cancel stops a Logic-LfD run at once; the view works again after it', async () => {
+    const { page, errors } = await openLfd();
+    const { problem, demo } = bigBlocks(40);
+    await page.evaluate(([d, p, x]) => window.lfd.setPddl(d, p, x), [await ipc('domain.pddl'), problem, demo]);
+    await page.waitForSelector('#lfd-demo button.lfd-lk[data-k="156"]', { timeout: 30000 });
+    await page.selectOption('#pddl-search', 'bfs');
+    await page.selectOption('#pddl-heuristic', 'blind');
+    // L_0 holds: no multi-goal search, but planning from scratch beside it (blind BFS) runs long.
+    await page.click('#pddl-plan');
+    await page.waitForSelector('#pddl-cancel:not([hidden])');
+    await page.waitForSelector('#lfd-col-paper');
+    await page.click('#pddl-cancel');
+    await page.waitForSelector('#lfd-stopped', { timeout: 2000 });
+    assert.match(await page.textContent('#lfd-stopped'), /cancelled/i);
+    assert.ok(await page.isHidden('#pddl-cancel'));
+    // A fresh worker reads S_C again after an edit (the filter finds the fact among 1600 and more).
+    await page.click('#lfd-filter');
+    await page.keyboard.type('handempty');
+    assert.equal(await page.locator('#lfd-facts li').count(), 1);
+    await factBox(page, '(handempty)').click();
+    await verdictMatches(page, /No demonstration state holds/);
     assert.deepEqual(errors, []);
     await page.close();
   });
