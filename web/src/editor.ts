@@ -246,9 +246,9 @@ export class EditorPanel {
     this.stateView.replaceChildren();
     try {
       const out = await this.opts.plan(this.text('domain'), this.text('problem'), {
-        search: this.search.value,
-        heuristic: this.heuristic.value,
-        time_limit_ms: PLAN_TIME_LIMIT_MS,
+        search: this.search.value as PlanOptions['search'],
+        heuristic: this.heuristic.value as PlanOptions['heuristic'],
+        timeLimitMs: PLAN_TIME_LIMIT_MS,
       });
       if (!out.ok) {
         this.lastPlan = null;
@@ -259,7 +259,7 @@ export class EditorPanel {
       }
       this.showDiagnostics([]);
       this.lastPlan = out;
-      const summary = `${out.plan.length} actions, cost ${out.cost}, ${out.expanded} expanded, ${out.time_ms.toFixed(2)} ms`;
+      const summary = `${out.plan.length} actions, cost ${out.cost}, ${out.expanded} expanded, ${out.timeMs.toFixed(2)} ms`;
       this.output.replaceChildren(
         el('li', { class: 'plan-summary', value: '0' }, el('button', { class: 'step', 'data-index': '0' }, 'initial state'), el('span', { class: 'muted' }, ` — ${summary}`)),
         ...out.plan.map((a, i) => el('li', {}, el('button', { class: 'step', 'data-index': String(i + 1) }, a))),

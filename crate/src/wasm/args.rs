@@ -15,6 +15,15 @@ extern "C" {
     fn new(message: &str) -> JsTypeError;
 }
 
+#[wasm_bindgen]
+extern "C" {
+    /// A parameter declared `string` in TypeScript and checked here: an optional trailing
+    /// `Option<StringArg>` is `name?: string | null` (a `JsValue` with an unchecked type would not
+    /// be optional), and any JS value reaches the check of [`optional_string_arg`].
+    #[wasm_bindgen(typescript_type = "string")]
+    pub type StringArg;
+}
+
 /// A JS `TypeError` with `message`, as the value a binding throws.
 pub(crate) fn type_error(message: &str) -> JsValue {
     JsTypeError::new(message).into()
@@ -59,12 +68,11 @@ pub(crate) fn string_arg(func: &str, param: &str, v: &JsValue) -> Result<String,
 pub(crate) fn optional_string_arg(
     func: &str,
     param: &str,
-    v: &JsValue,
+    v: Option<StringArg>,
 ) -> Result<Option<String>, JsValue> {
-    if v.is_undefined() || v.is_null() {
-        Ok(None)
-    } else {
-        string_arg(func, param, v).map(Some)
+    match v.map(JsValue::from) {
+        Some(v) if !v.is_undefined() && !v.is_null() => string_arg(func, param, &v).map(Some),
+        _ => Ok(None),
     }
 }
 

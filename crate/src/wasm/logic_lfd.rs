@@ -9,13 +9,18 @@ use serde::Serialize;
 use serde_json::{Map, Value};
 use wasm_bindgen::prelude::*;
 
-use super::args::{json_type_name, type_error, type_name};
-use super::{from_js, to_js, PerformanceClock};
-use crate::lfd::{LfdError, LfdPlan, LogicLfd, Mode, PlanSource};
-use crate::pddl::PddlError;
-use crate::plan::{
-    Algorithm, Clock, HeuristicKind, SearchConfig, SearchOutcome, SearchStats, State,
+mod input;
+
+use input::{
+    count_option, files_option, known_keys, object_fields, optional_text, search_options, text,
+    Files, LFD_KEYS,
 };
+
+use super::args::type_error;
+use super::{to_js, PerformanceClock};
+use crate::lfd::{LfdError, LfdPlan, LogicLfd, PlanSource};
+use crate::pddl::PddlError;
+use crate::plan::{Clock, SearchConfig, SearchOutcome, SearchStats, State};
 
 #[wasm_bindgen(typescript_custom_section)]
 const TS_LOGIC_LFD: &'static str = r#"
@@ -212,29 +217,6 @@ struct PerturbResult {
     states: Vec<PerturbedOut>,
 }
 
-/// File names used in diagnostics.
-struct Files {
-    domain: String,
-    problem: String,
-    demo: String,
-    state: String,
-}
-
-impl Files {
-    /// Which input a located error is about, by its file name.
-    fn source_of(&self, file: &str) -> &'static str {
-        if file == self.domain {
-            "domain"
-        } else if file == self.problem {
-            "problem"
-        } else if file == self.demo {
-            "demo"
-        } else {
-            "state"
-        }
-    }
-}
-
 fn options_diag(message: String) -> Diag {
     Diag {
         source: "options",
@@ -263,7 +245,7 @@ fn input_error(e: &LfdError, files: &Files, default_source: &'static str) -> (&'
     let located = |source: &'static str, location: Option<&str>, message: String| {
         let (file, line, col) = location
             .and_then(split_location)
-            .unwrap_or_else(|| (file_of(files, source), 0, 0));
+            .unwrap_or_else(|| (files.of(source), 0, 0));
         Diag {
             source,
             file,
@@ -334,16 +316,6 @@ fn input_error(e: &LfdError, files: &Files, default_source: &'static str) -> (&'
     }
 }
 
-fn file_of(files: &Files, source: &str) -> String {
-    match source {
-        "domain" => files.domain.clone(),
-        "problem" => files.problem.clone(),
-        "demo" => files.demo.clone(),
-        "state" => files.state.clone(),
-        _ => String::new(),
-    }
-}
-
 fn false_precondition(literals: &[String]) -> String {
     if literals.is_empty() {
         "a precondition is false".into()
@@ -351,195 +323,6 @@ fn false_precondition(literals: &[String]) -> String {
         format!("false precondition {}", literals.join(" "))
     }
 }
-
-/// The input object's fields, or the `TypeError` for a non-object.
-fn object_fields(func: &str, input: &JsValue) -> Result<Map<String, Value>, JsValue> {
-    let not_object = || {
-        type_error(&format!(
-            "{func}: input must be an object, got {}",
-            type_name(input)
-        ))
-    };
-    if !input.is_object() || input.is_null() || input.is_array() {
-        return Err(not_object());
-    }
-    match from_js::<Value>(input) {
-        Ok(Value::Object(m)) => Ok(m),
-        Ok(_) => Err(not_object()),
-        Err(e) => Err(type_error(&format!("{func}: input: {e}"))),
-    }
-}
-
-/// A required text field: a string, or a `TypeError` naming it.
-fn text(func: &str, m: &Map<String, Value>, key: &str) -> Result<String, JsValue> {
-    match m.get(key) {
-        Some(Value::String(s)) => Ok(s.clone()),
-        other => Err(type_error(&format!(
-            "{func}: input.{key} must be a string, got {}",
-            other.map_or("undefined", json_type_name)
-        ))),
-    }
-}
-
-/// An optional text field (`null` reads as absent): a string, or a `TypeError` naming it.
-fn optional_text(func: &str, m: &Map<String, Value>, key: &str) -> Result<Option<String>, JsValue> {
-    match m.get(key) {
-        None | Some(Value::Null) => Ok(None),
-        _ => text(func, m, key).map(Some),
-    }
-}
-
-/// Refuses keys outside `allowed` (the message names the first).
-fn known_keys(m: &Map<String, Value>, allowed: &[&str], what: &str) -> Result<(), String> {
-    match m.keys().find(|k| !allowed.contains(&k.as_str())) {
-        Some(k) => Err(format!(
-            "unknown {what} key `{k}` (expected one of {})",
-            allowed.join(", ")
-        )),
-        None => Ok(()),
-    }
-}
-
-/// A non-negative integer option (absent or `null`: `None`).
-fn count_option(m: &Map<String, Value>, key: &str) -> Result<Option<u64>, String> {
-    match m.get(key) {
-        None | Some(Value::Null) => Ok(None),
-        Some(Value::Number(n)) => match n.as_f64() {
-            Some(x) if x >= 0.0 && x.fract() == 0.0 && x <= 9_007_199_254_740_991.0 => {
-                Ok(Some(x as u64))
-            }
-            _ => Err(format!("`{key}` must be a non-negative integer, got {n}")),
-        },
-        Some(v) => Err(format!(
-            "`{key}` must be a non-negative integer, got {}",
-            json_type_name(v)
-        )),
-    }
-}
-
-fn string_option<'m>(m: &'m Map<String, Value>, key: &str) -> Result<Option<&'m str>, String> {
-    match m.get(key) {
-        None | Some(Value::Null) => Ok(None),
-        Some(Value::String(s)) => Ok(Some(s)),
-        Some(v) => Err(format!(
-            "`{key}` must be a string, got {}",
-            json_type_name(v)
-        )),
-    }
-}
-
-/// The `files` option: names for diagnostics.
-fn files_option(m: &Map<String, Value>, keys: &[&str]) -> Result<Files, String> {
-    let mut files = Files {
-        domain: "domain.pddl".into(),
-        problem: "problem.pddl".into(),
-        demo: "demo.plan".into(),
-        state: "state".into(),
-    };
-    let f = match m.get("files") {
-        None | Some(Value::Null) => return Ok(files),
-        Some(Value::Object(f)) => f,
-        Some(v) => {
-            return Err(format!(
-                "`files` must be an object, got {}",
-                json_type_name(v)
-            ))
-        }
-    };
-    known_keys(f, keys, "files")?;
-    for (key, slot) in [
-        ("domain", &mut files.domain),
-        ("problem", &mut files.problem),
-        ("demo", &mut files.demo),
-        ("state", &mut files.state),
-    ] {
-        if let Some(name) = string_option(f, key).map_err(|e| format!("files: {e}"))? {
-            *slot = name.to_string();
-        }
-    }
-    Ok(files)
-}
-
-/// The search options of `logicLfd`.
-struct Options {
-    mode: Mode,
-    config: SearchConfig,
-    compare: bool,
-}
-
-fn search_options(m: &Map<String, Value>) -> Result<Options, String> {
-    let mode = match string_option(m, "mode")? {
-        None => Mode::Paper,
-        Some(s) => Mode::parse(s)
-            .ok_or_else(|| format!("unknown mode `{s}` (expected paper|prioritised)"))?,
-    };
-    let algorithm = string_option(m, "search")?
-        .unwrap_or("astar")
-        .parse::<Algorithm>()
-        .map_err(|e| e.to_string())?;
-    let default_h = if algorithm == Algorithm::Astar {
-        "lmcut"
-    } else {
-        "hff"
-    };
-    let heuristic = string_option(m, "heuristic")?
-        .unwrap_or(default_h)
-        .parse::<HeuristicKind>()
-        .map_err(|e| e.to_string())?;
-    let max_nodes = count_option(m, "maxExpanded")?;
-    let time_ms = match m.get("timeLimitMs") {
-        None | Some(Value::Null) => 30_000.0,
-        Some(Value::Number(n)) => match n.as_f64() {
-            Some(x) if x >= 0.0 => x,
-            _ => {
-                return Err(format!(
-                    "`timeLimitMs` must be a non-negative number, got {n}"
-                ))
-            }
-        },
-        Some(v) => {
-            return Err(format!(
-                "`timeLimitMs` must be a non-negative number, got {}",
-                json_type_name(v)
-            ))
-        }
-    };
-    let compare = match m.get("compare") {
-        None | Some(Value::Null) => false,
-        Some(Value::Bool(b)) => *b,
-        Some(v) => {
-            return Err(format!(
-                "`compare` must be a boolean, got {}",
-                json_type_name(v)
-            ))
-        }
-    };
-    Ok(Options {
-        mode,
-        config: SearchConfig {
-            algorithm,
-            heuristic,
-            max_nodes,
-            time_limit_secs: Some(time_ms / 1e3),
-        },
-        compare,
-    })
-}
-
-const LFD_KEYS: [&str; 12] = [
-    "domain",
-    "problem",
-    "demo",
-    "state",
-    "after",
-    "mode",
-    "search",
-    "heuristic",
-    "maxExpanded",
-    "timeLimitMs",
-    "files",
-    "compare",
-];
 
 /// Logic-LfD on any PDDL domain: reads the domain, the problem, one demonstration and the
 /// current state S_C (atoms, a plan prefix, or the problem's initial state), then LogicIn or one
@@ -564,7 +347,7 @@ pub fn logic_lfd(
         )));
     }
     let out = lfd_impl(&m, &domain, &problem, &demo, state, after);
-    Ok(to_js(&out)?)
+    to_js(&out)
 }
 
 fn options_failure(message: String) -> LfdResult {
@@ -739,7 +522,7 @@ pub fn logic_lfd_perturb(
     let domain = text(F, &m, "domain")?;
     let problem = text(F, &m, "problem")?;
     let demo = text(F, &m, "demo")?;
-    Ok(to_js(&perturb_impl(&m, &domain, &problem, &demo))?)
+    to_js(&perturb_impl(&m, &domain, &problem, &demo))
 }
 
 fn perturb_impl(m: &Map<String, Value>, domain: &str, problem: &str, demo: &str) -> PerturbResult {
