@@ -205,95 +205,48 @@ pub fn plan_logic_lfd_avoiding(
         Mode::Prioritised => MultiGoalMode::Prioritised,
     };
     let search_task = banned.map_or(task, |b| &b.task);
+    let goals: std::borrow::Cow<[plan::Goal]> = if first_k == 0 {
+        std::borrow::Cow::Borrowed(&spec.goals)
+    } else {
+        // L_0..L_{first_k − 1} are no goals (no alternatives: never reached); G stays one.
+        let mut g = spec.goals.clone();
+        for goal in g.iter_mut().take(first_k.min(spec.len() + 1)) {
+            goal.alternatives.clear();
+        }
+        std::borrow::Cow::Owned(g)
+    };
     let lifted = banned.map(|b| b.lift(s));
-    let search = |goals: &[plan::Goal]| {
-        let found = plan::search_multi_goal(
-            search_task,
-            lifted.as_ref().unwrap_or(s),
-            goals,
-            search_mode,
-            config,
-            clock,
-        );
-        match (&found.outcome, found.goal_index) {
-            (SearchOutcome::Plan(p), Some(k)) => Ok((
-                banned.map_or_else(|| p.operators.clone(), |b| b.original(&p.operators)),
-                k,
-                found.stats,
-            )),
-            (SearchOutcome::BudgetExhausted { which }, _) => {
-                Err(LfdError::Budget(which.to_string()))
-            }
-            _ => Err(LfdError::NoPlan(
+    let found = plan::search_multi_goal(
+        search_task,
+        lifted.as_ref().unwrap_or(s),
+        &goals,
+        search_mode,
+        config,
+        clock,
+    );
+    let (prefix, k) = match (&found.outcome, found.goal_index) {
+        (SearchOutcome::Plan(p), Some(k)) => (
+            banned.map_or_else(|| p.operators.clone(), |b| b.original(&p.operators)),
+            k,
+        ),
+        (SearchOutcome::BudgetExhausted { which }, _) => {
+            return Err(LfdError::Budget(which.to_string()))
+        }
+        _ => {
+            return Err(LfdError::NoPlan(
                 "no demonstration state is reachable".into(),
-            )),
+            ))
         }
     };
-    let mut goals = spec.goals.clone();
-    // L_0..L_{first_k − 1} are no goals (no alternatives: never reached); G stays one.
-    for goal in goals.iter_mut().take(first_k.min(spec.len() + 1)) {
-        goal.alternatives.clear();
-    }
-    let (prefix, k, stats) = search(&goals)?;
-    if let Some(ops) = merge_suffix(task, spec, s, &prefix, k) {
-        return Ok(LfdPlan::new(
-            task,
-            ops,
-            (k <= spec.len()).then_some(k),
-            prefix.len(),
-            PlanSource::MultiGoal,
-            stats,
-        ));
-    }
-    // With negative preconditions a state ⊇ L_k may hold a fact the suffix needs false. Search
-    // again with each L_k also requiring those facts false where L_k has them false: then the
-    // suffix applies from the state reached (the facts stay in step with L_j along it).
-    let watched = negated_facts(task, spec);
-    for goal in goals.iter_mut().take(spec.len() + 1) {
-        for c in &mut goal.alternatives {
-            c.neg = watched
-                .iter()
-                .copied()
-                .filter(|f| c.pos.binary_search(f).is_err())
-                .collect();
-        }
-    }
-    let (prefix, k, more) = search(&goals)?;
     let ops = merge_suffix(task, spec, s, &prefix, k).ok_or(LfdError::MergeFailed { k })?;
-    let stats = SearchStats {
-        expanded: stats.expanded + more.expanded,
-        generated: stats.generated + more.generated,
-        evaluated: stats.evaluated + more.evaluated,
-        time_secs: stats.time_secs + more.time_secs,
-        ..more
-    };
     Ok(LfdPlan::new(
         task,
         ops,
         (k <= spec.len()).then_some(k),
         prefix.len(),
         PlanSource::MultiGoal,
-        stats,
+        found.stats,
     ))
-}
-
-/// The facts the demonstration's actions require false, and the goal's negated facts, sorted.
-fn negated_facts(task: &Task, spec: &MultiGoalSpec) -> Vec<plan::FactId> {
-    let mut facts: Vec<plan::FactId> = spec
-        .actions
-        .iter()
-        .flatten()
-        .flat_map(|&o| task.operators[o].pre_neg.iter().copied())
-        .chain(
-            task.goal
-                .alternatives
-                .iter()
-                .flat_map(|c| c.neg.iter().copied()),
-        )
-        .collect();
-    facts.sort_unstable();
-    facts.dedup();
-    facts
 }
 
 #[cfg(test)]
@@ -534,26 +487,6 @@ mod tests {
                     .unwrap();
             assert_eq!(q.source, PlanSource::LogicIn);
             assert_eq!(q.k, Some(0));
-        }
-    }
-
-    #[test]
-    fn with_negative_preconditions_a_suffix_that_does_not_apply_is_searched_around() {
-        use crate::lfd::LogicLfd;
-        // L_1 = {} ⊆ L_0 = {(closed)}, so LogicIn(L_0) = 1, but a_2 needs the door open: the
-        // suffix from L_0 does not apply and the search must open the door first.
-        let domain = "(define (domain door) (:requirements :strips :negative-preconditions)
-          (:predicates (closed) (inside))
-          (:action open :parameters () :precondition (closed) :effect (not (closed)))
-          (:action enter :parameters () :precondition (not (closed)) :effect (inside)))";
-        let problem = "(define (problem p) (:domain door) (:init (closed)) (:goal (inside)))";
-        let lfd = LogicLfd::new(domain, problem, "(open)\n(enter)\n").unwrap();
-        let s = lfd.task().init.clone();
-        assert_eq!(lfd.logic_in(&s), Some(1));
-        for mode in [Mode::Paper, Mode::Prioritised] {
-            let p = lfd.replan(&s, mode, &cfg(), &plan::NoClock).unwrap();
-            assert_eq!(p.names, ["(open)", "(enter)"], "{mode:?}");
-            assert!(lfd.validate(&s, &p.names).unwrap().is_valid());
         }
     }
 }

@@ -12,8 +12,8 @@ use rand_pcg::Pcg64Mcg;
 
 use crate::pddl::{self, Domain, PddlError, Problem};
 use crate::plan::{
-    self, parse_plan, replay, validate, validate_names, BannedTask, Clock, Goal, MultiGoalMode,
-    Outcome, SearchConfig, SearchResult, State, Task, ValidationReport,
+    self, parse_plan, replay, validate, validate_names, BannedTask, Clock, FactId, Goal,
+    MultiGoalMode, Outcome, SearchConfig, SearchResult, State, Task, ValidationReport,
 };
 
 use super::demo::{DemoTrace, MultiGoalSpec};
@@ -131,11 +131,13 @@ impl LogicLfd {
         let trace = DemoTrace::derive(&task, &actions)?;
         let mut lfd = Self::from_task(task, trace);
         lfd.source = Some(Box::new((d, p)));
+        lfd.guard_suffixes();
         Ok(lfd)
     }
 
     /// Logic-LfD on an already grounded task with a demonstration derived on it (or on another
-    /// grounding of the same domain: the trace is matched by fact and action names).
+    /// grounding of the same domain: the trace is matched by fact and action names). The search
+    /// goals are the paper's L_k ⊆ S; [`LogicLfd::guard_suffixes`] makes them safe to join.
     pub fn from_task(task: Task, trace: DemoTrace) -> Self {
         let spec = MultiGoalSpec::new(&task, &trace);
         let demo_states = trace
@@ -155,6 +157,41 @@ impl LogicLfd {
             spec,
             demo_states,
             source: None,
+        }
+    }
+
+    /// Makes each demonstration goal of the multi-goal search one from which the rest of the
+    /// demonstration is sure to work ([`LogicLfd::named`] does this; the paper's goals are
+    /// L_k ⊆ S). With `:negative-preconditions`, a state holding L_k and more can block the
+    /// suffix: a vegetable chopped already cannot be chopped again. The goal for L_k therefore
+    /// also asks false every fact outside L_k that a_{k+1} … a_N need false, or that the goal
+    /// alternative the demonstration reaches needs false. That suffices: along the suffix, the
+    /// facts a state holds beyond L_j are only ever deleted, and none of them is such a fact.
+    /// Domains without negative literals keep their goals; LogicIn keeps the subset test, and
+    /// [`LogicLfd::replan`] replays a LogicIn suffix before it uses it.
+    pub fn guard_suffixes(&mut self) {
+        let n = self.spec.len();
+        let end = self.demo_state(n);
+        let goal_neg = self
+            .task
+            .goal
+            .alternatives
+            .iter()
+            .find(|c| end.is_some_and(|s| c.holds(s)))
+            .map(|c| c.neg.clone())
+            .unwrap_or_default();
+        let mut needed_false: BTreeSet<FactId> = goal_neg.into_iter().collect();
+        for k in (0..=n).rev() {
+            if let Some(op) = self.spec.actions.get(k).copied().flatten() {
+                needed_false.extend(&self.task.operators[op].pre_neg);
+            }
+            for c in &mut self.spec.goals[k].alternatives {
+                c.neg = needed_false
+                    .iter()
+                    .copied()
+                    .filter(|f| c.pos.binary_search(f).is_err())
+                    .collect();
+            }
         }
     }
 
@@ -443,4 +480,39 @@ fn unlocated_facts(text: &str, file: &str) -> Result<Vec<pddl::LocatedFact>, Lfd
             col: s.col,
         })
         .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::{Algorithm, HeuristicKind, NoClock};
+
+    const DOMAIN: &str = "(define (domain prep) (:requirements :strips :negative-preconditions)
+      (:predicates (chopped ?v) (served ?v))
+      (:action chop :parameters (?v) :precondition (not (chopped ?v)) :effect (chopped ?v))
+      (:action serve :parameters (?v) :precondition (chopped ?v) :effect (served ?v)))";
+    const PROBLEM: &str = "(define (problem p) (:domain prep) (:objects a b) (:init)
+      (:goal (and (served a) (served b))))";
+    const DEMO: &str = "(chop a)\n(serve a)\n(chop b)\n(serve b)\n";
+
+    #[test]
+    fn a_state_holding_more_than_l_k_joins_where_the_suffix_still_applies() {
+        let lfd = LogicLfd::new(DOMAIN, PROBLEM, DEMO).unwrap();
+        // b was chopped early: L_0 ⊆ S_C, but a_3 (chop b) cannot apply any more.
+        let s = lfd.state("(chopped b)").unwrap();
+        assert_eq!(lfd.logic_in(&s), Some(0));
+        let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::LmCut);
+        for mode in [Mode::Paper, Mode::Prioritised] {
+            let r = lfd.replan(&s, mode, &cfg, &NoClock).unwrap();
+            assert_eq!(r.k, Some(3), "{mode:?}");
+            assert_eq!(r.names, ["(chop a)", "(serve a)", "(serve b)"]);
+            assert!(lfd.validate(&s, &r.names).unwrap().is_valid());
+        }
+        // The paper's goals stop at L_0, whose suffix does not merge.
+        let plain = LogicLfd::from_task(lfd.task().clone(), lfd.trace().clone());
+        assert!(matches!(
+            plain.replan(&s, Mode::Paper, &cfg, &NoClock),
+            Err(LfdError::MergeFailed { k: 0 })
+        ));
+    }
 }
