@@ -2,7 +2,7 @@
 //   * the whole page's size gzipped (wasm + JS + CSS + HTML of web/dist);
 //   * time from navigation to interactive (the wasm loaded in the worker and the first frame drawn);
 //   * the worker's closed-loop tick (Session::step, replans included) over a B1 run with drags;
-//   * Logic-LfD replanning time in wasm on B1 (from the frames' last_replan.time_ms).
+//   * Logic-LfD replanning time in wasm on B1 (from the frames' lastReplan.timeMs).
 // Usage: node tests/e2e/bench.mjs [--benchmark b1] [--runs 3]
 import { readdir, readFile } from 'node:fs/promises';
 import { gzipSync } from 'node:zlib';

@@ -47,7 +47,7 @@ describe('cancel', () => {
       // The worker dropped the plan; the loop then replans "because no plan (cancelled)".
       await page.waitForFunction((n) => window.lfd.frame().replans > n, before.replans, { timeout: 10000, polling: 10 });
       const f = await currentFrame(page);
-      assert.match(f.last_replan.reason, /cancel/, JSON.stringify(f.last_replan));
+      assert.match(f.lastReplan.reason, /cancel/, JSON.stringify(f.lastReplan));
       applied.push(c.appliedAt - c.clickedAt);
       replied.push(c.repliedAt - c.clickedAt);
       assert.ok(c.appliedAt - c.clickedAt < BOUND_MS, `the worker dropped the plan ${c.appliedAt - c.clickedAt} ms after the click`);

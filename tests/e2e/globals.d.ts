@@ -9,7 +9,7 @@ declare global {
       project: (p: [number, number, number]) => { x: number; y: number };
       stepTimes: () => number[];
       replans: () => [number, number][];
-      setPddl: (domain: string, problem: string) => Promise<void>;
+      setPddl: (domain: string, problem: string, demo?: string) => Promise<void>;
       renderMs: () => number;
       lastCancel: () => { clickedAt: number; appliedAt: number; repliedAt: number } | null;
       memory: () => Promise<{ wasmBytes: number; geometries: number; textures: number }>;

@@ -95,7 +95,7 @@ describe('closed-loop session in the page', () => {
     await page.click('#play');
     await page.waitForFunction((n) => (window.lfd.frame()?.replans ?? 0) > n, drag.replans, { timeout: 20000, polling: 20 });
     const seen = await page.evaluate(() => ({ status: document.querySelector('#status-text').textContent, f: window.lfd.frame() }));
-    assert.match(seen.f.last_replan.reason, new RegExp(drag.name));
+    assert.match(seen.f.lastReplan.reason, new RegExp(drag.name));
     const f = await finish(page);
     assert.equal(f.status.kind, 'done', f.status.message);
     assert.ok(f.facts.includes('(on a b)') && f.facts.includes('(on b c)') && f.facts.includes('(on c d)'));

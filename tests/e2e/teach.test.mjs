@@ -122,7 +122,7 @@ describe('teach', () => {
     await page.waitForSelector('#notice:not([hidden])');
     assert.match(await page.textContent('#notice'), /^L3/);
     const f = await finish(page, 60000);
-    const info = JSON.stringify({ facts: f.facts, status: f.status, plan: f.plan, last: f.last_replan, replans: f.replans });
+    const info = JSON.stringify({ facts: f.facts, status: f.status, plan: f.plan, last: f.lastReplan, replans: f.replans });
     assert.equal(f.status.kind, 'done', info);
     assert.ok(f.facts.includes('(on a c)') && f.facts.includes('(on c b)'), info);
     // Logic-LfD replanned after the L3 change (not a lucky finish before it).

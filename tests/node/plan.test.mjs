@@ -84,7 +84,7 @@ test('bad PDDL gives file:line:col diagnostics', () => {
   assert.match(out.message, /^domain\.pddl:7:4: .*bogus/);
   // An undeclared object in the problem points into the problem text.
   const bad = lfd.plan(domain, '(define (problem p) (:domain blocks)\n (:objects a)\n (:init (clear zz))\n (:goal (clear a)))', {
-    problem_file: 'p.pddl',
+    problemFile: 'p.pddl',
   });
   assert.equal(bad.ok, false);
   assert.equal(bad.diagnostics[0].source, 'problem');
@@ -102,7 +102,7 @@ test('unsolvable, budget and option errors are values, not exceptions', () => {
   const u = lfd.plan(domain, impossible, { search: 'bfs' });
   assert.equal(u.ok, false);
   assert.equal(u.kind, 'unsolvable');
-  const b = lfd.plan(domain, ipc('blocks/probBLOCKS-9-0.pddl'), { search: 'bfs', max_expanded: 10 });
+  const b = lfd.plan(domain, ipc('blocks/probBLOCKS-9-0.pddl'), { search: 'bfs', maxExpanded: 10 });
   assert.equal(b.ok, false);
   assert.equal(b.kind, 'budget');
   const o = lfd.plan(domain, impossible, { search: 'dijkstra' });
@@ -110,4 +110,65 @@ test('unsolvable, budget and option errors are values, not exceptions', () => {
   assert.equal(o.kind, 'options');
   assert.match(o.message, /dijkstra/);
   assert.throws(() => lfd.plan(domain, impossible, { serch: 'bfs' }), /serch/);
+});
+
+test('the snake_case option names of 0.1 still work (deprecated)', () => {
+  const domain = ipc('blocks/domain.pddl');
+  const problem = ipc('blocks/probBLOCKS-9-0.pddl');
+  const b = lfd.plan(domain, problem, { search: 'bfs', max_expanded: 10, time_limit_ms: 5000 });
+  assert.equal(b.kind, 'budget');
+  assert.match(b.message, /node budget/);
+  const bad = lfd.plan(domain, '(define (problem p) (:domain blocks)\n (:objects a)\n (:init (clear zz))\n (:goal (clear a)))', {
+    domain_file: 'd.pddl',
+    problem_file: 'p.pddl',
+  });
+  assert.equal(bad.diagnostics[0].file, 'p.pddl');
+  // One option under both names is refused, as any repeated key.
+  assert.throws(() => lfd.plan(domain, problem, { maxExpanded: 1, max_expanded: 2 }), /duplicate field/);
+});
+
+test('outputs are camelCase: plan, validate', () => {
+  const domain = ipc('blocks/domain.pddl');
+  const problem = ipc('blocks/probBLOCKS-4-0.pddl');
+  const out = lfd.plan(domain, problem, {});
+  assert.equal(out.ok, true);
+  assert.equal(typeof out.timeMs, 'number');
+  assert.equal(typeof out.groundMs, 'number');
+  assert.equal(out.time_ms, undefined);
+  const v = lfd.validate(domain, problem, out.plan.join('\n'));
+  assert.equal(v.valid, true);
+  assert.equal(v.stepsApplied, out.plan.length);
+  assert.deepEqual(v.falseLiterals, []);
+  const w = lfd.validate(domain, problem, out.plan.slice(1).join('\n'));
+  assert.equal(w.valid, false);
+  assert.equal(w.failedStep, 1);
+  assert.ok(w.falseLiterals.length > 0);
+});
+
+test('a wrong-typed argument throws a TypeError naming the parameter', () => {
+  const domain = ipc('blocks/domain.pddl');
+  const problem = ipc('blocks/probBLOCKS-4-0.pddl');
+  const typeError = (fn, re) => assert.throws(fn, (e) => e instanceof TypeError && re.test(e.message), re.source);
+  typeError(() => lfd.plan(42, null, {}), /^plan: domain must be a string, got number$/);
+  typeError(() => lfd.plan(domain, null, {}), /^plan: problem must be a string, got null$/);
+  typeError(() => lfd.plan(domain, problem, 5), /^plan: options must be an object, got number$/);
+  typeError(() => lfd.plan(domain, problem, [1]), /^plan: options must be an object, got array$/);
+  typeError(() => lfd.validate(domain, problem, 5), /^validate: plan must be a string, got number$/);
+  typeError(() => lfd.validate({}, problem, ''), /^validate: domain must be a string, got object$/);
+  typeError(() => lfd.check(domain, 7), /^check: problem must be a string, got number$/);
+  typeError(() => lfd.check(domain, problem, 1), /^check: domainFile must be a string, got number$/);
+  typeError(() => lfd.benchmark(1), /^benchmark: id must be a string, got number$/);
+  typeError(() => lfd.lqt(3), /^lqt: case must be an object or a JSON string, got number$/);
+  typeError(() => lfd.runEpisode({}), /^runEpisode: optionsJson must be a string, got object$/);
+  typeError(() => lfd.taughtInfo(undefined), /^taughtInfo: demoJson must be a string, got undefined$/);
+  typeError(() => lfd.taughtRandomScene(1, 2), /^taughtRandomScene: demoJson must be a string, got number$/);
+  typeError(() => lfd.taughtRandomScene('{}', 'x'), /^taughtRandomScene: seed must be a number, got string$/);
+  typeError(() => new lfd.Teacher(2), /^new Teacher: benchmark must be a string, got number$/);
+  typeError(() => new lfd.Teacher('b1', 3), /^new Teacher: scene must be a string, got number$/);
+  // The module is still alive and answers normally after all of these.
+  assert.deepEqual(lfd.check(domain, problem), []);
+  // Undefined optional arguments are fine.
+  assert.deepEqual(lfd.check(domain, problem, undefined, undefined), []);
+  assert.equal(lfd.plan(domain, problem).ok, true);
+  assert.equal(lfd.plan(domain, problem, null).ok, true);
 });

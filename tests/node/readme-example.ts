@@ -21,5 +21,5 @@ for (let i = 0; i < 3000 && frame.status.kind !== 'done' && frame.status.kind !=
   frame = session.step(0.1); // 0.1 s of simulated time; replans happen inside
   if (i === 30) console.log(session.inject('l3').description); // facts change to an unseen state
 }
-console.log(frame.status.message, `(${frame.replans} replans, last ${frame.last_replan?.time_ms.toFixed(2)} ms)`);
+console.log(frame.status.message, `(${frame.replans} replans, last ${frame.lastReplan?.timeMs.toFixed(2)} ms)`);
 session.free();

@@ -25,7 +25,7 @@ describe('Session', () => {
     const s = new lfd.Session({ benchmark: 'b1', method: 'logic-lfd', mode: 'paper', seed: 1 });
     const first = s.frame();
     assert.equal(first.world.bodies.filter((b) => b.kind === 'block').length, 4);
-    assert.ok(first.demo.length > 0 && first.demo_states.length === first.demo.length + 1);
+    assert.ok(first.demo.length > 0 && first.demoStates.length === first.demo.length + 1);
     const f = run(s);
     assert.equal(f.status.kind, 'done', f.status.message);
     for (const g of TOWER) assert.ok(f.facts.includes(g), `${g} missing from ${f.facts.join(' ')}`);
@@ -45,7 +45,7 @@ describe('Session', () => {
     assert.equal(injected.inj.level, 'l3');
     assert.ok(injected.inj.description.length > 0);
     assert.ok(f.replans > injected.replans, 'no replan after L3');
-    assert.ok(f.last_replan.time_ms >= 0);
+    assert.ok(f.lastReplan.timeMs >= 0);
     assert.equal(f.status.kind, 'done', f.status.message);
     s.free();
   });
@@ -67,6 +67,43 @@ describe('Session', () => {
     assert.throws(() => s.inject('l9'), /l9/);
     assert.throws(() => s.step(-1), /dt/);
     assert.throws(() => s.reset(-3), /seed/);
+    s.free();
+  });
+
+  test('a wrong-typed argument throws a TypeError naming the parameter', () => {
+    const typeError = (fn, re) => assert.throws(fn, (e) => e instanceof TypeError && re.test(e.message), re.source);
+    typeError(() => lfd.Session.fromScene('{}', {}), /^Session\.fromScene: options must be an object, got string$/);
+    const o = { benchmark: 'b1', method: 'logic-lfd', mode: 'paper', seed: 1 };
+    typeError(() => lfd.Session.fromScene(o, {}), /^Session\.fromScene: scene must be a string, got object$/);
+    typeError(() => lfd.Session.fromScene(o, '{}', 4), /^Session\.fromScene: demo must be a string, got number$/);
+    typeError(() => new lfd.Session('b1'), /^new Session: options must be an object, got string$/);
+    typeError(() => new lfd.Session(), /^new Session: options must be an object, got undefined$/);
+    typeError(() => lfd.Session.replay(1), /^Session\.replay: episode must be a string, got number$/);
+    typeError(() => lfd.Session.fromTaught(null), /^Session\.fromTaught: demoJson must be a string, got null$/);
+    typeError(() => lfd.Session.replayTaught([]), /^Session\.replayTaught: episode must be a string, got array$/);
+    const s = new lfd.Session(o);
+    typeError(() => s.perturb(1, [0.5, 0, 0.03]), /^Session\.perturb: body must be a string, got number$/);
+    typeError(() => s.perturb('a', 'up'), /^Session\.perturb: position must be \[x, y, z\]/);
+    typeError(() => s.perturb('a', [1, 2]), /^Session\.perturb: position must be \[x, y, z\]/);
+    typeError(() => s.inject(3), /^Session\.inject: level must be a string, got number$/);
+    typeError(() => s.step('0.1'), /^Session\.step: dt must be a number, got string$/);
+    typeError(() => s.reset(null), /^Session\.reset: seed must be a number, got null$/);
+    // The session still works.
+    assert.equal(s.step(0.1).tick, 10);
+    s.free();
+  });
+
+  test('frames are camelCase; the episode log keeps the CLI names', () => {
+    const s = new lfd.Session({ benchmark: 'b1', method: 'logic-lfd', mode: 'paper', seed: 1 });
+    let f = s.frame();
+    for (let i = 0; i < 20 && !f.lastReplan; i++) f = s.step(0.1);
+    for (const k of ['demoStates', 'factsAdded', 'factsRemoved', 'lastReplan', 'matchedK']) assert.ok(k in f, k);
+    for (const k of ['demo_states', 'facts_added', 'facts_removed', 'last_replan', 'matched_k']) assert.ok(!(k in f), k);
+    assert.equal(typeof f.lastReplan.timeMs, 'number');
+    assert.equal(typeof f.lastReplan.newActions, 'number');
+    const log = JSON.parse(s.episodeJson());
+    assert.equal(typeof log.replans[0].time_ms, 'number');
+    assert.equal(typeof log.replans[0].new_actions, 'number');
     s.free();
   });
 

@@ -18,7 +18,7 @@ describe('Teacher', () => {
     const r1 = t.push({ edit: 'drag', body: 'c', onto: 'b' });
     assert.ok(r1.ok);
     assert.deepEqual(
-      r1.new_segments.map((s) => s.action),
+      r1.newSegments.map((s) => s.action),
       ['(pick panda c)', '(stack panda c b)'],
     );
     assert.equal(r1.state.states.length, 3);
@@ -38,6 +38,12 @@ describe('Teacher', () => {
     assert.equal(malformed.ok, false);
     assert.equal(malformed.error.kind, 'input');
     assert.match(t.push({ edit: 'drag', body: 'zz', onto: 'b' }).error.message, /zz/);
+    // A non-object edit or a non-array goal is a TypeError (nothing recorded); the names are camelCase.
+    assert.throws(() => t.push('drag'), (e) => e instanceof TypeError && /^Teacher\.push: edit must be an object, got string$/.test(e.message));
+    assert.throws(() => t.setGoal('(on a c)'), (e) => e instanceof TypeError && /^Teacher\.setGoal: goal must be an array of strings, got string$/.test(e.message));
+    assert.throws(() => t.setGoal([1]), TypeError);
+    const seg = t.current().segments[0];
+    assert.ok(seg.tStart <= seg.tEvent && seg.tEvent <= seg.tEnd, JSON.stringify(seg));
 
     assert.ok(t.push({ edit: 'drag', body: 'a', onto: 'c' }).ok);
     assert.ok(t.setGoal(['(on a c)', '(on c b)']).ok);
@@ -46,13 +52,13 @@ describe('Teacher', () => {
     assert.ok(fin.ok, JSON.stringify(fin));
     assert.deepEqual(fin.info.goal, ['(on a c)', '(on c b)']);
     assert.equal(fin.skills.length, 8);
-    for (const f of fin.skills) assert.ok(f.rms_error < 0.003, JSON.stringify(f));
-    const demo = JSON.parse(fin.demo_json);
+    for (const f of fin.skills) assert.ok(f.rmsError < 0.003, JSON.stringify(f));
+    const demo = JSON.parse(fin.demoJson);
     assert.deepEqual(
       demo.actions.map((a) => a.action),
       ['(pick panda c)', '(stack panda c b)', '(pick panda a)', '(stack panda a c)'],
     );
-    assert.deepEqual(lfd.taughtInfo(fin.demo_json).actions, fin.info.actions);
+    assert.deepEqual(lfd.taughtInfo(fin.demoJson).actions, fin.info.actions);
     assert.throws(() => lfd.taughtInfo('{"actions": []}'), /not a taught demonstration/);
     // The raw recording is what `logic-lfd demo segment` reads.
     assert.equal(JSON.parse(t.recordingJson()).benchmark, 'b1');
@@ -65,14 +71,14 @@ describe('Teacher', () => {
     t.free();
 
     // Run the taught task from a random world; its log replays exactly.
-    const s = lfd.Session.fromTaught(fin.demo_json, { seed: 3, random: true });
+    const s = lfd.Session.fromTaught(fin.demoJson, { seed: 3, random: true });
     const f = run(s);
     assert.equal(f.status.kind, 'done', f.status.message);
     assert.ok(f.facts.includes('(on a c)') && f.facts.includes('(on c b)'));
     const again = lfd.Session.replayTaught(s.episodeJson());
     assert.deepEqual(again.frame().facts, f.facts);
     assert.equal(again.frame().tick, f.tick);
-    assert.throws(() => lfd.Session.fromTaught(fin.demo_json, { sed: 3 }), /options: unknown field `sed`/);
+    assert.throws(() => lfd.Session.fromTaught(fin.demoJson, { sed: 3 }), /options: unknown field `sed`/);
     s.free();
     again.free();
   });

@@ -110,13 +110,13 @@ export class Charts {
 
   push(f: Frame): void {
     if (f.t < this.lastT) this.reset();
-    const r = f.last_replan;
+    const r = f.lastReplan;
     if (r) {
       const key = `${r.tick}:${r.reason}`;
       if (key !== this.lastReplanKey) {
         this.lastReplanKey = key;
         this.replanX.push(r.tick * (f.world.dt || 0.01));
-        this.replanY.push(r.time_ms);
+        this.replanY.push(r.timeMs);
         if (this.replanX.length > MAX_REPLANS) {
           this.replanX.shift();
           this.replanY.shift();

@@ -1,98 +1,61 @@
 /**
- * The PDDL editor panel: two CodeMirror 6 editors (domain, problem) with PDDL highlighting, inline
- * diagnostics at line:col from the wasm parser, a Plan button that lists the plan, and a state
- * stepper that shows the facts after each action.
+ * The PDDL editor panel: three CodeMirror 6 editors (domain, problem, demonstration) with PDDL
+ * highlighting and inline diagnostics at line:col from the wasm parser, and two modes: classical
+ * planning (a Plan button that lists the plan and a state stepper that shows the facts after each
+ * action) and Logic-LfD (lfd-view.ts: the demonstration reused from a current state).
  */
-import { EditorState, type Extension } from '@codemirror/state';
-import { EditorView, keymap, lineNumbers, highlightActiveLine, drawSelection } from '@codemirror/view';
-import { defaultKeymap, history, historyKeymap } from '@codemirror/commands';
-import { StreamLanguage, syntaxHighlighting, HighlightStyle, bracketMatching } from '@codemirror/language';
-import { linter, lintGutter, setDiagnostics, type Diagnostic as CmDiagnostic } from '@codemirror/lint';
-import { tags as t } from '@lezer/highlight';
-import type { Diagnostic, PlanOptions, PlanOutcome } from 'logic-lfd';
+import type { EditorView } from '@codemirror/view';
+import type {
+  Diagnostic,
+  LogicLfdDiagnostic,
+  LogicLfdInput,
+  LogicLfdPerturbInput,
+  LogicLfdPerturbResult,
+  LogicLfdResult,
+  PlanOptions,
+  PlanOutcome,
+} from 'logic-lfd';
 import { el } from './dom';
+import { LfdView } from './lfd-view';
+import { lint, pddlEditor, revealAt, setText } from './pddl-codemirror';
 
-const pddl = StreamLanguage.define<{ depth: number }>({
-  name: 'pddl',
-  startState: () => ({ depth: 0 }),
-  token(stream, state) {
-    if (stream.eatSpace()) return null;
-    const ch = stream.peek();
-    if (ch === ';') {
-      stream.skipToEnd();
-      return 'comment';
-    }
-    if (ch === '(' || ch === ')') {
-      stream.next();
-      state.depth += ch === '(' ? 1 : -1;
-      return 'paren';
-    }
-    if (ch === ':') {
-      if (!stream.match(/^:[\w-]+/)) stream.next();
-      return 'keyword';
-    }
-    if (ch === '?') {
-      if (!stream.match(/^\?[\w-]+/)) stream.next();
-      return 'variableName';
-    }
-    if (ch === '-' && stream.match(/^-\s/, false)) {
-      stream.next();
-      return 'operator';
-    }
-    if (stream.match(/^-?\d+(\.\d+)?/)) return 'number';
-    if (stream.match(/^(define|domain|problem|and|or|not|imply|forall|exists|when|either|increase)\b/i)) return 'keyword';
-    if (!stream.match(/^[^\s();]+/)) stream.next();
-    return 'atom';
-  },
-});
+export type Which = 'domain' | 'problem' | 'demo';
+const WHICH: Which[] = ['domain', 'problem', 'demo'];
 
-const highlight = HighlightStyle.define([
-  { tag: t.comment, color: '#6b7686', fontStyle: 'italic' },
-  { tag: t.keyword, color: '#7aa2f7' },
-  { tag: t.variableName, color: '#e0af68' },
-  { tag: t.number, color: '#ff9e64' },
-  { tag: t.atom, color: '#c9d1d9' },
-  { tag: t.paren, color: '#6b7686' },
-  { tag: t.operator, color: '#bb9af7' },
-]);
+/** Classical planning to G, or Logic-LfD from a current state with the demonstration. */
+export type PanelMode = 'classical' | 'lfd';
 
-const theme = EditorView.theme(
-  {
-    '&': { height: '100%', fontSize: '12.5px', backgroundColor: '#0f1216' },
-    '.cm-content': { fontFamily: 'ui-monospace, SFMono-Regular, Menlo, Consolas, monospace', caretColor: '#e6edf3' },
-    '.cm-gutters': { backgroundColor: '#0f1216', color: '#4d5662', border: 'none' },
-    '.cm-activeLine': { backgroundColor: '#161b22' },
-    '.cm-activeLineGutter': { backgroundColor: '#161b22' },
-    '&.cm-focused .cm-cursor': { borderLeftColor: '#e6edf3' },
-    '.cm-selectionBackground, &.cm-focused .cm-selectionBackground': { backgroundColor: '#264f78 !important' },
-    '.cm-scroller': { overflow: 'auto' },
-  },
-  { dark: true },
-);
-
-export type Which = 'domain' | 'problem';
+/** A located message about one of the inputs (the parser's and Logic-LfD's alike). */
+type AnyDiagnostic = Pick<LogicLfdDiagnostic, 'file' | 'line' | 'col' | 'message'> & { source: string };
 
 export interface EditorPanelOptions {
   /** Plans in a worker that `cancel` can stop; rejects with a `CancelledError` when stopped. */
   plan: (domain: string, problem: string, options: PlanOptions) => Promise<PlanOutcome>;
   check: (domain: string, problem: string) => Promise<Diagnostic[]>;
-  /** Stops a running `plan` (and `check`) at once. */
+  /** Logic-LfD in the same worker (rejects with a `CancelledError` when stopped or after `timeoutMs`). */
+  logicLfd: (input: LogicLfdInput, timeoutMs: number) => Promise<LogicLfdResult>;
+  logicLfdPerturb: (input: LogicLfdPerturbInput) => Promise<LogicLfdPerturbResult>;
+  /** Stops a running request at once. */
   cancel: () => void;
 }
 
 /** The planner's own time limit (ms); the worker running it is terminated a little after. */
 export const PLAN_TIME_LIMIT_MS = 20_000;
 
-function offsetOf(doc: EditorState['doc'], line: number, col: number): number {
-  const l = doc.line(Math.min(Math.max(1, line), doc.lines));
-  return Math.min(l.from + Math.max(0, col - 1), l.to);
-}
+const TAB_LABELS: Record<Which, string> = {
+  domain: 'Show the domain',
+  problem: 'Show the problem',
+  demo: 'Show the demonstration (an IPC plan, one action a line)',
+};
 
 export class EditorPanel {
   readonly root: HTMLElement;
   private readonly views: Record<Which, EditorView>;
   private readonly hosts: Record<Which, HTMLElement>;
   private readonly tabs: Record<Which, HTMLButtonElement>;
+  private readonly modeButtons: Record<PanelMode, HTMLButtonElement>;
+  private readonly lfd: LfdView;
+  private readonly planOut: HTMLElement;
   private readonly output: HTMLElement;
   private readonly errorList: HTMLElement;
   private readonly stateView: HTMLElement;
@@ -100,41 +63,28 @@ export class EditorPanel {
   private readonly heuristic: HTMLSelectElement;
   private readonly planButton: HTMLButtonElement;
   private readonly cancelButton: HTMLButtonElement;
+  private mode: PanelMode = 'classical';
   private planning = false;
   private lastPlan: Extract<PlanOutcome, { ok: true }> | null = null;
   private selected = 0;
   private lintTimer = 0;
 
   constructor(private readonly opts: EditorPanelOptions) {
-    const ext = (which: Which): Extension[] => [
-      lineNumbers(),
-      history(),
-      drawSelection(),
-      highlightActiveLine(),
-      bracketMatching(),
-      EditorView.lineWrapping,
-      pddl,
-      syntaxHighlighting(highlight),
-      lintGutter(),
-      linter(null),
-      theme,
-      keymap.of([...defaultKeymap, ...historyKeymap]),
-      EditorView.contentAttributes.of({ 'aria-label': `PDDL ${which} editor` }),
-      EditorView.updateListener.of((u) => {
-        if (u.docChanged) this.scheduleCheck();
-      }),
-    ];
-    this.hosts = { domain: el('div', { class: 'cm-host' }), problem: el('div', { class: 'cm-host', hidden: '' }) };
-    this.views = {
-      domain: new EditorView({ state: EditorState.create({ doc: '', extensions: ext('domain') }), parent: this.hosts.domain }),
-      problem: new EditorView({ state: EditorState.create({ doc: '', extensions: ext('problem') }), parent: this.hosts.problem }),
+    this.hosts = { domain: el('div', { class: 'cm-host' }), problem: el('div', { class: 'cm-host', hidden: '' }), demo: el('div', { class: 'cm-host', hidden: '' }) };
+    const make = (w: Which) => pddlEditor(this.hosts[w], `PDDL ${w} editor`, () => this.scheduleCheck());
+    this.views = { domain: make('domain'), problem: make('problem'), demo: make('demo') };
+    const tab = (w: Which, on: boolean) =>
+      el('button', { class: on ? 'tab active' : 'tab', role: 'tab', id: `pddl-tab-${w}`, 'aria-selected': String(on), 'aria-label': TAB_LABELS[w], title: TAB_LABELS[w] }, w);
+    this.tabs = { domain: tab('domain', true), problem: tab('problem', false), demo: tab('demo', false) };
+    for (const w of WHICH) this.tabs[w].onclick = () => this.show(w);
+    const modeButton = (m: PanelMode, text: string, label: string) =>
+      el('button', { type: 'button', class: 'seg', id: `pddl-mode-${m}`, 'aria-pressed': String(m === this.mode), title: label }, text);
+    this.modeButtons = {
+      classical: modeButton('classical', 'Plan (classical)', 'Plan from the initial state to the goal'),
+      lfd: modeButton('lfd', 'Logic-LfD', 'Reuse the demonstration from a current state S_C'),
     };
-    this.tabs = {
-      domain: el('button', { class: 'tab active', role: 'tab', 'aria-selected': 'true', 'aria-label': 'Show the domain' }, 'domain'),
-      problem: el('button', { class: 'tab', role: 'tab', 'aria-selected': 'false', 'aria-label': 'Show the problem' }, 'problem'),
-    };
-    this.tabs.domain.onclick = () => this.show('domain');
-    this.tabs.problem.onclick = () => this.show('problem');
+    this.modeButtons.classical.onclick = () => this.setMode('classical');
+    this.modeButtons.lfd.onclick = () => this.setMode('lfd');
     this.search = el(
       'select',
       { 'aria-label': 'Search algorithm', id: 'pddl-search' },
@@ -146,28 +96,46 @@ export class EditorPanel {
       ...['hff', 'lmcut', 'hmax', 'blind'].map((s) => el('option', { value: s }, s)),
     );
     this.planButton = el('button', { class: 'primary', id: 'pddl-plan', 'aria-label': 'Plan the problem' }, 'Plan');
-    this.planButton.onclick = () => void this.runPlan();
+    this.planButton.onclick = () => void (this.mode === 'lfd' ? this.runLfd() : this.runPlan());
     this.cancelButton = el('button', { id: 'pddl-cancel', 'aria-label': 'Stop the running search', title: 'Stop the running search', hidden: '' }, 'Cancel');
     this.cancelButton.onclick = () => this.opts.cancel();
     this.errorList = el('ul', { class: 'diagnostics', id: 'pddl-errors', 'aria-live': 'polite' });
     this.output = el('ol', { class: 'plan-list', id: 'pddl-plan-list', 'aria-label': 'Plan found by the planner' });
     this.stateView = el('div', { class: 'state-view', id: 'pddl-state', 'aria-live': 'polite' });
+    this.lfd = new LfdView({
+      texts: () => ({ domain: this.text('domain'), problem: this.text('problem'), demo: this.text('demo') }),
+      search: () => ({ search: this.search.value as LogicLfdInput['search'], heuristic: this.heuristic.value as LogicLfdInput['heuristic'] }),
+      logicLfd: opts.logicLfd,
+      logicLfdPerturb: opts.logicLfdPerturb,
+      diagnostics: (d) => this.showDiagnostics(d),
+      busy: () => this.planning,
+    });
     const prev = el('button', { 'aria-label': 'Previous state', title: 'Previous state' }, '◀');
     const next = el('button', { 'aria-label': 'Next state', title: 'Next state' }, '▶');
     prev.onclick = () => this.selectState(this.selected - 1);
     next.onclick = () => this.selectState(this.selected + 1);
+    this.planOut = el('div', { class: 'plan-out' }, el('div', { class: 'plan-col' }, this.output), el('div', { class: 'state-col' }, el('div', { class: 'stepper' }, prev, next), this.stateView));
     this.root = el(
       'section',
-      { class: 'editor-panel', 'aria-label': 'PDDL editor' },
-      el('div', { class: 'editor-tabs', role: 'tablist' }, this.tabs.domain, this.tabs.problem, el('span', { class: 'grow' }), this.search, this.heuristic, this.planButton, this.cancelButton),
-      el('div', { class: 'editor-body' }, this.hosts.domain, this.hosts.problem),
+      { class: 'editor-panel', 'aria-label': 'PDDL editor', 'data-mode': this.mode },
+      el(
+        'div',
+        { class: 'editor-modes' },
+        el('div', { class: 'seg-group', role: 'group', 'aria-label': 'Planning mode' }, this.modeButtons.classical, this.modeButtons.lfd),
+        el('span', { class: 'grow' }),
+        this.planButton,
+        this.cancelButton,
+      ),
+      el('div', { class: 'editor-tabs', role: 'tablist' }, this.tabs.domain, this.tabs.problem, this.tabs.demo, el('span', { class: 'grow' }), this.search, this.heuristic),
+      el('div', { class: 'editor-body' }, this.hosts.domain, this.hosts.problem, this.hosts.demo),
       this.errorList,
-      el('div', { class: 'plan-out' }, el('div', { class: 'plan-col' }, this.output), el('div', { class: 'state-col' }, el('div', { class: 'stepper' }, prev, next), this.stateView)),
+      this.planOut,
+      this.lfd.root,
     );
   }
 
   show(which: Which): void {
-    for (const w of ['domain', 'problem'] as Which[]) {
+    for (const w of WHICH) {
       this.hosts[w].hidden = w !== which;
       this.tabs[w].classList.toggle('active', w === which);
       this.tabs[w].setAttribute('aria-selected', String(w === which));
@@ -175,15 +143,28 @@ export class EditorPanel {
     this.views[which].requestMeasure();
   }
 
-  setTexts(domain: string, problem: string): void {
-    for (const [w, text] of [['domain', domain], ['problem', problem]] as [Which, string][]) {
-      const v = this.views[w];
-      v.dispatch({ changes: { from: 0, to: v.state.doc.length, insert: text } });
-    }
+  /** Classical planning or Logic-LfD; the editors' texts stay as they are. */
+  setMode(mode: PanelMode): void {
+    if (this.mode === mode) return;
+    this.mode = mode;
+    this.root.dataset.mode = mode;
+    for (const m of ['classical', 'lfd'] as PanelMode[]) this.modeButtons[m].setAttribute('aria-pressed', String(m === mode));
+    this.planOut.hidden = mode === 'lfd';
+    this.lfd.root.hidden = mode !== 'lfd';
+    this.planButton.setAttribute('aria-label', mode === 'lfd' ? 'Run Logic-LfD from S_C in both modes' : 'Plan the problem');
+    this.planButton.textContent = mode === 'lfd' ? 'Run' : 'Plan';
+    if (!this.planning) void this.check();
+  }
+
+  /** Puts texts in the editors (a benchmark's, or the tests'); the demonstration stays when not given. */
+  setTexts(domain: string, problem: string, demo?: string): void {
+    const texts: [Which, string | undefined][] = [['domain', domain], ['problem', problem], ['demo', demo]];
+    for (const [w, text] of texts) if (text !== undefined) setText(this.views[w], text);
     this.lastPlan = null;
     this.output.replaceChildren();
     this.stateView.replaceChildren();
     this.errorList.replaceChildren();
+    this.lfd.reset();
   }
 
   text(which: Which): string {
@@ -195,10 +176,11 @@ export class EditorPanel {
     this.lintTimer = window.setTimeout(() => void this.check(), 600);
   }
 
-  /** Parses and grounds both texts as the user types; shows the located errors. */
+  /** Parses and grounds the texts as the user types; shows the located errors. */
   private async check(): Promise<void> {
     // A running search owns the worker; its outcome shows the diagnostics anyway.
     if (this.planning) return;
+    if (this.mode === 'lfd') return this.lfd.inspect();
     try {
       this.showDiagnostics(await this.opts.check(this.text('domain'), this.text('problem')));
     } catch (e) {
@@ -207,25 +189,20 @@ export class EditorPanel {
     }
   }
 
-  private showDiagnostics(diags: Diagnostic[]): void {
-    for (const w of ['domain', 'problem'] as Which[]) {
-      const v = this.views[w];
-      const mine: CmDiagnostic[] = diags
-        .filter((d) => d.source === w && d.line > 0)
-        .map((d) => {
-          const from = offsetOf(v.state.doc, d.line, d.col);
-          return { from, to: Math.min(from + 1, v.state.doc.length), severity: 'error', message: d.message };
-        });
-      v.dispatch(setDiagnostics(v.state, mine));
-    }
+  private showDiagnostics(diags: AnyDiagnostic[]): void {
+    for (const w of WHICH) lint(this.views[w], diags.filter((d) => d.source === w));
+    this.lfd.state.showErrors(diags.filter((d) => d.source === 'state'));
     this.errorList.replaceChildren(
       ...diags.map((d) => {
         const where = d.line > 0 ? `${d.file}:${d.line}:${d.col}` : d.file || d.source;
-        const li = el('li', { class: 'diagnostic' }, el('code', {}, where), ' ', d.message);
-        if (d.line > 0 && (d.source === 'domain' || d.source === 'problem')) {
-          const src: Which = d.source;
+        const li = el('li', { class: 'diagnostic', 'data-source': d.source }, el('code', {}, where), ' ', d.message);
+        if (d.line > 0 && (WHICH as string[]).includes(d.source)) {
+          const src = d.source as Which;
           li.tabIndex = 0;
           li.onclick = () => this.reveal(src, d.line, d.col);
+        } else if (d.line > 0 && d.source === 'state') {
+          li.tabIndex = 0;
+          li.onclick = () => this.lfd.state.reveal(d.line, d.col);
         }
         return li;
       }),
@@ -234,26 +211,44 @@ export class EditorPanel {
 
   private reveal(w: Which, line: number, col: number): void {
     this.show(w);
-    const v = this.views[w];
-    const pos = offsetOf(v.state.doc, line, col);
-    v.dispatch({ selection: { anchor: pos }, scrollIntoView: true });
-    v.focus();
+    revealAt(this.views[w], line, col);
   }
 
-  async runPlan(): Promise<void> {
+  /** Marks the panel busy (Plan disabled, Cancel shown) while `work` runs. */
+  private async busy(label: string, work: () => Promise<void>): Promise<void> {
     if (this.planning) return;
     this.planning = true;
     clearTimeout(this.lintTimer);
     this.planButton.disabled = true;
-    this.planButton.textContent = 'Planning…';
+    this.planButton.textContent = label;
     this.cancelButton.hidden = false;
+    try {
+      await work();
+    } finally {
+      this.planning = false;
+      this.planButton.disabled = false;
+      this.planButton.textContent = this.mode === 'lfd' ? 'Run' : 'Plan';
+      this.cancelButton.hidden = true;
+    }
+  }
+
+  /** Logic-LfD from S_C, paper and prioritised side by side. */
+  runLfd(): Promise<void> {
+    return this.busy('Running…', () => this.lfd.run());
+  }
+
+  runPlan(): Promise<void> {
+    return this.busy('Planning…', () => this.plan());
+  }
+
+  private async plan(): Promise<void> {
     this.output.replaceChildren(el('li', { class: 'muted' }, 'Planning… (Cancel stops the search)'));
     this.stateView.replaceChildren();
     try {
       const out = await this.opts.plan(this.text('domain'), this.text('problem'), {
-        search: this.search.value,
-        heuristic: this.heuristic.value,
-        time_limit_ms: PLAN_TIME_LIMIT_MS,
+        search: this.search.value as PlanOptions['search'],
+        heuristic: this.heuristic.value as PlanOptions['heuristic'],
+        timeLimitMs: PLAN_TIME_LIMIT_MS,
       });
       if (!out.ok) {
         this.lastPlan = null;
@@ -264,7 +259,7 @@ export class EditorPanel {
       }
       this.showDiagnostics([]);
       this.lastPlan = out;
-      const summary = `${out.plan.length} actions, cost ${out.cost}, ${out.expanded} expanded, ${out.time_ms.toFixed(2)} ms`;
+      const summary = `${out.plan.length} actions, cost ${out.cost}, ${out.expanded} expanded, ${out.timeMs.toFixed(2)} ms`;
       this.output.replaceChildren(
         el('li', { class: 'plan-summary', value: '0' }, el('button', { class: 'step', 'data-index': '0' }, 'initial state'), el('span', { class: 'muted' }, ` — ${summary}`)),
         ...out.plan.map((a, i) => el('li', {}, el('button', { class: 'step', 'data-index': String(i + 1) }, a))),
@@ -278,11 +273,6 @@ export class EditorPanel {
       const err = e as Error;
       const text = err.name === 'CancelledError' ? `Search ${err.message}.` : err.message;
       this.output.replaceChildren(el('li', { class: 'muted', id: 'pddl-stopped' }, text));
-    } finally {
-      this.planning = false;
-      this.planButton.disabled = false;
-      this.planButton.textContent = 'Plan';
-      this.cancelButton.hidden = true;
     }
   }
 

@@ -3,7 +3,18 @@
  * module and the Session. Requests carry an `id`; the worker answers each with exactly one `reply`
  * of the same id. While a session plays, the worker pushes `frame` messages on its own.
  */
-import type { BenchmarkInfo, Diagnostic, Frame, PlanOptions, PlanOutcome, SessionOptions } from 'logic-lfd';
+import type {
+  BenchmarkInfo,
+  Diagnostic,
+  Frame,
+  LogicLfdInput,
+  LogicLfdPerturbInput,
+  LogicLfdPerturbResult,
+  LogicLfdResult,
+  PlanOptions,
+  PlanOutcome,
+  SessionOptions,
+} from 'logic-lfd';
 import type { TeachApi } from './teach-protocol';
 
 export type Level = 'l1' | 'l2' | 'l3' | 'l4';
@@ -23,6 +34,9 @@ export interface Api extends TeachApi {
   version: { args: Record<string, never>; result: string };
   plan: { args: { domain: string; problem: string; options: PlanOptions }; result: PlanOutcome };
   check: { args: { domain: string; problem: string }; result: Diagnostic[] };
+  /** Logic-LfD on the texts of the PDDL tab (plain data in and out). */
+  logicLfd: { args: { input: LogicLfdInput }; result: LogicLfdResult };
+  logicLfdPerturb: { args: { input: LogicLfdPerturbInput }; result: LogicLfdPerturbResult };
   benchmark: { args: { id: SessionOptions['benchmark'] }; result: BenchmarkInfo };
   open: { args: { options: SessionOptions; scene?: string }; result: Frame };
   replay: { args: { episode: string }; result: Frame };

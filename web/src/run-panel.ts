@@ -18,7 +18,7 @@ export class RunPanel {
   }
 
   show(f: Frame): void {
-    const key = JSON.stringify([f.plan, f.executing, f.demo.length, f.matched_k, f.facts, f.last_replan?.tick]);
+    const key = JSON.stringify([f.plan, f.executing, f.demo.length, f.matchedK, f.facts, f.lastReplan?.tick]);
     if (key === this.lastKey) return;
     this.lastKey = key;
     this.showPlan(f);
@@ -40,10 +40,10 @@ export class RunPanel {
   }
 
   private showDemo(f: Frame): void {
-    const k = f.matched_k ?? null;
+    const k = f.matchedK ?? null;
     this.ui.matched.textContent = k == null ? '' : `joined at L${k}`;
     const items: HTMLElement[] = [];
-    f.demo_states.forEach((facts, i) => {
+    f.demoStates.forEach((facts, i) => {
       items.push(demoStateItem(i, facts, `demo-state${k === i ? ' matched' : ''}`));
       if (i < f.demo.length) items.push(el('li', { class: `demo-action${k != null && i >= k ? ' ahead' : ''}` }, `a${i + 1} ${f.demo[i]}`));
     });
@@ -51,12 +51,12 @@ export class RunPanel {
   }
 
   private showFacts(f: Frame): void {
-    const added = new Set(f.facts_added);
+    const added = new Set(f.factsAdded);
     this.ui.facts.replaceChildren(...f.facts.map((x) => el('li', { class: added.has(x) ? 'added' : '' }, x)));
-    this.ui.factsDiff.replaceChildren(...factChips(f.facts_added, f.facts_removed));
-    const r = f.last_replan;
+    this.ui.factsDiff.replaceChildren(...factChips(f.factsAdded, f.factsRemoved));
+    const r = f.lastReplan;
     this.ui.replanInfo.textContent = r
-      ? `Last replan at tick ${r.tick}: ${r.reason} — ${r.time_ms.toFixed(2)} ms${r.k != null ? `, joined the demo at L${r.k}` : ''}`
+      ? `Last replan at tick ${r.tick}: ${r.reason} — ${r.timeMs.toFixed(2)} ms${r.k != null ? `, joined the demo at L${r.k}` : ''}`
       : '';
   }
 }

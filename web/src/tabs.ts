@@ -70,14 +70,15 @@ export class Tabs {
     if (state.editorBenchmark === state.options.benchmark) return;
     state.editorBenchmark = state.options.benchmark;
     const [editor, b] = await Promise.all([this.getEditor(), client.call('benchmark', { id: state.options.benchmark })]);
-    editor.setTexts(b.domain, b.problem);
+    editor.setTexts(b.domain, b.problem, b.demoPlan);
   }
 
-  /** Opens the PDDL tab holding `domain` and `problem` (the benchmark's PDDL is not loaded over them). */
-  async setPddl(domain: string, problem: string): Promise<void> {
+  /** Opens the PDDL tab holding `domain`, `problem` and, when given, the demonstration `demo`
+   * (the benchmark's texts are not loaded over them). */
+  async setPddl(domain: string, problem: string, demo?: string): Promise<void> {
     this.p.state.editorBenchmark = this.p.state.options.benchmark;
     this.select('pddl');
-    (await this.getEditor()).setTexts(domain, problem);
+    (await this.getEditor()).setTexts(domain, problem, demo);
   }
 
   private getEditor(): Promise<EditorPanel> {
@@ -88,6 +89,8 @@ export class Tabs {
       const e = new EditorPanel({
         plan: (domain, problem, o) => search.call('plan', { domain, problem, options: o }, PLAN_TIME_LIMIT_MS + 5000),
         check: (domain, problem) => search.call('check', { domain, problem }, 10_000),
+        logicLfd: (input, timeoutMs) => search.call('logicLfd', { input }, timeoutMs),
+        logicLfdPerturb: (input) => search.call('logicLfdPerturb', { input }, 20_000),
         cancel: () => search.cancel('cancelled'),
       });
       this.p.ui.editorHost.append(e.root);

@@ -27,7 +27,7 @@ export function recordingItems(s: TeachState, fresh: ReadonlySet<number>): HTMLE
           'li',
           { class: `teach-seg${fresh.has(i) ? ' new' : ''}`, title: change },
           el('span', { class: 'seg-name' }, `a${i + 1} ${seg.action}`),
-          el('span', { class: 'muted small' }, ` ${seg.arm} · ${seg.t_start.toFixed(2)}–${seg.t_end.toFixed(2)} s`),
+          el('span', { class: 'muted small' }, ` ${seg.arm} · ${seg.tStart.toFixed(2)}–${seg.tEnd.toFixed(2)} s`),
         ),
       );
     }

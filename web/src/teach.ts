@@ -187,8 +187,8 @@ export class TeachPanel {
   private apply(r: TeachResult): void {
     if (r.ok) {
       this.clearError();
-      for (const seg of r.new_segments) this.newSegments.add(seg.index);
-      if (r.new_segments.length) this.forgetDemo();
+      for (const seg of r.newSegments) this.newSegments.add(seg.index);
+      if (r.newSegments.length) this.forgetDemo();
     } else this.showError(r.error);
     this.show(r.state);
   }
@@ -237,10 +237,10 @@ export class TeachPanel {
       return;
     }
     this.clearError();
-    this.demoJson = r.demo_json;
+    this.demoJson = r.demoJson;
     this.info = r.info;
     this.loaded = false;
-    const worst = r.skills.reduce((m, f) => Math.max(m, f.rms_error), 0);
+    const worst = r.skills.reduce((m, f) => Math.max(m, f.rmsError), 0);
     this.ui.summary.textContent = `Taught ${r.info.actions.length} actions, demo states L0..L${r.info.actions.length}; ${r.skills.length} LQT-CP skills learned from the recorded motions (fit within ${ms(worst)} RMS).`;
     this.refresh();
     if (this.active) this.host.status('done', this.statusText());

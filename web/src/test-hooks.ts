@@ -18,7 +18,7 @@ declare global {
       project: (p: [number, number, number]) => { x: number; y: number };
       stepTimes: () => number[];
       replans: () => [number, number][];
-      setPddl: (domain: string, problem: string) => Promise<void>;
+      setPddl: (domain: string, problem: string, demo?: string) => Promise<void>;
       renderMs: () => number;
       lastCancel: () => CancelTiming | null;
       memory: () => Promise<{ wasmBytes: number; geometries: number; textures: number }>;
@@ -35,7 +35,7 @@ export function installTestHooks(p: { state: PageState; view: View; charts: Char
     project: (pt) => view.project(pt),
     stepTimes: () => [...state.stepTimes],
     replans: () => charts.replans(),
-    setPddl: (domain, problem) => tabs.setPddl(domain, problem),
+    setPddl: (domain, problem, demo) => tabs.setPddl(domain, problem, demo),
     renderMs: () => view.renderMs,
     lastCancel: () => state.lastCancel,
     memory: async () => ({ ...(await client.call('memory', {})), ...view.renderer.info.memory }),

@@ -68,6 +68,8 @@ const handlers: Handlers = {
   version: () => lfd.version(),
   plan: ({ domain, problem, options }) => lfd.plan(domain, problem, options),
   check: ({ domain, problem }) => lfd.check(domain, problem),
+  logicLfd: ({ input }) => lfd.logicLfd(input),
+  logicLfdPerturb: ({ input }) => lfd.logicLfdPerturb(input),
   benchmark: ({ id }) => lfd.benchmark(id),
   open: ({ options, scene }) =>
     replace(scene === undefined ? new lfd.Session(options) : lfd.Session.fromScene(options, scene)),
@@ -98,7 +100,7 @@ const handlers: Handlers = {
     const s = need();
     try {
       const o = s.perturb(body, position);
-      const others = o.also_moved.length ? `; ${o.also_moved.map(([b]) => b).join(', ')} settled below` : '';
+      const others = o.alsoMoved.length ? `; ${o.alsoMoved.map(([b]) => b).join(', ')} settled below` : '';
       return { ok: true, message: `Moved ${o.body} onto ${o.support}${others}`, frame: s.frame() };
     } catch (e) {
       return { ok: false, reason: errorMessage(e) };

@@ -1,6 +1,7 @@
 //! Reliability exports: one closed-loop episode exactly as `logic-lfd run --json` prints it, so a
 //! node test can check that the same seed gives byte-identical episode JSON natively and in wasm.
 
+use super::args::string_arg;
 use super::{js_err, PerformanceClock};
 use crate::experiments::{run_episode, EpisodeSpec, Level};
 use crate::lfd::session::SessionParams;
@@ -89,9 +90,12 @@ fn spec_of(o: EpisodeOptions) -> Result<(EpisodeSpec, bool), String> {
 /// written as 0, so two runs anywhere give the same bytes. Rejects bad options or a bad scene with
 /// a message naming the field.
 #[wasm_bindgen(js_name = runEpisode)]
-pub fn run_episode_json(options_json: &str) -> Result<String, JsError> {
+pub fn run_episode_json(
+    #[wasm_bindgen(js_name = "optionsJson", unchecked_param_type = "string")] options_json: JsValue,
+) -> Result<String, JsValue> {
+    let options_json = string_arg("runEpisode", "optionsJson", &options_json)?;
     let o: EpisodeOptions =
-        serde_json::from_str(options_json).map_err(|e| js_err(format!("options: {e}")))?;
+        serde_json::from_str(&options_json).map_err(|e| js_err(format!("options: {e}")))?;
     let (spec, canonical) = spec_of(o).map_err(|e| js_err(format!("options: {e}")))?;
     let mut report =
         run_episode(&spec, SessionParams::default(), &PerformanceClock).map_err(js_err)?;
@@ -99,5 +103,5 @@ pub fn run_episode_json(options_json: &str) -> Result<String, JsError> {
         report.planning_ms.iter_mut().for_each(|t| *t = 0.0);
         report.log = report.log.canonical();
     }
-    serde_json::to_string(&report).map_err(js_err)
+    Ok(serde_json::to_string(&report).map_err(js_err)?)
 }

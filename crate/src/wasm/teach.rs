@@ -3,6 +3,9 @@
 //! a recording the model cannot explain comes back as data (`ok: false` with the time and the
 //! unexplained fact change), never as a half-applied edit.
 
+use super::args::{
+    number_arg, object_arg, optional_string_arg, string_arg, type_error, type_name, StringArg,
+};
 use super::{from_js, js_err, seed_of, to_js, WasmSession};
 use crate::recorder::synth::Edit;
 use crate::recorder::taught::{self, TaughtRunOptions};
@@ -15,7 +18,7 @@ use wasm_bindgen::prelude::*;
 const TS_TEACH: &'static str = r#"
 /** One recognised action of a recording. */
 export interface Segment {
-  index: number; action: string; arm: string; t_start: number; t_event: number; t_end: number;
+  index: number; action: string; arm: string; tStart: number; tEvent: number; tEnd: number;
   added: string[]; removed: string[];
 }
 /** One arm's gripper (the page's handle). */
@@ -41,15 +44,15 @@ export interface TeachError {
 }
 /** The result of an edit: the new state, or the refusal (the recording is unchanged). */
 export type TeachResult =
-  | { ok: true; state: TeachState; new_segments: Segment[]; world_events: unknown[]; removed?: Segment | null }
+  | { ok: true; state: TeachState; newSegments: Segment[]; worldEvents: unknown[]; removed?: Segment | null }
   | { ok: false; state: TeachState; error: TeachError };
 /** How well an LQT-CP skill learned from a recorded motion reproduces it (m). */
-export interface SkillFit { action: string; steps: number; rms_error: number; goal_error: number; }
+export interface SkillFit { action: string; steps: number; rmsError: number; goalError: number; }
 /** A checked taught demonstration. */
 export interface TaughtInfo { benchmark: "b1" | "b2" | "b3"; actions: string[]; arms: string[]; states: string[][]; goal: string[]; }
 /** The end of a recording: the demo.json text, its listing and the skill fits. */
 export type TeachFinish =
-  | { ok: true; demo_json: string; info: TaughtInfo; skills: SkillFit[] }
+  | { ok: true; demoJson: string; info: TaughtInfo; skills: SkillFit[] }
   | { ok: false; error: TeachError };
 /** How a taught task runs; every key optional. */
 export interface TaughtRunOptions {
@@ -58,11 +61,65 @@ export interface TaughtRunOptions {
 }
 "#;
 
+/// A recognised action with camelCase names (the recorder's [`Segment`] keeps the CLI's).
+#[derive(Serialize)]
+#[serde(rename_all = "camelCase")]
+struct SegmentOut {
+    index: usize,
+    action: String,
+    arm: String,
+    t_start: f64,
+    t_event: f64,
+    t_end: f64,
+    added: Vec<String>,
+    removed: Vec<String>,
+}
+
+impl From<Segment> for SegmentOut {
+    fn from(s: Segment) -> Self {
+        SegmentOut {
+            index: s.index,
+            action: s.action,
+            arm: s.arm,
+            t_start: s.t_start,
+            t_event: s.t_event,
+            t_end: s.t_end,
+            added: s.added,
+            removed: s.removed,
+        }
+    }
+}
+
+/// A skill fit with camelCase names.
+#[derive(Serialize)]
+#[serde(rename_all = "camelCase")]
+struct SkillFitOut {
+    action: String,
+    steps: usize,
+    rms_error: f64,
+    goal_error: f64,
+}
+
+impl From<SkillFit> for SkillFitOut {
+    fn from(f: SkillFit) -> Self {
+        SkillFitOut {
+            action: f.action,
+            steps: f.steps,
+            rms_error: f.rms_error,
+            goal_error: f.goal_error,
+        }
+    }
+}
+
+fn segments_out(segments: Vec<Segment>) -> Vec<SegmentOut> {
+    segments.into_iter().map(SegmentOut::from).collect()
+}
+
 #[derive(Serialize)]
 struct TeachState {
     t: f64,
     benchmark: String,
-    segments: Vec<Segment>,
+    segments: Vec<SegmentOut>,
     states: Vec<Vec<String>>,
     facts: Vec<String>,
     world: crate::sim::snapshot::WorldSnapshot,
@@ -83,12 +140,13 @@ struct TeachError {
 #[derive(Serialize)]
 #[serde(untagged)]
 enum TeachResult {
+    #[serde(rename_all = "camelCase")]
     Ok {
         ok: bool,
         state: TeachState,
-        new_segments: Vec<Segment>,
+        new_segments: Vec<SegmentOut>,
         world_events: Vec<crate::sim::WorldEvent>,
-        removed: Option<Segment>,
+        removed: Option<SegmentOut>,
     },
     Err {
         ok: bool,
@@ -100,11 +158,12 @@ enum TeachResult {
 #[derive(Serialize)]
 #[serde(untagged)]
 enum TeachFinish {
+    #[serde(rename_all = "camelCase")]
     Ok {
         ok: bool,
         demo_json: String,
         info: taught::TaughtInfo,
-        skills: Vec<SkillFit>,
+        skills: Vec<SkillFitOut>,
     },
     Err {
         ok: bool,
@@ -143,7 +202,7 @@ impl Teacher {
         TeachState {
             t: self.inner.time(),
             benchmark: self.benchmark.as_str().to_string(),
-            segments: self.inner.segments(),
+            segments: segments_out(self.inner.segments()),
             states: self.inner.demo_states(),
             facts: self.inner.facts().to_vec(),
             world: self.inner.world().snapshot(),
@@ -162,9 +221,9 @@ impl Teacher {
             Ok(ev) => TeachResult::Ok {
                 ok: true,
                 state: self.state(),
-                new_segments: ev.new_segments,
+                new_segments: segments_out(ev.new_segments),
                 world_events: ev.world_events,
-                removed,
+                removed: removed.map(SegmentOut::from),
             },
             Err(e) => TeachResult::Err {
                 ok: false,
@@ -180,8 +239,13 @@ impl Teacher {
     /// A recorder on benchmark `b1`, `b2` or `b3`, starting from its template scene or from
     /// `scene` (a `WorldSnapshot` JSON of that benchmark's world).
     #[wasm_bindgen(constructor)]
-    pub fn new(benchmark: &str, scene: Option<String>) -> Result<Teacher, JsError> {
-        let b = Benchmark::parse(benchmark).ok_or_else(|| {
+    pub fn new(
+        #[wasm_bindgen(unchecked_param_type = "\"b1\" | \"b2\" | \"b3\"")] benchmark: JsValue,
+        scene: Option<StringArg>,
+    ) -> Result<Teacher, JsValue> {
+        let benchmark = string_arg("new Teacher", "benchmark", &benchmark)?;
+        let scene = optional_string_arg("new Teacher", "scene", scene)?;
+        let b = Benchmark::parse(&benchmark).ok_or_else(|| {
             js_err(format!(
                 "unknown benchmark `{benchmark}` (expected b1, b2 or b3)"
             ))
@@ -195,7 +259,8 @@ impl Teacher {
                         "the scene is the world `{}`, not {}",
                         w.name(),
                         b.dir_name()
-                    )));
+                    ))
+                    .into());
                 }
                 w.snapshot()
             }
@@ -217,7 +282,7 @@ impl Teacher {
 
     /// The current state (segments, demo states L0..Lk, facts, world, gripper handles).
     #[wasm_bindgen(unchecked_return_type = "TeachState")]
-    pub fn current(&self) -> Result<JsValue, JsError> {
+    pub fn current(&self) -> Result<JsValue, JsValue> {
         to_js(&self.state())
     }
 
@@ -227,7 +292,8 @@ impl Teacher {
     pub fn push(
         &mut self,
         #[wasm_bindgen(unchecked_param_type = "TeachEdit")] edit: JsValue,
-    ) -> Result<JsValue, JsError> {
+    ) -> Result<JsValue, JsValue> {
+        object_arg("Teacher.push", "edit", &edit, false)?;
         let r = match from_js::<Edit>(&edit) {
             Ok(edit) => self.inner.push(&edit),
             Err(message) => Err(RecorderError::Input {
@@ -240,7 +306,7 @@ impl Teacher {
 
     /// Removes the last recognised action and rewinds the world to the end of the one before.
     #[wasm_bindgen(unchecked_return_type = "TeachResult")]
-    pub fn undo(&mut self) -> Result<JsValue, JsError> {
+    pub fn undo(&mut self) -> Result<JsValue, JsValue> {
         let r = self.inner.undo_last_segment();
         let out = match r {
             Ok(removed) => self.result(
@@ -259,7 +325,19 @@ impl Teacher {
 
     /// Sets the taught goal (facts that must hold at the end; default: every fact of L_N).
     #[wasm_bindgen(js_name = setGoal, unchecked_return_type = "TeachResult")]
-    pub fn set_goal(&mut self, goal: Vec<String>) -> Result<JsValue, JsError> {
+    pub fn set_goal(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "string[]")] goal: JsValue,
+    ) -> Result<JsValue, JsValue> {
+        let goal: Vec<String> = match from_js(&goal) {
+            Ok(g) if goal.is_array() => g,
+            _ => {
+                return Err(type_error(&format!(
+                    "Teacher.setGoal: goal must be an array of strings, got {}",
+                    type_name(&goal)
+                )))
+            }
+        };
         let r = self.inner.set_goal(goal).map(|_| RecorderEvent {
             t: self.inner.time(),
             new_segments: vec![],
@@ -272,7 +350,7 @@ impl Teacher {
     /// Ends the recording: the taught `demo.json` (text), its listing and the skill fits, or why
     /// not (nothing demonstrated, a block still held, a goal fact that does not hold).
     #[wasm_bindgen(unchecked_return_type = "TeachFinish")]
-    pub fn finish(&self) -> Result<JsValue, JsError> {
+    pub fn finish(&self) -> Result<JsValue, JsValue> {
         let out = match self.inner.finish().and_then(|t| {
             let json =
                 serde_json::to_string(&t.demo).map_err(|e| RecorderError::Model(e.to_string()))?;
@@ -283,7 +361,7 @@ impl Teacher {
                 ok: true,
                 demo_json,
                 info,
-                skills,
+                skills: skills.into_iter().map(SkillFitOut::from).collect(),
             },
             Err(e) => TeachFinish::Err {
                 ok: false,
@@ -303,15 +381,23 @@ impl Teacher {
 /// Checks a taught `demo.json` completely and lists its actions, states L0..LN and goal. Rejects
 /// with the key and what is wrong.
 #[wasm_bindgen(js_name = taughtInfo, unchecked_return_type = "TaughtInfo")]
-pub fn taught_info(demo_json: &str) -> Result<JsValue, JsError> {
-    let (_, info) = taught::load(demo_json).map_err(js_err)?;
+pub fn taught_info(
+    #[wasm_bindgen(js_name = "demoJson", unchecked_param_type = "string")] demo_json: JsValue,
+) -> Result<JsValue, JsValue> {
+    let demo_json = string_arg("taughtInfo", "demoJson", &demo_json)?;
+    let (_, info) = taught::load(&demo_json).map_err(js_err)?;
     to_js(&info)
 }
 
 /// A seeded random initial world (scene JSON) for a taught task.
 #[wasm_bindgen(js_name = taughtRandomScene)]
-pub fn taught_random_scene(demo_json: &str, seed: f64) -> Result<String, JsError> {
-    taught::random_scene(demo_json, seed_of(seed)?).map_err(js_err)
+pub fn taught_random_scene(
+    #[wasm_bindgen(js_name = "demoJson", unchecked_param_type = "string")] demo_json: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "number")] seed: JsValue,
+) -> Result<String, JsValue> {
+    let demo_json = string_arg("taughtRandomScene", "demoJson", &demo_json)?;
+    let seed = number_arg("taughtRandomScene", "seed", &seed)?;
+    Ok(taught::random_scene(&demo_json, seed_of(seed)?).map_err(js_err)?)
 }
 
 #[wasm_bindgen(js_class = Session)]
@@ -320,22 +406,27 @@ impl WasmSession {
     /// a scene the user arranged (`options.scene`) or a seeded random one (`options.random`).
     #[wasm_bindgen(js_name = fromTaught)]
     pub fn from_taught(
-        demo_json: &str,
+        #[wasm_bindgen(js_name = "demoJson", unchecked_param_type = "string")] demo_json: JsValue,
         #[wasm_bindgen(unchecked_param_type = "TaughtRunOptions | undefined")] options: JsValue,
-    ) -> Result<WasmSession, JsError> {
+    ) -> Result<WasmSession, JsValue> {
+        let demo_json = string_arg("Session.fromTaught", "demoJson", &demo_json)?;
+        object_arg("Session.fromTaught", "options", &options, true)?;
         let o: TaughtRunOptions = if options.is_undefined() || options.is_null() {
             TaughtRunOptions::default()
         } else {
             from_js(&options).map_err(|e| js_err(format!("options: {e}")))?
         };
-        let inner = taught::session(demo_json, &o).map_err(js_err)?;
+        let inner = taught::session(&demo_json, &o).map_err(js_err)?;
         Ok(WasmSession { inner })
     }
 
     /// Re-runs the logged episode of a taught task (from `episodeJson()`) exactly.
     #[wasm_bindgen(js_name = replayTaught)]
-    pub fn replay_taught(episode: &str) -> Result<WasmSession, JsError> {
-        let inner = taught::replay(episode).map_err(js_err)?;
+    pub fn replay_taught(
+        #[wasm_bindgen(unchecked_param_type = "string")] episode: JsValue,
+    ) -> Result<WasmSession, JsValue> {
+        let episode = string_arg("Session.replayTaught", "episode", &episode)?;
+        let inner = taught::replay(&episode).map_err(js_err)?;
         Ok(WasmSession { inner })
     }
 }

@@ -1,0 +1,441 @@
+//! The PDDL bindings: `plan`, `check`, `validate` and `benchmark`. Bad PDDL is reported as data
+//! with `line:col` diagnostics; a parameter of the wrong JS type throws a `TypeError`.
+
+use super::args::{object_arg, optional_string_arg, string_arg, StringArg};
+use super::{from_js, js_err, to_js, PerformanceClock};
+use crate::pddl::{self, PddlError};
+use crate::plan::{self, Algorithm, Clock, HeuristicKind, SearchConfig, SearchOutcome};
+use serde::{Deserialize, Serialize};
+use tsify::Tsify;
+use wasm_bindgen::prelude::*;
+
+#[wasm_bindgen(typescript_custom_section)]
+const TS_PLAN_OPTIONS: &'static str = r#"
+/** Options of `plan()`; every field is optional, unknown keys are refused. */
+export interface PlanOptions {
+  /** Default `astar`. */
+  search?: "bfs" | "ucs" | "astar" | "gbfs" | "lazy-gbfs";
+  /** Default `lmcut` for `astar`, `hff` otherwise. */
+  heuristic?: "blind" | "hmax" | "hadd" | "hff" | "lmcut";
+  /** Stop after this many expanded states (default: unbounded). */
+  maxExpanded?: number;
+  /** Stop after this many milliseconds (default 30 000). */
+  timeLimitMs?: number;
+  /** File name of the domain in diagnostics (default `domain.pddl`). */
+  domainFile?: string;
+  /** File name of the problem in diagnostics (default `problem.pddl`). */
+  problemFile?: string;
+  /** @deprecated Use `maxExpanded`; the snake_case name is removed in the next release. */
+  max_expanded?: number;
+  /** @deprecated Use `timeLimitMs`; the snake_case name is removed in the next release. */
+  time_limit_ms?: number;
+  /** @deprecated Use `domainFile`; the snake_case name is removed in the next release. */
+  domain_file?: string;
+  /** @deprecated Use `problemFile`; the snake_case name is removed in the next release. */
+  problem_file?: string;
+}
+"#;
+
+/// Options of [`plan()`]; every field is optional. Names are camelCase; the snake_case names
+/// of 0.1 are read too, for one release (TypeScript: `PlanOptions`, written above).
+#[derive(Debug, Default, Deserialize)]
+#[serde(default, deny_unknown_fields, rename_all = "camelCase")]
+pub struct PlanOptions {
+    /// `bfs|ucs|astar|gbfs|lazy-gbfs` (default `astar`).
+    pub search: Option<String>,
+    /// `blind|hmax|hadd|hff|lmcut` (default `lmcut` for `astar`, `hff` otherwise).
+    pub heuristic: Option<String>,
+    /// Stop after this many expanded states (default: unbounded).
+    #[serde(alias = "max_expanded")]
+    pub max_expanded: Option<u64>,
+    /// Stop after this many milliseconds (default 30 000).
+    #[serde(alias = "time_limit_ms")]
+    pub time_limit_ms: Option<f64>,
+    /// File names used in diagnostics (default `domain.pddl`, `problem.pddl`).
+    #[serde(alias = "domain_file")]
+    pub domain_file: Option<String>,
+    /// See `domain_file`.
+    #[serde(alias = "problem_file")]
+    pub problem_file: Option<String>,
+}
+
+/// A located message about one of the inputs.
+#[derive(Debug, Clone, Serialize, Tsify)]
+pub struct Diagnostic {
+    /// Which input: `domain`, `problem`, `plan` or `options`.
+    #[tsify(type = "\"domain\" | \"problem\" | \"plan\" | \"options\"")]
+    pub source: &'static str,
+    /// The file name used in the message.
+    pub file: String,
+    /// 1-based line (0 when the message is not about a place in the text).
+    pub line: usize,
+    /// 1-based column in characters (0 when `line` is 0).
+    pub col: usize,
+    /// What is wrong.
+    pub message: String,
+}
+
+/// A plan found by [`plan()`].
+#[derive(Debug, Serialize, Tsify)]
+#[serde(rename_all = "camelCase")]
+pub struct PlanFound {
+    /// Always `true`.
+    #[tsify(type = "true")]
+    pub ok: bool,
+    /// The actions, `(stack a b)`, in order.
+    pub plan: Vec<String>,
+    /// The plan's cost (its length without `:action-costs`).
+    pub cost: u64,
+    /// Whether the configuration guarantees an optimal plan.
+    pub optimal: bool,
+    /// States expanded.
+    pub expanded: u64,
+    /// States generated.
+    pub generated: u64,
+    /// Search time in milliseconds (grounding excluded).
+    pub time_ms: f64,
+    /// Grounding time in milliseconds.
+    pub ground_ms: f64,
+    /// The fluent facts of the initial state and after each action (`plan.length + 1` entries).
+    pub states: Vec<Vec<String>>,
+}
+
+/// Why [`plan()`] found no plan.
+#[derive(Debug, Serialize, Tsify)]
+pub struct PlanFailed {
+    /// Always `false`.
+    #[tsify(type = "false")]
+    pub ok: bool,
+    /// `parse` (or grounding) errors, `options`, `unsolvable` (proved), or `budget` (ran out).
+    #[tsify(type = "\"parse\" | \"options\" | \"unsolvable\" | \"budget\"")]
+    pub kind: &'static str,
+    /// One line for people.
+    pub message: String,
+    /// Located errors (empty for `unsolvable` and `budget`).
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// The result of [`plan()`]: test `ok` to tell them apart.
+#[derive(Debug, Serialize, Tsify)]
+#[serde(untagged)]
+pub enum PlanOutcome {
+    /// A plan was found.
+    Found(PlanFound),
+    /// No plan: why.
+    Failed(PlanFailed),
+}
+
+fn diagnostic(e: &PddlError, domain_file: &str) -> Diagnostic {
+    Diagnostic {
+        source: if e.file == domain_file {
+            "domain"
+        } else {
+            "problem"
+        },
+        file: e.file.clone(),
+        line: e.line,
+        col: e.col,
+        message: e.message.clone(),
+    }
+}
+
+fn failed(kind: &'static str, message: String, diagnostics: Vec<Diagnostic>) -> PlanOutcome {
+    PlanOutcome::Failed(PlanFailed {
+        ok: false,
+        kind,
+        message,
+        diagnostics,
+    })
+}
+
+/// Parses and grounds both texts; `Err` carries the failure to report.
+fn parse_and_ground(
+    domain_text: &str,
+    problem_text: &str,
+    domain_file: &str,
+    problem_file: &str,
+) -> Result<plan::Task, PlanOutcome> {
+    let parse_err =
+        |e: PddlError| failed("parse", e.to_string(), vec![diagnostic(&e, domain_file)]);
+    let domain = pddl::parse_domain(domain_text, domain_file).map_err(parse_err)?;
+    let problem = pddl::parse_problem(problem_text, problem_file, &domain).map_err(parse_err)?;
+    plan::ground(&domain, &problem).map_err(|e| match e {
+        plan::GroundError::Located(p) => parse_err(p),
+        other => failed(
+            "parse",
+            other.to_string(),
+            vec![Diagnostic {
+                source: "problem",
+                file: problem_file.to_string(),
+                line: 0,
+                col: 0,
+                message: other.to_string(),
+            }],
+        ),
+    })
+}
+
+fn options_error(message: String) -> PlanOutcome {
+    failed(
+        "options",
+        message.clone(),
+        vec![Diagnostic {
+            source: "options",
+            file: String::new(),
+            line: 0,
+            col: 0,
+            message,
+        }],
+    )
+}
+
+fn plan_impl(domain_text: &str, problem_text: &str, o: PlanOptions) -> PlanOutcome {
+    let domain_file = o.domain_file.as_deref().unwrap_or("domain.pddl");
+    let problem_file = o.problem_file.as_deref().unwrap_or("problem.pddl");
+    let algorithm = match o.search.as_deref().unwrap_or("astar").parse::<Algorithm>() {
+        Ok(a) => a,
+        Err(e) => return options_error(e.to_string()),
+    };
+    let default_h = if algorithm == Algorithm::Astar {
+        "lmcut"
+    } else {
+        "hff"
+    };
+    let heuristic = match o
+        .heuristic
+        .as_deref()
+        .unwrap_or(default_h)
+        .parse::<HeuristicKind>()
+    {
+        Ok(h) => h,
+        Err(e) => return options_error(e.to_string()),
+    };
+    let clock = PerformanceClock;
+    let t0 = clock.now_secs();
+    let task = match parse_and_ground(domain_text, problem_text, domain_file, problem_file) {
+        Ok(t) => t,
+        Err(out) => return out,
+    };
+    let ground_ms = (clock.now_secs() - t0) * 1e3;
+    let config = SearchConfig {
+        algorithm,
+        heuristic,
+        max_nodes: o.max_expanded,
+        time_limit_secs: Some(o.time_limit_ms.unwrap_or(30_000.0).max(0.0) / 1e3),
+    };
+    let r = plan::search(&task, &config, &clock);
+    match r.outcome {
+        SearchOutcome::Plan(p) => {
+            let names = |s: &plan::State| -> Vec<String> {
+                s.facts().map(|f| task.facts[f as usize].clone()).collect()
+            };
+            let mut s = task.init.clone();
+            let mut states = vec![names(&s)];
+            for &op in &p.operators {
+                s = task.operators[op].apply(&s);
+                states.push(names(&s));
+            }
+            PlanOutcome::Found(PlanFound {
+                ok: true,
+                plan: p.names(&task).into_iter().map(str::to_string).collect(),
+                cost: p.cost,
+                optimal: config.is_optimal(),
+                expanded: r.stats.expanded,
+                generated: r.stats.generated,
+                time_ms: r.stats.time_secs * 1e3,
+                ground_ms,
+                states,
+            })
+        }
+        SearchOutcome::Unsolvable => failed(
+            "unsolvable",
+            format!(
+                "the problem is unsolvable: no goal state among {} reachable states",
+                r.stats.states
+            ),
+            vec![],
+        ),
+        SearchOutcome::BudgetExhausted { which } => failed(
+            "budget",
+            format!(
+                "no plan within the {which} ({} states expanded)",
+                r.stats.expanded
+            ),
+            vec![],
+        ),
+    }
+}
+
+/// Plans a PDDL problem: parses both texts (errors at `line:col`), grounds, and searches.
+///
+/// Never throws for bad PDDL or an unsolvable problem: the outcome says `ok: false` with the
+/// reason and the located diagnostics. It rejects only when `options` is not an options object.
+#[wasm_bindgen(unchecked_return_type = "PlanOutcome")]
+pub fn plan(
+    #[wasm_bindgen(unchecked_param_type = "string")] domain: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "string")] problem: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "PlanOptions | undefined")] options: JsValue,
+) -> Result<JsValue, JsValue> {
+    let domain = string_arg("plan", "domain", &domain)?;
+    let problem = string_arg("plan", "problem", &problem)?;
+    object_arg("plan", "options", &options, true)?;
+    let o: PlanOptions = if options.is_undefined() || options.is_null() {
+        PlanOptions::default()
+    } else {
+        // Misspelt keys are refused (deny_unknown_fields).
+        from_js(&options).map_err(|e| js_err(format!("options: {e}")))?
+    };
+    to_js(&plan_impl(&domain, &problem, o))
+}
+
+/// Parses and grounds a domain and a problem without searching: the located errors, if any
+/// (what an editor shows as you type). File names as in [`PlanOptions`].
+#[wasm_bindgen(js_name = check, unchecked_return_type = "Diagnostic[]")]
+pub fn check(
+    #[wasm_bindgen(unchecked_param_type = "string")] domain: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "string")] problem: JsValue,
+    #[wasm_bindgen(js_name = "domainFile")] domain_file: Option<StringArg>,
+    #[wasm_bindgen(js_name = "problemFile")] problem_file: Option<StringArg>,
+) -> Result<JsValue, JsValue> {
+    let domain = string_arg("check", "domain", &domain)?;
+    let problem = string_arg("check", "problem", &problem)?;
+    let domain_file = optional_string_arg("check", "domainFile", domain_file)?;
+    let problem_file = optional_string_arg("check", "problemFile", problem_file)?;
+    let d = domain_file.as_deref().unwrap_or("domain.pddl");
+    let p = problem_file.as_deref().unwrap_or("problem.pddl");
+    let diags = match parse_and_ground(&domain, &problem, d, p) {
+        Ok(_) => vec![],
+        Err(PlanOutcome::Failed(f)) => f.diagnostics,
+        Err(PlanOutcome::Found(_)) => vec![],
+    };
+    to_js(&diags)
+}
+
+/// A benchmark's initial scene and PDDL files (see [`benchmark()`]).
+#[derive(Debug, Serialize, Tsify)]
+pub struct BenchmarkInfo {
+    /// `b1`, `b2` or `b3`.
+    pub id: &'static str,
+    /// The directory name, e.g. `b1-tower`.
+    pub name: &'static str,
+    /// The initial world, as the page draws it.
+    #[tsify(type = "WorldSnapshot")]
+    pub scene: crate::sim::snapshot::WorldSnapshot,
+    /// `domains/<name>/domain.pddl`.
+    pub domain: &'static str,
+    /// `domains/<name>/problem.pddl`.
+    pub problem: &'static str,
+    /// The demonstration's actions (`domains/<name>/demo.json`) as an IPC plan, one a line.
+    #[serde(rename = "demoPlan")]
+    pub demo_plan: String,
+}
+
+/// One of the paper's benchmarks (`b1` tower, `b2` workspace reach, `b3` two arms): its initial
+/// scene and its PDDL domain and problem. Rejects an unknown id.
+#[wasm_bindgen(unchecked_return_type = "BenchmarkInfo")]
+pub fn benchmark(
+    #[wasm_bindgen(unchecked_param_type = "\"b1\" | \"b2\" | \"b3\"")] id: JsValue,
+) -> Result<JsValue, JsValue> {
+    use crate::sim::benchmark::Benchmark;
+    let id = string_arg("benchmark", "id", &id)?;
+    let b = Benchmark::parse(&id)
+        .ok_or_else(|| js_err(format!("unknown benchmark `{id}` (expected b1, b2 or b3)")))?;
+    to_js(&BenchmarkInfo {
+        id: b.as_str(),
+        name: b.dir_name(),
+        scene: b.scene_snapshot(),
+        domain: b.domain_pddl(),
+        problem: b.problem_pddl(),
+        demo_plan: crate::lfd::session::demo_actions(b.demo_json())
+            .map_err(js_err)?
+            .iter()
+            .map(|a| format!("{a}\n"))
+            .collect(),
+    })
+}
+
+/// The verdict of [`validate()`].
+#[cfg(feature = "wasm")]
+#[derive(Debug, Serialize, Tsify)]
+#[serde(rename_all = "camelCase")]
+pub struct Validation {
+    /// Every step applied and the goal holds.
+    pub valid: bool,
+    /// One line for people (`Plan valid, cost 6`, or the first failing step and why).
+    pub message: String,
+    /// Steps applied before the verdict.
+    pub steps_applied: usize,
+    /// Cost of the applied steps.
+    pub cost: u64,
+    /// The 1-based step whose precondition is false, if that is the verdict.
+    #[tsify(optional)]
+    pub failed_step: Option<usize>,
+    /// The false precondition or goal literals.
+    pub false_literals: Vec<String>,
+    /// Located errors in the domain, problem or plan text.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+/// Replays a plan (IPC format, one `(action arg …)` per line, `;` comments) on a problem and
+/// says whether it is valid, or the first failing step and why. Bad PDDL or a malformed plan is
+/// reported with `line:col` diagnostics, not thrown.
+#[cfg(feature = "wasm")]
+#[wasm_bindgen(unchecked_return_type = "Validation")]
+pub fn validate(
+    #[wasm_bindgen(unchecked_param_type = "string")] domain: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "string")] problem: JsValue,
+    #[wasm_bindgen(js_name = "plan", unchecked_param_type = "string")] plan_text: JsValue,
+) -> Result<JsValue, JsValue> {
+    use crate::plan::Outcome;
+    let domain = string_arg("validate", "domain", &domain)?;
+    let problem = string_arg("validate", "problem", &problem)?;
+    let plan_text = string_arg("validate", "plan", &plan_text)?;
+    let (domain, problem, plan_text) = (domain.as_str(), problem.as_str(), plan_text.as_str());
+    let (df, pf, planf) = ("domain.pddl", "problem.pddl", "plan");
+    let bad = |d: Diagnostic| Validation {
+        valid: false,
+        message: format!("{}:{}:{}: {}", d.file, d.line, d.col, d.message),
+        steps_applied: 0,
+        cost: 0,
+        failed_step: None,
+        false_literals: vec![],
+        diagnostics: vec![d],
+    };
+    let d = match pddl::parse_domain(domain, df) {
+        Ok(d) => d,
+        Err(e) => return to_js(&bad(diagnostic(&e, df))),
+    };
+    let p = match pddl::parse_problem(problem, pf, &d) {
+        Ok(p) => p,
+        Err(e) => return to_js(&bad(diagnostic(&e, df))),
+    };
+    let plan_diag = |e: &PddlError| Diagnostic {
+        source: "plan",
+        ..diagnostic(e, df)
+    };
+    let steps = match plan::parse_plan(plan_text, planf) {
+        Ok(s) => s,
+        Err(e) => return to_js(&bad(plan_diag(&e))),
+    };
+    let r = plan::validate(&d, &p, &steps);
+    let message = r.to_string();
+    let (failed_step, false_literals, diagnostics) = match &r.outcome {
+        Outcome::Valid => (None, vec![], vec![]),
+        Outcome::Malformed(e) => (None, vec![], vec![plan_diag(e)]),
+        Outcome::PreconditionFalse {
+            step,
+            false_literals,
+            ..
+        } => (Some(*step), false_literals.clone(), vec![]),
+        Outcome::GoalNotReached { false_literals } => (None, false_literals.clone(), vec![]),
+    };
+    to_js(&Validation {
+        valid: r.is_valid(),
+        message,
+        steps_applied: r.steps_applied,
+        cost: r.cost,
+        failed_step,
+        false_literals,
+        diagnostics,
+    })
+}

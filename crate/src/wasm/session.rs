@@ -1,0 +1,300 @@
+//! The closed-loop session (`Session`): one episode of paper Algorithm 1 in the kinematic
+//! workcell, stepped from JS. Its frames cross the boundary with camelCase names (the world
+//! snapshot inside keeps the scene file's names; the episode log keeps the CLI's).
+
+use super::args::{
+    number_arg, object_arg, optional_string_arg, string_arg, type_error, type_name, StringArg,
+};
+use super::{from_js, js_err, seed_of, to_js, PerformanceClock};
+use crate::lfd::control::Replan;
+use crate::lfd::session::{EePoint, Frame, PerturbOutcome, Status};
+use crate::sim::snapshot::WorldSnapshot;
+use serde::Serialize;
+use wasm_bindgen::prelude::*;
+
+/// TypeScript declarations of the closed-loop session's data (the loop's `SessionOptions`, `Frame`
+/// and friends, see `lfd::session`).
+#[wasm_bindgen(typescript_custom_section)]
+const TS_SESSION: &'static str = r#"
+/** Which benchmark, method and mode a session runs. */
+export interface SessionOptions {
+  benchmark: "b1" | "b2" | "b3";
+  method: "logic-lfd" | "linear" | "rlds" | "tamp";
+  mode: "paper" | "prioritised";
+  seed: number;
+  skill?: "lqt" | "dmp";
+}
+/** What the loop is doing. */
+export interface Status {
+  kind: "idle" | "planning" | "executing" | "replanning" | "done" | "failed";
+  message: string;
+  step?: number | null;
+  of?: number | null;
+}
+/** The last replan: why, how long it took (ms), which demo state it joined, the plan it made and
+ *  how many of its leading actions are new. (The episode log, `episodeJson()`, keeps the
+ *  snake_case names of the CLI's JSON: `time_ms`, `new_actions`.) */
+export interface Replan { reason: string; timeMs: number; k?: number | null; plan: string[]; tick: number; newActions: number; }
+/** One end-effector sample: where the arm's TCP is and where its controller aims. */
+export interface EePoint { arm: number; pos: [number, number, number]; target: [number, number, number]; }
+/** Everything the page draws after a step. */
+export interface Frame {
+  t: number;
+  tick: number;
+  world: WorldSnapshot;
+  status: Status;
+  plan: string[];
+  executing?: number | null;
+  demo: string[];
+  demoStates: string[][];
+  matchedK?: number | null;
+  facts: string[];
+  factsAdded: string[];
+  factsRemoved: string[];
+  lastReplan?: Replan | null;
+  replans: number;
+  ee: EePoint[];
+}
+/** An accepted drag: where the block went, what it rests on, what settled after it left. */
+export interface PerturbOutcome {
+  body: string; from: [number, number, number]; to: [number, number, number]; support: string;
+  alsoMoved: [string, [number, number, number]][];
+}
+/** What an injected disturbance (l1..l4) did. */
+export interface Injection { level: string; description: string; moved: [string, [number, number, number]][]; }
+"#;
+/// [`Frame`] as JS reads it: the same data with camelCase names.
+#[derive(Serialize)]
+#[serde(rename_all = "camelCase")]
+struct FrameOut<'a> {
+    t: f64,
+    tick: u64,
+    world: &'a WorldSnapshot,
+    status: &'a Status,
+    plan: &'a [String],
+    executing: Option<usize>,
+    demo: &'a [String],
+    demo_states: &'a [Vec<String>],
+    matched_k: Option<usize>,
+    facts: &'a [String],
+    facts_added: &'a [String],
+    facts_removed: &'a [String],
+    last_replan: Option<ReplanOut<'a>>,
+    replans: usize,
+    ee: &'a [EePoint],
+}
+
+/// [`Replan`] with camelCase names (the episode log keeps the CLI's snake_case).
+#[derive(Serialize)]
+#[serde(rename_all = "camelCase")]
+struct ReplanOut<'a> {
+    reason: &'a str,
+    time_ms: f64,
+    k: Option<usize>,
+    plan: &'a [String],
+    tick: u64,
+    new_actions: usize,
+}
+
+/// [`PerturbOutcome`] with camelCase names.
+#[derive(Serialize)]
+#[serde(rename_all = "camelCase")]
+struct PerturbOut<'a> {
+    body: &'a str,
+    from: [f64; 3],
+    to: [f64; 3],
+    support: &'a str,
+    also_moved: &'a [(String, [f64; 3])],
+}
+
+/// A frame as plain JS data, camelCase.
+fn frame_js(f: &Frame) -> Result<JsValue, JsValue> {
+    let last_replan = f.last_replan.as_ref().map(|r: &Replan| ReplanOut {
+        reason: &r.reason,
+        time_ms: r.time_ms,
+        k: r.k,
+        plan: &r.plan,
+        tick: r.tick,
+        new_actions: r.new_actions,
+    });
+    to_js(&FrameOut {
+        t: f.t,
+        tick: f.tick,
+        world: &f.world,
+        status: &f.status,
+        plan: &f.plan,
+        executing: f.executing,
+        demo: &f.demo,
+        demo_states: &f.demo_states,
+        matched_k: f.matched_k,
+        facts: &f.facts,
+        facts_added: &f.facts_added,
+        facts_removed: &f.facts_removed,
+        last_replan,
+        replans: f.replans,
+        ee: &f.ee,
+    })
+}
+
+fn perturb_js(o: &PerturbOutcome) -> Result<JsValue, JsValue> {
+    to_js(&PerturbOut {
+        body: &o.body,
+        from: o.from,
+        to: o.to,
+        support: &o.support,
+        also_moved: &o.also_moved,
+    })
+}
+
+/// The session options object of `func`, or a `TypeError` / an `Error` naming the bad key.
+pub(super) fn session_options(
+    func: &str,
+    options: &JsValue,
+) -> Result<crate::lfd::session::SessionOptions, JsValue> {
+    object_arg(func, "options", options, false)?;
+    Ok(from_js(options).map_err(|e| js_err(format!("options: {e}")))?)
+}
+
+/// One closed-loop episode (paper Algorithm 1) in a kinematic workcell: step it, draw its frames,
+/// disturb it. Wraps `lfd::Session` 1:1; every method returns plain data (see `Frame`).
+#[wasm_bindgen(js_name = Session)]
+pub struct WasmSession {
+    pub(super) inner: crate::lfd::session::Session,
+}
+
+#[wasm_bindgen(js_class = Session)]
+impl WasmSession {
+    /// A session on one of the benchmarks (`{ benchmark: "b1", method: "logic-lfd", mode: "paper",
+    /// seed: 1 }`). Rejects unknown options with a message; a non-object is a `TypeError`.
+    #[wasm_bindgen(constructor)]
+    pub fn new(
+        #[wasm_bindgen(unchecked_param_type = "SessionOptions")] options: JsValue,
+    ) -> Result<WasmSession, JsValue> {
+        let o = session_options("new Session", &options)?;
+        let inner = crate::lfd::session::Session::new(o).map_err(js_err)?;
+        Ok(WasmSession { inner })
+    }
+
+    /// A session on a benchmark's task in a different starting scene (a saved `WorldSnapshot`
+    /// JSON), optionally with another demonstration (`demo.json` text).
+    #[wasm_bindgen(js_name = fromScene)]
+    pub fn from_scene(
+        #[wasm_bindgen(unchecked_param_type = "SessionOptions")] options: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "string")] scene: JsValue,
+        demo: Option<StringArg>,
+    ) -> Result<WasmSession, JsValue> {
+        const F: &str = "Session.fromScene";
+        let o = session_options(F, &options)?;
+        let scene = string_arg(F, "scene", &scene)?;
+        let demo = optional_string_arg(F, "demo", demo)?;
+        let inner =
+            crate::lfd::session::Session::from_scene(o, &scene, demo.as_deref()).map_err(js_err)?;
+        Ok(WasmSession { inner })
+    }
+
+    /// Re-runs a logged episode (from `episodeJson()`) and returns the session at its end.
+    #[cfg(feature = "wasm")]
+    pub fn replay(
+        #[wasm_bindgen(unchecked_param_type = "string")] episode: JsValue,
+    ) -> Result<WasmSession, JsValue> {
+        let episode = string_arg("Session.replay", "episode", &episode)?;
+        let inner = crate::lfd::session::Session::replay(&episode).map_err(js_err)?;
+        Ok(WasmSession { inner })
+    }
+
+    /// Advances the episode by `dt` simulated seconds (whole 10 ms ticks; replans happen inside)
+    /// and returns the new frame.
+    #[wasm_bindgen(unchecked_return_type = "Frame")]
+    pub fn step(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "number")] dt: JsValue,
+    ) -> Result<JsValue, JsValue> {
+        let dt = number_arg("Session.step", "dt", &dt)?;
+        if !dt.is_finite() || dt < 0.0 {
+            return Err(js_err(format!(
+                "dt must be a non-negative number of seconds, got {dt}"
+            ))
+            .into());
+        }
+        let f = self.inner.step(dt, &PerformanceClock);
+        frame_js(&f)
+    }
+
+    /// The current frame, without stepping.
+    #[wasm_bindgen(unchecked_return_type = "Frame")]
+    pub fn frame(&self) -> Result<JsValue, JsValue> {
+        frame_js(&self.inner.frame())
+    }
+
+    /// Moves a block as a user's drag does: to `position` (m), then it settles. Rejects with the
+    /// reason when the world refuses (the block would float, collide, …).
+    #[wasm_bindgen(unchecked_return_type = "PerturbOutcome")]
+    pub fn perturb(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "string")] body: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "[number, number, number]")] position: JsValue,
+    ) -> Result<JsValue, JsValue> {
+        const F: &str = "Session.perturb";
+        let body = string_arg(F, "body", &body)?;
+        let bad = || {
+            type_error(&format!(
+                "{F}: position must be [x, y, z] (three finite numbers), got {}",
+                type_name(&position)
+            ))
+        };
+        if !position.is_array() {
+            return Err(bad());
+        }
+        let p: [f64; 3] = from_js::<Vec<f64>>(&position)
+            .ok()
+            .and_then(|v| v.try_into().ok())
+            .ok_or_else(bad)?;
+        if p.iter().any(|v| !v.is_finite()) {
+            return Err(js_err("position must be finite").into());
+        }
+        let out = self
+            .inner
+            .perturb(&body, p)
+            .map_err(|r| js_err(format!("cannot move {}: {}", r.body, r.reason)))?;
+        perturb_js(&out)
+    }
+
+    /// Injects a disturbance of level `l1`..`l4` and says what it did.
+    #[wasm_bindgen(unchecked_return_type = "Injection")]
+    pub fn inject(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "\"l1\" | \"l2\" | \"l3\" | \"l4\"")] level: JsValue,
+    ) -> Result<JsValue, JsValue> {
+        let level = string_arg("Session.inject", "level", &level)?;
+        let out = self.inner.inject(&level).map_err(js_err)?;
+        to_js(&out)
+    }
+
+    /// Restarts from the initial scene with another seed.
+    pub fn reset(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "number")] seed: JsValue,
+    ) -> Result<(), JsValue> {
+        let seed = number_arg("Session.reset", "seed", &seed)?;
+        self.inner.reset(seed_of(seed)?);
+        Ok(())
+    }
+
+    /// Drops the current plan; the loop replans on the next step.
+    pub fn cancel(&mut self) {
+        self.inner.cancel();
+    }
+
+    /// The full episode log as JSON (the CLI's format, snake_case); `Session.replay` reproduces
+    /// it exactly.
+    #[wasm_bindgen(js_name = episodeJson)]
+    pub fn episode_json(&self) -> String {
+        self.inner.episode_json()
+    }
+
+    /// The current world as scene JSON (loadable with `Session.fromScene`).
+    #[wasm_bindgen(js_name = sceneJson)]
+    pub fn scene_json(&self) -> String {
+        self.inner.world().to_json()
+    }
+}
