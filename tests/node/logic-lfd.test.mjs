@@ -281,7 +281,7 @@ describe('logicLfdPerturb', () => {
       a.states.forEach((s, i) => {
         if (i % 2 === 0) assert.equal(s.fromK, 0);
         assert.ok(s.fromK >= 0 && s.fromK <= demo.actions.length);
-        assert.ok(s.steps >= 0 && s.steps <= 10);
+        assert.ok(s.steps >= 0 && s.steps <= 8);
         for (const f of s.facts) assert.ok(fluents.includes(f), f);
         // Each drawn state is a state logicLfd reads and plans from.
         checkPlan(d, lfd.logicLfd(input(d, { state: s.facts.join('\n'), search: 'lazy-gbfs' })), `seed 7 #${i}`);

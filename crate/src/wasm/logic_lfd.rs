@@ -117,7 +117,7 @@ export interface LogicLfdPerturbInput {
   count: number;
   /** The same seed gives the same states, natively and in wasm. */
   seed: number;
-  /** Random actions per walk, at most (default 10). */
+  /** Random actions per walk, at most (default 8, as `logic-lfd lfd --perturb`). */
   maxSteps?: number;
   /** File names used in diagnostics. */
   files?: { domain?: string; problem?: string; demo?: string };
@@ -131,7 +131,7 @@ export interface LogicLfdPerturbResult {
 "#;
 
 /// The longest random walk of [`logic_lfd_perturb`] when `maxSteps` is not given.
-pub const DEFAULT_PERTURB_STEPS: usize = 10;
+pub const DEFAULT_PERTURB_STEPS: usize = 8;
 
 #[derive(Debug, Clone, Serialize)]
 struct Diag {
