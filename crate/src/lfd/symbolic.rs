@@ -105,26 +105,17 @@ impl LogicLfd {
         let d = pddl::parse_domain(domain.1, domain.0)?;
         let p = pddl::parse_problem(problem.1, problem.0, &d)?;
         let steps = parse_plan(demo.1, demo.0)?;
-        let report = validate(&d, &p, &steps);
-        match report.outcome {
-            Outcome::Valid => {}
-            Outcome::Malformed(e) => return Err(e.into()),
-            Outcome::PreconditionFalse {
-                step,
+        let applied = every_step_applies(
+            validate(&d, &p, &steps).outcome,
+            |step, action, at, lits| LfdError::DemoNotApplicable {
+                index: step - 1,
                 action,
-                location,
-                false_literals,
-            } => {
-                return Err(LfdError::DemoNotApplicable {
-                    index: step - 1,
-                    action,
-                    false_literals,
-                    location: Some(location),
-                })
-            }
-            Outcome::GoalNotReached { false_literals } => {
-                return Err(LfdError::DemoMissesGoal { false_literals })
-            }
+                false_literals: lits,
+                location: Some(at),
+            },
+        )?;
+        if let Outcome::GoalNotReached { false_literals } = applied {
+            return Err(LfdError::DemoMissesGoal { false_literals });
         }
         let task = plan::ground(&d, &p).map_err(|e| LfdError::Model(e.to_string()))?;
         let actions: Vec<String> = steps.iter().map(|s| s.text()).collect();
@@ -265,23 +256,15 @@ impl LogicLfd {
     pub fn state_after(&self, file: &str, plan_text: &str) -> Result<State, LfdError> {
         let (d, p) = self.source()?;
         let steps = parse_plan(plan_text, file)?;
-        match validate(d, p, &steps).outcome {
-            Outcome::Malformed(e) => return Err(e.into()),
-            Outcome::PreconditionFalse {
+        every_step_applies(
+            validate(d, p, &steps).outcome,
+            |step, action, location, lits| LfdError::PrefixNotApplicable {
                 step,
                 action,
                 location,
-                false_literals,
-            } => {
-                return Err(LfdError::PrefixNotApplicable {
-                    step,
-                    action,
-                    location,
-                    false_literals,
-                })
-            }
-            Outcome::Valid | Outcome::GoalNotReached { .. } => {}
-        }
+                false_literals: lits,
+            },
+        )?;
         let mut s = self.task.init.clone();
         for step in &steps {
             let name = step.text();
@@ -428,6 +411,25 @@ impl LogicLfd {
             .as_deref()
             .map(|(d, p)| (d, p))
             .ok_or_else(|| LfdError::Model("built from a grounded task: no PDDL to read".into()))
+    }
+}
+
+/// The validator's outcome when every step of the plan applied (`Valid` or `GoalNotReached`);
+/// a malformed step is an input error, and a false precondition the error `not_applicable`
+/// makes of (1-based step, action, `file:line:col`, false literals).
+fn every_step_applies(
+    outcome: Outcome,
+    not_applicable: impl FnOnce(usize, String, String, Vec<String>) -> LfdError,
+) -> Result<Outcome, LfdError> {
+    match outcome {
+        Outcome::Malformed(e) => Err(e.into()),
+        Outcome::PreconditionFalse {
+            step,
+            action,
+            location,
+            false_literals,
+        } => Err(not_applicable(step, action, location, false_literals)),
+        applied => Ok(applied),
     }
 }
 
