@@ -454,9 +454,7 @@ mod tests {
         let s = state(&task, cases[0]);
         let prio =
             plan_logic_lfd(&task, &spec, &s, Mode::Prioritised, &cfg(), &plan::NoClock).unwrap();
-        let mut t = task.clone();
-        t.init = s.clone();
-        let opt = plan::search(&t, &cfg(), &plan::NoClock);
+        let opt = plan::search_from(&task, &s, &cfg(), &plan::NoClock);
         assert_eq!(prio.ops.len(), opt.outcome.plan().unwrap().len());
     }
 

@@ -12,8 +12,8 @@ use rand_pcg::Pcg64Mcg;
 
 use crate::pddl::{self, Domain, PddlError, Problem};
 use crate::plan::{
-    self, parse_plan, replay, validate, validate_names, BannedTask, Clock, Goal, MultiGoalMode,
-    Outcome, SearchConfig, SearchResult, State, Task, ValidationReport,
+    self, parse_plan, replay, validate, validate_names, BannedTask, Clock, Outcome, SearchConfig,
+    SearchResult, State, Task, ValidationReport,
 };
 
 use super::demo::{DemoTrace, MultiGoalSpec};
@@ -321,22 +321,7 @@ impl LogicLfd {
         config: &SearchConfig,
         clock: &dyn Clock,
     ) -> SearchResult {
-        let goal = Goal {
-            alternatives: self.task.goal.alternatives.clone(),
-            terminal_cost: 0,
-        };
-        let r = plan::search_multi_goal(
-            &self.task,
-            s,
-            &[goal],
-            MultiGoalMode::FirstReached,
-            config,
-            clock,
-        );
-        SearchResult {
-            outcome: r.outcome,
-            stats: r.stats,
-        }
+        plan::search_from(&self.task, s, config, clock)
     }
 
     /// Replays `plan` (`(action args)` names) from `s` on the lifted domain — independent of the

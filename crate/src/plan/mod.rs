@@ -23,5 +23,6 @@ pub use clock::{Clock, NoClock};
 pub use heuristic::{HeuristicEvaluator, HeuristicKind, UnknownName};
 pub use multigoal::{search_multi_goal, MultiGoalMode, MultiGoalResult};
 pub use search::{
-    search, Algorithm, Budget, Plan, SearchConfig, SearchOutcome, SearchResult, SearchStats,
+    search, search_from, Algorithm, Budget, Plan, SearchConfig, SearchOutcome, SearchResult,
+    SearchStats,
 };

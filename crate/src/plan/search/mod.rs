@@ -35,7 +35,7 @@ mod succ;
 
 use crate::plan::clock::Clock;
 use crate::plan::heuristic::{HeuristicKind, UnknownName};
-use crate::plan::Task;
+use crate::plan::{State, Task};
 use std::fmt;
 use std::str::FromStr;
 
@@ -264,9 +264,19 @@ pub struct SearchResult {
 /// assert_eq!(r.outcome.plan().unwrap().names(&task), ["(move p0 p1)", "(move p1 p2)"]);
 /// ```
 pub fn search(task: &Task, config: &SearchConfig, clock: &dyn Clock) -> SearchResult {
+    search_from(task, &task.init, config, clock)
+}
+
+/// [`search`] from `start` instead of the task's initial state.
+pub fn search_from(
+    task: &Task,
+    start: &State,
+    config: &SearchConfig,
+    clock: &dyn Clock,
+) -> SearchResult {
     let r = run(
         task,
-        &task.init,
+        start,
         std::slice::from_ref(&task.goal),
         false,
         config,
