@@ -18,13 +18,16 @@ use std::hint::black_box;
 
 fn planning(c: &mut Criterion) {
     let files = Benchmark::B1.sources().unwrap();
-    let world = World::from_json(&files.scene).unwrap();
+    let motions = Benchmark::B1.motions();
+    let world = World::from_json(&files.scene)
+        .unwrap()
+        .with_motions(motions.clone());
     let model = DomainModel::new(
         &files.domain,
         "domain.pddl",
         &files.problem,
         "problem.pddl",
-        &world.snapshot().predicates,
+        &motions.scene_predicates(),
     )
     .unwrap();
     let objs: Vec<(String, String)> = SceneGraph::objects(&world)

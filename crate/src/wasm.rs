@@ -110,7 +110,7 @@ export interface ArmSnapshot {
 export interface RegionSnapshot { name: string; min: [number, number]; max: [number, number]; color: string; }
 /** The whole world, as `World::snapshot` writes it and `scene.json` files hold it. */
 export interface WorldSnapshot {
-  version: number; name: string; time: number; dt: number; floor_z: number; predicates: string[];
+  version: number; name: string; time: number; dt: number; floor_z: number;
   regions: RegionSnapshot[]; bodies: BodySnapshot[]; arms: ArmSnapshot[];
 }
 "#;

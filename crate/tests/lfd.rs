@@ -255,14 +255,17 @@ fn prioritised_mode_never_executes_more_actions_than_paper_mode() {
 
 #[test]
 fn multi_goal_plan_plus_suffix_reaches_the_goal_in_the_pddl_model() {
-    let files = Benchmark::B1.sources().unwrap();
-    let world = logic_lfd::sim::World::from_json(&files.scene).unwrap();
+    let b = Benchmark::B1;
+    let files = b.sources().unwrap();
+    let world = logic_lfd::sim::World::from_json(&files.scene)
+        .unwrap()
+        .with_motions(b.motions());
     let model = logic_lfd::lfd::model::DomainModel::new(
         &files.domain,
         "domain.pddl",
         &files.problem,
         "problem.pddl",
-        &world.snapshot().predicates,
+        &b.motions().scene_predicates(),
     )
     .unwrap();
     let objs: Vec<(String, String)> = SceneGraph::objects(&world)

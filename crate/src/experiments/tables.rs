@@ -11,6 +11,7 @@ use crate::plan::Clock;
 use crate::sim::benchmark::Benchmark;
 use crate::sim::demo::{pull_hook_poses, PULL_TARGET_RADIUS};
 use crate::sim::geometry::grasp_pose;
+use crate::sim::motions::Relation;
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
 
@@ -217,7 +218,7 @@ pub fn infeasible(world: &World) -> Option<String> {
     let arms = world.arm_names().len();
     let snap = world.snapshot();
     // Where the domain has `(inreach r x)`, a block is only picked inside r's reach annulus.
-    let annulus = snap.predicates.iter().any(|p| p == "inreach");
+    let annulus = world.motions().reports(Relation::InReach);
     let in_annulus = |a: usize, p: &Vector3<f64>| {
         !annulus
             || match (snap.arms.get(a), world.arm_base(a)) {
@@ -311,7 +312,7 @@ pub fn table1_scene(
             mix(task_seed, draw as u64)
         };
         let scene = super::tasks::initial_scene(b, level, seed)?;
-        let world = World::from_json(&scene)?;
+        let world = World::from_json(&scene)?.with_motions(b.motions());
         match infeasible(&world) {
             None => return Ok((scene, draw)),
             Some(w) => why = w,

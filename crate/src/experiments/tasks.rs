@@ -20,13 +20,13 @@ const ATTEMPTS: u64 = 8;
 /// the demonstration" means to the injector.
 pub fn demo_trace(b: Benchmark) -> Result<DemoTrace, SessionError> {
     let files = b.sources()?;
-    let template = World::from_json(&files.scene)?;
+    let template = World::from_json(&files.scene)?.with_motions(b.motions());
     let model = crate::lfd::model::DomainModel::new(
         &files.domain,
         "domain.pddl",
         &files.problem,
         "problem.pddl",
-        &template.snapshot().predicates,
+        &b.motions().scene_predicates(),
     )?;
     let objects: Vec<(String, String)> = SceneGraph::objects(&template)
         .into_iter()
@@ -39,7 +39,7 @@ pub fn demo_trace(b: Benchmark) -> Result<DemoTrace, SessionError> {
 /// The initial world (as scene JSON) of a Table I task.
 pub fn initial_scene(b: Benchmark, level: Level, seed: u64) -> Result<String, SessionError> {
     let files = b.sources()?;
-    let mut world = World::from_json(&files.scene)?;
+    let mut world = World::from_json(&files.scene)?.with_motions(b.motions());
     let trace = demo_trace(b)?;
     // Up to a few attempts with derived seeds: a level may be impossible from some draws.
     let mut last = String::new();

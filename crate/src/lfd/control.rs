@@ -21,8 +21,8 @@ use std::collections::BTreeSet;
 
 use serde::{Deserialize, Serialize};
 
-use crate::plan::{replay, BannedTask, Clock, SearchConfig, State, Task};
-use crate::tamp::{moves_body, Binder, Binding, BoundPlan};
+use crate::plan::{replay, BannedTask, Clock, Operator, SearchConfig, State, Task};
+use crate::tamp::{Binder, Binding, BoundPlan};
 
 use super::demo::DemoTrace;
 use super::logic::Mode;
@@ -612,13 +612,8 @@ impl Controller {
                     // when movable bodies were in its way, until one of them has moved), and
                     // sample more.
                     if let Ok(at) = replay(self.task(), s, &p.ops[..i]) {
-                        banned.ban_failed(
-                            p.ops[i],
-                            &at,
-                            &p.ops[..i],
-                            &failure.blockers,
-                            &moves_body,
-                        );
+                        let moves = |_: &Task, o: &Operator, b: &str| binder.moves_body(o, b);
+                        banned.ban_failed(p.ops[i], &at, &p.ops[..i], &failure.blockers, &moves);
                     }
                     binder.widen();
                 }

@@ -21,6 +21,7 @@
 //! ([`Session::inject`](super::session::Session::inject)).
 
 use std::collections::BTreeSet;
+use std::sync::Arc;
 
 use nalgebra::Vector3;
 use rand::seq::SliceRandom;
@@ -29,6 +30,7 @@ use rand_pcg::Pcg64Mcg;
 use serde::{Deserialize, Serialize};
 
 use crate::sim::benchmark::{BLOCK_COLORS, BLOCK_SIZE};
+use crate::sim::motions::{Motions, Relation, Slot};
 use crate::sim::reach::handleable;
 use crate::sim::snapshot::{BodyKind, BodySnapshot, PoseSnapshot, ShapeSnapshot};
 use crate::sim::{SceneGraph, World};
@@ -135,13 +137,20 @@ fn free_blocks(world: &World) -> Vec<String> {
     v
 }
 
-/// Whether nothing stands on `b` (by `(clear b)` where the domain has it, else by `on`).
-fn is_clear(f: &BTreeSet<String>, b: &str) -> bool {
-    if f.iter().any(|x| x.starts_with("(clear ")) {
-        return f.contains(&format!("(clear {b})"));
+/// Whether nothing stands on `b` (by the domain's `clear` fact where it states one, else by
+/// `on_block`).
+fn is_clear(m: &Motions, f: &BTreeSet<String>, b: &str) -> bool {
+    if let Some(spec) = m.fact(Relation::Clear) {
+        return spec
+            .render(&[(Slot::Body, b)])
+            .is_some_and(|c| f.contains(&c));
     }
-    !f.iter()
-        .any(|x| x.starts_with("(on ") && x.ends_with(&format!(" {b})")))
+    !f.iter().any(|x| is_about(m, x, Relation::OnBlock, Slot::Below, b))
+}
+
+/// Whether fact `f` states relation `rel` with `slot` = `value`.
+fn is_about(m: &Motions, f: &str, rel: Relation, slot: Slot, value: &str) -> bool {
+    matches!(m.relation_of(f), Some((r, spec, args)) if r == rel && spec.value(&args, slot) == Some(value))
 }
 
 /// A table spot for a block: random (x, y) over a table top, in reach of some arm unless
@@ -208,6 +217,8 @@ struct Before<'a> {
     has_on: bool,
     /// The demonstration.
     trace: &'a DemoTrace,
+    /// What the domain's predicates mean.
+    motions: Arc<Motions>,
 }
 
 impl Before<'_> {
@@ -240,7 +251,8 @@ pub fn inject(
         blocks: free_blocks(world),
         // Domains without `on` (B2) cannot express a block on a block: only table moves there,
         // and a severe change is a block moved out of reach.
-        has_on: world.snapshot().predicates.iter().any(|p| p == "on"),
+        has_on: world.motions().reports(Relation::OnBlock),
+        motions: world.motions_arc(),
         trace,
     };
     match level {
@@ -303,7 +315,7 @@ fn task_level(
     let cur = trace.states.iter().position(|l| *l == before.facts);
     let mut moves: Vec<(String, Option<String>)> = vec![];
     for b in &before.blocks {
-        if !is_clear(&before.facts, b) {
+        if !is_clear(&before.motions, &before.facts, b) {
             continue;
         }
         // Several table spots per block (a spot is drawn per try).
@@ -311,7 +323,7 @@ fn task_level(
             moves.push((b.clone(), None));
         }
         for o in &before.blocks {
-            if before.has_on && o != b && is_clear(&before.facts, o) {
+            if before.has_on && o != b && is_clear(&before.motions, &before.facts, o) {
                 moves.push((b.clone(), Some(o.clone())));
             }
         }
@@ -341,7 +353,7 @@ fn task_level(
                 let out_of_reach = before.has_on
                     || !after
                         .iter()
-                        .any(|f| f.starts_with("(inreach ") && f.ends_with(&format!(" {b})")));
+                        .any(|f| is_about(&before.motions, f, Relation::InReach, Slot::Body, b));
                 let ok = after != before.facts
                     && if want_seen {
                         trace.states.iter().enumerate().any(|(k, l)| {
@@ -400,7 +412,7 @@ fn new_block(
     let mut targets: Vec<String> = before
         .blocks
         .iter()
-        .filter(|b| is_clear(&before.facts, b))
+        .filter(|b| is_clear(&before.motions, &before.facts, b))
         .cloned()
         .collect();
     targets.shuffle(rng);
@@ -409,7 +421,8 @@ fn new_block(
     let goal = before.trace.states.last().cloned().unwrap_or_default();
     let needed = |t: &String| {
         goal.iter().any(|f| {
-            f.starts_with("(on ") && f.ends_with(&format!(" {t})")) && !before.facts.contains(f)
+            is_about(&before.motions, f, Relation::OnBlock, Slot::Below, t)
+                && !before.facts.contains(f)
         })
     };
     targets.sort_by_key(|t| !needed(t));
@@ -439,7 +452,7 @@ fn new_block(
     for (ti, t) in targets.into_iter().enumerate() {
         let last_resort = ti + 1 == n_targets;
         let Some(c) = centre(world, &t) else { continue };
-        let Ok(mut w2) = World::from_snapshot(&with_block) else {
+        let Ok(mut w2) = World::from_snapshot(&with_block).map(|w| w.with_motions(world.motions_arc())) else {
             continue;
         };
         if w2
@@ -478,7 +491,7 @@ fn new_block_in_the_way(
 ) -> Result<Injection, String> {
     let mut order: Vec<(f64, f64)> = spots.to_vec();
     order.shuffle(rng);
-    if let Ok(w2) = World::from_snapshot(with_block) {
+    if let Ok(w2) = World::from_snapshot(with_block).map(|w| w.with_motions(world.motions_arc())) {
         for (sx, sy) in order {
             let mut w3 = w2.clone();
             // Not on the shelf: a block left on the shelf can take the room the goal needs
@@ -487,7 +500,9 @@ fn new_block_in_the_way(
                 .move_block(name, Vector3::new(sx, sy, SPOT_DROP_Z))
                 .is_ok()
                 && !before.seen_equal(&facts(&w3))
-                && !facts(&w3).contains(&format!("(onshelf {name})"))
+                && !facts(&w3)
+                    .iter()
+                    .any(|f| is_about(&before.motions, f, Relation::OnShelf, Slot::Body, name))
                 && handleable(&w3, name).is_ok()
             {
                 let to = centre(&w3, name).unwrap_or([sx, sy, 0.0]);

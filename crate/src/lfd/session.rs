@@ -41,6 +41,7 @@ pub use log::{ActionRecord, EpisodeEvent, EpisodeLog, EpisodeResult};
 pub use options::{demo_actions, mix, SessionError, SessionOptions, SessionParams, SkillKind};
 
 use nalgebra::Vector3;
+use std::sync::Arc;
 
 use crate::sim::snapshot::{BodyKind, WorldSnapshot};
 use crate::sim::{Refused, SceneGraph, World};
@@ -132,16 +133,22 @@ impl Session {
         params: SessionParams,
     ) -> Result<Session, SessionError> {
         // Through the snapshot once, so the logged initial scene reloads to this very world.
+        let motions = Arc::new(files.parse_motions().map_err(|e| match e {
+            Ok(m) => SessionError::Motions(m),
+            Err(pddl) => SessionError::Lfd(super::LfdError::Model(pddl)),
+        })?);
         let world = World::from_json(scene_json.unwrap_or(&files.scene))?;
-        let world = World::from_snapshot(&world.snapshot())?;
-        let template = World::from_json(&files.scene)?;
-        let predicates = template.snapshot().predicates;
+        let world = World::from_snapshot(&world.snapshot())?.with_motions(Arc::clone(&motions));
+        motions
+            .check_arms(world.arm_names().len())
+            .map_err(SessionError::Json)?;
+        let template = World::from_json(&files.scene)?.with_motions(Arc::clone(&motions));
         let model = DomainModel::new(
             &files.domain,
             &format!("domains/{}/domain.pddl", files.dir),
             &files.problem,
             &format!("domains/{}/problem.pddl", files.dir),
-            &predicates,
+            &motions.scene_predicates(),
         )?;
         // The demonstration is derived on the template task (its initial state is the template
         // scene's facts).
@@ -166,8 +173,13 @@ impl Session {
             .filter(|b| b.kind == BodyKind::Hook)
             .map(|b| b.name.clone())
             .collect();
-        let skills = SkillLibrary::learn(demo_json.unwrap_or(&files.demo), options.skill, &hooks);
-        let hints = demo_hints(demo_json.unwrap_or(&files.demo));
+        let skills = SkillLibrary::learn(
+            demo_json.unwrap_or(&files.demo),
+            options.skill,
+            &hooks,
+            &motions,
+        );
+        let hints = demo_hints(demo_json.unwrap_or(&files.demo), &template);
         Ok(Session {
             sources: files.clone(),
             initial: world.snapshot(),

@@ -23,6 +23,7 @@ use std::collections::BTreeMap;
 use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 
 use crate::lqt::{Dmp, DmpParams, FeedbackController, Skill, SkillParams};
+use crate::sim::motions::{MotionKind, Motions};
 
 use super::session::SkillKind;
 
@@ -163,12 +164,12 @@ pub struct SkillLibrary {
     skills: BTreeMap<String, LearnedSkill>,
 }
 
-/// Segment kinds of a demonstrated action name.
-fn kinds_of(name: &str) -> Option<(&'static str, &'static str)> {
-    match name {
-        "pick" | "unstack" => Some(("grasp-approach", "grasp-retreat")),
-        "place" | "stack" | "place-on-shelf" => Some(("place-approach", "place-retreat")),
-        _ => None,
+/// Segment kinds of a demonstrated action schema, by its declared motion.
+fn kinds_of(motions: &Motions, name: &str) -> Option<(&'static str, &'static str)> {
+    match motions.actions.get(name)?.motion {
+        MotionKind::Grasp => Some(("grasp-approach", "grasp-retreat")),
+        MotionKind::Release => Some(("place-approach", "place-retreat")),
+        MotionKind::Pull | MotionKind::None => None,
     }
 }
 
@@ -176,14 +177,19 @@ impl SkillLibrary {
     /// Learns the segment skills from a `demo.json` with trajectories (see `sim::demo`). A demo
     /// without trajectories (only `actions` names) gives an empty library (minimum-jerk motion).
     /// Actions whose anchor is one of `hooks` learn `hook-…` skills (the hook is grasped at its
-    /// handle, not at its centre).
-    pub fn learn(demo_json: &str, kind: SkillKind, hooks: &[String]) -> SkillLibrary {
+    /// handle, not at its centre). What each action does comes from the domain's `motions`.
+    pub fn learn(
+        demo_json: &str,
+        kind: SkillKind,
+        hooks: &[String],
+        motions: &Motions,
+    ) -> SkillLibrary {
         let mut skills = BTreeMap::new();
         let Ok(demo) = crate::sim::demo::from_json(demo_json) else {
             return SkillLibrary { skills };
         };
         for a in &demo.actions {
-            let Some((approach, retreat)) = kinds_of(&a.name) else {
+            let Some((approach, retreat)) = kinds_of(motions, &a.name) else {
                 continue;
             };
             let Some(ev) = a

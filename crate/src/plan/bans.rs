@@ -7,7 +7,7 @@ use super::{fact_args, Operator, State, Task};
 
 /// Whether an operator of a task moves a body (grasps it or pulls it in): the physical reading
 /// of the task, given by the layer that knows what actions do (`tamp::action::moves_body`).
-pub type MovesBody = dyn Fn(&Task, &Operator, &str) -> bool;
+pub type MovesBody<'a> = dyn Fn(&Task, &Operator, &str) -> bool + 'a;
 
 /// Makes operator `o` inapplicable everywhere.
 pub(crate) fn forbid(task: &mut Task, o: usize) {
@@ -125,7 +125,7 @@ impl BannedTask {
         s: &State,
         prefix: &[usize],
         blockers: &[String],
-        moves_body: &MovesBody,
+        moves_body: &MovesBody<'_>,
     ) {
         if o >= self.task.operators.len() || self.origin.get(o) != Some(&o) {
             return;
@@ -189,7 +189,7 @@ impl BannedTask {
 
     /// The `(*moved* body)` fact, made when first asked for: every operator that moves `body`
     /// (copies included) adds it.
-    fn moved_flag(&mut self, body: &str, moves_body: &MovesBody) -> u32 {
+    fn moved_flag(&mut self, body: &str, moves_body: &MovesBody<'_>) -> u32 {
         if let Some(&f) = self.moved.get(body) {
             return f;
         }

@@ -235,6 +235,7 @@ pub fn segment_recording(
     let options = RecorderOptions {
         domain_file: domain_file.to_string(),
         problem_pddl: problem.map(|(t, f)| (t.to_string(), f.to_string())),
+        motions_json: None,
         params,
     };
     let mut rec = Recorder::new(&scene, domain_pddl, options)?;

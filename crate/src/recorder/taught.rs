@@ -131,10 +131,12 @@ fn sources_with_goal(
         .map_err(|e| RecorderError::Model(e.to_string()))?;
     let domain = crate::pddl::parse_domain(&files.domain, "domain.pddl")
         .map_err(|e| RecorderError::Model(e.to_string()))?;
-    let world = World::from_snapshot(&t.scene).map_err(|e| RecorderError::Input {
-        path: format!("scene.{}", e.path),
-        message: e.message,
-    })?;
+    let world = World::from_snapshot(&t.scene)
+        .map_err(|e| RecorderError::Input {
+            path: format!("scene.{}", e.path),
+            message: e.message,
+        })?
+        .with_motions(b.motions());
     let mut objects = String::new();
     for o in SceneGraph::objects(&world) {
         if domain.type_index(&o.kind).is_some() {
@@ -157,6 +159,7 @@ fn sources_with_goal(
         problem,
         scene,
         demo: demo_json.to_string(),
+        motions: files.motions,
     })
 }
 
@@ -165,16 +168,22 @@ fn model_and_trace(
     files: &BenchmarkSources,
     actions: &[String],
 ) -> Result<(DomainModel, World, DemoTrace), RecorderError> {
-    let world = World::from_json(&files.scene).map_err(|e| RecorderError::Input {
-        path: format!("scene.{}", e.path),
-        message: e.message,
-    })?;
+    let motions = std::sync::Arc::new(files.parse_motions().map_err(|e| match e {
+        Ok(m) => RecorderError::Model(m.to_string()),
+        Err(text) => RecorderError::Model(text),
+    })?);
+    let world = World::from_json(&files.scene)
+        .map_err(|e| RecorderError::Input {
+            path: format!("scene.{}", e.path),
+            message: e.message,
+        })?
+        .with_motions(std::sync::Arc::clone(&motions));
     let model = DomainModel::new(
         &files.domain,
         &format!("domains/{}/domain.pddl", files.dir),
         &files.problem,
         "taught-problem.pddl",
-        &world.snapshot().predicates,
+        &motions.scene_predicates(),
     )
     .map_err(|e| RecorderError::Model(e.to_string()))?;
     let objects: Vec<(String, String)> = SceneGraph::objects(&world)

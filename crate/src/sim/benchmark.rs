@@ -13,12 +13,14 @@
 //!   arm); blocks `a b` start on the left table; goal `(on a b) (at b right-table)`.
 
 use super::panda::{self, DOF};
+use super::motions::{Motions, MotionsError};
 use super::scene_graph::{Fact, SceneGraph};
 use super::snapshot::*;
 use super::world::World;
 use super::SceneError;
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
+use std::sync::{Arc, OnceLock};
 
 /// Side of a block (m).
 pub const BLOCK_SIZE: f64 = 0.06;
@@ -99,6 +101,44 @@ impl Benchmark {
         }
     }
 
+    /// What the domain's actions do physically and how its predicates read the scene
+    /// (`domains/<dir>/motions.json`).
+    pub fn motions_json(self) -> &'static str {
+        match self {
+            Benchmark::B1 => include_str!("../../../domains/b1-tower/motions.json"),
+            Benchmark::B2 => include_str!("../../../domains/b2-workspace-reach/motions.json"),
+            Benchmark::B3 => include_str!("../../../domains/b3-dual-arm/motions.json"),
+        }
+    }
+
+    /// The expert's script of the template demonstration (`domains/<dir>/expert.json`, see
+    /// [`crate::sim::demo::Script`]).
+    pub fn expert_json(self) -> &'static str {
+        match self {
+            Benchmark::B1 => include_str!("../../../domains/b1-tower/expert.json"),
+            Benchmark::B2 => include_str!("../../../domains/b2-workspace-reach/expert.json"),
+            Benchmark::B3 => include_str!("../../../domains/b3-dual-arm/expert.json"),
+        }
+    }
+
+    /// The parsed [`Benchmark::motions_json`] (read once).
+    pub fn motions(self) -> Arc<Motions> {
+        static CACHE: [OnceLock<Arc<Motions>>; 3] = [OnceLock::new(), OnceLock::new(), OnceLock::new()];
+        let i = self as usize;
+        Arc::clone(CACHE[i].get_or_init(|| {
+            let parsed = crate::pddl::parse_domain(self.domain_pddl(), "domain.pddl")
+                .map_err(|e| e.to_string())
+                .and_then(|d| {
+                    Motions::parse(self.motions_json(), "motions.json", &d).map_err(|e| e.to_string())
+                });
+            match parsed {
+                Ok(m) => Arc::new(m),
+                // Fixed data checked by the tests; a failure is a bug here.
+                Err(e) => panic!("benchmark {} motions: {e}", self.dir_name()),
+            }
+        }))
+    }
+
     /// The benchmark's files (embedded in the library), the scene as the JSON of
     /// [`Benchmark::scene_snapshot`].
     pub fn sources(self) -> Result<BenchmarkSources, SceneError> {
@@ -112,36 +152,39 @@ impl Benchmark {
             problem: self.problem_pddl().to_string(),
             scene,
             demo: self.demo_json().to_string(),
+            motions: self.motions_json().to_string(),
         })
     }
 
-    /// The goal facts (the same for every task of the benchmark).
+    /// The goal facts (the same for every task of the benchmark): the template problem's goal.
     pub fn goal(self) -> Vec<Fact> {
-        match self {
-            Benchmark::B1 => vec![
-                Fact::new("on", &["a", "b"]),
-                Fact::new("on", &["b", "c"]),
-                Fact::new("on", &["c", "d"]),
-            ],
-            Benchmark::B2 => vec![Fact::new("onshelf", &["a"]), Fact::new("onshelf", &["b"])],
-            Benchmark::B3 => vec![
-                Fact::new("on", &["a", "b"]),
-                Fact::new("at", &["b", "right-table"]),
-            ],
-        }
+        let Ok((domain, problem)) = self.parsed() else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        goal_atoms(&domain, &problem.goal, &mut out);
+        out
     }
 
-    /// Static facts of the domain that the scene graph does not report (B3's `reaches`).
+    /// Static facts of the template problem that the scene graph does not report (B3's arm
+    /// reach of each region).
     pub fn static_facts(self) -> Vec<Fact> {
-        match self {
-            Benchmark::B3 => vec![
-                Fact::new("reaches", &["left", "left-table"]),
-                Fact::new("reaches", &["left", "handover"]),
-                Fact::new("reaches", &["right", "handover"]),
-                Fact::new("reaches", &["right", "right-table"]),
-            ],
-            _ => Vec::new(),
-        }
+        let Ok((domain, problem)) = self.parsed() else {
+            return Vec::new();
+        };
+        let scene = self.motions().scene_predicates();
+        problem
+            .init
+            .iter()
+            .filter(|a| !scene.contains(&domain.predicates[a.predicate].name.text))
+            .map(|a| atom_fact(&domain, a))
+            .collect()
+    }
+
+    fn parsed(self) -> Result<(crate::pddl::Domain, crate::pddl::Problem), crate::pddl::PddlError> {
+        let d = crate::pddl::parse_domain(self.domain_pddl(), "domain.pddl")?;
+        let p = crate::pddl::parse_problem(self.problem_pddl(), "problem.pddl", &d)?;
+        Ok((d, p))
     }
 
     /// The blocks of the template task.
@@ -156,7 +199,7 @@ impl Benchmark {
     pub fn scene(self) -> World {
         let snap = self.scene_snapshot();
         match World::from_snapshot(&snap) {
-            Ok(w) => w,
+            Ok(w) => w.with_motions(self.motions()),
             // The builders below are fixed data checked by the tests; a failure is a bug here.
             Err(e) => panic!("benchmark scene {} is invalid: {e}", self.dir_name()),
         }
@@ -166,12 +209,10 @@ impl Benchmark {
     /// from the scene graph (plus [`Benchmark::static_facts`]), the benchmark's goal. This is how a
     /// disturbed world (for example with an added block) becomes a planning problem.
     pub fn problem_for(self, world: &World, problem_name: &str) -> String {
+        let world = &world.clone().with_motions(self.motions());
         let objects = SceneGraph::objects(world);
         let mut by_type: Vec<(String, Vec<String>)> = Vec::new();
         for o in objects {
-            if self == Benchmark::B1 && o.kind == "region" {
-                continue;
-            }
             match by_type.iter_mut().find(|(t, _)| *t == o.kind) {
                 Some((_, v)) => v.push(o.name),
                 None => by_type.push((o.kind, vec![o.name])),
@@ -209,9 +250,6 @@ impl Benchmark {
                 time: 0.0,
                 dt: 0.01,
                 floor_z: -0.75,
-                predicates: ["on", "ontable", "clear", "holding", "handempty"]
-                    .map(String::from)
-                    .to_vec(),
                 regions: vec![],
                 bodies: vec![
                     table("table", [0.35, 0.0], [0.60, 0.60]),
@@ -228,9 +266,6 @@ impl Benchmark {
                 time: 0.0,
                 dt: 0.01,
                 floor_z: -0.75,
-                predicates: ["ontable", "onshelf", "holding", "handempty", "inreach"]
-                    .map(String::from)
-                    .to_vec(),
                 regions: vec![],
                 bodies: vec![
                     table("table", [0.45, 0.0], [0.75, 0.70]),
@@ -256,9 +291,6 @@ impl Benchmark {
                 time: 0.0,
                 dt: 0.01,
                 floor_z: -0.75,
-                predicates: ["on", "ontable", "clear", "holding", "handempty", "at"]
-                    .map(String::from)
-                    .to_vec(),
                 regions: vec![
                     region("left-table", [0.20, 0.35], [0.75, 0.95], "#f4a6a6"),
                     region("handover", [0.28, -0.10], [0.48, 0.10], "#f4e3a6"),
@@ -297,6 +329,40 @@ pub struct BenchmarkSources {
     pub scene: String,
     /// `demo.json` (the demonstration).
     pub demo: String,
+    /// `motions.json` (what the actions do physically, how the predicates read the scene).
+    pub motions: String,
+}
+
+/// The positive atoms of a goal formula, as facts.
+fn goal_atoms(domain: &crate::pddl::Domain, f: &crate::pddl::Formula, out: &mut Vec<Fact>) {
+    match f {
+        crate::pddl::Formula::Atom(a) => out.push(atom_fact(domain, a)),
+        crate::pddl::Formula::And(v, _) => v.iter().for_each(|g| goal_atoms(domain, g, out)),
+        _ => {}
+    }
+}
+
+fn atom_fact(domain: &crate::pddl::Domain, a: &crate::pddl::Atom) -> Fact {
+    Fact {
+        predicate: domain.predicates[a.predicate].name.text.clone(),
+        args: a.args.iter().map(|t| t.text().to_string()).collect(),
+    }
+}
+
+impl BenchmarkSources {
+    /// The parsed `motions.json`, checked against the domain. `Err(Err(text))`: the domain itself
+    /// does not parse.
+    pub fn parse_motions(&self) -> Result<Motions, Result<MotionsError, String>> {
+        let domain_file = format!("domains/{}/domain.pddl", self.dir);
+        let domain =
+            crate::pddl::parse_domain(&self.domain, &domain_file).map_err(|e| Err(e.to_string()))?;
+        Motions::parse(
+            &self.motions,
+            &format!("domains/{}/motions.json", self.dir),
+            &domain,
+        )
+        .map_err(Ok)
+    }
 }
 
 /// A pose snapshot at `p` with yaw `yaw`.

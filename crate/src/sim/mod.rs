@@ -68,6 +68,7 @@
 pub mod benchmark;
 pub mod demo;
 pub mod geometry;
+pub mod motions;
 pub mod panda;
 pub mod reach;
 pub mod scene_graph;
@@ -79,5 +80,5 @@ pub use scene_graph::{Fact, SceneGraph};
 pub(crate) use world::LINK_TOLERANCE;
 pub use world::{
     GripperCommand, MoveOutcome, Refused, SceneError, SimError, Violation, World, WorldEvent,
-    WorldParams, KNOWN_PREDICATES,
+    WorldParams,
 };

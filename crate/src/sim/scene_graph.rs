@@ -1,33 +1,38 @@
 //! The scene graph: the PDDL fluent facts `S_C` of the current world (paper Algorithm 1,
 //! *SceneGraph*), derived from geometry.
 //!
-//! Definitions (names are the bodies', arms' and regions' lower-case names; a *free* body is a
-//! block or the hook that is neither held nor lost; `tol` = [`WorldParams::support_tolerance`]
-//! (5 mm); "rests on s" means the body's bottom is within `tol` of the top face of `s` and its
-//! centroid lies over that face — the same test the invariants use):
+//! The facts are stated with the domain's own predicates, declared in its `motions.json`
+//! ([`Motions`]: relation → predicate and argument order). Definitions (names are the bodies',
+//! arms' and regions' lower-case names; a *free* body is a block or the hook that is neither held
+//! nor lost; `tol` = [`WorldParams::support_tolerance`] (5 mm); "rests on s" means the body's
+//! bottom is within `tol` of the top face of `s` and its centroid lies over that face — the same
+//! test the invariants use):
 //!
-//! | fact | holds when |
+//! | relation | holds when |
 //! |---|---|
-//! | `(on x y)` | free block x rests on block y |
-//! | `(ontable x)` | free block or hook x rests on a table |
-//! | `(onshelf x)` | free block x rests on a shelf |
-//! | `(clear x)` | block x is free and no free block rests on it |
-//! | `(holding r x)` | arm r holds x |
-//! | `(handempty r)` | arm r holds nothing |
-//! | `(inreach r x)` | x (block or hook) is held by r, or is free and the horizontal distance from r's base axis to its grasp point (block centre, hook [`HOOK_GRASP_POINT`]) is within r's reach annulus |
-//! | `(at x p)` | free block x rests on a table or a block with its centre inside region p |
+//! | `on_block` (x, y) | free block x rests on block y |
+//! | `on_table` (x) | free block or hook x rests on a table |
+//! | `on_shelf` (x) | free block x rests on a shelf |
+//! | `clear` (x) | block x is free and no free block rests on it |
+//! | `held` (r, x) | arm r holds x |
+//! | `hand_empty` (r) | arm r holds nothing |
+//! | `in_reach` (r, x) | x (block or hook) is held by r, or is free and the horizontal distance from r's base axis to its grasp point (block centre, hook [`HOOK_GRASP_POINT`]) is within r's reach annulus |
+//! | `in_region` (x, p) | free block x rests on a table or a block with its centre inside region p |
 //!
-//! Only the predicates listed in the scene's `predicates` are reported (the benchmark domain's
-//! fluents), so the set equals what the PDDL problem's `:init` states for that world. Facts are
-//! sorted (predicate order of [`KNOWN_PREDICATES`], then
-//! arguments), so the output is deterministic.
+//! plus, for each object kind declared with a type predicate, that predicate of each such object
+//! (`(block a)` in an untyped domain). Only the relations the declaration names are reported, so
+//! the set equals what the PDDL problem's `:init` states for that world. Facts are sorted
+//! (relation order of [`Relation::ALL`], type predicates last, then arguments), so the output is
+//! deterministic.
 //!
 //! [`WorldParams::support_tolerance`]: super::WorldParams::support_tolerance
 //! [`HOOK_GRASP_POINT`]: super::geometry::HOOK_GRASP_POINT
+//! [`Motions`]: super::motions::Motions
 
 use super::geometry::HOOK_GRASP_POINT;
 use super::snapshot::BodyKind;
-use super::world::{World, KNOWN_PREDICATES};
+use super::motions::{ObjectKind, Relation, Slot};
+use super::world::World;
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -66,7 +71,7 @@ impl fmt::Display for Fact {
 pub struct SceneObject {
     /// Object name.
     pub name: String,
-    /// PDDL type: `arm`, `block`, `hook` or `region`.
+    /// Its PDDL type, as the domain's declaration gives it (`object` if none).
     pub kind: String,
 }
 
@@ -86,6 +91,7 @@ impl SceneGraph {
         for ai in 0..world.arms.len() {
             d.arm_facts(ai);
         }
+        d.type_facts();
         SceneGraph {
             facts: d.into_sorted(),
         }
@@ -102,37 +108,44 @@ impl SceneGraph {
         self.facts.iter().any(|f| f.to_string() == norm)
     }
 
-    /// The PDDL objects of `world`: arms, blocks, the hook (if the domain uses it), regions.
+    /// The PDDL objects of `world` with their types: arms, blocks, hooks and regions, the kinds
+    /// the domain's declaration names (`object` where it gives no type).
     pub fn objects(world: &World) -> Vec<SceneObject> {
-        let mut out: Vec<SceneObject> = world
-            .arms
-            .iter()
-            .map(|a| SceneObject {
-                name: a.name.clone(),
-                kind: "arm".into(),
-            })
-            .collect();
-        let mut blocks: Vec<&str> = world.block_names();
-        blocks.sort();
-        out.extend(blocks.iter().map(|b| SceneObject {
-            name: b.to_string(),
-            kind: "block".into(),
-        }));
-        out.extend(
-            world
-                .bodies
-                .iter()
-                .filter(|b| b.kind == BodyKind::Hook)
-                .map(|b| SceneObject {
-                    name: b.name.clone(),
-                    kind: "hook".into(),
-                }),
-        );
-        out.extend(world.regions.iter().map(|r| SceneObject {
-            name: r.name.clone(),
-            kind: "region".into(),
-        }));
+        let m = world.motions();
+        let mut out = Vec::new();
+        for kind in ObjectKind::ALL {
+            let Some(spec) = m.objects.get(&kind) else {
+                continue;
+            };
+            let ty = spec.ty.clone().unwrap_or_else(|| "object".into());
+            for name in names_of(world, kind) {
+                out.push(SceneObject {
+                    name,
+                    kind: ty.clone(),
+                });
+            }
+        }
         out
+    }
+}
+
+/// The names of the scene's objects of one kind (blocks sorted by name).
+fn names_of(world: &World, kind: ObjectKind) -> Vec<String> {
+    match kind {
+        ObjectKind::Arm => world.arms.iter().map(|a| a.name.clone()).collect(),
+        ObjectKind::Block => {
+            let mut blocks: Vec<String> =
+                world.block_names().iter().map(|b| b.to_string()).collect();
+            blocks.sort();
+            blocks
+        }
+        ObjectKind::Hook => world
+            .bodies
+            .iter()
+            .filter(|b| b.kind == BodyKind::Hook)
+            .map(|b| b.name.clone())
+            .collect(),
+        ObjectKind::Region => world.regions.iter().map(|r| r.name.clone()).collect(),
     }
 }
 
@@ -143,7 +156,8 @@ struct Derivation<'a> {
     held: Vec<Option<usize>>,
     /// support[i] = the body free body i rests on.
     support: Vec<Option<usize>>,
-    facts: Vec<Fact>,
+    /// The facts with their sort rank (relation order, type predicates last).
+    facts: Vec<(usize, Fact)>,
 }
 
 impl<'a> Derivation<'a> {
@@ -165,9 +179,25 @@ impl<'a> Derivation<'a> {
         d
     }
 
-    /// Whether the scene reports predicate `p`.
-    fn want(&self, p: &str) -> bool {
-        self.world.predicates.iter().any(|q| q == p)
+    /// Whether the domain states relation `r`.
+    fn want(&self, r: Relation) -> bool {
+        self.world.motions.reports(r)
+    }
+
+    /// Adds the fact stating `r` of these argument values.
+    fn push(&mut self, r: Relation, values: &[(Slot, &str)]) {
+        let Some(spec) = self.world.motions.fact(r) else {
+            return;
+        };
+        let args: Option<Vec<&str>> = spec
+            .args
+            .iter()
+            .map(|slot| values.iter().find(|(k, _)| k == slot).map(|v| v.1))
+            .collect();
+        if let Some(args) = args {
+            let rank = Relation::ALL.iter().position(|q| *q == r).unwrap_or(usize::MAX);
+            self.facts.push((rank, Fact::new(&spec.predicate, &args)));
+        }
     }
 
     /// Whether body `i` is a block or the hook that is neither held nor lost.
@@ -176,7 +206,7 @@ impl<'a> Derivation<'a> {
         b.is_movable() && !b.lost && !self.held.contains(&Some(i))
     }
 
-    /// `on`, `ontable`, `onshelf` and `at` of every free body.
+    /// `on_block`, `on_table`, `on_shelf` and `in_region` of every free body.
     fn support_facts(&mut self) {
         let world = self.world;
         for (i, b) in world.bodies.iter().enumerate() {
@@ -185,26 +215,26 @@ impl<'a> Derivation<'a> {
             }
             let Some(s) = self.support[i] else { continue };
             let sk = world.bodies[s].kind;
+            let body = (Slot::Body, b.name.as_str());
             match (b.kind, sk) {
-                (BodyKind::Block, BodyKind::Block) if self.want("on") => self
-                    .facts
-                    .push(Fact::new("on", &[&b.name, &world.bodies[s].name])),
-                (BodyKind::Block | BodyKind::Hook, BodyKind::Table) if self.want("ontable") => {
-                    self.facts.push(Fact::new("ontable", &[&b.name]))
+                (BodyKind::Block, BodyKind::Block) => self.push(
+                    Relation::OnBlock,
+                    &[body, (Slot::Below, world.bodies[s].name.as_str())],
+                ),
+                (BodyKind::Block | BodyKind::Hook, BodyKind::Table) => {
+                    self.push(Relation::OnTable, &[body])
                 }
-                (BodyKind::Block, BodyKind::Shelf) if self.want("onshelf") => {
-                    self.facts.push(Fact::new("onshelf", &[&b.name]))
-                }
+                (BodyKind::Block, BodyKind::Shelf) => self.push(Relation::OnShelf, &[body]),
                 _ => {}
             }
             if b.kind == BodyKind::Block
-                && self.want("at")
+                && self.want(Relation::InRegion)
                 && matches!(sk, BodyKind::Table | BodyKind::Block)
             {
                 let c = b.pose.translation.vector;
                 for r in &world.regions {
                     if r.contains(c.x, c.y) {
-                        self.facts.push(Fact::new("at", &[&b.name, &r.name]));
+                        self.push(Relation::InRegion, &[body, (Slot::Region, r.name.as_str())]);
                     }
                 }
             }
@@ -213,28 +243,29 @@ impl<'a> Derivation<'a> {
 
     /// `clear` of every free block nothing rests on.
     fn clear_facts(&mut self) {
-        if !self.want("clear") {
+        if !self.want(Relation::Clear) {
             return;
         }
         for (i, b) in self.world.bodies.iter().enumerate() {
             if b.kind == BodyKind::Block && self.free(i) && !self.support.contains(&Some(i)) {
-                self.facts.push(Fact::new("clear", &[&b.name]));
+                self.push(Relation::Clear, &[(Slot::Body, b.name.as_str())]);
             }
         }
     }
 
-    /// `holding`, `handempty` and `inreach` of arm `ai`.
+    /// `held`, `hand_empty` and `in_reach` of arm `ai`.
     fn arm_facts(&mut self, ai: usize) {
         let world = self.world;
         let a = &world.arms[ai];
+        let arm = (Slot::Arm, a.name.as_str());
         match self.held[ai] {
-            Some(i) if self.want("holding") => self
-                .facts
-                .push(Fact::new("holding", &[&a.name, &world.bodies[i].name])),
-            None if self.want("handempty") => self.facts.push(Fact::new("handempty", &[&a.name])),
-            _ => {}
+            Some(i) => self.push(
+                Relation::Held,
+                &[arm, (Slot::Body, world.bodies[i].name.as_str())],
+            ),
+            None => self.push(Relation::HandEmpty, &[arm]),
         }
-        if !self.want("inreach") {
+        if !self.want(Relation::InReach) {
             return;
         }
         let base = a.base.translation.vector;
@@ -254,28 +285,37 @@ impl<'a> Derivation<'a> {
                 false
             };
             if inreach {
-                self.facts.push(Fact::new("inreach", &[&a.name, &b.name]));
+                self.push(Relation::InReach, &[arm, (Slot::Body, b.name.as_str())]);
             }
         }
     }
 
-    /// The facts sorted (predicate order of [`KNOWN_PREDICATES`], then arguments), without
+    /// The type predicates of the declared object kinds (`(block a)`).
+    fn type_facts(&mut self) {
+        let world = self.world;
+        for kind in ObjectKind::ALL {
+            let Some(p) = world.motions.objects.get(&kind).and_then(|o| o.predicate.clone())
+            else {
+                continue;
+            };
+            for name in names_of(world, kind) {
+                self.facts.push((Relation::ALL.len(), Fact::new(&p, &[&name])));
+            }
+        }
+    }
+
+    /// The facts sorted (relation order, type predicates last, then arguments), without
     /// repeats.
     fn into_sorted(self) -> Vec<Fact> {
         let mut facts = self.facts;
-        let rank = |p: &str| {
-            KNOWN_PREDICATES
-                .iter()
-                .position(|q| *q == p)
-                .unwrap_or(usize::MAX)
-        };
         facts.sort_by(|x, y| {
-            rank(&x.predicate)
-                .cmp(&rank(&y.predicate))
-                .then_with(|| x.args.cmp(&y.args))
+            x.0.cmp(&y.0)
+                .then_with(|| x.1.predicate.cmp(&y.1.predicate))
+                .then_with(|| x.1.args.cmp(&y.1.args))
         });
-        facts.dedup();
-        facts
+        let mut out: Vec<Fact> = facts.into_iter().map(|(_, f)| f).collect();
+        out.dedup();
+        out
     }
 }
 

@@ -177,9 +177,6 @@ pub struct WorldSnapshot {
     pub dt: f64,
     /// Height of the floor (m); lost bodies lie on it.
     pub floor_z: f64,
-    /// The predicates the scene graph reports, i.e. the fluents of this benchmark's PDDL domain:
-    /// any of `on`, `ontable`, `onshelf`, `clear`, `holding`, `handempty`, `inreach`, `at`.
-    pub predicates: Vec<String>,
     /// Named table regions (B3); empty elsewhere.
     #[serde(default)]
     pub regions: Vec<RegionSnapshot>,

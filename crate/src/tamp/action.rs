@@ -1,14 +1,9 @@
-//! What a grounded action does physically, read from its effects (not its name), and what the
-//! streams bind for it.
-//!
-//! ```text
-//!   add ∋ (holding r x)                          → grasp x with arm r     (pick, unstack)
-//!   del ∋ (holding r x), add ∋ (on x y)          → release x on block y   (stack)
-//!   del ∋ (holding r x), add ∋ (ontable|onshelf|at x …) → release x at a placement (place)
-//!   r holds the hook, add ∋ (inreach r x)        → pull x with the hook   (pull)
-//! ```
+//! What a grounded action does physically, as its domain declares it (`motions.json`: grasp,
+//! release onto a block / a region / a table / a shelf, pull with a tool), and what the streams
+//! bind for it.
 
-use crate::plan::{fact_args, Operator, Task};
+use crate::plan::{Operator, Task};
+use crate::sim::motions::{MotionKind, Motions, Onto};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
 
@@ -109,77 +104,82 @@ impl ActionKind {
     }
 }
 
-/// Classifies a grounded operator (see the module documentation). `None` for an action without
-/// a physical effect the executor knows.
+/// Classifies a grounded operator by its schema's declared motion (`motions.json`, see
+/// [`crate::sim::motions`]). `None` for an action without a physical effect or whose objects
+/// the world does not have.
 pub fn classify(task: &Task, op: &Operator, world: &World) -> Option<ActionKind> {
-    let names =
-        |v: &[u32]| -> Vec<String> { v.iter().map(|&f| task.facts[f as usize].clone()).collect() };
-    let add = names(&op.add);
-    let del = names(&op.del);
-    let pre = names(&op.pre);
-    for f in &add {
-        let (p, a) = fact_args(f);
-        if p == "holding" && a.len() == 2 {
-            return Some(ActionKind::Grasp {
-                arm: world.arm_index(a[0])?,
-                body: a[1].to_string(),
-            });
-        }
-    }
-    for f in &del {
-        let (p, a) = fact_args(f);
-        if p == "holding" && a.len() == 2 {
-            let arm = world.arm_index(a[0])?;
-            let body = a[1].to_string();
-            let on = add.iter().find_map(|g| {
-                let (q, b) = fact_args(g);
-                (q == "on" && b.len() == 2 && b[0] == body).then(|| b[1].to_string())
-            });
-            return Some(ActionKind::Release {
+    let _ = task;
+    let (m, args) = world.motions().action(&op.name)?;
+    let arg = |i: Option<usize>| i.and_then(|i| args.get(i)).map(|s| s.to_string());
+    let arm = match m.arm {
+        Some(i) => world.arm_index(args.get(i)?)?,
+        None if world.arm_names().len() == 1 => 0,
+        None => return None,
+    };
+    let body = arg(m.object)?;
+    match m.motion {
+        MotionKind::Grasp => Some(ActionKind::Grasp { arm, body }),
+        MotionKind::Release => {
+            let placement = match m.onto? {
+                Onto::Param(i) => {
+                    let y = args.get(i)?;
+                    (world.body_kind(y) == Some(BodyKind::Block))
+                        .then(|| Placement::OnBlock(y.to_string()))
+                }
+                Onto::Table | Onto::Shelf => None,
+            };
+            Some(ActionKind::Release {
                 arm,
-                placement: on.map(Placement::OnBlock),
                 body,
-            });
+                placement,
+            })
         }
-    }
-    // Pull: the arm holds the hook (precondition) and the block comes into reach.
-    let hook = pre.iter().find_map(|f| {
-        let (p, a) = fact_args(f);
-        (p == "holding" && a.len() == 2 && world.body_kind(a[1]) == Some(HOOK))
-            .then(|| (a[0].to_string(), a[1].to_string()))
-    });
-    if let Some((arm, hook)) = hook {
-        let body = add.iter().find_map(|f| {
-            let (p, a) = fact_args(f);
-            (p == "inreach" && a.len() == 2 && a[0] == arm).then(|| a[1].to_string())
-        })?;
-        return Some(ActionKind::Pull {
-            arm: world.arm_index(&arm)?,
-            hook,
+        MotionKind::Pull => Some(ActionKind::Pull {
+            arm,
+            hook: arg(m.tool)?,
             body,
             turn: 0.0,
-        });
+        }),
+        MotionKind::None => None,
     }
-    None
 }
 
-/// Whether operator `op` of `task` moves `body`: grasps it (adds `(holding ?arm body)`, which
-/// a pick, an unstack and a hand-over do), or pulls it in (adds `(inreach ?arm body)` while the
-/// arm holds another body: the hook). The same reading of the task as [`classify`], without a
-/// world.
-pub fn moves_body(task: &Task, op: &Operator, body: &str) -> bool {
-    let fact = |f: &u32| fact_args(task.facts.get(*f as usize).map_or("", String::as_str));
-    op.add.iter().map(fact).any(|(p, a)| {
-        (p == "holding" && a.len() == 2 && a[1] == body)
-            || (p == "inreach"
-                && a.len() == 2
-                && a[1] == body
-                && op
-                    .pre
-                    .iter()
-                    .map(fact)
-                    .any(|(q, h)| q == "holding" && h.len() == 2 && h[0] == a[0] && h[1] != body))
+/// Where a release puts its body, as the domain declares it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ReleaseTarget {
+    /// On top of this block.
+    Block(String),
+    /// Inside this table region.
+    Region(String),
+    /// On any body of this kind (a table, a shelf).
+    Surface(BodyKind),
+}
+
+/// The declared target of a release action `op` (`None`: not a release).
+pub fn release_target(op: &Operator, world: &World) -> Option<ReleaseTarget> {
+    let (m, args) = world.motions().action(&op.name)?;
+    if m.motion != MotionKind::Release {
+        return None;
+    }
+    Some(match m.onto? {
+        Onto::Table => ReleaseTarget::Surface(BodyKind::Table),
+        Onto::Shelf => ReleaseTarget::Surface(BodyKind::Shelf),
+        Onto::Param(i) => {
+            let y = args.get(i)?.to_string();
+            match world.body_kind(&y) {
+                Some(BodyKind::Block) => ReleaseTarget::Block(y),
+                _ => ReleaseTarget::Region(y),
+            }
+        }
     })
 }
 
-const HOOK: BodyKind = BodyKind::Hook;
+/// Whether operator `op` moves `body`: grasps it (a pick, an unstack, a hand-over) or pulls it
+/// in, by the schema's declared motion. The same reading of the task as [`classify`].
+pub fn moves_body(motions: &Motions, op: &Operator, body: &str) -> bool {
+    let Some((m, args)) = motions.action(&op.name) else {
+        return false;
+    };
+    matches!(m.motion, MotionKind::Grasp | MotionKind::Pull)
+        && m.object.and_then(|i| args.get(i)) == Some(&body)
+}

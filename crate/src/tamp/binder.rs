@@ -1,7 +1,7 @@
 //! The interface between a symbolic plan and the streams: bind an action skeleton's continuous
 //! parameters, or say which action could not be bound and what was in its way.
 
-use crate::plan::Task;
+use crate::plan::{Operator, Task};
 
 use super::action::Binding;
 
@@ -34,4 +34,11 @@ pub trait Binder {
 
     /// Draws more samples per parameter from now on (a retry after a failed binding).
     fn widen(&mut self) {}
+
+    /// Whether operator `op` moves `body` (grasps it or pulls it in): what a ban waiting for a
+    /// blocker to move watches for ([`crate::plan::BannedTask::ban_failed`]).
+    fn moves_body(&self, op: &Operator, body: &str) -> bool {
+        let _ = (op, body);
+        false
+    }
 }

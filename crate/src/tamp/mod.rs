@@ -21,10 +21,14 @@ mod binder;
 pub mod motion;
 pub mod streams;
 
-pub use action::{classify, moves_body, ActionKind, Binding, Placement, PlanarPose};
+pub use action::{
+    classify, moves_body, release_target, ActionKind, Binding, Placement, PlanarPose, ReleaseTarget,
+};
 pub use binder::{BindFailure, Binder};
 
-use crate::plan::{replay, search, BannedTask, Clock, SearchConfig, SearchOutcome, State, Task};
+use crate::plan::{
+    replay, search, BannedTask, Clock, Operator, SearchConfig, SearchOutcome, State, Task,
+};
 
 /// Why TAMP found no plan.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -87,7 +91,8 @@ pub fn plan_from_scratch(
                 let i = failure.action;
                 last = t.operators[ops[i]].name.clone();
                 if let Ok(at) = replay(&t, s, &ops[..i]) {
-                    banned.ban_failed(ops[i], &at, &ops[..i], &failure.blockers, &moves_body);
+                    let moves = |_: &Task, o: &Operator, b: &str| binder.moves_body(o, b);
+                    banned.ban_failed(ops[i], &at, &ops[..i], &failure.blockers, &moves);
                 }
                 why = failure.reason;
                 binder.widen();

@@ -253,7 +253,9 @@ impl Teacher {
         let snapshot = match scene {
             None => b.scene_snapshot(),
             Some(text) => {
-                let w = crate::sim::World::from_json(&text).map_err(js_err)?;
+                let w = crate::sim::World::from_json(&text)
+                    .map_err(js_err)?
+                    .with_motions(b.motions());
                 if w.name() != b.dir_name() {
                     return Err(js_err(format!(
                         "the scene is the world `{}`, not {}",

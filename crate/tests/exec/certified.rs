@@ -114,7 +114,12 @@ fn the_pull_stream_predicts_where_the_executor_leaves_the_block() {
     );
     // The executor does what the stream predicted.
     let files = b.sources().unwrap();
-    let skills = SkillLibrary::learn(&files.demo, SkillKind::Lqt, &["hook".to_string()]);
+    let skills = SkillLibrary::learn(
+        &files.demo,
+        SkillKind::Lqt,
+        &["hook".to_string()],
+        &b.motions(),
+    );
     let params = ExecParams::default();
     for &o in &ops {
         let operator = &task.operators[o];

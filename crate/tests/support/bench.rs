@@ -29,7 +29,7 @@ pub(crate) fn model_and_task_for(
         "domain.pddl",
         problem,
         "problem.pddl",
-        &world.snapshot().predicates,
+        &b.motions().scene_predicates(),
     )
     .unwrap();
     let objs: Vec<(String, String)> = SceneGraph::objects(world)
@@ -61,18 +61,27 @@ pub(crate) fn saved_world(name: &str) -> World {
         "{}/tests/data/worlds/{name}.json",
         env!("CARGO_MANIFEST_DIR")
     );
-    World::from_json(&std::fs::read_to_string(path).unwrap()).unwrap()
+    let world = World::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
+    // A fixture is a benchmark's world: it reads its facts through that benchmark's motions.
+    let b = Benchmark::parse(world.name()).expect("a fixture names its benchmark's world");
+    world.with_motions(b.motions())
 }
 
 /// B1's skills, learned from its demonstration.
 pub(crate) fn b1_skills() -> SkillLibrary {
-    SkillLibrary::learn(&Benchmark::B1.sources().unwrap().demo, SkillKind::Lqt, &[])
+    let b = Benchmark::B1;
+    SkillLibrary::learn(&b.sources().unwrap().demo, SkillKind::Lqt, &[], &b.motions())
 }
 
 /// B2's skills, learned from its demonstration (the hook's grasp apart from the blocks').
 pub(crate) fn b2_skills() -> SkillLibrary {
     let demo = Benchmark::B2.sources().unwrap().demo;
-    SkillLibrary::learn(&demo, SkillKind::Lqt, &["hook".to_string()])
+    SkillLibrary::learn(
+        &demo,
+        SkillKind::Lqt,
+        &["hook".to_string()],
+        &Benchmark::B2.motions(),
+    )
 }
 
 /// B1 with block a on the table and c, on d beside it, overhanging a's corner by 4 mm (as when a

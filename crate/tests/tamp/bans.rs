@@ -6,7 +6,7 @@ use logic_lfd::lfd::control::FailReason;
 use logic_lfd::lfd::session::{Session, SessionOptions, SkillKind};
 use logic_lfd::lfd::{Method, Mode};
 use logic_lfd::plan::replay;
-use logic_lfd::plan::BannedTask;
+use logic_lfd::plan::{BannedTask, Operator, Task};
 use logic_lfd::plan::{search, Algorithm, HeuristicKind, NoClock, SearchConfig};
 use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
@@ -76,6 +76,8 @@ fn banning_an_action_at_one_state_keeps_it_applicable_everywhere_else() {
 #[test]
 fn an_action_a_movable_body_blocked_is_banned_until_that_body_has_moved() {
     let b = Benchmark::B2;
+    let motions = b.motions();
+    let moves = |_: &Task, o: &Operator, x: &str| moves_body(&motions, o, x);
     let world = template(b);
     let (_, task) = model_and_task(b, &world);
     let s0 = task.init.clone();
@@ -104,7 +106,7 @@ fn an_action_a_movable_body_blocked_is_banned_until_that_body_has_moved() {
     assert!(task.operators[pull_b].applicable(&a_shelved));
 
     let mut banned = BannedTask::new(&task);
-    banned.ban_failed(pull_b, &holding, &[], &["a".to_string()], &moves_body);
+    banned.ban_failed(pull_b, &holding, &[], &["a".to_string()], &moves);
     assert!(!banned.is_empty());
     let at = |b: &BannedTask, ops: &[usize]| in_banned(b, &s0, ops);
     let holding_b = at(&banned, &[pick_hook]);
@@ -141,7 +143,7 @@ fn an_action_a_movable_body_blocked_is_banned_until_that_body_has_moved() {
     assert!(task.goal.holds(&end));
     // Bans until something moves do not count towards banning the action everywhere.
     for _ in 0..=logic_lfd::plan::STATE_BANS {
-        banned.ban_failed(pull_b, &holding, &[], &["a".to_string()], &moves_body);
+        banned.ban_failed(pull_b, &holding, &[], &["a".to_string()], &moves);
     }
     assert!(applicable_copies(&banned, pull_b, &a_shelved_b) >= 1);
 
@@ -152,7 +154,7 @@ fn an_action_a_movable_body_blocked_is_banned_until_that_body_has_moved() {
         &holding,
         &[],
         &["b".to_string(), "hook".to_string()],
-        &moves_body,
+        &moves,
     );
     assert_eq!(applicable_copies(&own, pull_b, &own.lift(&holding)), 0);
     let hook_moved = replay(
@@ -183,6 +185,8 @@ fn in_banned(b: &BannedTask, s0: &logic_lfd::plan::State, ops: &[usize]) -> logi
 #[test]
 fn an_action_banned_until_a_blocker_moves_waits_for_the_blocker_itself_not_its_facts() {
     let world = template(Benchmark::B1);
+    let motions = Benchmark::B1.motions();
+    let moves = |_: &Task, o: &Operator, x: &str| moves_body(&motions, o, x);
     let (_, task) = model_and_task(Benchmark::B1, &world);
     let names: Vec<String> = [
         "(clear a)",
@@ -198,7 +202,7 @@ fn an_action_banned_until_a_blocker_moves_waits_for_the_blocker_itself_not_its_f
     let s = task.state_from_names(&names).unwrap();
     let pick_a = op(&task, "(pick panda a)");
     let mut banned = BannedTask::new(&task);
-    banned.ban_failed(pick_a, &s, &[], &["c".to_string()], &moves_body);
+    banned.ban_failed(pick_a, &s, &[], &["c".to_string()], &moves);
     let unstacked_b = in_banned(
         &banned,
         &s,
@@ -244,7 +248,7 @@ fn an_action_banned_until_a_blocker_moves_waits_for_the_blocker_itself_not_its_f
     // the plan put it) bans it at the facts c has there.
     let prefix = &ops[..first_pick_a];
     let there = replay(&task, &s, prefix).unwrap();
-    banned.ban_failed(pick_a, &there, prefix, &["c".to_string()], &moves_body);
+    banned.ban_failed(pick_a, &there, prefix, &["c".to_string()], &moves);
     assert_eq!(
         applicable_copies(&banned, pick_a, &in_banned(&banned, &s, prefix)),
         0

@@ -76,9 +76,14 @@ fn load(path: &Path) -> Result<World, ExitCode> {
         eprintln!("{file}: cannot read: {e}");
         ExitCode::from(exit::BAD_INPUT)
     })?;
-    World::from_json(&text).map_err(|e| {
+    let world = World::from_json(&text).map_err(|e| {
         eprintln!("{file}: {e}");
         ExitCode::from(exit::BAD_INPUT)
+    })?;
+    // A benchmark's world reads its facts through that benchmark's motions.json.
+    Ok(match Benchmark::parse(world.name()) {
+        Some(b) => world.with_motions(b.motions()),
+        None => world,
     })
 }
 

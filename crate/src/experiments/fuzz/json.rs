@@ -301,13 +301,12 @@ fn approx_eq(a: &Value, b: &Value) -> bool {
     }
 }
 
-const SCENE_KEYS: [&str; 9] = [
+const SCENE_KEYS: [&str; 8] = [
     "version",
     "name",
     "time",
     "dt",
     "floor_z",
-    "predicates",
     "regions",
     "bodies",
     "arms",

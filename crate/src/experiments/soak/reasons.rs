@@ -16,6 +16,7 @@ use crate::plan::{
     SearchOutcome,
 };
 use crate::sim::benchmark::Benchmark;
+use crate::sim::motions::{Relation, Slot};
 use crate::sim::reach::handleable;
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
@@ -70,12 +71,14 @@ pub(super) fn shelf_full_for(
     if shelves.is_empty() {
         return None;
     }
-    let wanted = goal_facts.iter().filter_map(|f| match fact_args(f) {
-        ("onshelf", a) if a.len() == 1 => Some(a[0].to_string()),
+    let m = world.motions();
+    let on_shelf = |f: &str| match m.relation_of(f) {
+        Some((Relation::OnShelf, spec, args)) => spec.value(&args, Slot::Body).map(str::to_string),
         _ => None,
-    });
+    };
+    let wanted = goal_facts.iter().filter_map(|f| on_shelf(f));
     for x in wanted {
-        if facts.contains(&format!("(onshelf {x})")) || world.is_lost(&x) {
+        if facts.iter().any(|f| on_shelf(f).as_deref() == Some(x.as_str())) || world.is_lost(&x) {
             continue;
         }
         let Some(bi) = world.body_index(&x) else {
@@ -247,7 +250,9 @@ mod tests {
             "{}/tests/data/worlds/b2-b-held-over-full-shelf.json",
             env!("CARGO_MANIFEST_DIR")
         );
-        let mut world = World::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let mut world = World::from_json(&std::fs::read_to_string(path).unwrap())
+            .unwrap()
+            .with_motions(Benchmark::B2.motions());
         let goal = [
             "(onshelf a)".to_string(),
             "(onshelf b)".to_string(),

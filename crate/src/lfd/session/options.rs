@@ -11,6 +11,9 @@ use crate::lfd::exec::ExecParams;
 use crate::lfd::logic::Mode;
 use crate::lfd::{LfdError, Method};
 use crate::sim::benchmark::Benchmark;
+use crate::sim::motions::{MotionKind, Onto};
+use crate::sim::snapshot::BodyKind;
+use crate::sim::World;
 use crate::tamp::streams::StreamParams;
 
 /// Which motion skill family executes the actions.
@@ -52,6 +55,9 @@ pub enum SessionError {
     /// The scene JSON is invalid.
     #[error("scene: {0}")]
     Scene(#[from] crate::sim::SceneError),
+    /// The domain's `motions.json` is unusable.
+    #[error(transparent)]
+    Motions(#[from] crate::sim::motions::MotionsError),
     /// A JSON document (demo, episode) is malformed.
     #[error("{0}")]
     Json(String),
@@ -110,13 +116,23 @@ pub fn demo_actions(demo_json: &str) -> Result<Vec<String>, SessionError> {
 /// Where the demonstration put things down: action → the resting pose.
 pub(super) type PlacementHints = BTreeMap<String, PlanarPose>;
 
-/// The placements the demonstration used for its surface releases (`place`,
-/// `place-on-shelf`): action → the resting pose (`sim::demo` anchor poses).
-pub(super) fn demo_hints(demo_json: &str) -> PlacementHints {
+/// The placements the demonstration used for its releases onto a surface or a region (not onto
+/// a block): action → the resting pose (`sim::demo` anchor poses).
+pub(super) fn demo_hints(demo_json: &str, world: &World) -> PlacementHints {
     let mut out = BTreeMap::new();
     if let Ok(d) = crate::sim::demo::from_json(demo_json) {
         for a in d.actions {
-            if a.name.starts_with("place") {
+            let onto_surface = world.motions().action(&a.action).is_some_and(|(m, args)| {
+                m.motion == MotionKind::Release
+                    && match m.onto {
+                        Some(Onto::Param(i)) => args
+                            .get(i)
+                            .is_some_and(|y| world.body_kind(y) != Some(BodyKind::Block)),
+                        Some(_) => true,
+                        None => false,
+                    }
+            });
+            if onto_surface {
                 let p = a.anchor_pose.position;
                 out.entry(a.action.clone()).or_insert(PlanarPose {
                     x: p[0],

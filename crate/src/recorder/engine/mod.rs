@@ -13,6 +13,8 @@ use super::{RecorderError, RecorderEvent, RecorderParams, Segment};
 use crate::pddl;
 use crate::plan::{self, State, Task};
 use crate::sim::benchmark::Benchmark;
+use crate::sim::motions::Motions;
+use std::sync::Arc;
 pub(crate) use crate::sim::geometry::gripper_yaw;
 use crate::sim::snapshot::{BodyKind, WorldSnapshot};
 use crate::sim::{GripperCommand, SceneGraph, World, WorldEvent};
@@ -27,6 +29,9 @@ pub struct RecorderOptions {
     /// not report (B3's `reaches`). Without it they come from the benchmark whose name the scene
     /// carries, if any.
     pub problem_pddl: Option<(String, String)>,
+    /// The domain's `motions.json` `(text, file name)`. Without it, the motions of the benchmark
+    /// whose name the scene carries.
+    pub motions_json: Option<(String, String)>,
     /// Tunables.
     pub params: RecorderParams,
 }
@@ -36,6 +41,7 @@ impl Default for RecorderOptions {
         RecorderOptions {
             domain_file: "domain.pddl".into(),
             problem_pddl: None,
+            motions_json: None,
             params: RecorderParams::default(),
         }
     }
@@ -143,10 +149,11 @@ fn sorted_facts(world: &World) -> Vec<String> {
 /// report), or from the benchmark the scene is.
 fn static_facts(
     scene: &WorldSnapshot,
+    world: &World,
     domain: &pddl::Domain,
     problem_pddl: &Option<(String, String)>,
 ) -> Result<Vec<String>, RecorderError> {
-    let preds: Vec<String> = scene.predicates.clone();
+    let preds: Vec<String> = world.motions().scene_predicates();
     Ok(match problem_pddl {
         Some((text, file)) => {
             let p = pddl::parse_problem(text, file, domain).map_err(model_err)?;
@@ -160,6 +167,28 @@ fn static_facts(
             .map(|b| b.static_facts().iter().map(|f| f.to_string()).collect())
             .unwrap_or_default(),
     })
+}
+
+/// What the domain's actions and predicates mean: the given `motions.json`, or the benchmark's
+/// the scene is.
+fn scene_motions(
+    scene: &WorldSnapshot,
+    domain: &pddl::Domain,
+    motions_json: &Option<(String, String)>,
+) -> Result<Arc<Motions>, RecorderError> {
+    match motions_json {
+        Some((text, file)) => Motions::parse(text, file, domain)
+            .map(Arc::new)
+            .map_err(|e| RecorderError::Model(e.to_string())),
+        None => Benchmark::parse(&scene.name)
+            .map(Benchmark::motions)
+            .ok_or_else(|| {
+                RecorderError::Model(format!(
+                    "the scene `{}` is no benchmark's: give the domain's motions.json",
+                    scene.name
+                ))
+            }),
+    }
 }
 
 /// The PDDL problem of the scene: its objects the domain has a type for, its facts and the
@@ -194,12 +223,15 @@ impl Recorder {
         domain_pddl: &str,
         options: RecorderOptions,
     ) -> Result<Recorder, RecorderError> {
-        let world = World::from_snapshot(scene).map_err(|e| RecorderError::Input {
-            path: format!("scene.{}", e.path),
-            message: e.message,
-        })?;
         let domain = pddl::parse_domain(domain_pddl, &options.domain_file).map_err(model_err)?;
-        let statics = static_facts(scene, &domain, &options.problem_pddl)?;
+        let motions = scene_motions(scene, &domain, &options.motions_json)?;
+        let world = World::from_snapshot(scene)
+            .map_err(|e| RecorderError::Input {
+                path: format!("scene.{}", e.path),
+                message: e.message,
+            })?
+            .with_motions(motions);
+        let statics = static_facts(scene, &world, &domain, &options.problem_pddl)?;
         let facts = sorted_facts(&world);
         let problem_text = scene_problem_text(&domain, &world, &facts, &statics);
         let problem = pddl::parse_problem(&problem_text, "<scene>", &domain).map_err(|e| {
@@ -445,7 +477,9 @@ impl Recorder {
         let mut fresh = Recorder {
             params: self.params.clone(),
             initial: self.initial.clone(),
-            world: World::from_snapshot(&self.initial).map_err(model_err)?,
+            world: World::from_snapshot(&self.initial)
+                .map_err(model_err)?
+                .with_motions(self.world.motions_arc()),
             domain_name: self.domain_name.clone(),
             task: self.task.clone(),
             init_state: self.init_state.clone(),

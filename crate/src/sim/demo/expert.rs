@@ -1,13 +1,13 @@
 //! The scripted expert: minimum-jerk way-point motions with seeded human-like variation,
 //! executed in the simulator and recorded relative to each action's anchor frame.
 
-use super::template::{template_steps, TemplateAction};
+use super::template::{template_steps, Script, TemplateAction};
 use super::{anchor_sample, min_jerk, pull_hook_poses, FRAME_CONVENTION, PULL_TARGET_RADIUS};
 use super::{fail, AnchorPose, DemoAction, DemoError, Demonstration, GripperEvent, KeyPoint};
 use crate::sim::benchmark::Benchmark;
 use crate::sim::geometry::{self, yaw_of};
 use crate::sim::panda;
-use crate::sim::scene_graph::SceneGraph;
+use crate::sim::scene_graph::{Fact, SceneGraph};
 use crate::sim::world::{GripperCommand, World, WorldEvent};
 use nalgebra::{Isometry3, Translation3, Vector3};
 use rand::{Rng, SeedableRng};
@@ -477,32 +477,45 @@ impl Expert {
 /// Records the template task's demonstration of `b` with the scripted expert (seeded variation),
 /// checking the world's invariants after every step and the goal at the end.
 pub fn record(b: Benchmark, seed: u64, params: &ExpertParams) -> Result<Demonstration, DemoError> {
-    let mut world = b.scene();
+    let script: Script = serde_json::from_str(b.expert_json())
+        .map_err(|e| fail("expert.json", e.to_string()))?;
+    record_script(b.scene(), &script, &b.goal(), b.dir_name(), seed, params)
+}
+
+/// Records a demonstration of `script` from `world` (which carries its domain's motions) with
+/// the scripted expert (seeded variation), checking the world's invariants after every step and
+/// that every fact of `goal` holds at the end. `name` is the task's directory name.
+pub fn record_script(
+    mut world: World,
+    script: &Script,
+    goal: &[Fact],
+    name: &str,
+    seed: u64,
+    params: &ExpertParams,
+) -> Result<Demonstration, DemoError> {
     let mut expert = Expert {
         rng: Pcg64Mcg::seed_from_u64(seed),
         p: params.clone(),
     };
-    let steps = template_steps(b, &world)?;
+    let steps = template_steps(script, &world)?;
     let mut actions = Vec::new();
-    for TemplateAction { action, mut step } in steps {
+    for TemplateAction {
+        action,
+        mut step,
+        onto_block,
+    } in steps
+    {
         // Stacking targets depend on where the lower block is now.
-        if let Step::Place { x, target, .. } = &mut step {
-            if action.starts_with("(stack") {
-                let words: Vec<&str> = action
-                    .trim_matches(|c| c == '(' || c == ')')
-                    .split_whitespace()
-                    .collect();
-                let y = words[3];
-                *target = geometry::rest_pose_on(&world, x, y, 0.0)
-                    .ok_or_else(|| fail(&action, format!("nothing to stack on ({y})")))?;
-            }
+        if let (Step::Place { x, target, .. }, Some(y)) = (&mut step, &onto_block) {
+            *target = geometry::rest_pose_on(&world, x, y, 0.0)
+                .ok_or_else(|| fail(&action, format!("nothing to stack on ({y})")))?;
         }
         let rec = perform(&mut world, &mut expert, &step, &action)?;
         actions.push(rec);
     }
     let sg = SceneGraph::from_world(&world);
-    for g in b.goal() {
-        if !sg.facts.contains(&g) {
+    for g in goal {
+        if !sg.facts.contains(g) {
             return Err(fail(
                 "goal",
                 format!("{g} does not hold after the demonstration"),
@@ -510,7 +523,7 @@ pub fn record(b: Benchmark, seed: u64, params: &ExpertParams) -> Result<Demonstr
         }
     }
     Ok(Demonstration {
-        benchmark: b.dir_name().to_string(),
+        benchmark: name.to_string(),
         seed,
         dt: world.dt(),
         frame_convention: FRAME_CONVENTION.to_string(),

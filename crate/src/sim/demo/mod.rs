@@ -25,7 +25,8 @@ mod pull;
 mod replay;
 mod template;
 
-pub use expert::{record, ExpertParams};
+pub use expert::{record, record_script, ExpertParams};
+pub use template::{Script, ScriptStep};
 pub use pull::{
     pull_hook_poses, pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TURNS,
 };

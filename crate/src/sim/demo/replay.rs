@@ -4,14 +4,16 @@
 use super::{committed, fail, AnchorPose, DemoAction, DemoError, Demonstration};
 use crate::sim::benchmark::Benchmark;
 use crate::sim::geometry::yaw_of;
+use crate::sim::motions::MotionKind;
 use crate::sim::panda;
 use crate::sim::scene_graph::SceneGraph;
 use crate::sim::world::World;
 use nalgebra::{Isometry3, Translation3};
 
 /// Replays a demonstration in `world` (which should be the template scene): each action's
-/// samples are mapped through its anchor frame — the anchor object's current pose for
-/// pick/unstack/pull, the recorded `anchor_pose` for placing actions — and commanded step by
+/// samples are mapped through its anchor frame — the anchor object's current pose for actions
+/// that grasp or pull (by the world's declared motions), the recorded `anchor_pose` for
+/// releases — and commanded step by
 /// step with the recorded gripper events. `after_step` is called after every simulator step
 /// (tests check invariants there).
 pub fn replay(
@@ -23,14 +25,19 @@ pub fn replay(
         let arm = world
             .arm_index(&a.arm)
             .ok_or_else(|| fail(&a.action, format!("unknown arm {}", a.arm)))?;
-        let anchor = match a.name.as_str() {
-            "pick" | "unstack" | "pull" => {
+        let grasps = world
+            .motions()
+            .actions
+            .get(&a.name)
+            .is_some_and(|m| matches!(m.motion, MotionKind::Grasp | MotionKind::Pull));
+        let anchor = match grasps {
+            true => {
                 let p = world
                     .body_pose(&a.anchor)
                     .ok_or_else(|| fail(&a.action, format!("unknown body {}", a.anchor)))?;
                 AnchorPose::from_pose(&p).isometry()
             }
-            _ => a.anchor_pose.isometry(),
+            false => a.anchor_pose.isometry(),
         };
         let ayaw = yaw_of(&anchor.rotation);
         let (_, mut grip) = world

@@ -1,12 +1,56 @@
-//! The template tasks the expert demonstrates: per benchmark, the grounded actions in order
-//! with what the expert does for each.
+//! The expert's script of a template task (`domains/*/expert.json`): the grounded actions in
+//! order and, for each release onto a surface or a region, where the body goes. What each action
+//! does (grasp, release, pull) comes from the world's declared motions, so a script names only
+//! the domain's own actions.
+//!
+//! ```json
+//! { "steps": [
+//!   { "action": "(pick left b left-table)" },
+//!   { "action": "(place left b handover)", "to": [0.38, 0.0, 0.03], "yaw": 0.0, "home": true }
+//! ] }
+//! ```
+//!
+//! `to` is the body's resting centre (world frame, m) and `yaw` its yaw (rad, default 0); a
+//! release onto a block needs neither (the body is centred on it, with its yaw). `home`: back to
+//! the ready posture afterwards (so two arms keep apart).
+
+use serde::{Deserialize, Serialize};
 
 use super::expert::Step;
 use super::{fail, DemoError};
-use crate::sim::benchmark::{Benchmark, BLOCK_SIZE};
-use crate::sim::geometry::yaw_of;
+use crate::sim::motions::{MotionKind, Onto};
+use crate::sim::snapshot::BodyKind;
 use crate::sim::world::World;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
+
+/// One step of an expert script.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScriptStep {
+    /// The grounded action, e.g. `(pick panda c)`.
+    pub action: String,
+    /// Where a release onto a surface or a region puts the body's centre (m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub to: Option<[f64; 3]>,
+    /// The released body's yaw (rad).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub yaw: f64,
+    /// Back to the ready posture after the action.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub home: bool,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+/// An expert script (`expert.json`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Script {
+    /// The steps in order.
+    pub steps: Vec<ScriptStep>,
+}
 
 /// One action of a template task: the grounded PDDL action and what the expert does for it.
 pub(super) struct TemplateAction {
@@ -14,140 +58,82 @@ pub(super) struct TemplateAction {
     pub(super) action: String,
     /// What the expert does.
     pub(super) step: Step,
+    /// The block a release stacks onto (its target is taken when the action starts).
+    pub(super) onto_block: Option<String>,
 }
 
-/// Picking `x` with arm `arm`.
-fn pick(action: String, arm: usize, x: &str) -> TemplateAction {
-    TemplateAction {
-        action,
-        step: Step::Pick { arm, x: x.into() },
-    }
-}
-
-/// Putting `x`, held by arm `arm`, down at `target` (then home to the ready posture if
-/// `retreat`).
-fn place(
-    action: String,
-    arm: usize,
-    x: &str,
-    target: Isometry3<f64>,
-    retreat: bool,
-) -> TemplateAction {
-    TemplateAction {
-        action,
-        step: Step::Place {
-            arm,
-            x: x.into(),
-            target,
-            retreat,
-        },
-    }
-}
-
-/// The expert's action list for a benchmark's template task.
+/// The expert's actions for a script, read through `world`'s declared motions.
 pub(super) fn template_steps(
-    b: Benchmark,
+    script: &Script,
     world: &World,
 ) -> Result<Vec<TemplateAction>, DemoError> {
-    let idx = |n: &str| world.arm_index(n).ok_or_else(|| fail(n, "no such arm"));
-    match b {
-        Benchmark::B1 => Ok(tower_steps(idx("panda")?)),
-        Benchmark::B2 => workspace_reach_steps(world, idx("panda")?),
-        Benchmark::B3 => {
-            let (l, r) = (idx("left")?, idx("right")?);
-            Ok(dual_arm_steps(l, r))
+    script.steps.iter().map(|s| template_action(s, world)).collect()
+}
+
+fn template_action(s: &ScriptStep, world: &World) -> Result<TemplateAction, DemoError> {
+    let (m, args) = world
+        .motions()
+        .action(&s.action)
+        .ok_or_else(|| fail(&s.action, "the domain declares no motion for this action"))?;
+    let arg = |i: Option<usize>, what: &str| {
+        i.and_then(|i| args.get(i))
+            .map(|v| v.to_string())
+            .ok_or_else(|| fail(&s.action, format!("no {what} argument")))
+    };
+    let arm = match m.arm {
+        Some(i) => {
+            let name = arg(Some(i), "arm")?;
+            world
+                .arm_index(&name)
+                .ok_or_else(|| fail(&s.action, format!("no arm {name}")))?
         }
-    }
-}
-
-/// B1: c on d, b on c, a on b with arm `p`.
-fn tower_steps(p: usize) -> Vec<TemplateAction> {
-    let mut out = Vec::new();
-    for (x, y) in [("c", "d"), ("b", "c"), ("a", "b")] {
-        out.push(pick(format!("(pick panda {x})"), p, x));
-        // Target: centred on y, y's yaw (computed when the action starts).
-        out.push(place(
-            format!("(stack panda {x} {y})"),
-            p,
+        None => 0,
+    };
+    let x = arg(m.object, "object")?;
+    let step = match m.motion {
+        MotionKind::Grasp => Step::Pick { arm, x },
+        MotionKind::Pull => Step::Pull {
+            arm,
+            hook: arg(m.tool, "tool")?,
             x,
-            Isometry3::identity(),
-            false,
-        ));
-    }
-    out
-}
-
-/// B2: arm `p` pulls b in with the hook, puts the hook back, then puts a and b on the shelf.
-fn workspace_reach_steps(world: &World, p: usize) -> Result<Vec<TemplateAction>, DemoError> {
-    let yaw_of_body = |n: &str| {
-        world
-            .body_pose(n)
-            .map(|p| yaw_of(&p.rotation))
-            .unwrap_or(0.0)
-    };
-    let mut out = Vec::new();
-    let hook = world
-        .body_pose("hook")
-        .ok_or_else(|| fail("hook", "no hook"))?;
-    out.push(pick("(pick panda hook)".into(), p, "hook"));
-    out.push(TemplateAction {
-        action: "(pull panda hook b)".into(),
-        step: Step::Pull {
-            arm: p,
-            hook: "hook".into(),
-            x: "b".into(),
         },
-    });
-    out.push(place("(place panda hook)".into(), p, "hook", hook, false));
-    for (x, sx) in [("a", 0.28), ("b", 0.42)] {
-        out.push(pick(format!("(pick panda {x})"), p, x));
-        let t = Isometry3::from_parts(
-            Translation3::new(sx, -0.50, 0.10 + 0.5 * BLOCK_SIZE),
-            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw_of_body(x)),
-        );
-        out.push(place(format!("(place-on-shelf panda {x})"), p, x, t, false));
-    }
-    Ok(out)
-}
-
-/// B3: arm `l` hands b and then a over; arm `r` puts b on the right table and stacks a on it.
-fn dual_arm_steps(l: usize, r: usize) -> Vec<TemplateAction> {
-    let h = 0.5 * BLOCK_SIZE;
-    let at = |x: f64, y: f64| {
-        Isometry3::from_parts(Translation3::new(x, y, h), UnitQuaternion::identity())
+        MotionKind::Release => {
+            let onto_block = match m.onto {
+                Some(Onto::Param(i)) => args
+                    .get(i)
+                    .filter(|y| world.body_kind(y) == Some(BodyKind::Block))
+                    .map(|y| y.to_string()),
+                _ => None,
+            };
+            let target = match (&onto_block, s.to) {
+                (Some(_), _) => Isometry3::identity(),
+                (None, Some(p)) => Isometry3::from_parts(
+                    Translation3::new(p[0], p[1], p[2]),
+                    UnitQuaternion::from_axis_angle(&Vector3::z_axis(), s.yaw),
+                ),
+                (None, None) => {
+                    return Err(fail(
+                        &s.action,
+                        "a release onto a surface needs `to` in the script",
+                    ))
+                }
+            };
+            return Ok(TemplateAction {
+                action: s.action.clone(),
+                step: Step::Place {
+                    arm,
+                    x,
+                    target,
+                    retreat: s.home,
+                },
+                onto_block,
+            });
+        }
+        MotionKind::None => return Err(fail(&s.action, "an action without a motion")),
     };
-    vec![
-        pick("(pick left b left-table)".into(), l, "b"),
-        place(
-            "(place left b handover)".into(),
-            l,
-            "b",
-            at(0.38, 0.0),
-            true,
-        ),
-        pick("(pick right b handover)".into(), r, "b"),
-        place(
-            "(place right b right-table)".into(),
-            r,
-            "b",
-            at(0.42, -0.62),
-            false,
-        ),
-        pick("(pick left a left-table)".into(), l, "a"),
-        place(
-            "(place left a handover)".into(),
-            l,
-            "a",
-            at(0.38, 0.0),
-            true,
-        ),
-        pick("(pick right a handover)".into(), r, "a"),
-        place(
-            "(stack right a b right-table)".into(),
-            r,
-            "a",
-            Isometry3::identity(),
-            true,
-        ),
-    ]
+    Ok(TemplateAction {
+        action: s.action.clone(),
+        step,
+        onto_block: None,
+    })
 }

@@ -2,6 +2,8 @@
 //! arms, inverse kinematics from an arm's joints, overlaps and heights for planners.
 
 use super::{World, WorldParams};
+use crate::sim::motions::Motions;
+use std::sync::Arc;
 use crate::sim::panda::{self, IkParams, IkSolution, Unreachable, DOF};
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Point3, Vector3};
@@ -12,6 +14,24 @@ type IkSolver =
     fn(&Isometry3<f64>, &Isometry3<f64>, &[f64; DOF], &IkParams) -> Result<IkSolution, Unreachable>;
 
 impl World {
+    /// The world reading the domain declared by `motions` (its facts, objects and actions).
+    pub fn with_motions(mut self, motions: Arc<Motions>) -> World {
+        self.motions = motions;
+        self
+    }
+
+    /// What the domain's predicates and actions mean in this world: a shipped benchmark's world
+    /// loads with that benchmark's declaration, any other with none (the scene graph then
+    /// reports nothing) until [`World::with_motions`].
+    pub fn motions(&self) -> &Motions {
+        &self.motions
+    }
+
+    /// The shared declaration, to hand to another world.
+    pub fn motions_arc(&self) -> Arc<Motions> {
+        Arc::clone(&self.motions)
+    }
+
     /// Scene name.
     pub fn name(&self) -> &str {
         &self.name

@@ -2,7 +2,7 @@
 //! back into a world with every field and the geometry validated.
 
 use super::{
-    Arm, Body, GripperCommand, Region, Violation, World, WorldParams, KNOWN_PREDICATES, LIMIT_SLACK,
+    Arm, Body, GripperCommand, Region, Violation, World, WorldParams, LIMIT_SLACK,
 };
 use crate::sim::panda::{self, DOF};
 use crate::sim::snapshot::*;
@@ -147,7 +147,7 @@ fn body_snapshot(b: &Body) -> BodySnapshot {
     }
 }
 
-/// Checks a snapshot's scalar fields: version, step, time, floor and predicates.
+/// Checks a snapshot's scalar fields: version, step, time and floor.
 fn check_header(s: &WorldSnapshot) -> Result<(), SceneError> {
     if s.version != SNAPSHOT_VERSION {
         return Err(scene_err(
@@ -166,17 +166,6 @@ fn check_header(s: &WorldSnapshot) -> Result<(), SceneError> {
     }
     if !s.floor_z.is_finite() {
         return Err(scene_err("floor_z", "must be finite"));
-    }
-    for (i, p) in s.predicates.iter().enumerate() {
-        if !KNOWN_PREDICATES.contains(&p.as_str()) {
-            return Err(scene_err(
-                format!("predicates[{i}]"),
-                format!(
-                    "unknown predicate {p:?} (known: {})",
-                    KNOWN_PREDICATES.join(", ")
-                ),
-            ));
-        }
     }
     Ok(())
 }
@@ -403,7 +392,6 @@ impl World {
             time: self.time,
             dt: self.dt,
             floor_z: self.floor_z,
-            predicates: self.predicates.clone(),
             regions: self
                 .regions
                 .iter()
@@ -467,7 +455,7 @@ impl World {
     }
 
     /// Builds a world from a snapshot, validating every field and the geometry: unique lower-case
-    /// names, known predicates, positive sizes, non-zero quaternions, joints within limits, held
+    /// names, positive sizes, non-zero quaternions, joints within limits, held
     /// bodies that exist and sit in the gripper, no interpenetrating bodies, no free body in the air.
     pub fn from_snapshot(s: &WorldSnapshot) -> Result<World, SceneError> {
         check_header(s)?;
@@ -480,7 +468,11 @@ impl World {
             time: s.time,
             dt: s.dt,
             floor_z: s.floor_z,
-            predicates: s.predicates.clone(),
+            // A shipped benchmark's world reads its facts through that benchmark's declaration
+            // until another is installed (`World::with_motions`).
+            motions: crate::sim::benchmark::Benchmark::parse(&s.name)
+                .map(|b| b.motions())
+                .unwrap_or_default(),
             regions,
             bodies,
             arms,

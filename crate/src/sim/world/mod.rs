@@ -22,7 +22,9 @@ pub use load::SceneError;
 pub use step::WorldEvent;
 pub use user_moves::{MoveOutcome, Refused};
 
+use super::motions::Motions;
 use super::panda::{self, IkParams, DOF};
+use std::sync::Arc;
 use super::snapshot::ReachSnapshot;
 use nalgebra::Isometry3;
 use serde::{Deserialize, Serialize};
@@ -158,21 +160,11 @@ pub struct World {
     pub(crate) time: f64,
     pub(crate) dt: f64,
     pub(crate) floor_z: f64,
-    pub(crate) predicates: Vec<String>,
+    /// What the domain's predicates and actions mean here (`motions.json`).
+    pub(crate) motions: Arc<Motions>,
     pub(crate) regions: Vec<Region>,
     pub(crate) bodies: Vec<Body>,
     pub(crate) arms: Vec<Arm>,
     pub(crate) params: WorldParams,
 }
 
-/// The predicates a scene may ask the scene graph for.
-pub const KNOWN_PREDICATES: [&str; 8] = [
-    "on",
-    "ontable",
-    "onshelf",
-    "clear",
-    "holding",
-    "handempty",
-    "inreach",
-    "at",
-];

@@ -4,6 +4,7 @@
 
 use super::{World, WorldEvent};
 use crate::sim::geometry::yaw_of;
+use crate::sim::motions::Relation;
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::query;
@@ -193,7 +194,7 @@ impl World {
     }
 
     /// Why a dragged or released body may not come to rest on body `support`, if it may not: a body held by
-    /// a gripper, the hook, or a block in a scene whose vocabulary has no `on` (the scene graph
+    /// a gripper, the hook, or a block in a domain that declares no `on_block` fact (the scene graph
     /// could not say where it is, and lifting the block below would leave it in the air).
     pub(super) fn support_refusal(&self, support: usize) -> Option<String> {
         let s = &self.bodies[support];
@@ -205,10 +206,14 @@ impl World {
         }
         match s.kind {
             BodyKind::Hook => Some(format!("it would rest on the hook {}", s.name)),
-            BodyKind::Block if !self.predicates.iter().any(|p| p == "on") => Some(format!(
-                "it would rest on the block {} and this scene cannot stack blocks (no `on` predicate)",
-                s.name
-            )),
+            BodyKind::Block
+                if !self.motions.facts.is_empty() && !self.motions.reports(Relation::OnBlock) =>
+            {
+                Some(format!(
+                    "it would rest on the block {} and this domain cannot stack blocks (no predicate for a block on a block)",
+                    s.name
+                ))
+            }
             _ => None,
         }
     }

@@ -52,10 +52,10 @@ use parry3d_f64::shape::Cuboid;
 use rand::SeedableRng;
 use rand_pcg::Pcg64Mcg;
 
-use super::action::{classify, ActionKind, Binding, Placement, PlanarPose};
+use super::action::{classify, release_target, ActionKind, Binding, Placement, PlanarPose};
 use super::motion::{rise_before_action, MotionParams, Scene};
 use super::{BindFailure, Binder};
-use crate::plan::Task;
+use crate::plan::{Operator, Task};
 use crate::sim::demo::PULL_LIFT;
 use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
@@ -403,12 +403,9 @@ impl<'w> StreamBinder<'w> {
         out: &mut Vec<Binding>,
     ) -> Result<Geo, usize> {
         let op = &sk.task.operators[sk.ops[i]];
-        let adds: Vec<String> = op
-            .add
-            .iter()
-            .map(|&f| sk.task.facts[f as usize].clone())
-            .collect();
-        let surfaces = self.surfaces(&adds, body);
+        let surfaces = release_target(op, self.world)
+            .map(|t| self.surfaces(&t, body))
+            .unwrap_or_default();
         let hint = self.hints.get(&op.name).copied();
         let candidates = self.surface_candidates(&geo, arm, &surfaces, hint);
         let mut deepest = i;
@@ -549,5 +546,9 @@ impl Binder for StreamBinder<'_> {
     fn widen(&mut self) {
         self.params.placement_samples =
             (self.params.placement_samples * 2).min(self.widest_placement_samples);
+    }
+
+    fn moves_body(&self, op: &Operator, body: &str) -> bool {
+        super::action::moves_body(self.world.motions(), op, body)
     }
 }

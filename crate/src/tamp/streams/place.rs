@@ -8,7 +8,7 @@ use rand::Rng;
 
 use super::obstacles::box_aabb;
 use super::{Geo, Held, StreamBinder, Transit};
-use crate::plan::fact_args;
+use crate::tamp::action::ReleaseTarget;
 use crate::sim::geometry::{grasp_pose_at, hand_within, raised};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::yaw_of;
@@ -168,26 +168,18 @@ impl StreamBinder<'_> {
         true
     }
 
-    /// The support surfaces a release adding `adds` may use. A region
-    /// (`(at x p)`) narrows the table it lies on: then only the region is used.
-    pub(super) fn surfaces(&self, adds: &[String], body: &str) -> Vec<Surface> {
-        let regions = self.region_surfaces(adds, body);
-        if !regions.is_empty() {
-            return regions;
-        }
+    /// The support surfaces a release onto `target` may use: the tables or shelves, or a
+    /// region (which narrows the table it lies on).
+    pub(super) fn surfaces(&self, target: &ReleaseTarget, body: &str) -> Vec<Surface> {
         let mut out = vec![];
-        for f in adds {
-            let (p, a) = fact_args(f);
-            if a.first() != Some(&body) {
-                continue;
+        match target {
+            ReleaseTarget::Region(name) => {
+                if let Some(s) = self.region_surface(name, body) {
+                    out.push(s);
+                }
             }
-            let kind = match p {
-                "ontable" => Some(BodyKind::Table),
-                "onshelf" => Some(BodyKind::Shelf),
-                _ => None,
-            };
-            if let Some(kind) = kind {
-                for b in self.fixed.iter().filter(|b| b.kind == kind) {
+            ReleaseTarget::Surface(kind) => {
+                for b in self.fixed.iter().filter(|b| b.kind == *kind) {
                     if let Some((lo, hi)) = self.world.body_aabb(&b.name) {
                         out.push(Surface {
                             x: [lo.x, hi.x],
@@ -197,47 +189,35 @@ impl StreamBinder<'_> {
                     }
                 }
             }
+            ReleaseTarget::Block(_) => {}
         }
         out
     }
 
-    /// The regions `(at body p)` of `adds`, as surfaces.
-    fn region_surfaces(&self, adds: &[String], body: &str) -> Vec<Surface> {
-        let mut out = vec![];
-        for f in adds {
-            let (p, a) = fact_args(f);
-            if a.first() != Some(&body) {
-                continue;
-            }
-            if p == "at" && a.len() == 2 {
-                if let Some(r) = self.regions.iter().find(|r| r.name == a[1]) {
-                    // The region lies on a table: its top is the highest table top under it.
-                    let cx = 0.5 * (r.min[0] + r.max[0]);
-                    let cy = 0.5 * (r.min[1] + r.max[1]);
-                    let top = self
-                        .fixed
-                        .iter()
-                        .filter(|b| b.kind == BodyKind::Table)
-                        .filter_map(|b| self.world.body_aabb(&b.name))
-                        .filter(|(lo, hi)| lo.x <= cx && cx <= hi.x && lo.y <= cy && cy <= hi.y)
-                        .map(|(_, hi)| hi.z)
-                        .fold(f64::NEG_INFINITY, f64::max);
-                    // A region holds a body by its centre (`SceneGraph`): the candidates' edge
-                    // margin (half the body and SURFACE_EDGE_MARGIN, for the edge of a real
-                    // surface) becomes REGION_INSET from the region's edge.
-                    let h = self.half_extents(body);
-                    let grow = (h.x.max(h.y) + SURFACE_EDGE_MARGIN - REGION_INSET).max(0.0);
-                    if top.is_finite() {
-                        out.push(Surface {
-                            x: [r.min[0] - grow, r.max[0] + grow],
-                            y: [r.min[1] - grow, r.max[1] + grow],
-                            z: top,
-                        });
-                    }
-                }
-            }
-        }
-        out
+    /// Region `name`, as a surface for `body`.
+    fn region_surface(&self, name: &str, body: &str) -> Option<Surface> {
+        let r = self.regions.iter().find(|r| r.name == name)?;
+        // The region lies on a table: its top is the highest table top under it.
+        let cx = 0.5 * (r.min[0] + r.max[0]);
+        let cy = 0.5 * (r.min[1] + r.max[1]);
+        let top = self
+            .fixed
+            .iter()
+            .filter(|b| b.kind == BodyKind::Table)
+            .filter_map(|b| self.world.body_aabb(&b.name))
+            .filter(|(lo, hi)| lo.x <= cx && cx <= hi.x && lo.y <= cy && cy <= hi.y)
+            .map(|(_, hi)| hi.z)
+            .fold(f64::NEG_INFINITY, f64::max);
+        // A region holds a body by its centre (`SceneGraph`): the candidates' edge margin (half
+        // the body and SURFACE_EDGE_MARGIN, for the edge of a real surface) becomes
+        // REGION_INSET from the region's edge.
+        let h = self.half_extents(body);
+        let grow = (h.x.max(h.y) + SURFACE_EDGE_MARGIN - REGION_INSET).max(0.0);
+        top.is_finite().then(|| Surface {
+            x: [r.min[0] - grow, r.max[0] + grow],
+            y: [r.min[1] - grow, r.max[1] + grow],
+            z: top,
+        })
     }
 
     /// Whether some part of `body` at `pose` comes within `margin` of a shelf's footprint.
