@@ -145,7 +145,8 @@ fn is_clear(m: &Motions, f: &BTreeSet<String>, b: &str) -> bool {
             .render(&[(Slot::Body, b)])
             .is_some_and(|c| f.contains(&c));
     }
-    !f.iter().any(|x| is_about(m, x, Relation::OnBlock, Slot::Below, b))
+    !f.iter()
+        .any(|x| is_about(m, x, Relation::OnBlock, Slot::Below, b))
 }
 
 /// Whether fact `f` states relation `rel` with `slot` = `value`.
@@ -452,7 +453,9 @@ fn new_block(
     for (ti, t) in targets.into_iter().enumerate() {
         let last_resort = ti + 1 == n_targets;
         let Some(c) = centre(world, &t) else { continue };
-        let Ok(mut w2) = World::from_snapshot(&with_block).map(|w| w.with_motions(world.motions_arc())) else {
+        let Ok(mut w2) =
+            World::from_snapshot(&with_block).map(|w| w.with_motions(world.motions_arc()))
+        else {
             continue;
         };
         if w2

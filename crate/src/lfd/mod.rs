@@ -16,6 +16,7 @@ pub mod session;
 pub mod skill;
 pub mod symbolic;
 #[cfg(test)]
+#[cfg(test)]
 pub(crate) mod testing;
 
 use serde::{Deserialize, Serialize};

@@ -12,8 +12,8 @@
 //!   `handover` (around `(0.38, 0)`, both reach it) and `right-table` (`y ≤ −0.35`, only the right
 //!   arm); blocks `a b` start on the left table; goal `(on a b) (at b right-table)`.
 
-use super::panda::{self, DOF};
 use super::motions::{Motions, MotionsError};
+use super::panda::{self, DOF};
 use super::scene_graph::{Fact, SceneGraph};
 use super::snapshot::*;
 use super::world::World;
@@ -123,13 +123,15 @@ impl Benchmark {
 
     /// The parsed [`Benchmark::motions_json`] (read once).
     pub fn motions(self) -> Arc<Motions> {
-        static CACHE: [OnceLock<Arc<Motions>>; 3] = [OnceLock::new(), OnceLock::new(), OnceLock::new()];
+        static CACHE: [OnceLock<Arc<Motions>>; 3] =
+            [OnceLock::new(), OnceLock::new(), OnceLock::new()];
         let i = self as usize;
         Arc::clone(CACHE[i].get_or_init(|| {
             let parsed = crate::pddl::parse_domain(self.domain_pddl(), "domain.pddl")
                 .map_err(|e| e.to_string())
                 .and_then(|d| {
-                    Motions::parse(self.motions_json(), "motions.json", &d).map_err(|e| e.to_string())
+                    Motions::parse(self.motions_json(), "motions.json", &d)
+                        .map_err(|e| e.to_string())
                 });
             match parsed {
                 Ok(m) => Arc::new(m),
@@ -354,8 +356,8 @@ impl BenchmarkSources {
     /// does not parse.
     pub fn parse_motions(&self) -> Result<Motions, Result<MotionsError, String>> {
         let domain_file = format!("domains/{}/domain.pddl", self.dir);
-        let domain =
-            crate::pddl::parse_domain(&self.domain, &domain_file).map_err(|e| Err(e.to_string()))?;
+        let domain = crate::pddl::parse_domain(&self.domain, &domain_file)
+            .map_err(|e| Err(e.to_string()))?;
         Motions::parse(
             &self.motions,
             &format!("domains/{}/motions.json", self.dir),

@@ -30,8 +30,8 @@
 //! [`Motions`]: super::motions::Motions
 
 use super::geometry::HOOK_GRASP_POINT;
-use super::snapshot::BodyKind;
 use super::motions::{ObjectKind, Relation, Slot};
+use super::snapshot::BodyKind;
 use super::world::World;
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
@@ -195,7 +195,10 @@ impl<'a> Derivation<'a> {
             .map(|slot| values.iter().find(|(k, _)| k == slot).map(|v| v.1))
             .collect();
         if let Some(args) = args {
-            let rank = Relation::ALL.iter().position(|q| *q == r).unwrap_or(usize::MAX);
+            let rank = Relation::ALL
+                .iter()
+                .position(|q| *q == r)
+                .unwrap_or(usize::MAX);
             self.facts.push((rank, Fact::new(&spec.predicate, &args)));
         }
     }
@@ -294,12 +297,17 @@ impl<'a> Derivation<'a> {
     fn type_facts(&mut self) {
         let world = self.world;
         for kind in ObjectKind::ALL {
-            let Some(p) = world.motions.objects.get(&kind).and_then(|o| o.predicate.clone())
+            let Some(p) = world
+                .motions
+                .objects
+                .get(&kind)
+                .and_then(|o| o.predicate.clone())
             else {
                 continue;
             };
             for name in names_of(world, kind) {
-                self.facts.push((Relation::ALL.len(), Fact::new(&p, &[&name])));
+                self.facts
+                    .push((Relation::ALL.len(), Fact::new(&p, &[&name])));
             }
         }
     }

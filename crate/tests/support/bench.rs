@@ -70,7 +70,12 @@ pub(crate) fn saved_world(name: &str) -> World {
 /// B1's skills, learned from its demonstration.
 pub(crate) fn b1_skills() -> SkillLibrary {
     let b = Benchmark::B1;
-    SkillLibrary::learn(&b.sources().unwrap().demo, SkillKind::Lqt, &[], &b.motions())
+    SkillLibrary::learn(
+        &b.sources().unwrap().demo,
+        SkillKind::Lqt,
+        &[],
+        &b.motions(),
+    )
 }
 
 /// B2's skills, learned from its demonstration (the hook's grasp apart from the blocks').

@@ -313,7 +313,12 @@ fn a_hand_over_spot_is_found_beside_a_tower_in_the_hand_over_region() {
     };
     let tower = world.body_pose("b").unwrap().translation.vector;
     assert!(libm::hypot(x - tower.x, y - tower.y) > 0.064, "({x}, {y})");
-    let skills = SkillLibrary::learn(&b.sources().unwrap().demo, SkillKind::Lqt, &[], &b.motions());
+    let skills = SkillLibrary::learn(
+        &b.sources().unwrap().demo,
+        SkillKind::Lqt,
+        &[],
+        &b.motions(),
+    );
     let mut after = world.clone();
     execute_bound(&mut after, &task, &place, &bindings, &skills);
     assert!(SceneGraph::from_world(&after).contains("(at f handover)"));

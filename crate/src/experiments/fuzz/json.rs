@@ -302,14 +302,7 @@ fn approx_eq(a: &Value, b: &Value) -> bool {
 }
 
 const SCENE_KEYS: [&str; 8] = [
-    "version",
-    "name",
-    "time",
-    "dt",
-    "floor_z",
-    "regions",
-    "bodies",
-    "arms",
+    "version", "name", "time", "dt", "floor_z", "regions", "bodies", "arms",
 ];
 
 const CASE_KEYS: [&str; 12] = [

@@ -78,7 +78,11 @@ pub(super) fn shelf_full_for(
     };
     let wanted = goal_facts.iter().filter_map(|f| on_shelf(f));
     for x in wanted {
-        if facts.iter().any(|f| on_shelf(f).as_deref() == Some(x.as_str())) || world.is_lost(&x) {
+        if facts
+            .iter()
+            .any(|f| on_shelf(f).as_deref() == Some(x.as_str()))
+            || world.is_lost(&x)
+        {
             continue;
         }
         let Some(bi) = world.body_index(&x) else {

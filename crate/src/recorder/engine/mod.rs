@@ -13,12 +13,12 @@ use super::{RecorderError, RecorderEvent, RecorderParams, Segment};
 use crate::pddl;
 use crate::plan::{self, State, Task};
 use crate::sim::benchmark::Benchmark;
-use crate::sim::motions::Motions;
-use std::sync::Arc;
 pub(crate) use crate::sim::geometry::gripper_yaw;
+use crate::sim::motions::Motions;
 use crate::sim::snapshot::{BodyKind, WorldSnapshot};
 use crate::sim::{GripperCommand, SceneGraph, World, WorldEvent};
 use nalgebra::Isometry3;
+use std::sync::Arc;
 
 /// How a [`Recorder`] is set up.
 #[derive(Clone, Debug, PartialEq)]

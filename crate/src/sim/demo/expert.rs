@@ -477,8 +477,8 @@ impl Expert {
 /// Records the template task's demonstration of `b` with the scripted expert (seeded variation),
 /// checking the world's invariants after every step and the goal at the end.
 pub fn record(b: Benchmark, seed: u64, params: &ExpertParams) -> Result<Demonstration, DemoError> {
-    let script: Script = serde_json::from_str(b.expert_json())
-        .map_err(|e| fail("expert.json", e.to_string()))?;
+    let script: Script =
+        serde_json::from_str(b.expert_json()).map_err(|e| fail("expert.json", e.to_string()))?;
     record_script(b.scene(), &script, &b.goal(), b.dir_name(), seed, params)
 }
 

@@ -26,11 +26,11 @@ mod replay;
 mod template;
 
 pub use expert::{record, record_script, ExpertParams};
-pub use template::{Script, ScriptStep};
 pub use pull::{
     pull_hook_poses, pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TURNS,
 };
 pub use replay::{demo_states, replay};
+pub use template::{Script, ScriptStep};
 
 use super::benchmark::Benchmark;
 use super::geometry::{gripper_yaw, wrap, yaw_of};

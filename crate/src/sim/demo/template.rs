@@ -67,7 +67,11 @@ pub(super) fn template_steps(
     script: &Script,
     world: &World,
 ) -> Result<Vec<TemplateAction>, DemoError> {
-    script.steps.iter().map(|s| template_action(s, world)).collect()
+    script
+        .steps
+        .iter()
+        .map(|s| template_action(s, world))
+        .collect()
 }
 
 fn template_action(s: &ScriptStep, world: &World) -> Result<TemplateAction, DemoError> {

@@ -3,11 +3,11 @@
 
 use super::{World, WorldParams};
 use crate::sim::motions::Motions;
-use std::sync::Arc;
 use crate::sim::panda::{self, IkParams, IkSolution, Unreachable, DOF};
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Point3, Vector3};
 use parry3d_f64::shape::{Capsule, Cuboid};
+use std::sync::Arc;
 
 /// An inverse kinematics of [`panda`]: (base, target, seed joints, parameters).
 type IkSolver =

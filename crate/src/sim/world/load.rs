@@ -1,9 +1,7 @@
 //! Scenes in and out: a [`World`] as a JSON-ready snapshot, and a snapshot (or its JSON) read
 //! back into a world with every field and the geometry validated.
 
-use super::{
-    Arm, Body, GripperCommand, Region, Violation, World, WorldParams, LIMIT_SLACK,
-};
+use super::{Arm, Body, GripperCommand, Region, Violation, World, WorldParams, LIMIT_SLACK};
 use crate::sim::panda::{self, DOF};
 use crate::sim::snapshot::*;
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};

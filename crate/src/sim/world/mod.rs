@@ -24,10 +24,10 @@ pub use user_moves::{MoveOutcome, Refused};
 
 use super::motions::Motions;
 use super::panda::{self, IkParams, DOF};
-use std::sync::Arc;
 use super::snapshot::ReachSnapshot;
 use nalgebra::Isometry3;
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
 /// Tunables of the world (metres, seconds, radians).
 #[derive(Clone, Debug, PartialEq)]
@@ -167,4 +167,3 @@ pub struct World {
     pub(crate) arms: Vec<Arm>,
     pub(crate) params: WorldParams,
 }
-
