@@ -14,7 +14,7 @@ use crate::lfd::session::{
 };
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
-use crate::sim::benchmark::Benchmark;
+use crate::sim::benchmark::{Benchmark, BenchmarkSources};
 
 /// The draw of the episode's seed that picks the action after which the disturbance comes.
 const INJECT_AFTER_DRAW: u64 = 77;
@@ -75,6 +75,17 @@ pub fn run_episode(
     params: SessionParams,
     clock: &dyn Clock,
 ) -> Result<EpisodeReport, SessionError> {
+    run_episode_with(spec, &spec.benchmark.sources()?, params, clock)
+}
+
+/// [`run_episode`] on other files: a domain of its own (its PDDL, demonstration and
+/// `motions.json`) in the benchmark's workcell, with the benchmark's disturbances.
+pub fn run_episode_with(
+    spec: &EpisodeSpec,
+    sources: &BenchmarkSources,
+    params: SessionParams,
+    clock: &dyn Clock,
+) -> Result<EpisodeReport, SessionError> {
     let options = SessionOptions {
         benchmark: spec.benchmark,
         method: spec.method,
@@ -82,8 +93,7 @@ pub fn run_episode(
         seed: spec.seed,
         skill: SkillKind::Lqt,
     };
-    let sources = spec.benchmark.sources()?;
-    let mut s = Session::with_sources(options, &sources, spec.scene.as_deref(), None, params)?;
+    let mut s = Session::with_sources(options, sources, spec.scene.as_deref(), None, params)?;
     let n = s.controller().trace().len().max(3);
     let inject_after = 1 + (mix(spec.seed, INJECT_AFTER_DRAW) % (n as u64 - 2)) as usize;
     let mut injection = None;

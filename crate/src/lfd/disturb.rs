@@ -108,10 +108,13 @@ const SPOT_DROP_Z: f64 = 0.3;
 /// Names an added block may take, in order.
 const NEW_BLOCK_NAMES: [&str; 7] = ["e", "f", "g", "h", "x", "y", "z"];
 
+/// The world's fluent facts, as the demonstration's states list them (type predicates left out).
 fn facts(world: &World) -> BTreeSet<String> {
+    let m = world.motions();
     SceneGraph::from_world(world)
         .to_strings()
         .into_iter()
+        .filter(|f| !m.is_type_fact(f))
         .collect()
 }
 

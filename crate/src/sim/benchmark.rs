@@ -160,12 +160,10 @@ impl Benchmark {
 
     /// The goal facts (the same for every task of the benchmark): the template problem's goal.
     pub fn goal(self) -> Vec<Fact> {
-        let Ok((domain, problem)) = self.parsed() else {
-            return Vec::new();
-        };
-        let mut out = Vec::new();
-        goal_atoms(&domain, &problem.goal, &mut out);
-        out
+        match self.parsed() {
+            Ok((domain, problem)) => goal_facts(&domain, &problem),
+            Err(_) => Vec::new(),
+        }
     }
 
     /// Static facts of the template problem that the scene graph does not report (B3's arm
@@ -333,6 +331,14 @@ pub struct BenchmarkSources {
     pub demo: String,
     /// `motions.json` (what the actions do physically, how the predicates read the scene).
     pub motions: String,
+}
+
+/// The positive atoms of a problem's goal, as facts (a conjunction of atoms, the tasks the
+/// robot runs).
+pub fn goal_facts(domain: &crate::pddl::Domain, problem: &crate::pddl::Problem) -> Vec<Fact> {
+    let mut out = Vec::new();
+    goal_atoms(domain, &problem.goal, &mut out);
+    out
 }
 
 /// The positive atoms of a goal formula, as facts.

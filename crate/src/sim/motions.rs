@@ -479,6 +479,17 @@ impl Motions {
             .map(|(r, s)| (*r, s, args))
     }
 
+    /// Whether `fact` is a type predicate's (`(block a)`): static, never part of a
+    /// demonstration's states `L_k`.
+    pub fn is_type_fact(&self, fact: &str) -> bool {
+        let (p, args) = crate::plan::fact_args(fact);
+        args.len() == 1
+            && self
+                .objects
+                .values()
+                .any(|o| o.predicate.as_deref() == Some(p))
+    }
+
     /// The predicates the scene graph writes (relations and type predicates).
     pub fn scene_predicates(&self) -> Vec<String> {
         let mut out: Vec<String> = self.facts.values().map(|s| s.predicate.clone()).collect();

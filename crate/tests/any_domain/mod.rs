@@ -11,6 +11,8 @@
 //!   Dijkstra over every reachable state whenever LogicIn does not hold (when it does, the
 //!   paper's rule follows the demonstration: its cost is c_k, never below the minimum).
 
+mod paper_naming;
+
 use std::collections::BTreeSet;
 
 use logic_lfd::plan::{parse_plan, replay};
