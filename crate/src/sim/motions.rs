@@ -536,3 +536,95 @@ fn locate(text: &str, path: &[&str]) -> (usize, usize) {
     let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
     (line, column)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const DOMAIN: &str = "(define (domain d) (:requirements :strips)
+      (:predicates (up ?b) (grip ?a ?b) (free ?a))
+      (:action lift :parameters (?a ?b) :precondition (free ?a) :effect (grip ?a ?b))
+      (:action drop :parameters (?a ?b) :precondition (grip ?a ?b) :effect (up ?b)))";
+
+    fn parse(text: &str) -> Result<Motions, MotionsError> {
+        let d = crate::pddl::parse_domain(DOMAIN, "d.pddl").unwrap();
+        Motions::parse(text, "m.json", &d)
+    }
+
+    const GOOD: &str = r#"{
+  "facts": { "held": "grip", "on_table": "up", "hand_empty": "free" },
+  "actions": {
+    "lift": { "motion": "grasp", "object": "?b", "arm": "?a" },
+    "drop": { "motion": "release", "object": "?b", "arm": "?a", "onto": "table" }
+  }
+}"#;
+
+    #[test]
+    fn a_declaration_resolves_parameters_and_renders_facts() {
+        let m = parse(GOOD).unwrap();
+        let (lift, args) = m.action("(lift r1 x)").unwrap();
+        assert_eq!(lift.motion, MotionKind::Grasp);
+        assert_eq!((lift.object, lift.arm), (Some(1), Some(0)));
+        assert_eq!(args, vec!["r1", "x"]);
+        let held = m.fact(Relation::Held).unwrap();
+        assert_eq!(
+            held.render(&[(Slot::Body, "x"), (Slot::Arm, "r1")])
+                .as_deref(),
+            Some("(grip r1 x)")
+        );
+        assert_eq!(
+            m.relation_of("(up x)").map(|r| r.0),
+            Some(Relation::OnTable)
+        );
+        assert!(m.check_arms(2).is_ok());
+    }
+
+    #[test]
+    fn a_wrong_declaration_is_refused_at_its_line() {
+        let e = parse(&GOOD.replace("\"grip\"", "\"grab\"")).unwrap_err();
+        assert_eq!((e.line, e.path.as_str()), (2, "facts.held"));
+        assert!(e.message.contains("no predicate `grab`"), "{e}");
+        let e = parse(&GOOD.replace(
+            "\"object\": \"?b\", \"arm\": \"?a\" }",
+            "\"object\": \"?z\" }",
+        ))
+        .unwrap_err();
+        assert_eq!((e.line, e.path.as_str()), (4, "actions.lift.object"));
+        assert!(e.message.contains("no parameter `?z`"), "{e}");
+        let e = parse(&GOOD.replace(", \"onto\": \"table\"", "")).unwrap_err();
+        assert_eq!((e.line, e.path.as_str()), (5, "actions.drop"));
+        let e = parse(&GOOD.replace("\"hand_empty\": \"free\"", "\"hand_empty\": \"grip\""))
+            .unwrap_err();
+        assert!(
+            e.message
+                .contains("takes 2 arguments, the declaration gives 1"),
+            "{e}"
+        );
+        let e = parse(&GOOD.replace("\"lift\"", "\"raise\"")).unwrap_err();
+        assert!(e.message.contains("no action `raise`"), "{e}");
+        let e = parse("{ \"facts\": { \"held\": 3 } }").unwrap_err();
+        assert_eq!(e.path, "$");
+    }
+
+    #[test]
+    fn an_undeclared_domain_action_is_reported_before_any_episode() {
+        let text = GOOD.replace(
+            ",\n    \"drop\": { \"motion\": \"release\", \"object\": \"?b\", \"arm\": \"?a\", \"onto\": \"table\" }",
+            "",
+        );
+        let e = parse(&text).unwrap_err();
+        assert_eq!(e.path, "actions");
+        assert!(e.message.contains("`drop`"), "{e}");
+    }
+
+    #[test]
+    fn leaving_out_the_arm_needs_a_one_arm_scene() {
+        let text = GOOD.replace(
+            "\"held\": \"grip\"",
+            "\"held\": { \"predicate\": \"up\", \"args\": [\"body\"] }",
+        );
+        let m = parse(&text).unwrap();
+        assert!(m.check_arms(1).is_ok());
+        assert!(m.check_arms(2).unwrap_err().contains("facts.held"));
+    }
+}
