@@ -145,9 +145,9 @@ impl Session {
         let template = World::from_json(&files.scene)?.with_motions(Arc::clone(&motions));
         let model = DomainModel::new(
             &files.domain,
-            &format!("domains/{}/domain.pddl", files.dir),
+            &files.file("domain.pddl"),
             &files.problem,
-            &format!("domains/{}/problem.pddl", files.dir),
+            &files.file("problem.pddl"),
             &motions.scene_predicates(),
         )?;
         // The demonstration is derived on the template task (its initial state is the template

@@ -180,7 +180,7 @@ fn model_and_trace(
         .with_motions(std::sync::Arc::clone(&motions));
     let model = DomainModel::new(
         &files.domain,
-        &format!("domains/{}/domain.pddl", files.dir),
+        &files.file("domain.pddl"),
         &files.problem,
         "taught-problem.pddl",
         &motions.scene_predicates(),

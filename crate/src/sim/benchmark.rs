@@ -319,7 +319,8 @@ impl Benchmark {
 /// The text of a benchmark's files (a taught task's too: its own problem, scene and demo).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct BenchmarkSources {
-    /// Directory name under `domains/` (for error messages).
+    /// Directory name under `domains/`, or a directory's path (for error messages, see
+    /// [`BenchmarkSources::file`]).
     pub dir: String,
     /// `domain.pddl`.
     pub domain: String,
@@ -358,18 +359,23 @@ fn atom_fact(domain: &crate::pddl::Domain, a: &crate::pddl::Atom) -> Fact {
 }
 
 impl BenchmarkSources {
+    /// The path of one of the files, for messages: `domains/<dir>/<name>` for a shipped domain,
+    /// `<dir>/<name>` when `dir` is a path.
+    pub fn file(&self, name: &str) -> String {
+        if self.dir.contains('/') {
+            format!("{}/{name}", self.dir.trim_end_matches('/'))
+        } else {
+            format!("domains/{}/{name}", self.dir)
+        }
+    }
+
     /// The parsed `motions.json`, checked against the domain. `Err(Err(text))`: the domain itself
     /// does not parse.
     pub fn parse_motions(&self) -> Result<Motions, Result<MotionsError, String>> {
-        let domain_file = format!("domains/{}/domain.pddl", self.dir);
+        let domain_file = self.file("domain.pddl");
         let domain = crate::pddl::parse_domain(&self.domain, &domain_file)
             .map_err(|e| Err(e.to_string()))?;
-        Motions::parse(
-            &self.motions,
-            &format!("domains/{}/motions.json", self.dir),
-            &domain,
-        )
-        .map_err(Ok)
+        Motions::parse(&self.motions, &self.file("motions.json"), &domain).map_err(Ok)
     }
 }
 

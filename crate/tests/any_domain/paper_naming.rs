@@ -127,3 +127,49 @@ fn the_paper_named_b1_runs_every_level_to_success_like_b1() {
         assert_eq!(ours.execution_s, b1.execution_s, "{level:?}");
     }
 }
+
+#[test]
+fn run_with_a_domain_directory_succeeds_and_a_bad_declaration_is_refused_with_its_line() {
+    let (code, stdout, stderr) = crate::support::cli::run_cli(&[
+        "run",
+        "--domain",
+        DIR,
+        "--benchmark",
+        "b1",
+        "--level",
+        "l3",
+        "--seed",
+        "2",
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    assert_eq!(report["success"], true, "{stdout}");
+    assert!(stdout.contains("(put-on a b panda)"));
+    // The same directory with one action left undeclared.
+    let dir = std::env::temp_dir().join(format!("logic-lfd-motions-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in ["domain.pddl", "problem.pddl", "demo.json", "scene.json"] {
+        std::fs::copy(format!("{DIR}/{f}"), dir.join(f)).unwrap();
+    }
+    let motions = read("motions.json").replace(
+        ",\n    \"put-on\": { \"motion\": \"release\", \"object\": \"?b\", \"arm\": \"?a\", \"onto\": \"?c\" }",
+        "",
+    );
+    std::fs::write(dir.join("motions.json"), motions).unwrap();
+    let (code, _, stderr) = crate::support::cli::run_cli(&[
+        "run",
+        "--domain",
+        dir.to_str().unwrap(),
+        "--benchmark",
+        "b1",
+    ]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains(
+            "motions.json:13:3: actions: no motion declared for the domain's action `put-on`"
+        ),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(dir).ok();
+}

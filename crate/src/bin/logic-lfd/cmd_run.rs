@@ -1,5 +1,6 @@
 //! `logic-lfd run --benchmark b1|b2|b3 --level l1..l4 --method logic-lfd|linear|rlds|tamp
-//! [--mode paper|prioritised] --seed N [--scene SCENE.json] [--json]` — one closed-loop episode
+//! [--mode paper|prioritised] --seed N [--scene SCENE.json] [--domain DIR] [--json]` — one
+//! closed-loop episode
 //! with a disturbance injected during execution at a seeded time; prints success, actions
 //! executed, replans, planning times and simulated execution time; `--json` prints the report
 //! with the full episode log (it replays exactly: `logic-lfd run --replay EPISODE.json`).
@@ -10,7 +11,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use logic_lfd::experiments::{run_episode, EpisodeReport, EpisodeSpec, Level};
+use logic_lfd::experiments::{run_episode, run_episode_with, EpisodeReport, EpisodeSpec, Level};
 use logic_lfd::lfd::session::{EpisodeLog, Session, SessionParams};
 use logic_lfd::lfd::{Method, Mode};
 use logic_lfd::sim::benchmark::Benchmark;
@@ -39,6 +40,10 @@ pub struct Args {
     /// Initial scene (a world snapshot JSON); default: the benchmark's template scene.
     #[arg(long)]
     scene: Option<PathBuf>,
+    /// Run a domain directory of its own (domain.pddl, problem.pddl, demo.json, motions.json,
+    /// optional scene.json) in the benchmark's workcell, with the benchmark's disturbances.
+    #[arg(long)]
+    domain: Option<PathBuf>,
     /// Print the report and the full episode log as JSON.
     #[arg(long)]
     json: bool,
@@ -55,6 +60,9 @@ fn bad(msg: String) -> ExitCode {
 /// Runs the subcommand.
 pub fn run(args: Args) -> ExitCode {
     if let Some(path) = &args.replay {
+        if args.domain.is_some() {
+            return bad("--replay replays the shipped benchmarks' episodes; drop --domain".into());
+        }
         return replay(path);
     }
     let Some(benchmark) = Benchmark::parse(&args.benchmark) else {
@@ -104,7 +112,18 @@ pub fn run(args: Args) -> ExitCode {
         scene,
     };
     let clock = WallClock::start();
-    let report = match run_episode(&spec, SessionParams::default(), &clock) {
+    let sources = match &args.domain {
+        Some(dir) => match crate::domain_dir::read(dir, benchmark) {
+            Ok(s) => Some(s),
+            Err(e) => return bad(e),
+        },
+        None => None,
+    };
+    let result = match &sources {
+        Some(files) => run_episode_with(&spec, files, SessionParams::default(), &clock),
+        None => run_episode(&spec, SessionParams::default(), &clock),
+    };
+    let report = match result {
         Ok(r) => r,
         Err(e) => {
             let file = args

@@ -15,6 +15,7 @@ mod cmd_scene;
 mod cmd_soak;
 mod cmd_tables;
 mod cmd_validate;
+mod domain_dir;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
