@@ -44,7 +44,7 @@ const TAKEN_RADIUS: f64 = 0.75 * SPOT_SPACING;
 const DEMO_SEED: u64 = 1;
 
 /// Expansions allowed to the planner of a generated demonstration.
-const PLAN_MAX_NODES: u64 = 200_000;
+const PLAN_MAX_NODES: u64 = 20_000;
 
 fn err(message: impl Into<String>) -> SceneError {
     SceneError {
@@ -137,9 +137,11 @@ fn start_area(s: &WorldSnapshot) -> Result<Area, SceneError> {
         .find(|b| b.kind == BodyKind::Block)
         .ok_or_else(|| err("the template has no block"))?;
     let p = first.pose.position;
-    if let Some(r) = s.regions.iter().find(|r| {
-        p[0] >= r.min[0] && p[0] <= r.max[0] && p[1] >= r.min[1] && p[1] <= r.max[1]
-    }) {
+    if let Some(r) = s
+        .regions
+        .iter()
+        .find(|r| p[0] >= r.min[0] && p[0] <= r.max[0] && p[1] >= r.min[1] && p[1] <= r.max[1])
+    {
         return Ok(Area {
             min: r.min,
             max: r.max,
@@ -298,7 +300,8 @@ pub fn problem_with_goal(b: Benchmark, world: &World, name: &str, goal: &[Fact])
     out
 }
 
-/// The expert's script for `problem`: an optimal plan (A* with LM-cut),
+/// The expert's script for `problem`: a plan of the planner (A* with LM-cut, else greedy
+/// best-first search with h_FF),
 /// each release onto a surface or a region put on the first free spot of its area.
 fn tower_script(
     b: Benchmark,
@@ -311,20 +314,34 @@ fn tower_script(
     let parsed = crate::pddl::parse_problem(problem, "problem.pddl", &domain)
         .map_err(|e| err(e.to_string()))?;
     let task = crate::plan::ground(&domain, &parsed).map_err(|e| err(e.to_string()))?;
-    let config = SearchConfig {
+    // An optimal plan where A* finds one within its budget, else a greedy one.
+    let optimal = SearchConfig {
         max_nodes: Some(PLAN_MAX_NODES),
         ..SearchConfig::new(Algorithm::Astar, HeuristicKind::LmCut)
     };
-    let result = crate::plan::search(&task, &config, &NoClock);
-    let plan = result
-        .outcome
-        .plan()
+    let greedy = SearchConfig {
+        max_nodes: Some(PLAN_MAX_NODES),
+        ..SearchConfig::new(Algorithm::Gbfs, HeuristicKind::HFf)
+    };
+    let plan = [optimal, greedy]
+        .iter()
+        .find_map(|c| {
+            crate::plan::search(&task, c, &NoClock)
+                .outcome
+                .plan()
+                .cloned()
+        })
         .ok_or_else(|| err("the planner found no plan"))?;
     let mut at: Vec<(String, [f64; 2])> = snap
         .bodies
         .iter()
         .filter(|body| body.kind == BodyKind::Block)
-        .map(|body| (body.name.clone(), [body.pose.position[0], body.pose.position[1]]))
+        .map(|body| {
+            (
+                body.name.clone(),
+                [body.pose.position[0], body.pose.position[1]],
+            )
+        })
         .collect();
     let multi_arm = snap.arms.len() > 1;
     let names = plan.names(&task);
@@ -368,9 +385,8 @@ fn tower_script(
                     let p = spots(snap, area)
                         .into_iter()
                         .find(|p| {
-                            at.iter().all(|(_, q)| {
-                                libm::hypot(p[0] - q[0], p[1] - q[1]) >= TAKEN_RADIUS
-                            })
+                            at.iter()
+                                .all(|(_, q)| libm::hypot(p[0] - q[0], p[1] - q[1]) >= TAKEN_RADIUS)
                         })
                         .ok_or_else(|| err(format!("{action}: no free spot")))?;
                     step.to = Some([p[0], p[1], 0.5 * super::benchmark::BLOCK_SIZE]);
