@@ -10,7 +10,8 @@ use serde::{Deserialize, Serialize};
 use crate::lfd::control::{FailReason, Replan};
 pub use crate::lfd::disturb::Level;
 use crate::lfd::session::{
-    mix, EpisodeLog, Injection, Session, SessionError, SessionOptions, SessionParams, SkillKind,
+    mix, sources_for, EpisodeLog, Injection, Session, SessionError, SessionOptions, SessionParams,
+    SkillKind,
 };
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
@@ -75,14 +76,26 @@ pub fn run_episode(
     params: SessionParams,
     clock: &dyn Clock,
 ) -> Result<EpisodeReport, SessionError> {
+    run_episode_with_blocks(spec, None, params, clock)
+}
+
+/// [`run_episode`] on the benchmark's generated tower task with `blocks` blocks (`None`: the
+/// template task).
+pub fn run_episode_with_blocks(
+    spec: &EpisodeSpec,
+    blocks: Option<usize>,
+    params: SessionParams,
+    clock: &dyn Clock,
+) -> Result<EpisodeReport, SessionError> {
     let options = SessionOptions {
         benchmark: spec.benchmark,
         method: spec.method,
         mode: spec.mode,
         seed: spec.seed,
         skill: SkillKind::Lqt,
+        blocks,
     };
-    let sources = spec.benchmark.sources()?;
+    let sources = sources_for(spec.benchmark, blocks)?;
     let mut s = Session::with_sources(options, &sources, spec.scene.as_deref(), None, params)?;
     let n = s.controller().trace().len().max(3);
     let inject_after = 1 + (mix(spec.seed, INJECT_AFTER_DRAW) % (n as u64 - 2)) as usize;

@@ -71,6 +71,7 @@ fn undisturbed(b: Benchmark, src: &BenchmarkSources) -> bool {
         mode: Mode::Paper,
         seed: 1,
         skill: SkillKind::Lqt,
+        blocks: None,
     };
     let mut s = Session::with_sources(opts, src, None, None, SessionParams::default()).unwrap();
     for _ in 0..100_000 {
@@ -86,4 +87,36 @@ fn undisturbed(b: Benchmark, src: &BenchmarkSources) -> bool {
 fn an_undisturbed_episode_on_b1_with_4_blocks_succeeds() {
     let src = tower_task(Benchmark::B1, 4).unwrap();
     assert!(undisturbed(Benchmark::B1, &src));
+}
+
+#[test]
+fn every_disturbance_level_generates_tasks_on_5_blocks() {
+    use logic_lfd::experiments::tasks::initial_scene_for;
+    use logic_lfd::lfd::disturb::Level;
+    for level in [Level::L1, Level::L2, Level::L3, Level::L4] {
+        let scene = initial_scene_for(Benchmark::B1, Some(5), level, 3)
+            .unwrap_or_else(|e| panic!("{level:?}: {e}"));
+        let world = World::from_json(&scene).unwrap();
+        world.check_invariants().unwrap();
+    }
+}
+
+#[test]
+fn a_session_with_blocks_uses_the_generated_task() {
+    let opts = SessionOptions {
+        benchmark: Benchmark::B1,
+        method: Method::LogicLfd,
+        mode: Mode::Paper,
+        seed: 1,
+        skill: SkillKind::Lqt,
+        blocks: Some(5),
+    };
+    let s = Session::new(opts).unwrap();
+    // Two actions per block put on the tower.
+    assert_eq!(s.controller().trace().len(), 8);
+    let e = logic_lfd::lfd::session::sources_for(Benchmark::B1, Some(40))
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(e.contains("allowed: 3 to 12"), "{e}");
 }

@@ -1,5 +1,5 @@
 //! `logic-lfd run --benchmark b1|b2|b3 --level l1..l4 --method logic-lfd|linear|rlds|tamp
-//! [--mode paper|prioritised] --seed N [--scene SCENE.json] [--json]` — one closed-loop episode
+//! [--mode paper|prioritised] --seed N [--scene SCENE.json] [--blocks N] [--json]` — one closed-loop episode
 //! with a disturbance injected during execution at a seeded time; prints success, actions
 //! executed, replans, planning times and simulated execution time; `--json` prints the report
 //! with the full episode log (it replays exactly: `logic-lfd run --replay EPISODE.json`).
@@ -10,7 +10,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use logic_lfd::experiments::{run_episode, EpisodeReport, EpisodeSpec, Level};
+use logic_lfd::experiments::{run_episode_with_blocks, EpisodeReport, EpisodeSpec, Level};
 use logic_lfd::lfd::session::{EpisodeLog, Session, SessionParams};
 use logic_lfd::lfd::{Method, Mode};
 use logic_lfd::sim::benchmark::Benchmark;
@@ -39,6 +39,9 @@ pub struct Args {
     /// Initial scene (a world snapshot JSON); default: the benchmark's template scene.
     #[arg(long)]
     scene: Option<PathBuf>,
+    /// Run the benchmark's generated tower task with N blocks (B1: 3-12, B3: 2-12).
+    #[arg(long)]
+    blocks: Option<usize>,
     /// Print the report and the full episode log as JSON.
     #[arg(long)]
     json: bool,
@@ -104,7 +107,8 @@ pub fn run(args: Args) -> ExitCode {
         scene,
     };
     let clock = WallClock::start();
-    let report = match run_episode(&spec, SessionParams::default(), &clock) {
+    let report = match run_episode_with_blocks(&spec, args.blocks, SessionParams::default(), &clock)
+    {
         Ok(r) => r,
         Err(e) => {
             let file = args
