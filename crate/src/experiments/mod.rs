@@ -12,6 +12,7 @@
 
 pub mod episode;
 pub mod fuzz;
+pub mod scaling;
 pub mod soak;
 pub mod tables;
 pub mod tasks;
