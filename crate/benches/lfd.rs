@@ -94,6 +94,7 @@ fn replanning_tick(c: &mut Criterion) {
         mode: Mode::Paper,
         seed: 1,
         skill: SkillKind::Lqt,
+        blocks: None,
     };
     let mut base = Session::new(opts).unwrap();
     base.step(3.0, &NoClock);

@@ -38,6 +38,7 @@ fn episode(b: Benchmark, level: Level, method: Method, mode: Mode, seed: u64) ->
         mode,
         seed,
         skill: SkillKind::Lqt,
+        blocks: None,
     };
     let mut s = Session::new(opts).expect("session");
     let n = s.controller().trace().len().max(3);
@@ -204,6 +205,7 @@ fn a_user_drag_is_logged_and_replayed() {
         mode: Mode::Prioritised,
         seed: 2,
         skill: SkillKind::Lqt,
+        blocks: None,
     };
     let mut s = Session::new(opts).unwrap();
     let f = s.step(3.0, &NoClock);

@@ -10,7 +10,8 @@ use serde::{Deserialize, Serialize};
 use crate::lfd::control::{FailReason, Replan};
 pub use crate::lfd::disturb::Level;
 use crate::lfd::session::{
-    mix, EpisodeLog, Injection, Session, SessionError, SessionOptions, SessionParams, SkillKind,
+    mix, sources_for, EpisodeLog, Injection, Session, SessionError, SessionOptions, SessionParams,
+    SkillKind,
 };
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
@@ -75,7 +76,19 @@ pub fn run_episode(
     params: SessionParams,
     clock: &dyn Clock,
 ) -> Result<EpisodeReport, SessionError> {
-    run_episode_with(spec, &spec.benchmark.sources()?, params, clock)
+    run_episode_with_blocks(spec, None, params, clock)
+}
+
+/// [`run_episode`] on the benchmark's generated tower task with `blocks` blocks (`None`: the
+/// template task).
+pub fn run_episode_with_blocks(
+    spec: &EpisodeSpec,
+    blocks: Option<usize>,
+    params: SessionParams,
+    clock: &dyn Clock,
+) -> Result<EpisodeReport, SessionError> {
+    let sources = sources_for(spec.benchmark, blocks)?;
+    episode(spec, &sources, blocks, params, clock)
 }
 
 /// [`run_episode`] on other files: a domain of its own (its PDDL, demonstration and
@@ -86,12 +99,23 @@ pub fn run_episode_with(
     params: SessionParams,
     clock: &dyn Clock,
 ) -> Result<EpisodeReport, SessionError> {
+    episode(spec, sources, None, params, clock)
+}
+
+fn episode(
+    spec: &EpisodeSpec,
+    sources: &BenchmarkSources,
+    blocks: Option<usize>,
+    params: SessionParams,
+    clock: &dyn Clock,
+) -> Result<EpisodeReport, SessionError> {
     let options = SessionOptions {
         benchmark: spec.benchmark,
         method: spec.method,
         mode: spec.mode,
         seed: spec.seed,
         skill: SkillKind::Lqt,
+        blocks,
     };
     let mut s = Session::with_sources(options, sources, spec.scene.as_deref(), None, params)?;
     let n = s.controller().trace().len().max(3);

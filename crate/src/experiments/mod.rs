@@ -12,11 +12,14 @@
 
 pub mod episode;
 pub mod fuzz;
+pub mod scaling;
 pub mod soak;
 pub mod tables;
 pub mod tasks;
 
-pub use episode::{run_episode, run_episode_with, EpisodeReport, EpisodeSpec, Level};
+pub use episode::{
+    run_episode, run_episode_with, run_episode_with_blocks, EpisodeReport, EpisodeSpec, Level,
+};
 
 /// The message of a caught panic (`catch_unwind`'s payload): its `String` or `&str`, else empty.
 pub fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {

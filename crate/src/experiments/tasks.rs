@@ -8,7 +8,7 @@
 
 use crate::lfd::demo::DemoTrace;
 use crate::lfd::disturb::{self, Level};
-use crate::lfd::session::{demo_actions, mix, SessionError};
+use crate::lfd::session::{demo_actions, mix, sources_for, SessionError};
 use crate::lfd::TaskBuilder as _;
 use crate::sim::benchmark::Benchmark;
 use crate::sim::{SceneGraph, World};
@@ -19,7 +19,13 @@ const ATTEMPTS: u64 = 8;
 /// The benchmark's demonstration trace L_0..L_N, derived on its template task: what "seen in
 /// the demonstration" means to the injector.
 pub fn demo_trace(b: Benchmark) -> Result<DemoTrace, SessionError> {
-    let files = b.sources()?;
+    demo_trace_for(b, None)
+}
+
+/// [`demo_trace`] of the benchmark's generated tower task with `blocks` blocks (`None`: the
+/// template task).
+pub fn demo_trace_for(b: Benchmark, blocks: Option<usize>) -> Result<DemoTrace, SessionError> {
+    let files = sources_for(b, blocks)?;
     let template = World::from_json(&files.scene)?.with_motions(b.motions());
     let model = crate::lfd::model::DomainModel::new(
         &files.domain,
@@ -38,9 +44,20 @@ pub fn demo_trace(b: Benchmark) -> Result<DemoTrace, SessionError> {
 
 /// The initial world (as scene JSON) of a Table I task.
 pub fn initial_scene(b: Benchmark, level: Level, seed: u64) -> Result<String, SessionError> {
-    let files = b.sources()?;
+    initial_scene_for(b, None, level, seed)
+}
+
+/// [`initial_scene`] of the benchmark's generated tower task with `blocks` blocks (`None`: the
+/// template task).
+pub fn initial_scene_for(
+    b: Benchmark,
+    blocks: Option<usize>,
+    level: Level,
+    seed: u64,
+) -> Result<String, SessionError> {
+    let files = sources_for(b, blocks)?;
     let mut world = World::from_json(&files.scene)?.with_motions(b.motions());
-    let trace = demo_trace(b)?;
+    let trace = demo_trace_for(b, blocks)?;
     // Up to a few attempts with derived seeds: a level may be impossible from some draws.
     let mut last = String::new();
     for attempt in 0..ATTEMPTS {
@@ -62,7 +79,7 @@ pub fn initial_scene(b: Benchmark, level: Level, seed: u64) -> Result<String, Se
     // A level that no single move produces from the template (B2 has no L2 state one move
     // away) falls back to a motion-level variant.
     if level != Level::L1 {
-        return initial_scene(b, Level::L1, seed);
+        return initial_scene_for(b, blocks, Level::L1, seed);
     }
     Err(SessionError::Json(format!(
         "{}: cannot generate a {} task: {last}",

@@ -38,7 +38,9 @@ pub use super::disturb::Injection;
 pub use crate::sim::benchmark::BenchmarkSources;
 pub use frame::{EePoint, Frame, PerturbOutcome, Status};
 pub use log::{ActionRecord, EpisodeEvent, EpisodeLog, EpisodeResult};
-pub use options::{demo_actions, mix, SessionError, SessionOptions, SessionParams, SkillKind};
+pub use options::{
+    demo_actions, mix, sources_for, SessionError, SessionOptions, SessionParams, SkillKind,
+};
 
 use nalgebra::Vector3;
 use std::sync::Arc;
@@ -102,7 +104,7 @@ fn objects_of(world: &World) -> Vec<(String, String)> {
 impl Session {
     /// A session on the benchmark's template scene and demonstration.
     pub fn new(options: SessionOptions) -> Result<Session, SessionError> {
-        let files = options.benchmark.sources()?;
+        let files = sources_for(options.benchmark, options.blocks)?;
         Session::with_sources(options, &files, None, None, SessionParams::default())
     }
 
@@ -113,7 +115,7 @@ impl Session {
         scene_json: &str,
         demo_json: Option<&str>,
     ) -> Result<Session, SessionError> {
-        let files = options.benchmark.sources()?;
+        let files = sources_for(options.benchmark, options.blocks)?;
         Session::with_sources(
             options,
             &files,

@@ -342,6 +342,7 @@ pub fn session(demo_json: &str, options: &TaughtRunOptions) -> Result<Session, R
         mode: options.mode,
         seed: options.seed,
         skill: options.skill,
+        blocks: None,
     };
     Session::with_sources(
         opts,

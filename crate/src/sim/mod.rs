@@ -67,6 +67,7 @@
 
 pub mod benchmark;
 pub mod demo;
+pub mod generate;
 pub mod geometry;
 pub mod motions;
 pub mod panda;

@@ -29,6 +29,7 @@ fn a_refused_session_perturb_changes_neither_world_nor_log() {
             mode: Default::default(),
             seed: 3,
             skill: Default::default(),
+            blocks: None,
         })
         .unwrap(),
     );

@@ -4,6 +4,7 @@
 mod benchmarks;
 mod contact;
 mod disturb;
+mod generate;
 mod hook;
 mod kinematics;
 mod scene_graph;

@@ -102,6 +102,7 @@ fn an_episode_with_full_precision_drags_replays_to_identical_json() {
             mode: Mode::Prioritised,
             seed,
             skill: Default::default(),
+            blocks: None,
         })
         .unwrap();
         let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(seed);

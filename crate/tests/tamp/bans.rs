@@ -265,6 +265,7 @@ fn run_from_saved_world(b: Benchmark, name: &str) -> Option<Result<(), FailReaso
         mode: Mode::Paper,
         seed: 1,
         skill: SkillKind::Lqt,
+        blocks: None,
     };
     let mut s = Session::from_scene(options, &scene, None).unwrap();
     for _ in 0..12_000 {

@@ -30,6 +30,58 @@ enum Which {
     Table1(crate::cmd_tables::Table1Args),
     /// The paper's Table II: reactivity to disturbances L1–L4 (linear, rlds, logic-lfd).
     Table2(crate::cmd_tables::Table2Args),
+    /// Scaling study: B1 tower tasks with N blocks, first-plan time per method.
+    Scaling(ScalingArgs),
+}
+
+/// Arguments of `bench scaling`.
+#[derive(clap::Args)]
+pub struct ScalingArgs {
+    /// Comma-separated block counts (B1: 3 to 12).
+    #[arg(long, default_value = "4,5", value_delimiter = ',')]
+    blocks: Vec<usize>,
+    /// Tasks (random L3 initial states) per block count.
+    #[arg(long, default_value_t = 50)]
+    tasks: usize,
+    /// Seed of the tasks and episodes.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Print JSON instead of a markdown table.
+    #[arg(long)]
+    json: bool,
+    /// Write an SVG plot of the median first-plan time against N to this file.
+    #[arg(long)]
+    svg: Option<PathBuf>,
+}
+
+fn scaling(a: ScalingArgs) -> ExitCode {
+    use logic_lfd::experiments::scaling;
+    let clock = WallClock::start();
+    let rows = match scaling::scaling(&a.blocks, a.tasks, a.seed, &clock) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::from(exit::BAD_INPUT);
+        }
+    };
+    if let Some(path) = &a.svg {
+        if let Err(e) = std::fs::write(path, scaling::plot::svg(&scaling::series(&rows))) {
+            eprintln!("{}: {e}", path.display());
+            return ExitCode::from(exit::BAD_INPUT);
+        }
+    }
+    if a.json {
+        match serde_json::to_string_pretty(&rows) {
+            Ok(s) => println!("{s}"),
+            Err(e) => {
+                eprintln!("cannot write JSON: {e}");
+                return ExitCode::from(exit::BAD_INPUT);
+            }
+        }
+    } else {
+        print!("{}", scaling::markdown(&rows));
+    }
+    ExitCode::from(exit::OK)
 }
 
 /// Arguments of `bench planner`.
@@ -61,6 +113,7 @@ pub fn run(args: Args) -> ExitCode {
         Which::Planner(a) => planner(a),
         Which::Table1(a) => crate::cmd_tables::run_table1(a),
         Which::Table2(a) => crate::cmd_tables::run_table2(a),
+        Which::Scaling(a) => scaling(a),
     }
 }
 

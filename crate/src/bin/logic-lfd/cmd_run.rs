@@ -1,6 +1,6 @@
 //! `logic-lfd run --benchmark b1|b2|b3 --level l1..l4 --method logic-lfd|linear|rlds|tamp
-//! [--mode paper|prioritised] --seed N [--scene SCENE.json] [--domain DIR] [--json]` — one
-//! closed-loop episode
+//! [--mode paper|prioritised] --seed N [--scene SCENE.json] [--blocks N | --domain DIR] [--json]`
+//! — one closed-loop episode
 //! with a disturbance injected during execution at a seeded time; prints success, actions
 //! executed, replans, planning times and simulated execution time; `--json` prints the report
 //! with the full episode log (it replays exactly: `logic-lfd run --replay EPISODE.json`).
@@ -11,7 +11,9 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use logic_lfd::experiments::{run_episode, run_episode_with, EpisodeReport, EpisodeSpec, Level};
+use logic_lfd::experiments::{
+    run_episode_with, run_episode_with_blocks, EpisodeReport, EpisodeSpec, Level,
+};
 use logic_lfd::lfd::session::{EpisodeLog, Session, SessionParams};
 use logic_lfd::lfd::{Method, Mode};
 use logic_lfd::sim::benchmark::Benchmark;
@@ -42,8 +44,11 @@ pub struct Args {
     scene: Option<PathBuf>,
     /// Run a domain directory of its own (domain.pddl, problem.pddl, demo.json, motions.json,
     /// optional scene.json) in the benchmark's workcell, with the benchmark's disturbances.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "blocks")]
     domain: Option<PathBuf>,
+    /// Run the benchmark's generated tower task with N blocks (B1: 3-12, B3: 2-12).
+    #[arg(long)]
+    blocks: Option<usize>,
     /// Print the report and the full episode log as JSON.
     #[arg(long)]
     json: bool,
@@ -121,7 +126,7 @@ pub fn run(args: Args) -> ExitCode {
     };
     let result = match &sources {
         Some(files) => run_episode_with(&spec, files, SessionParams::default(), &clock),
-        None => run_episode(&spec, SessionParams::default(), &clock),
+        None => run_episode_with_blocks(&spec, args.blocks, SessionParams::default(), &clock),
     };
     let report = match result {
         Ok(r) => r,

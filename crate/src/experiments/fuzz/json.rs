@@ -43,6 +43,7 @@ pub(super) fn base_episode() -> Result<String, String> {
         mode: Default::default(),
         seed: 11,
         skill: Default::default(),
+        blocks: None,
     })
     .map_err(|e| e.to_string())?;
     s.run_to_end(120, &NoClock);

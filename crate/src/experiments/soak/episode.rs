@@ -195,6 +195,7 @@ pub(super) fn soak_episode(
         mode: draw.mode,
         seed: draw.session_seed,
         skill: SkillKind::Lqt,
+        blocks: None,
     };
     let s = Session::new(options).map_err(|e| e.to_string())?;
     rep.episodes = 1;

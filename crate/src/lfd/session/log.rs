@@ -111,7 +111,7 @@ impl Session {
     pub fn replay(episode_json: &str) -> Result<Session, SessionError> {
         let log: EpisodeLog = serde_json::from_str(episode_json)
             .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
-        let files = log.options.benchmark.sources()?;
+        let files = super::sources_for(log.options.benchmark, log.options.blocks)?;
         Session::replay_with_sources(&files, episode_json)
     }
 

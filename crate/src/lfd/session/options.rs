@@ -44,6 +44,21 @@ pub struct SessionOptions {
     /// `lqt` or `dmp`.
     #[serde(default)]
     pub skill: SkillKind,
+    /// Blocks of the benchmark's generated N-block tower task (`None`: the template task).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub blocks: Option<usize>,
+}
+
+/// The files of benchmark `b`'s template task, or of its generated tower task with `blocks`
+/// blocks ([`crate::sim::generate::tower_task`]).
+pub fn sources_for(
+    b: Benchmark,
+    blocks: Option<usize>,
+) -> Result<crate::sim::benchmark::BenchmarkSources, SessionError> {
+    Ok(match blocks {
+        None => b.sources()?,
+        Some(n) => crate::sim::generate::tower_task(b, n)?,
+    })
 }
 
 /// What went wrong creating or replaying a session.

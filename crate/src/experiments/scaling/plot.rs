@@ -1,0 +1,168 @@
+//! A hand-written SVG line plot of the scaling study: time against N, log-scale y axis with
+//! decade ticks, one coloured line and legend entry per method, axis labels.
+
+/// One line of the plot.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Series {
+    /// Legend text.
+    pub label: String,
+    /// `(x, y)` points, `y > 0` (others are skipped).
+    pub points: Vec<(f64, f64)>,
+}
+
+const WIDTH: f64 = 640.0;
+const HEIGHT: f64 = 400.0;
+const LEFT: f64 = 70.0;
+const RIGHT: f64 = 200.0;
+const TOP: f64 = 20.0;
+const BOTTOM: f64 = 50.0;
+const COLOURS: [&str; 4] = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728"];
+
+/// The plot's axes: x range and the decades of the y range.
+struct Axes {
+    x0: f64,
+    x1: f64,
+    d0: i32,
+    d1: i32,
+}
+
+impl Axes {
+    fn of(series: &[Series]) -> Axes {
+        let pts = || {
+            series
+                .iter()
+                .flat_map(|s| s.points.iter())
+                .filter(|p| p.1 > 0.0)
+        };
+        let x0 = pts().map(|p| p.0).fold(f64::INFINITY, libm::fmin);
+        let x1 = pts().map(|p| p.0).fold(f64::NEG_INFINITY, libm::fmax);
+        let y0 = pts().map(|p| p.1).fold(f64::INFINITY, libm::fmin);
+        let y1 = pts().map(|p| p.1).fold(f64::NEG_INFINITY, libm::fmax);
+        if !x0.is_finite() {
+            return Axes {
+                x0: 0.0,
+                x1: 1.0,
+                d0: 0,
+                d1: 1,
+            };
+        }
+        let d0 = libm::floor(libm::log10(y0)) as i32;
+        let d1 = (libm::ceil(libm::log10(y1)) as i32).max(d0 + 1);
+        Axes {
+            x0,
+            x1: if x1 > x0 { x1 } else { x0 + 1.0 },
+            d0,
+            d1,
+        }
+    }
+
+    fn x(&self, x: f64) -> f64 {
+        LEFT + (x - self.x0) / (self.x1 - self.x0) * (WIDTH - LEFT - RIGHT)
+    }
+
+    fn y(&self, y: f64) -> f64 {
+        let t = (libm::log10(y) - f64::from(self.d0)) / f64::from(self.d1 - self.d0);
+        HEIGHT - BOTTOM - t * (HEIGHT - TOP - BOTTOM)
+    }
+}
+
+/// The SVG document of `series`: time (ms, log scale) against the number of blocks.
+pub fn svg(series: &[Series]) -> String {
+    let a = Axes::of(series);
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{WIDTH}\" height=\"{HEIGHT}\" \
+         font-family=\"sans-serif\" font-size=\"12\">\n\
+         <rect width=\"{WIDTH}\" height=\"{HEIGHT}\" fill=\"white\"/>\n"
+    );
+    let (xl, xr, yb, yt) = (LEFT, WIDTH - RIGHT, HEIGHT - BOTTOM, TOP);
+    s += &format!("<line x1=\"{xl}\" y1=\"{yb}\" x2=\"{xr}\" y2=\"{yb}\" stroke=\"black\"/>\n");
+    s += &format!("<line x1=\"{xl}\" y1=\"{yb}\" x2=\"{xl}\" y2=\"{yt}\" stroke=\"black\"/>\n");
+    for d in a.d0..=a.d1 {
+        let y = a.y(libm::pow(10.0, f64::from(d)));
+        s += &format!(
+            "<line x1=\"{}\" y1=\"{y:.1}\" x2=\"{xl}\" y2=\"{y:.1}\" stroke=\"black\"/>\
+             <text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">1e{d}</text>\n",
+            xl - 5.0,
+            xl - 8.0,
+            y + 4.0
+        );
+    }
+    let mut xs: Vec<f64> = series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.0))
+        .collect();
+    xs.sort_by(|p, q| p.total_cmp(q));
+    xs.dedup();
+    for x in xs {
+        let px = a.x(x);
+        s += &format!(
+            "<line x1=\"{px:.1}\" y1=\"{yb}\" x2=\"{px:.1}\" y2=\"{}\" stroke=\"black\"/>\
+             <text x=\"{px:.1}\" y=\"{}\" text-anchor=\"middle\">{x}</text>\n",
+            yb + 5.0,
+            yb + 18.0
+        );
+    }
+    s += &format!(
+        "<text x=\"{:.1}\" y=\"{}\" text-anchor=\"middle\">blocks N</text>\n",
+        0.5 * (xl + xr),
+        HEIGHT - 10.0
+    );
+    s += &format!(
+        "<text x=\"15\" y=\"{:.1}\" text-anchor=\"middle\" transform=\"rotate(-90 15 {:.1})\">\
+         first plan time (ms)</text>\n",
+        0.5 * (yb + yt),
+        0.5 * (yb + yt)
+    );
+    for (i, line) in series.iter().enumerate() {
+        let colour = COLOURS[i % COLOURS.len()];
+        let pts: Vec<String> = line
+            .points
+            .iter()
+            .filter(|p| p.1 > 0.0)
+            .map(|p| format!("{:.1},{:.1}", a.x(p.0), a.y(p.1)))
+            .collect();
+        s += &format!(
+            "<polyline fill=\"none\" stroke=\"{colour}\" stroke-width=\"2\" points=\"{}\"/>\n",
+            pts.join(" ")
+        );
+        let ly = TOP + 20.0 * i as f64 + 10.0;
+        s += &format!(
+            "<line x1=\"{}\" y1=\"{ly}\" x2=\"{}\" y2=\"{ly}\" stroke=\"{colour}\" stroke-width=\"2\"/>\
+             <text x=\"{}\" y=\"{}\">{}</text>\n",
+            xr + 10.0,
+            xr + 30.0,
+            xr + 35.0,
+            ly + 4.0,
+            line.label
+        );
+    }
+    s += "</svg>\n";
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn demo() -> Vec<Series> {
+        vec![Series {
+            label: "m".into(),
+            points: vec![(4.0, 0.5), (6.0, 5.0), (8.0, 50.0)],
+        }]
+    }
+
+    #[test]
+    fn the_document_is_balanced() {
+        let s = svg(&demo());
+        assert!(s.starts_with("<svg") && s.ends_with("</svg>\n"));
+        assert_eq!(s.matches("<text").count(), s.matches("</text>").count());
+    }
+
+    #[test]
+    fn larger_values_map_higher_and_to_the_right() {
+        let a = Axes::of(&demo());
+        assert!(a.y(50.0) < a.y(5.0) && a.y(5.0) < a.y(0.5));
+        assert!(a.x(8.0) > a.x(6.0) && a.x(6.0) > a.x(4.0));
+        assert_eq!((a.d0, a.d1), (-1, 2));
+    }
+}
