@@ -30,16 +30,16 @@ fn check_task(b: Benchmark, n: usize, src: &BenchmarkSources) {
 }
 
 #[test]
-fn b1_tower_tasks_from_3_to_5_blocks_are_valid() {
-    for n in 3..=5 {
+fn b1_tower_tasks_from_3_to_12_blocks_are_valid() {
+    for n in 3..=12 {
         let src = tower_task(Benchmark::B1, n).unwrap_or_else(|e| panic!("B1-{n}: {e}"));
         check_task(Benchmark::B1, n, &src);
     }
 }
 
 #[test]
-fn b3_tower_tasks_from_2_to_5_blocks_are_valid() {
-    for n in 2..=5 {
+fn b3_tower_tasks_from_2_to_10_blocks_are_valid() {
+    for n in 2..=10 {
         let src = tower_task(Benchmark::B3, n).unwrap_or_else(|e| panic!("B3-{n}: {e}"));
         check_task(Benchmark::B3, n, &src);
     }
@@ -47,7 +47,12 @@ fn b3_tower_tasks_from_2_to_5_blocks_are_valid() {
 
 #[test]
 fn block_counts_outside_the_range_and_b2_are_refused() {
-    for (b, n) in [(Benchmark::B1, 2), (Benchmark::B1, 13), (Benchmark::B3, 1)] {
+    for (b, n) in [
+        (Benchmark::B1, 2),
+        (Benchmark::B1, 13),
+        (Benchmark::B3, 1),
+        (Benchmark::B3, 11),
+    ] {
         let e = tower_task(b, n).unwrap_err().to_string();
         assert!(e.contains("allowed"), "{e}");
     }
@@ -79,14 +84,46 @@ fn undisturbed(b: Benchmark, src: &BenchmarkSources) -> bool {
             break;
         }
         s.tick_once(&NoClock);
+        if let Err(v) = s.world().check_invariants() {
+            panic!("{b:?} tick {}: {v:?}", s.tick());
+        }
     }
     matches!(s.outcome(), Some(Ok(())))
 }
 
 #[test]
-fn an_undisturbed_episode_on_b1_with_4_blocks_succeeds() {
-    let src = tower_task(Benchmark::B1, 4).unwrap();
-    assert!(undisturbed(Benchmark::B1, &src));
+fn undisturbed_episodes_on_tall_towers_succeed() {
+    for (b, n) in [
+        (Benchmark::B1, 4),
+        (Benchmark::B1, 8),
+        (Benchmark::B1, 12),
+        (Benchmark::B3, 4),
+        (Benchmark::B3, 8),
+    ] {
+        let src = tower_task(b, n).unwrap();
+        assert!(undisturbed(b, &src), "{b:?}-{n}");
+    }
+}
+
+#[test]
+fn every_disturbance_level_ends_in_success_on_8_and_12_blocks() {
+    use logic_lfd::experiments::{run_episode_with_blocks, EpisodeSpec, Level};
+    for n in [8, 12] {
+        for (i, level) in Level::ALL.into_iter().enumerate() {
+            let spec = EpisodeSpec {
+                benchmark: Benchmark::B1,
+                level: Some(level),
+                method: Method::LogicLfd,
+                mode: Mode::Paper,
+                seed: 1 + i as u64,
+                scene: None,
+            };
+            let r = run_episode_with_blocks(&spec, Some(n), SessionParams::default(), &NoClock)
+                .unwrap();
+            assert!(r.injection.is_some(), "B1-{n} {level:?}: not injected");
+            assert!(r.success, "B1-{n} {level:?}: {:?}", r.reason);
+        }
+    }
 }
 
 #[test]

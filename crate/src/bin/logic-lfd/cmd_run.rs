@@ -46,7 +46,7 @@ pub struct Args {
     /// optional scene.json) in the benchmark's workcell, with the benchmark's disturbances.
     #[arg(long, conflicts_with = "blocks")]
     domain: Option<PathBuf>,
-    /// Run the benchmark's generated tower task with N blocks (B1: 3-12, B3: 2-12).
+    /// Run the benchmark's generated tower task with N blocks (B1: 3-12, B3: 2-10).
     #[arg(long)]
     blocks: Option<usize>,
     /// Print the report and the full episode log as JSON.
