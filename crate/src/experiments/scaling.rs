@@ -1,6 +1,7 @@
 //! Scaling study (`logic-lfd bench scaling`): B1 tower tasks with N blocks from random L3
-//! initial states, per method the success rate, the first plan's time (median, p95, caller's
-//! clock) and length.
+//! initial states (facts the demonstration never visits), per method the success rate, the first
+//! plan's time (median, p95; caller's clock) split into symbolic search and geometric binding,
+//! its length and the states its searches expanded.
 
 pub mod plot;
 
@@ -11,19 +12,26 @@ use super::tasks::initial_scene_for;
 use crate::lfd::disturb::Level;
 use crate::lfd::session::{mix, SessionError, SessionParams};
 use crate::lfd::{Method, Mode};
-use crate::plan::Clock;
+use crate::plan::{Algorithm, Clock, HeuristicKind};
 use crate::sim::benchmark::Benchmark;
 
-/// The methods compared: label, method and multi-goal mode.
-pub const METHODS: [(&str, Method, Mode); 3] = [
-    ("logic-lfd (paper)", Method::LogicLfd, Mode::Paper),
+/// The methods compared: label, method, multi-goal mode and whether the symbolic search is the
+/// satisficing lazy GBFS with h_FF instead of the loop's default (A* with h_max).
+pub const METHODS: [(&str, Method, Mode, bool); 4] = [
+    ("logic-lfd (paper)", Method::LogicLfd, Mode::Paper, false),
     (
         "logic-lfd (prioritised)",
         Method::LogicLfd,
         Mode::Prioritised,
+        false,
     ),
-    ("tamp", Method::Tamp, Mode::Paper),
+    ("tamp", Method::Tamp, Mode::Paper, false),
+    ("tamp (gbfs, h_ff)", Method::Tamp, Mode::Paper, true),
 ];
+
+/// Wall-clock budget of one symbolic search in the study (s): a method that needs more has
+/// failed on that task (A* with h_max on long plans).
+pub const SEARCH_TIME_LIMIT_SECS: f64 = 2.0;
 
 /// One row of the study: a block count and a method.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -40,8 +48,16 @@ pub struct ScalingRow {
     pub first_plan_ms_median: f64,
     /// 95th percentile first-plan time (ms).
     pub first_plan_ms_p95: f64,
+    /// Median time of the first plan's symbolic search (ms): its time less its binding.
+    pub search_ms_median: f64,
+    /// Median time of the first plan's geometric binding (ms).
+    pub bind_ms_median: f64,
     /// Median first-plan length (actions).
     pub plan_length_median: f64,
+    /// Median states expanded by the first plan's searches.
+    pub expanded_median: f64,
+    /// Why the first failed task failed, if one did.
+    pub first_failure: Option<String>,
 }
 
 /// The `q`-quantile (nearest rank) of `v`; 0 when empty.
@@ -68,8 +84,18 @@ pub fn scaling(
         let scenes: Vec<String> = (0..tasks as u64)
             .map(|t| initial_scene_for(b, Some(n), Level::L3, mix(seed, t)))
             .collect::<Result<_, _>>()?;
-        for (label, method, mode) in METHODS {
+        for (label, method, mode, satisficing) in METHODS {
+            let mut params = SessionParams::default();
+            params.control.search.time_limit_secs = Some(SEARCH_TIME_LIMIT_SECS);
+            if satisficing {
+                params.control.search.algorithm = Algorithm::LazyGbfs;
+                params.control.search.heuristic = HeuristicKind::HFf;
+            }
+            let mut failure = None;
             let mut times = Vec::new();
+            let mut search = Vec::new();
+            let mut bind = Vec::new();
+            let mut expanded = Vec::new();
             let mut lengths = Vec::new();
             let mut successes = 0;
             for (t, scene) in scenes.iter().enumerate() {
@@ -81,10 +107,16 @@ pub fn scaling(
                     seed: mix(seed, t as u64),
                     scene: Some(scene.clone()),
                 };
-                let r = run_episode_with_blocks(&spec, Some(n), SessionParams::default(), clock)?;
+                let r = run_episode_with_blocks(&spec, Some(n), params, clock)?;
                 successes += usize::from(r.success);
+                if let (None, Some(why)) = (&failure, &r.reason) {
+                    failure = Some(why.to_string());
+                }
                 if let Some(first) = r.log.replans.first() {
                     times.push(first.time_ms);
+                    search.push((first.time_ms - first.bind_ms).max(0.0));
+                    bind.push(first.bind_ms);
+                    expanded.push(first.expanded as f64);
                     lengths.push(first.plan.len() as f64);
                 }
             }
@@ -95,29 +127,73 @@ pub fn scaling(
                 successes,
                 first_plan_ms_median: quantile(&mut times.clone(), 0.5),
                 first_plan_ms_p95: quantile(&mut times, 0.95),
+                search_ms_median: quantile(&mut search, 0.5),
+                bind_ms_median: quantile(&mut bind, 0.5),
                 plan_length_median: quantile(&mut lengths, 0.5),
+                expanded_median: quantile(&mut expanded, 0.5),
+                first_failure: failure,
             });
         }
     }
     Ok(rows)
 }
 
-/// The rows as a markdown table.
+/// The rows as a markdown table, then Logic-LfD's advantage per N (TAMP's median first-plan
+/// time over each Logic-LfD mode's).
 pub fn markdown(rows: &[ScalingRow]) -> String {
     let mut s = String::from(
-        "| N | method | success | first plan median (ms) | p95 (ms) | plan length |\n\
-         |---|---|---|---|---|---|\n",
+        "| N | method | success | first plan median (ms) | p95 (ms) | search (ms) | binding (ms) | plan length | expanded |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
     );
+    let ms = |v: f64, any: bool| if any { format!("{v:.3}") } else { "–".into() };
     for r in rows {
+        let any = r.successes > 0 || r.plan_length_median > 0.0;
         s += &format!(
-            "| {} | {} | {}/{} | {:.3} | {:.3} | {} |\n",
+            "| {} | {} | {}/{} | {} | {} | {} | {} | {} | {} |\n",
             r.blocks,
             r.method,
             r.successes,
             r.tasks,
-            r.first_plan_ms_median,
-            r.first_plan_ms_p95,
-            r.plan_length_median
+            ms(r.first_plan_ms_median, any),
+            ms(r.first_plan_ms_p95, any),
+            ms(r.search_ms_median, any),
+            ms(r.bind_ms_median, any),
+            r.plan_length_median,
+            r.expanded_median
+        );
+    }
+    let failures: Vec<String> = rows
+        .iter()
+        .filter_map(|r| {
+            r.first_failure
+                .as_ref()
+                .map(|f| format!("- N = {}, {}: {f}", r.blocks, r.method))
+        })
+        .collect();
+    if !failures.is_empty() {
+        s += "\nFirst failure of each row with one:\n\n";
+        s += &failures.join("\n");
+        s += "\n";
+    }
+    s += "\nMedian first-plan time of TAMP from scratch over Logic-LfD's (paper mode):\n\n\
+          | N | TAMP (A*, h_max) | TAMP (GBFS, h_FF) |\n|---|---|---|\n";
+    let mut ns: Vec<usize> = rows.iter().map(|r| r.blocks).collect();
+    ns.dedup();
+    for n in ns {
+        let median = |label: &str| {
+            rows.iter()
+                .find(|r| r.blocks == n && r.method == label && r.successes > 0)
+                .map(|r| r.first_plan_ms_median)
+        };
+        let ratio = |tamp: &str| match (median(tamp), median(METHODS[0].0)) {
+            (Some(t), Some(l)) if l > 0.0 => format!("{:.1}×", t / l),
+            (None, Some(_)) => "TAMP failed".into(),
+            _ => "–".into(),
+        };
+        s += &format!(
+            "| {n} | {} | {} |\n",
+            ratio(METHODS[2].0),
+            ratio(METHODS[3].0)
         );
     }
     s
@@ -127,11 +203,11 @@ pub fn markdown(rows: &[ScalingRow]) -> String {
 pub fn series(rows: &[ScalingRow]) -> Vec<plot::Series> {
     METHODS
         .iter()
-        .map(|(label, _, _)| plot::Series {
+        .map(|(label, _, _, _)| plot::Series {
             label: label.to_string(),
             points: rows
                 .iter()
-                .filter(|r| r.method == *label)
+                .filter(|r| r.method == *label && r.successes > 0)
                 .map(|r| (r.blocks as f64, r.first_plan_ms_median))
                 .collect(),
         })

@@ -22,7 +22,7 @@ use std::collections::BTreeSet;
 use serde::{Deserialize, Serialize};
 
 use crate::plan::{replay, BannedTask, Clock, Operator, SearchConfig, State, Task};
-use crate::tamp::{Binder, Binding, BoundPlan};
+use crate::tamp::{Binder, Binding, BoundPlan, TimedBinder};
 
 use super::demo::DemoTrace;
 use super::logic::Mode;
@@ -99,6 +99,14 @@ pub struct Replan {
     pub tick: u64,
     /// How many leading actions of the plan are new (not from the demonstration).
     pub new_actions: usize,
+    /// The part of `time_ms` spent binding actions to motions (streams: grasps, placements,
+    /// pulls); the rest is symbolic search. By the caller's clock, not part of the replay
+    /// identity.
+    #[serde(default)]
+    pub bind_ms: f64,
+    /// States the symbolic searches of this replan expanded.
+    #[serde(default)]
+    pub expanded: u64,
 }
 
 /// What the controller asks the executor to do.
@@ -152,6 +160,8 @@ struct Planned {
     k: Option<usize>,
     new_actions: usize,
     bindings: Vec<Binding>,
+    /// States the searches expanded.
+    expanded: u64,
 }
 
 /// The task-level controller of one episode.
@@ -443,12 +453,14 @@ impl Controller {
                 what: "replan budget".into(),
             });
         }
+        let mut timed = TimedBinder::new(binder, clock);
         let planned = match self.method {
-            Method::LogicLfd => self.plan_with_logic_lfd(&s, binder, clock),
+            Method::LogicLfd => self.plan_with_logic_lfd(&s, &mut timed, clock),
             Method::Rlds => self.plan_with_rlds(&s),
-            Method::Tamp => self.plan_with_tamp(&s, binder, clock),
+            Method::Tamp => self.plan_with_tamp(&s, &mut timed, clock),
             Method::Linear => unreachable_linear(),
         };
+        let bind_ms = timed.secs * 1e3;
         let time_ms = (clock.now_secs() - t0) * 1e3;
         match planned {
             Ok(Planned {
@@ -456,6 +468,7 @@ impl Controller {
                 k,
                 new_actions,
                 bindings,
+                expanded,
             }) => {
                 self.install(&s, ops, k);
                 self.bindings = bindings;
@@ -466,6 +479,8 @@ impl Controller {
                     plan: self.plan_names.clone(),
                     tick,
                     new_actions,
+                    bind_ms,
+                    expanded,
                 });
                 if self.plan.is_empty() {
                     return Decision::Done;
@@ -527,6 +542,8 @@ impl Controller {
                 plan: self.plan_names.clone(),
                 tick,
                 new_actions: 0,
+                bind_ms: 0.0,
+                expanded: 0,
             });
         }
         if self.cursor < self.plan.len() {
@@ -569,6 +586,7 @@ impl Controller {
                         k: Some(k),
                         new_actions: 0,
                         bindings: vec![],
+                        expanded: 0,
                     });
                 }
             }
@@ -586,6 +604,7 @@ impl Controller {
     ) -> Result<Planned, FailReason> {
         let mut banned = BannedTask::new(self.task());
         let mut first_k = 0;
+        let mut expanded = 0;
         for _ in 0..self.params.max_skeletons.max(1) {
             let Ok(p) = self.lfd.replan_avoiding(
                 s,
@@ -597,6 +616,7 @@ impl Controller {
             ) else {
                 break;
             };
+            expanded += p.stats.expanded;
             match binder.bind(self.task(), &p.ops, p.prefix_len) {
                 Ok(bindings) => {
                     return Ok(Planned {
@@ -604,6 +624,7 @@ impl Controller {
                         k: p.k,
                         new_actions: p.prefix_len,
                         bindings,
+                        expanded,
                     })
                 }
                 Err(failure) if failure.action < p.prefix_len => {
@@ -630,7 +651,10 @@ impl Controller {
         }
         // No demonstration state can be joined with bindable actions: plan to G from scratch
         // (the TAMP solver Logic-LfD wraps), so the loop still finishes the task.
-        self.plan_with_tamp(s, binder, clock)
+        self.plan_with_tamp(s, binder, clock).map(|mut p| {
+            p.expanded += expanded;
+            p
+        })
     }
 
     fn plan_with_tamp(
@@ -639,7 +663,11 @@ impl Controller {
         binder: &mut dyn Binder,
         clock: &dyn Clock,
     ) -> Result<Planned, FailReason> {
-        let BoundPlan { ops, bindings } = crate::tamp::plan_from_scratch(
+        let BoundPlan {
+            ops,
+            bindings,
+            expanded,
+        } = crate::tamp::plan_from_scratch(
             self.task(),
             s,
             binder,
@@ -655,6 +683,7 @@ impl Controller {
             ops,
             k: None,
             bindings,
+            expanded,
         })
     }
 }

@@ -42,3 +42,45 @@ pub trait Binder {
         false
     }
 }
+
+/// A binder that measures the time its inner binder spends binding (by the caller's clock): how
+/// a replan's time splits into symbolic search and geometric binding.
+pub struct TimedBinder<'a> {
+    inner: &'a mut dyn Binder,
+    clock: &'a dyn crate::plan::Clock,
+    /// Seconds spent in [`Binder::bind`] so far.
+    pub secs: f64,
+}
+
+impl<'a> TimedBinder<'a> {
+    /// Wraps `inner`, timing it by `clock`.
+    pub fn new(inner: &'a mut dyn Binder, clock: &'a dyn crate::plan::Clock) -> Self {
+        TimedBinder {
+            inner,
+            clock,
+            secs: 0.0,
+        }
+    }
+}
+
+impl Binder for TimedBinder<'_> {
+    fn bind(
+        &mut self,
+        task: &Task,
+        ops: &[usize],
+        demo_from: usize,
+    ) -> Result<Vec<Binding>, BindFailure> {
+        let t0 = self.clock.now_secs();
+        let r = self.inner.bind(task, ops, demo_from);
+        self.secs += self.clock.now_secs() - t0;
+        r
+    }
+
+    fn widen(&mut self) {
+        self.inner.widen();
+    }
+
+    fn moves_body(&self, op: &Operator, body: &str) -> bool {
+        self.inner.moves_body(op, body)
+    }
+}

@@ -24,7 +24,7 @@ pub mod streams;
 pub use action::{
     classify, moves_body, release_target, ActionKind, Binding, Placement, PlanarPose, ReleaseTarget,
 };
-pub use binder::{BindFailure, Binder};
+pub use binder::{BindFailure, Binder, TimedBinder};
 
 use crate::plan::{
     replay, search, BannedTask, Clock, Operator, SearchConfig, SearchOutcome, State, Task,
@@ -55,6 +55,8 @@ pub struct BoundPlan {
     pub ops: Vec<usize>,
     /// What the streams bound for each operator of `ops`.
     pub bindings: Vec<Binding>,
+    /// States the skeleton searches expanded, over every try.
+    pub expanded: u64,
 }
 
 /// TAMP from scratch: skeletons from `s` to the task's goal, bound by `binder`.
@@ -72,9 +74,11 @@ pub fn plan_from_scratch(
     let mut last = String::new();
     let mut why = None;
     let mut tries = 0;
+    let mut expanded = 0;
     for tried in 0..max_skeletons.max(1) {
         tries = tried + 1;
         let r = search(&banned.task, config, clock);
+        expanded += r.stats.expanded;
         let ops = match r.outcome {
             SearchOutcome::Plan(p) => banned.original(&p.operators),
             SearchOutcome::Unsolvable if tried == 0 => {
@@ -86,7 +90,13 @@ pub fn plan_from_scratch(
             }
         };
         match binder.bind(&t, &ops, ops.len()) {
-            Ok(bindings) => return Ok(BoundPlan { ops, bindings }),
+            Ok(bindings) => {
+                return Ok(BoundPlan {
+                    ops,
+                    bindings,
+                    expanded,
+                })
+            }
             Err(failure) => {
                 let i = failure.action;
                 last = t.operators[ops[i]].name.clone();

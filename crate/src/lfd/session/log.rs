@@ -96,11 +96,12 @@ pub struct EpisodeLog {
 }
 
 impl EpisodeLog {
-    /// The log with wall-clock planning times zeroed: equal for two runs of the same episode.
+    /// The log with wall-clock planning and binding times zeroed: equal for two runs of the same episode.
     pub fn canonical(&self) -> EpisodeLog {
         let mut c = self.clone();
         for r in &mut c.replans {
             r.time_ms = 0.0;
+            r.bind_ms = 0.0;
         }
         c
     }
