@@ -3,7 +3,8 @@
 //   * time from navigation to interactive (the wasm loaded in the worker and the first frame drawn);
 //   * the worker's closed-loop tick (Session::step, replans included) over a B1 run with drags;
 //   * Logic-LfD replanning time in wasm on B1 (from the frames' lastReplan.timeMs).
-// Usage: node tests/e2e/bench.mjs [--benchmark b1] [--runs 3]
+// Usage: node tests/e2e/bench.mjs [--benchmark b1] [--runs 3] [--blocks N]
+// (--blocks: the benchmark's generated N-block tower task instead of its template.)
 import { readdir, readFile } from 'node:fs/promises';
 import { gzipSync } from 'node:zlib';
 import { join } from 'node:path';
@@ -15,6 +16,10 @@ const arg = (k, d) => {
 };
 const benchmark = arg('benchmark', 'b1');
 const runs = Number(arg('runs', '3'));
+const blocks = arg('blocks', undefined);
+if (blocks !== undefined && !/^\d+$/.test(blocks)) throw new Error(`--blocks must be a whole number, got ${blocks}`);
+// A taller tower takes longer to build: the run's time limit grows with it.
+const doneTimeout = 120000 * Math.max(1, Number(blocks ?? 4) / 4);
 
 async function sizes() {
   const files = [];
@@ -54,7 +59,7 @@ const browser = await launch();
 const size = await sizes();
 const results = [];
 for (let r = 0; r < runs; r++) {
-  const { page } = await openPage(browser, `${server.url}?benchmark=${benchmark}&seed=${r + 1}`);
+  const { page } = await openPage(browser, `${server.url}?benchmark=${benchmark}&seed=${r + 1}${blocks ? `&blocks=${blocks}` : ''}`);
   await page.waitForSelector('#app[data-ready="true"]', { timeout: 30000 });
   const interactiveMs = await page.evaluate(() => window.lfd.loadedAt);
   // Disturb the run so that Logic-LfD replans: L3 twice (unseen states), L4 once (a new block).
@@ -62,7 +67,7 @@ for (let r = 0; r < runs; r++) {
     await page.waitForFunction((t) => (window.lfd.frame()?.t ?? 0) > t, t, { timeout: 60000 });
     await page.click(`#inject-${level}`);
   }
-  await page.waitForFunction(() => ['done', 'failed'].includes(window.lfd.frame()?.status.kind), null, { timeout: 120000 });
+  await page.waitForFunction(() => ['done', 'failed'].includes(window.lfd.frame()?.status.kind), null, { timeout: doneTimeout });
   const out = await page.evaluate(() => ({
     steps: window.lfd.stepTimes(),
     replans: window.lfd.replans().map(([, ms]) => ms),
@@ -78,6 +83,7 @@ const steps = results.flatMap((r) => r.steps);
 const replans = results.flatMap((r) => r.replans);
 const summary = {
   benchmark,
+  blocks: blocks === undefined ? null : Number(blocks),
   runs,
   page_gzip_kb: +(size.gz / 1024).toFixed(1),
   page_raw_kb: +(size.raw / 1024).toFixed(1),

@@ -6,11 +6,13 @@
  */
 import { button, el, select } from './dom';
 import { HelpOverlay } from './help';
-import { BENCHMARKS, LEVELS, METHODS, MODES, SPEEDS, type PageState, type TabId } from './state';
+import { BENCHMARKS, BLOCK_RANGES, LEVELS, METHODS, MODES, SPEEDS, blockItems, type Benchmark, type PageState, type TabId } from './state';
 
 /** The top bar's controls. */
 export interface Controls {
   benchSel: HTMLSelectElement;
+  /** Blocks of the generated tower task ('': the benchmark's template task). */
+  blocksSel: HTMLSelectElement;
   methodSel: HTMLSelectElement;
   modeSel: HTMLSelectElement;
   seedIn: HTMLInputElement;
@@ -68,6 +70,24 @@ export interface Layout {
   help: HelpOverlay;
 }
 
+const BLOCKS_TITLE = "Blocks: the benchmark's own task (template) or a generated tower of N blocks";
+
+/** Fills the block select with benchmark `b`'s choices, set to `blocks` (undefined: template);
+ * disabled, saying why, for a benchmark without an N-block task. */
+export function setBlockChoices(sel: HTMLSelectElement, b: Benchmark, blocks: number | null | undefined): void {
+  sel.replaceChildren(...blockItems(b).map(([v, t]) => el('option', { value: v }, t)));
+  sel.value = blocks == null ? '' : String(blocks);
+  const r = BLOCK_RANGES[b];
+  sel.disabled = r === null;
+  sel.title = r ? `${BLOCKS_TITLE} (${b.toUpperCase()}: ${r[0]} to ${r[1]})` : `${b.toUpperCase()} has no N-block variant: it runs its template task`;
+}
+
+function blockSelect(b: Benchmark, blocks: number | null | undefined): HTMLSelectElement {
+  const sel = el('select', { id: 'blocks', 'aria-label': 'Blocks' });
+  setBlockChoices(sel, b, blocks);
+  return sel;
+}
+
 function buildControls(s: PageState): Controls {
   const o = s.options;
   const levelBtns = LEVELS.map(([lvl, text, what]) => {
@@ -77,6 +97,7 @@ function buildControls(s: PageState): Controls {
   });
   return {
     benchSel: select('benchmark', 'Benchmark', BENCHMARKS, o.benchmark),
+    blocksSel: blockSelect(o.benchmark, o.blocks),
     methodSel: select('method', 'Method', METHODS, o.method),
     modeSel: select('mode', 'Multi-goal mode', MODES, o.mode),
     seedIn: el('input', { id: 'seed', type: 'number', min: '0', step: '1', 'aria-label': 'Random seed', title: 'Random seed', value: String(o.seed) }),
@@ -88,7 +109,7 @@ function buildControls(s: PageState): Controls {
     saveBtn: button('save-scene', 'Save the current scene as JSON', 'Save'),
     loadBtn: button('load-scene', 'Load a scene JSON file', 'Load'),
     fileIn: el('input', { type: 'file', accept: 'application/json,.json', hidden: '', 'aria-label': 'Scene JSON file' }),
-    linkBtn: button('permalink', 'Copy a link to this benchmark, method, mode and seed', 'Link'),
+    linkBtn: button('permalink', 'Copy a link to this benchmark, block count, method, mode and seed', 'Link'),
     helpBtn: button('help', 'Keyboard shortcuts and help (?)', '?'),
   };
 }
@@ -134,7 +155,7 @@ function buildTopBar(c: Controls, version: HTMLElement): HTMLElement {
     'header',
     { class: 'topbar' },
     el('div', { class: 'brand' }, el('strong', {}, 'logic-lfd'), version),
-    el('div', { class: 'group', role: 'group', 'aria-label': 'Scenario' }, c.benchSel, c.methodSel, c.modeSel, el('label', { class: 'seed' }, 'seed', c.seedIn), c.resetBtn),
+    el('div', { class: 'group', role: 'group', 'aria-label': 'Scenario' }, c.benchSel, c.blocksSel, c.methodSel, c.modeSel, el('label', { class: 'seed' }, 'seed', c.seedIn), c.resetBtn),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Playback' }, c.playBtn, c.stepBtn, c.speedSel),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Inject a disturbance' }, el('span', { class: 'muted small' }, 'inject'), ...c.levelBtns),
     el('div', { class: 'group right', role: 'group', 'aria-label': 'Scene and link' }, c.saveBtn, c.loadBtn, c.fileIn, c.linkBtn, c.helpBtn),

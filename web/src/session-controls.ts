@@ -7,9 +7,9 @@ import type { DropRequest, View } from './view';
 import type { WorkerClient } from './client';
 import { downloadJson, guard } from './dom';
 import type { FrameRenderer } from './frame-renderer';
-import type { Layout } from './layout';
+import { setBlockChoices, type Layout } from './layout';
 import type { FromWorker, Level } from './protocol';
-import { BENCHMARKS, parseSeed, recordStep, updateUrl, type Benchmark, type Method, type Mode, type PageState } from './state';
+import { BENCHMARKS, blocksFor, parseSeed, recordStep, updateUrl, type Benchmark, type Method, type Mode, type PageState } from './state';
 import type { StatusBar } from './status-bar';
 import type { Tabs } from './tabs';
 
@@ -166,7 +166,7 @@ export class SessionControls {
     updateUrl(this.p.state);
     try {
       await navigator.clipboard.writeText(location.href);
-      this.p.status.notice('Link copied: it restores this benchmark, method, mode and seed', 'info');
+      this.p.status.notice('Link copied: it restores this benchmark, blocks, method, mode and seed', 'info');
     } catch {
       this.p.status.notice(location.href, 'info');
     }
@@ -179,7 +179,17 @@ export class SessionControls {
     const o = state.options;
     c.benchSel.onchange = () => {
       o.benchmark = c.benchSel.value as Benchmark;
+      // A count the new benchmark does not allow falls back to its template task.
+      const blocks = blocksFor(o.benchmark, o.blocks);
+      if (blocks === undefined) delete o.blocks;
+      setBlockChoices(c.blocksSel, o.benchmark, blocks);
       this.p.tabs().teach?.reset();
+      void this.open();
+    };
+    c.blocksSel.onchange = () => {
+      const blocks = blocksFor(o.benchmark, c.blocksSel.value === '' ? undefined : Number(c.blocksSel.value));
+      if (blocks === undefined) delete o.blocks;
+      else o.blocks = blocks;
       void this.open();
     };
     c.methodSel.onchange = () => {

@@ -1,5 +1,5 @@
 /**
- * What the page knows, in one object: the scenario it runs (benchmark, method, mode, seed), the
+ * What the page knows, in one object: the scenario it runs (benchmark, method, mode, seed, blocks), the
  * playback (speed, playing), the latest frame from the worker (status, plan, demo, facts), the step
  * timings, the open tab and the last cancel. Also the choices the controls offer and the URL that
  * restores a scenario (the permalink).
@@ -33,6 +33,27 @@ export const LEVELS: [Level, string, string][] = [
   ['l3', 'L3', 'Facts change to a state the demonstration never saw'],
   ['l4', 'L4', 'A new block appears in the way'],
 ];
+/** The block counts of each benchmark's generated N-block tower task (`[fewest, most]`; B2 has none). */
+export const BLOCK_RANGES: Record<Benchmark, [number, number] | null> = {
+  b1: [3, 12],
+  b2: null,
+  b3: [2, 10],
+};
+
+/** `n` if benchmark `b` has an N-block tower task with `n` blocks, else undefined (its template). */
+export function blocksFor(b: Benchmark, n: number | null | undefined): number | undefined {
+  const r = BLOCK_RANGES[b];
+  return r && n != null && Number.isInteger(n) && n >= r[0] && n <= r[1] ? n : undefined;
+}
+
+/** The block select's items for benchmark `b`: the template ('') and each allowed count. */
+export function blockItems(b: Benchmark): [string, string][] {
+  const r = BLOCK_RANGES[b];
+  const items: [string, string][] = [['', 'template']];
+  if (r) for (let n = r[0]; n <= r[1]; n++) items.push([String(n), `${n} blocks`]);
+  return items;
+}
+
 export const SPEEDS: [string, string][] = [
   ['0.25', '¼×'],
   ['0.5', '½×'],
@@ -84,12 +105,15 @@ const pick = <T extends string>(v: string | null, all: [T, ...unknown[]][], d: T
 /** The state a page opened at `search` (its URL's query) starts from. */
 export function initialState(search: string): PageState {
   const params = new URLSearchParams(search);
+  const benchmark = pick(params.get('benchmark'), BENCHMARKS, 'b1');
+  const blocks = blocksFor(benchmark, params.has('blocks') ? Number(params.get('blocks')) : undefined);
   return {
     options: {
-      benchmark: pick(params.get('benchmark'), BENCHMARKS, 'b1'),
+      benchmark,
       method: pick(params.get('method'), METHODS, 'logic-lfd'),
       mode: pick(params.get('mode'), MODES, 'paper'),
       seed: parseSeed(params.get('seed') ?? '1'),
+      ...(blocks === undefined ? {} : { blocks }),
     },
     speed: Number(params.get('speed') ?? '1') || 1,
     autoplay: params.get('autoplay') !== '0',
@@ -124,6 +148,7 @@ export function updateUrl(s: PageState): void {
   p.set('method', s.options.method);
   p.set('mode', s.options.mode);
   p.set('seed', String(s.options.seed));
+  if (s.options.blocks != null) p.set('blocks', String(s.options.blocks));
   if (s.speed !== 1) p.set('speed', String(s.speed));
   history.replaceState(null, '', `${location.pathname}?${p}`);
 }
