@@ -29,3 +29,25 @@ fn a_small_soak_is_clean() {
     assert_eq!(r.replay_mismatches, 0, "{:#?}", r.findings);
     assert!(r.is_clean(), "{:#?}", r.findings);
 }
+
+#[test]
+fn a_small_soak_on_8_and_12_block_towers_is_clean() {
+    for (n, episodes) in [(8, 2), (12, 1)] {
+        let p = SoakParams {
+            episodes,
+            seed: 2026,
+            blocks: Some(n),
+            ..SoakParams::default()
+        };
+        let r = soak(&p).unwrap();
+        assert_eq!(r.episodes, episodes);
+        assert!(
+            r.disturbances > 0,
+            "N = {n}: no disturbance was applied: {r:?}"
+        );
+        assert!(r.invariant_checks > 500, "N = {n}: {r:?}");
+        assert_eq!(r.invalid_plans, 0, "N = {n}: {:#?}", r.findings);
+        assert_eq!(r.invariant_violations, 0, "N = {n}: {:#?}", r.findings);
+        assert!(r.is_clean(), "N = {n}: {:#?}", r.findings);
+    }
+}

@@ -1,4 +1,4 @@
-//! `logic-lfd soak --episodes N --seed S [--max-disturbances K] [--no-replay] [--json]` — random
+//! `logic-lfd soak --episodes N --seed S [--max-disturbances K] [--blocks N] [--no-replay] [--json]` — random
 //! closed-loop Logic-LfD episodes over B1–B3 with random disturbances (levels L1–L4 and user-like
 //! drags), checking world invariants every tick, every adopted plan with the PDDL validator, that
 //! refusals change nothing, that every episode succeeds or states a legitimate reason, and that
@@ -36,6 +36,10 @@ pub struct Args {
     /// Skip the replay-identity check of every episode (halves the run time).
     #[arg(long)]
     no_replay: bool,
+    /// Run the generated tower tasks with N blocks (B1: 3-12, B3 too when N ≤ 10) instead of
+    /// the template tasks.
+    #[arg(long)]
+    blocks: Option<usize>,
     /// Print the report as JSON.
     #[arg(long)]
     json: bool,
@@ -49,6 +53,7 @@ pub fn run(args: Args) -> ExitCode {
         max_disturbances: args.max_disturbances,
         check_replay: !args.no_replay,
         first_episode: args.first_episode,
+        blocks: args.blocks,
         ..SoakParams::default()
     };
     if let Some(dir) = &args.save_findings {

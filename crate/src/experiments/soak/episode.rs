@@ -18,6 +18,7 @@ use crate::lfd::session::{mix, Session, SessionOptions, SkillKind};
 use crate::lfd::{Method, Mode};
 use crate::plan::NoClock;
 use crate::sim::benchmark::Benchmark;
+use crate::sim::generate::block_range;
 use crate::sim::reach::handleable;
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
@@ -137,7 +138,18 @@ struct EpisodeDraw {
 }
 
 fn draw_episode(params: &SoakParams, rng: &mut Pcg64Mcg) -> EpisodeDraw {
-    let bench = Benchmark::ALL[rng.random_range(0..3)];
+    let bench = match params.blocks {
+        None => Benchmark::ALL[rng.random_range(0..3)],
+        Some(n) => {
+            let fits: Vec<Benchmark> = Benchmark::ALL
+                .into_iter()
+                .filter(|&b| block_range(b).is_ok_and(|r| r.contains(&n)))
+                .collect();
+            fits.get(rng.random_range(0..fits.len().max(1)))
+                .copied()
+                .unwrap_or(Benchmark::B1)
+        }
+    };
     let mode = if rng.random_bool(0.5) {
         Mode::Paper
     } else {
@@ -195,7 +207,7 @@ pub(super) fn soak_episode(
         mode: draw.mode,
         seed: draw.session_seed,
         skill: SkillKind::Lqt,
-        blocks: None,
+        blocks: params.blocks,
     };
     let s = Session::new(options).map_err(|e| e.to_string())?;
     rep.episodes = 1;

@@ -70,6 +70,10 @@ pub struct SoakParams {
     /// one episode of a large soak can be re-run alone).
     #[serde(default)]
     pub first_episode: usize,
+    /// Run the benchmarks' generated N-block tower tasks (B1, and B3 where N fits) instead of
+    /// the template tasks.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub blocks: Option<usize>,
 }
 
 impl Default for SoakParams {
@@ -83,6 +87,7 @@ impl Default for SoakParams {
             check_nodes: 2_000_000,
             check_replay: true,
             first_episode: 0,
+            blocks: None,
         }
     }
 }
@@ -218,7 +223,7 @@ pub fn soak_with(
     params: &SoakParams,
     mut on_episode: impl FnMut(usize, &SoakReport, &str),
 ) -> Result<SoakReport, String> {
-    let models = Models::new()?;
+    let models = Models::new(params.blocks)?;
     let mut report = SoakReport {
         params: Some(*params),
         ..SoakReport::default()

@@ -16,6 +16,7 @@ use crate::plan::{
     SearchOutcome,
 };
 use crate::sim::benchmark::Benchmark;
+use crate::sim::generate::{block_names, problem_with_goal, tower_goal};
 use crate::sim::motions::{Relation, Slot};
 use crate::sim::reach::handleable;
 use crate::sim::snapshot::BodyKind;
@@ -167,10 +168,23 @@ pub(super) const DRAGGED_AWAY: &str =
 /// Parsed benchmark domains (for the validator and the unsolvability check).
 pub(super) struct Models {
     domains: Vec<(Benchmark, Domain)>,
+    /// The soak's N-block tower tasks, if it runs them.
+    blocks: Option<usize>,
 }
 
 impl Models {
-    pub(super) fn new() -> Result<Models, String> {
+    /// The problem of `world` with the task's goal (the template's, or the N-block tower's).
+    fn problem_text(&self, b: Benchmark, world: &World) -> Option<String> {
+        match self.blocks {
+            None => Some(b.problem_for(world, "observed")),
+            Some(n) => {
+                let goal = tower_goal(b, &block_names(n)).ok()?;
+                Some(problem_with_goal(b, world, "observed", &goal))
+            }
+        }
+    }
+
+    pub(super) fn new(blocks: Option<usize>) -> Result<Models, String> {
         let domains = Benchmark::ALL
             .into_iter()
             .map(|b| {
@@ -179,7 +193,7 @@ impl Models {
                     .map_err(|e| e.to_string())
             })
             .collect::<Result<_, _>>()?;
-        Ok(Models { domains })
+        Ok(Models { domains, blocks })
     }
 
     fn domain(&self, b: Benchmark) -> &Domain {
@@ -198,7 +212,13 @@ impl Models {
         world: &World,
         plan: &[String],
     ) -> Result<(), String> {
-        let text = b.problem_for(world, "observed");
+        let text = self.problem_text(b, world).ok_or_else(|| {
+            format!(
+                "no {}-block task of {}",
+                self.blocks.unwrap_or(0),
+                b.as_str()
+            )
+        })?;
         let d = self.domain(b);
         let p = parse_problem(&text, "observed.pddl", d).map_err(|e| e.to_string())?;
         let r = validate_names(d, &p, plan);
@@ -223,7 +243,7 @@ impl Models {
     /// Whether the benchmark's goal is provably unreachable from the world's observed state
     /// (`Some(true)`), reachable (`Some(false)`), or undecided within `nodes` expansions.
     pub(super) fn unsolvable(&self, b: Benchmark, world: &World, nodes: u64) -> Option<bool> {
-        let text = b.problem_for(world, "observed");
+        let text = self.problem_text(b, world)?;
         let d = self.domain(b);
         let p = parse_problem(&text, "observed.pddl", d).ok()?;
         let task = ground(d, &p).ok()?;
