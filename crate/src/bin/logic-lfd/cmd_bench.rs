@@ -38,7 +38,7 @@ enum Which {
 #[derive(clap::Args)]
 pub struct ScalingArgs {
     /// Comma-separated block counts (B1: 3 to 12).
-    #[arg(long, default_value = "4,5", value_delimiter = ',')]
+    #[arg(long, default_value = "4,6,8,10,12", value_delimiter = ',')]
     blocks: Vec<usize>,
     /// Tasks (random L3 initial states) per block count.
     #[arg(long, default_value_t = 50)]

@@ -66,6 +66,15 @@ impl Axes {
     }
 }
 
+/// A decade as a plain number: `0.01`, `0.1`, `1`, `10`, `1000`.
+fn decade(d: i32) -> String {
+    if d >= 0 {
+        format!("1{}", "0".repeat(d as usize))
+    } else {
+        format!("0.{}1", "0".repeat((-d - 1) as usize))
+    }
+}
+
 /// The SVG document of `series`: time (ms, log scale) against the number of blocks.
 pub fn svg(series: &[Series]) -> String {
     let a = Axes::of(series);
@@ -81,10 +90,11 @@ pub fn svg(series: &[Series]) -> String {
         let y = a.y(libm::pow(10.0, f64::from(d)));
         s += &format!(
             "<line x1=\"{}\" y1=\"{y:.1}\" x2=\"{xl}\" y2=\"{y:.1}\" stroke=\"black\"/>\
-             <text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">1e{d}</text>\n",
+             <text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{}</text>\n",
             xl - 5.0,
             xl - 8.0,
-            y + 4.0
+            y + 4.0,
+            decade(d)
         );
     }
     let mut xs: Vec<f64> = series
@@ -164,5 +174,15 @@ mod tests {
         assert!(a.y(50.0) < a.y(5.0) && a.y(5.0) < a.y(0.5));
         assert!(a.x(8.0) > a.x(6.0) && a.x(6.0) > a.x(4.0));
         assert_eq!((a.d0, a.d1), (-1, 2));
+    }
+}
+
+#[cfg(test)]
+mod decade_tests {
+    #[test]
+    fn decades_are_plain_numbers() {
+        assert_eq!(super::decade(-2), "0.01");
+        assert_eq!(super::decade(0), "1");
+        assert_eq!(super::decade(3), "1000");
     }
 }

@@ -21,6 +21,7 @@
 //! way-point offsets (±6 mm above, ±1.5 mm at contact).
 
 mod expert;
+mod flight;
 mod pull;
 mod replay;
 mod template;
