@@ -8,6 +8,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::generate::tower_task;
 use logic_lfd::sim::panda::{self, IkParams};
 use logic_lfd::sim::{GripperCommand, SceneGraph};
 use nalgebra::{Isometry3, Translation3};
@@ -67,5 +68,15 @@ fn ik_solve(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, step_and_scene_graph, ik_solve);
+/// Scene generation + the recorded demonstration of the tallest generated tower (B1, 12 blocks).
+fn tower_generation(c: &mut Criterion) {
+    let mut g = c.benchmark_group("generate");
+    g.sample_size(10);
+    g.bench_function("b1 tower of 12 blocks (scene + demonstration)", |bch| {
+        bch.iter(|| black_box(tower_task(Benchmark::B1, 12).unwrap()))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, step_and_scene_graph, ik_solve, tower_generation);
 criterion_main!(benches);
