@@ -29,6 +29,7 @@ const BIN = cli();
 function maskTimes(json) {
   return json
     .replace(/"time_ms":-?[0-9.eE+-]+/g, '"time_ms":0.0')
+    .replace(/"bind_ms":-?[0-9.eE+-]+/g, '"bind_ms":0.0')
     .replace(/"planning_ms":\[[^\]]*\]/g, (m) => m.replace(/-?[0-9][0-9.eE+-]*/g, '0.0'));
 }
 
@@ -76,7 +77,10 @@ function firstDiff(a, b) {
 
 describe('native and wasm give byte-identical episode JSON', () => {
   test('masking the CLI output equals runEpisode canonical output on a hand check', () => {
-    assert.equal(maskTimes('{"planning_ms":[0.12,3e-5],"x":{"time_ms":1.5,"t":2.5}}'), '{"planning_ms":[0.0,0.0],"x":{"time_ms":0.0,"t":2.5}}');
+    assert.equal(
+      maskTimes('{"planning_ms":[0.12,3e-5],"x":{"time_ms":1.5,"bind_ms":0.7,"t":2.5}}'),
+      '{"planning_ms":[0.0,0.0],"x":{"time_ms":0.0,"bind_ms":0.0,"t":2.5}}',
+    );
   });
 
   for (const c of cases) {

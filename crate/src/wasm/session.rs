@@ -36,7 +36,7 @@ export interface Status {
 /** The last replan: why, how long it took (ms), which demo state it joined, the plan it made and
  *  how many of its leading actions are new. (The episode log, `episodeJson()`, keeps the
  *  snake_case names of the CLI's JSON: `time_ms`, `new_actions`.) */
-export interface Replan { reason: string; timeMs: number; k?: number | null; plan: string[]; tick: number; newActions: number; }
+export interface Replan { reason: string; timeMs: number; k?: number | null; plan: string[]; tick: number; newActions: number; /** Part of timeMs spent binding actions to motions. */ bindMs: number; /** States the searches expanded. */ expanded: number; }
 /** One end-effector sample: where the arm's TCP is and where its controller aims. */
 export interface EePoint { arm: number; pos: [number, number, number]; target: [number, number, number]; }
 /** Everything the page draws after a step. */
@@ -96,6 +96,8 @@ struct ReplanOut<'a> {
     plan: &'a [String],
     tick: u64,
     new_actions: usize,
+    bind_ms: f64,
+    expanded: u64,
 }
 
 /// [`PerturbOutcome`] with camelCase names.
@@ -118,6 +120,8 @@ fn frame_js(f: &Frame) -> Result<JsValue, JsValue> {
         plan: &r.plan,
         tick: r.tick,
         new_actions: r.new_actions,
+        bind_ms: r.bind_ms,
+        expanded: r.expanded,
     });
     to_js(&FrameOut {
         t: f.t,
