@@ -10,6 +10,8 @@
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
+use crate::support::source::rust_files;
+
 /// The predicates and actions of `domains/b1-tower`, `b2-workspace-reach` and `b3-dual-arm`
 /// (read from their domain files, so a renamed one is still checked).
 fn benchmark_names() -> BTreeSet<String> {
@@ -53,17 +55,6 @@ fn test_only_files(files: &[PathBuf]) -> BTreeSet<PathBuf> {
         }
     }
     out
-}
-
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for e in std::fs::read_dir(dir).unwrap() {
-        let p = e.unwrap().path();
-        if p.is_dir() {
-            rust_files(&p, out);
-        } else if p.extension().is_some_and(|x| x == "rs") {
-            out.push(p);
-        }
-    }
 }
 
 /// The string literals of a source file's code, with their lines: comments and everything from

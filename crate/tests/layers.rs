@@ -10,7 +10,9 @@
 //! a doc link is not a dependency.
 
 use std::collections::BTreeSet;
-use std::path::{Path, PathBuf};
+use std::path::Path;
+
+use crate::support::source::rust_files;
 
 /// Top-level modules, lowest layer first; modules of equal rank may not import each other.
 const LAYERS: &[(&str, u8)] = &[
@@ -28,17 +30,6 @@ const LAYERS: &[(&str, u8)] = &[
 
 fn rank(module: &str) -> Option<u8> {
     LAYERS.iter().find(|(m, _)| *m == module).map(|&(_, r)| r)
-}
-
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for e in std::fs::read_dir(dir).unwrap() {
-        let p = e.unwrap().path();
-        if p.is_dir() {
-            rust_files(&p, out);
-        } else if p.extension().is_some_and(|x| x == "rs") {
-            out.push(p);
-        }
-    }
 }
 
 /// The module path of a source file below `src/` (`lfd/exec.rs` → `[lfd, exec]`,

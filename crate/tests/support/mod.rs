@@ -1,6 +1,8 @@
 //! Helpers shared by several test modules: benchmark worlds, tasks and skills (`bench`), running
-//! actions with the executor (`exec`), and running the `logic-lfd` binary (`cli`).
+//! actions with the executor (`exec`), running the `logic-lfd` binary (`cli`), and the library's
+//! source files (`source`).
 
 pub(crate) mod bench;
 pub(crate) mod cli;
 pub(crate) mod exec;
+pub(crate) mod source;
