@@ -160,31 +160,38 @@ impl Benchmark {
 
     /// The goal facts (the same for every task of the benchmark): the template problem's goal.
     pub fn goal(self) -> Vec<Fact> {
-        match self.parsed() {
-            Ok((domain, problem)) => goal_facts(&domain, &problem),
-            Err(_) => Vec::new(),
-        }
+        self.template_facts().0.clone()
     }
 
     /// Static facts of the template problem that the scene graph does not report (B3's arm
     /// reach of each region).
     pub fn static_facts(self) -> Vec<Fact> {
-        let Ok((domain, problem)) = self.parsed() else {
-            return Vec::new();
-        };
-        let scene = self.motions().scene_predicates();
-        problem
-            .init
-            .iter()
-            .filter(|a| !scene.contains(&domain.predicates[a.predicate].name.text))
-            .map(|a| atom_fact(&domain, a))
-            .collect()
+        self.template_facts().1.clone()
     }
 
-    fn parsed(self) -> Result<(crate::pddl::Domain, crate::pddl::Problem), crate::pddl::PddlError> {
-        let d = crate::pddl::parse_domain(self.domain_pddl(), "domain.pddl")?;
-        let p = crate::pddl::parse_problem(self.problem_pddl(), "problem.pddl", &d)?;
-        Ok((d, p))
+    /// The template problem's goal and static facts, read once (every generated problem of the
+    /// benchmark needs them).
+    fn template_facts(self) -> &'static (Vec<Fact>, Vec<Fact>) {
+        static CACHE: [OnceLock<(Vec<Fact>, Vec<Fact>)>; 3] =
+            [OnceLock::new(), OnceLock::new(), OnceLock::new()];
+        CACHE[self as usize].get_or_init(|| {
+            let parsed =
+                crate::pddl::parse_domain(self.domain_pddl(), "domain.pddl").and_then(|d| {
+                    crate::pddl::parse_problem(self.problem_pddl(), "problem.pddl", &d)
+                        .map(|p| (d, p))
+                });
+            let Ok((domain, problem)) = parsed else {
+                return (Vec::new(), Vec::new());
+            };
+            let scene = self.motions().scene_predicates();
+            let statics = problem
+                .init
+                .iter()
+                .filter(|a| !scene.contains(&domain.predicates[a.predicate].name.text))
+                .map(|a| atom_fact(&domain, a))
+                .collect();
+            (goal_facts(&domain, &problem), statics)
+        })
     }
 
     /// The blocks of the template task.
@@ -209,7 +216,20 @@ impl Benchmark {
     /// from the scene graph (plus [`Benchmark::static_facts`]), the benchmark's goal. This is how a
     /// disturbed world (for example with an added block) becomes a planning problem.
     pub fn problem_for(self, world: &World, problem_name: &str) -> String {
-        let world = &world.clone().with_motions(self.motions());
+        self.problem_for_goal(world, problem_name, &self.goal())
+    }
+
+    /// [`Benchmark::problem_for`] with another goal (a generated N-block tower's).
+    pub fn problem_for_goal(self, world: &World, problem_name: &str, goal: &[Fact]) -> String {
+        // Read through this benchmark's declaration (a copy only when the world has another).
+        let motions = self.motions();
+        let own;
+        let world = if Arc::ptr_eq(&world.motions_arc(), &motions) {
+            world
+        } else {
+            own = world.clone().with_motions(motions);
+            &own
+        };
         let objects = SceneGraph::objects(world);
         let mut by_type: Vec<(String, Vec<String>)> = Vec::new();
         for o in objects {
@@ -234,7 +254,7 @@ impl Benchmark {
             text += &format!("    {f}\n");
         }
         text += "  )\n  (:goal (and";
-        for g in self.goal() {
+        for g in goal {
             text += &format!(" {g}");
         }
         text += ")))\n";

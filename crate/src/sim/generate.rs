@@ -94,7 +94,7 @@ pub fn tower_task(b: Benchmark, n: usize) -> Result<BenchmarkSources, SceneError
         super::reach::handleable(&world, x).map_err(|e| err(format!("block {x}: {e}")))?;
     }
     let goal = tower_goal(b, &names)?;
-    let problem = problem_with_goal(b, &world, &format!("{}-{n}-blocks", b.dir_name()), &goal);
+    let problem = b.problem_for_goal(&world, &format!("{}-{n}-blocks", b.dir_name()), &goal);
     let script = tower_script(b, &world, &problem, &snap, &names, &goal)?;
     let demo = record_script(
         world,
@@ -286,21 +286,6 @@ pub fn tower_goal(b: Benchmark, names: &[String]) -> Result<Vec<Fact>, SceneErro
         });
     }
     Ok(goal)
-}
-
-/// [`Benchmark::problem_for`] with `goal` in place of the benchmark's goal.
-pub fn problem_with_goal(b: Benchmark, world: &World, name: &str, goal: &[Fact]) -> String {
-    let text = b.problem_for(world, name);
-    let head = text
-        .rfind("  (:goal (and")
-        .map_or(text.as_str(), |i| &text[..i]);
-    let mut out = head.to_string();
-    out += "  (:goal (and";
-    for g in goal {
-        out += &format!(" {g}");
-    }
-    out += ")))\n";
-    out
 }
 
 /// `ops` reordered so that an arm that grasps a body puts it down before any other arm acts

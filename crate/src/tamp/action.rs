@@ -2,7 +2,7 @@
 //! release onto a block / a region / a table / a shelf, pull with a tool), and what the streams
 //! bind for it.
 
-use crate::plan::{Operator, Task};
+use crate::plan::Operator;
 use crate::sim::motions::{MotionKind, Motions, Onto};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
@@ -107,8 +107,7 @@ impl ActionKind {
 /// Classifies a grounded operator by its schema's declared motion (`motions.json`, see
 /// [`crate::sim::motions`]). `None` for an action without a physical effect or whose objects
 /// the world does not have.
-pub fn classify(task: &Task, op: &Operator, world: &World) -> Option<ActionKind> {
-    let _ = task;
+pub fn classify(op: &Operator, world: &World) -> Option<ActionKind> {
     let (m, args) = world.motions().action(&op.name)?;
     let arg = |i: Option<usize>| i.and_then(|i| args.get(i)).map(|s| s.to_string());
     let arm = match m.arm {

@@ -123,7 +123,7 @@ fn the_pull_stream_predicts_where_the_executor_leaves_the_block() {
     let params = ExecParams::default();
     for &o in &ops {
         let operator = &task.operators[o];
-        let kind = classify(&task, operator, &world).unwrap();
+        let kind = classify(operator, &world).unwrap();
         let mut exec = ActionExec::new(&operator.name, kind, &world, &skills, &params);
         let mut status = ExecStatus::Running;
         for _ in 0..6000 {
@@ -227,7 +227,7 @@ fn a_stroke_whose_hook_presses_into_the_shelf_is_neither_planned_nor_possible() 
     );
     // What the simulator does with that stroke.
     let mut world = world;
-    let mut kind = classify(&task, &task.operators[ops[0]], &world).unwrap();
+    let mut kind = classify(&task.operators[ops[0]], &world).unwrap();
     if let ActionKind::Pull { turn, .. } = &mut kind {
         *turn = -0.79;
     }

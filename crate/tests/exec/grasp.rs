@@ -48,7 +48,7 @@ fn an_empty_hand_low_beside_a_tower_reaches_its_top_through_a_transit() {
     // Ticks during which the hand overlaps c, with and without the transit.
     let run = |transit: Option<f64>| {
         let mut w = world.clone();
-        let kind = classify(&task, &task.operators[ops[0]], &w).unwrap();
+        let kind = classify(&task.operators[ops[0]], &w).unwrap();
         let mut exec = ActionExec::new("(unstack panda a c)", kind, &w, &skills, &params);
         if let Some(z) = transit {
             exec = exec.with_transit(z);

@@ -37,7 +37,7 @@ pub(crate) fn execute_bound_watching(
     let params = ExecParams::default();
     for (&o, binding) in ops.iter().zip(bindings) {
         let operator = &task.operators[o];
-        let mut kind = classify(task, operator, world).unwrap();
+        let mut kind = classify(operator, world).unwrap();
         if let ActionKind::Release { placement, .. } = &mut kind {
             placement.clone_from(&binding.placement);
         }
@@ -75,7 +75,7 @@ pub(crate) fn execute_learned(
 ) -> ExecStatus {
     let params = ExecParams::default();
     let operator = &task.operators[op(task, name)];
-    let kind = classify(task, operator, world).unwrap();
+    let kind = classify(operator, world).unwrap();
     let exec = ActionExec::new(&operator.name, kind, world, skills, &params);
     tick_to_end(exec, world, skills, &params)
 }

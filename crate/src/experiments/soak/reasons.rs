@@ -16,7 +16,7 @@ use crate::plan::{
     SearchOutcome,
 };
 use crate::sim::benchmark::Benchmark;
-use crate::sim::generate::{block_names, problem_with_goal, tower_goal};
+use crate::sim::generate::{block_names, tower_goal};
 use crate::sim::motions::{Relation, Slot};
 use crate::sim::reach::handleable;
 use crate::sim::snapshot::BodyKind;
@@ -179,7 +179,7 @@ impl Models {
             None => Some(b.problem_for(world, "observed")),
             Some(n) => {
                 let goal = tower_goal(b, &block_names(n)).ok()?;
-                Some(problem_with_goal(b, world, "observed", &goal))
+                Some(b.problem_for_goal(world, "observed", &goal))
             }
         }
     }

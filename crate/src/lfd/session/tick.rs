@@ -191,7 +191,7 @@ impl Session {
     fn start_action(&mut self, index: usize, action: String) -> bool {
         let task = self.controller.task();
         let op = &task.operators[self.controller.plan_ops()[index]];
-        let Some(mut kind) = classify(task, op, &self.world) else {
+        let Some(mut kind) = classify(op, &self.world) else {
             self.outcome = Some(Err(FailReason::ActionFailed {
                 action,
                 why: "the executor does not know this kind of action".into(),
@@ -251,7 +251,7 @@ fn plan_bindings(
                 .iter()
                 .map(|&o| {
                     let op = &task.operators[o];
-                    match classify(task, op, world) {
+                    match classify(op, world) {
                         Some(ActionKind::Release {
                             placement: Some(p), ..
                         }) => Some(p),

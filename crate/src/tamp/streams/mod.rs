@@ -332,7 +332,7 @@ impl<'w> StreamBinder<'w> {
         };
         let op = &sk.task.operators[o];
         self.action = i;
-        let Some(kind) = classify(sk.task, op, self.world) else {
+        let Some(kind) = classify(op, self.world) else {
             out.push(Binding::default());
             return self.bind_from(sk, i + 1, geo, out);
         };
