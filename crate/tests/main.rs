@@ -16,5 +16,6 @@ mod search;
 mod sim;
 mod soak;
 mod support;
+mod tables;
 mod tamp;
 mod validate;

@@ -56,7 +56,7 @@ export class RunPanel {
     this.ui.factsDiff.replaceChildren(...factChips(f.factsAdded, f.factsRemoved));
     const r = f.lastReplan;
     this.ui.replanInfo.textContent = r
-      ? `Last replan at tick ${r.tick}: ${r.reason} — ${r.timeMs.toFixed(2)} ms${r.k != null ? `, joined the demo at L${r.k}` : ''}`
+      ? `Last replan at tick ${r.tick}: ${r.reason} — ${r.timeMs.toFixed(2)} ms${r.k != null ? `, joined the demo at L${r.k}` : ''}${r.fallback ? ', no skeleton joining the demo bound: planned to G from scratch (TAMP fallback)' : ''}`
       : '';
   }
 }

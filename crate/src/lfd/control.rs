@@ -9,7 +9,9 @@
 //!   if S_C = Ŝ (the state the current plan predicts) and pre(a_next) ⊆ S_C: execute a_next
 //!   else, by method:
 //!     logic-lfd: 𝒫 ← LogicIn(S_C, 𝒢) ? a_{k+1..N} : MultiGoalSearch(S_C, 𝒢) ⧺ a_{k+1..N}
-//!     rlds:      𝒫 ← LogicIn(S_C, 𝒢) ? a_{k+1..N} : fail ("no demonstration state matches")
+//!                (when no skeleton binds: TAMP from scratch if `tamp_fallback`, logged as one)
+//!     rlds:      𝒫 ← a_{k+1..N} for the latest k whose suffix applies in S_C and reaches G
+//!                (G regressed through it holds in S_C), else fail; never a new action
 //!     tamp:      𝒫 ← TAMP(S_C, G) from scratch
 //!     linear:    never replans: a_1..a_N in order, whatever S_C is
 //!   then bind the continuous parameters (tamp streams) and execute 𝒫[0]
@@ -19,9 +21,7 @@
 
 use std::collections::BTreeSet;
 
-use serde::{Deserialize, Serialize};
-
-use crate::plan::{replay, BannedTask, Clock, Operator, SearchConfig, State, Task};
+use crate::plan::{replay, BannedTask, Clock, Operator, State, Task};
 use crate::tamp::{Binder, Binding, BoundPlan, TimedBinder};
 
 use super::demo::DemoTrace;
@@ -29,128 +29,17 @@ use super::logic::Mode;
 use super::symbolic::LogicLfd;
 use super::{LfdError, Method};
 
+mod baselines;
+#[cfg(test)]
+mod tests;
+mod types;
+
+pub use types::{ControlParams, Decision, FailReason, Replan};
+
 /// Builds the grounded task for the current world: objects (name, PDDL type) and facts S_C.
 pub trait TaskBuilder {
     /// A task whose initial state is `facts` and whose goal is the benchmark's goal.
     fn build(&self, objects: &[(String, String)], facts: &[String]) -> Result<Task, LfdError>;
-}
-
-/// Why an episode failed (asserted by the tests, shown by the page).
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "kebab-case")]
-pub enum FailReason {
-    /// The plan ran out but the goal does not hold (linear).
-    GoalNotReached {
-        /// Goal facts that do not hold.
-        missing: Vec<String>,
-    },
-    /// No demonstration state matches S_C and the method cannot plan (rlds).
-    NoDemoStateMatches {
-        /// S_C, sorted.
-        facts: Vec<String>,
-    },
-    /// The planner found no plan.
-    NoPlan {
-        /// The planner's message.
-        message: String,
-    },
-    /// An action could not be executed (linear executes blindly).
-    ActionFailed {
-        /// The action.
-        action: String,
-        /// Why.
-        why: String,
-    },
-    /// Too many replans or too much simulated time.
-    Budget {
-        /// Which budget.
-        what: String,
-    },
-}
-
-impl std::fmt::Display for FailReason {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            FailReason::GoalNotReached { missing } => {
-                write!(f, "the plan ended but {} does not hold", missing.join(" "))
-            }
-            FailReason::NoDemoStateMatches { .. } => {
-                write!(f, "no demonstration state matches the scene")
-            }
-            FailReason::NoPlan { message } => write!(f, "no plan: {message}"),
-            FailReason::ActionFailed { action, why } => write!(f, "{action} failed: {why}"),
-            FailReason::Budget { what } => write!(f, "{what} exhausted"),
-        }
-    }
-}
-
-/// One replan, as logged.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Replan {
-    /// Why: `start`, `(on c d) no longer holds`, `(on e b) appeared`, …
-    pub reason: String,
-    /// Planning time in milliseconds by the caller's clock (not part of the replay identity).
-    pub time_ms: f64,
-    /// The demonstration state index the plan joins.
-    pub k: Option<usize>,
-    /// The new plan.
-    pub plan: Vec<String>,
-    /// Simulation tick when it happened.
-    pub tick: u64,
-    /// How many leading actions of the plan are new (not from the demonstration).
-    pub new_actions: usize,
-    /// The part of `time_ms` spent binding actions to motions (streams: grasps, placements,
-    /// pulls); the rest is symbolic search. By the caller's clock, not part of the replay
-    /// identity.
-    #[serde(default)]
-    pub bind_ms: f64,
-    /// States the symbolic searches of this replan expanded.
-    #[serde(default)]
-    pub expanded: u64,
-}
-
-/// What the controller asks the executor to do.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Decision {
-    /// Execute this action (index into the current plan).
-    Execute {
-        /// Index into [`Controller::plan_names`].
-        index: usize,
-        /// The action `(stack a b)`.
-        action: String,
-    },
-    /// The goal holds.
-    Done,
-    /// The episode failed.
-    Failed(FailReason),
-}
-
-/// Tunables of the task level.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ControlParams {
-    /// Search configuration for Logic-LfD's multi-goal search and the TAMP skeletons.
-    pub search: SearchConfig,
-    /// Maximum replans in an episode before giving up.
-    pub max_replans: usize,
-    /// Skeletons tried per replan when binding fails (TAMP / Logic-LfD): the first and up to
-    /// `max_skeletons − 1` retries, each with the failed action banned at the state where it
-    /// failed and more samples per parameter.
-    pub max_skeletons: usize,
-}
-
-impl Default for ControlParams {
-    fn default() -> Self {
-        ControlParams {
-            search: SearchConfig {
-                algorithm: crate::plan::Algorithm::Astar,
-                heuristic: crate::plan::HeuristicKind::HMax,
-                max_nodes: Some(200_000),
-                time_limit_secs: None,
-            },
-            max_replans: 40,
-            max_skeletons: 10,
-        }
-    }
 }
 
 /// A new plan: its operators, the demonstration state it joins, how many of its leading actions
@@ -162,6 +51,8 @@ struct Planned {
     bindings: Vec<Binding>,
     /// States the searches expanded.
     expanded: u64,
+    /// Planned from scratch after Logic-LfD's skeletons failed.
+    fallback: bool,
 }
 
 /// The task-level controller of one episode.
@@ -469,6 +360,7 @@ impl Controller {
                 new_actions,
                 bindings,
                 expanded,
+                fallback,
             }) => {
                 self.install(&s, ops, k);
                 self.bindings = bindings;
@@ -481,6 +373,7 @@ impl Controller {
                     new_actions,
                     bind_ms,
                     expanded,
+                    fallback,
                 });
                 if self.plan.is_empty() {
                     return Decision::Done;
@@ -529,73 +422,6 @@ impl Controller {
         }
     }
 
-    fn decide_linear(&mut self, s: &State, clock: &dyn Clock, t0: f64, tick: u64) -> Decision {
-        if !self.started {
-            self.started = true;
-            let ops: Vec<usize> = self.lfd.spec().actions.iter().flatten().copied().collect();
-            self.install(s, ops, Some(0));
-            self.bindings.clear();
-            self.replans.push(Replan {
-                reason: "start".into(),
-                time_ms: (clock.now_secs() - t0) * 1e3,
-                k: Some(0),
-                plan: self.plan_names.clone(),
-                tick,
-                new_actions: 0,
-                bind_ms: 0.0,
-                expanded: 0,
-            });
-        }
-        if self.cursor < self.plan.len() {
-            return Decision::Execute {
-                index: self.cursor,
-                action: self.plan_names[self.cursor].clone(),
-            };
-        }
-        let missing = self.missing_goal_facts(s);
-        Decision::Failed(FailReason::GoalNotReached { missing })
-    }
-
-    fn missing_goal_facts(&self, s: &State) -> Vec<String> {
-        self.task()
-            .goal
-            .alternatives
-            .first()
-            .map(|c| {
-                c.pos
-                    .iter()
-                    .filter(|&&f| !s.contains(f))
-                    .map(|&f| self.task().facts[f as usize].clone())
-                    .collect()
-            })
-            .unwrap_or_default()
-    }
-
-    fn plan_with_rlds(&self, s: &State) -> Result<Planned, FailReason> {
-        // RLDS moves along the demonstration to the step whose state *is* the current one (the
-        // latest such step); it never plans.
-        let names: BTreeSet<String> = super::demo::state_names(self.task(), s)
-            .into_iter()
-            .collect();
-        let exact = self.lfd.trace().states.iter().rposition(|l| *l == names);
-        if let Some(k) = exact {
-            if let Some(ops) = self.lfd.spec().suffix(k) {
-                if replay(self.task(), s, &ops).is_ok_and(|e| self.task().goal.holds(&e)) {
-                    return Ok(Planned {
-                        ops,
-                        k: Some(k),
-                        new_actions: 0,
-                        bindings: vec![],
-                        expanded: 0,
-                    });
-                }
-            }
-        }
-        Err(FailReason::NoDemoStateMatches {
-            facts: super::demo::state_names(self.task(), s),
-        })
-    }
-
     fn plan_with_logic_lfd(
         &self,
         s: &State,
@@ -605,16 +431,24 @@ impl Controller {
         let mut banned = BannedTask::new(self.task());
         let mut first_k = 0;
         let mut expanded = 0;
+        let mut why = format!(
+            "no skeleton joining the demonstration binds in {} tries",
+            self.params.max_skeletons.max(1)
+        );
         for _ in 0..self.params.max_skeletons.max(1) {
-            let Ok(p) = self.lfd.replan_avoiding(
+            let p = match self.lfd.replan_avoiding(
                 s,
                 self.mode,
                 &self.params.search,
                 clock,
                 (!banned.is_empty()).then_some(&banned),
                 first_k,
-            ) else {
-                break;
+            ) {
+                Ok(p) => p,
+                Err(e) => {
+                    why = e.to_string();
+                    break;
+                }
             };
             expanded += p.stats.expanded;
             match binder.bind(self.task(), &p.ops, p.prefix_len) {
@@ -625,6 +459,7 @@ impl Controller {
                         new_actions: p.prefix_len,
                         bindings,
                         expanded,
+                        fallback: false,
                     })
                 }
                 Err(failure) if failure.action < p.prefix_len => {
@@ -651,8 +486,12 @@ impl Controller {
         }
         // No demonstration state can be joined with bindable actions: plan to G from scratch
         // (the TAMP solver Logic-LfD wraps), so the loop still finishes the task.
+        if !self.params.tamp_fallback {
+            return Err(FailReason::NoPlan { message: why });
+        }
         self.plan_with_tamp(s, binder, clock).map(|mut p| {
             p.expanded += expanded;
+            p.fallback = true;
             p
         })
     }
@@ -684,6 +523,7 @@ impl Controller {
             k: None,
             bindings,
             expanded,
+            fallback: false,
         })
     }
 }

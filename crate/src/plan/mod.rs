@@ -17,11 +17,13 @@ pub use validate::{
 mod clock;
 mod heuristic;
 mod multigoal;
+mod regress;
 mod search;
 
 pub use clock::{Clock, NoClock};
 pub use heuristic::{HeuristicEvaluator, HeuristicKind, UnknownName};
 pub use multigoal::{search_multi_goal, MultiGoalMode, MultiGoalResult};
+pub use regress::{reaches_goal, regress};
 pub use search::{
     search, search_from, Algorithm, Budget, Plan, SearchConfig, SearchOutcome, SearchResult,
     SearchStats,

@@ -36,7 +36,7 @@ export interface Status {
 /** The last replan: why, how long it took (ms), which demo state it joined, the plan it made and
  *  how many of its leading actions are new. (The episode log, `episodeJson()`, keeps the
  *  snake_case names of the CLI's JSON: `time_ms`, `new_actions`.) */
-export interface Replan { reason: string; timeMs: number; k?: number | null; plan: string[]; tick: number; newActions: number; /** Part of timeMs spent binding actions to motions. */ bindMs: number; /** States the searches expanded. */ expanded: number; }
+export interface Replan { reason: string; timeMs: number; k?: number | null; plan: string[]; tick: number; newActions: number; /** Part of timeMs spent binding actions to motions. */ bindMs: number; /** States the searches expanded. */ expanded: number; /** Logic-LfD planned to G from scratch (its TAMP fallback). */ fallback: boolean; }
 /** One end-effector sample: where the arm's TCP is and where its controller aims. */
 export interface EePoint { arm: number; pos: [number, number, number]; target: [number, number, number]; }
 /** Everything the page draws after a step. */
@@ -98,6 +98,7 @@ struct ReplanOut<'a> {
     new_actions: usize,
     bind_ms: f64,
     expanded: u64,
+    fallback: bool,
 }
 
 /// [`PerturbOutcome`] with camelCase names.
@@ -122,6 +123,7 @@ fn frame_js(f: &Frame) -> Result<JsValue, JsValue> {
         new_actions: r.new_actions,
         bind_ms: r.bind_ms,
         expanded: r.expanded,
+        fallback: r.fallback,
     });
     to_js(&FrameOut {
         t: f.t,

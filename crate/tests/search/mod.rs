@@ -8,6 +8,7 @@ mod cli;
 mod edge_cases;
 mod ipc;
 mod random_tasks;
+mod regression;
 
 pub use brute_force::{brute_force_cost, brute_force_length, reachable};
 pub use cases::{random_blocksworld, random_goal, random_task};
