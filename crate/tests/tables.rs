@@ -42,15 +42,27 @@ fn table1_counts_logic_lfd_alone_and_splits_planning_time() {
         assert_eq!(c.search_ms.len(), 4);
         assert_eq!(c.bind_ms.len(), 4);
         for ((p, s), b) in c.plan_ms.iter().zip(&c.search_ms).zip(&c.bind_ms) {
-            assert!((s + b - p).abs() < 1e-6, "search + binding = first-plan time");
-            assert!(*s > 0.0 && *b > 0.0, "{}: search {s} ms, binding {b} ms", c.method_label());
+            assert!(
+                (s + b - p).abs() < 1e-6,
+                "search + binding = first-plan time"
+            );
+            assert!(
+                *s > 0.0 && *b > 0.0,
+                "{}: search {s} ms, binding {b} ms",
+                c.method_label()
+            );
         }
         assert_eq!(c.successes, 4, "{}: {:?}", c.method_label(), c.failures);
     }
     let md = t.markdown();
     assert!(md.contains("TAMP fallback off"), "{md}");
-    assert!(md.contains("| logic-lfd (paper) | B1 | 100 % (4/4) |"), "{md}");
-    assert!(md.lines().any(|l| l.starts_with("| logic-lfd (paper)") && l.contains("| off |")));
+    assert!(
+        md.contains("| logic-lfd (paper) | B1 | 100 % (4/4) |"),
+        "{md}"
+    );
+    assert!(md
+        .lines()
+        .any(|l| l.starts_with("| logic-lfd (paper)") && l.contains("| off |")));
 }
 
 #[test]

@@ -114,8 +114,8 @@ fn print_summary(r: &SoakReport) {
         r.invariant_checks, r.invariant_violations, r.partial_applies
     );
     println!(
-        "plans validated {}: invalid {}",
-        r.plans_checked, r.invalid_plans
+        "plans validated {}: invalid {}; made by the TAMP fallback {}",
+        r.plans_checked, r.invalid_plans, r.tamp_fallbacks
     );
     println!(
         "outcomes: success {}, legitimate failures {:?}, budget exhausted {}, unexplained {}",

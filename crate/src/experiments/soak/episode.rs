@@ -358,6 +358,7 @@ impl EpisodeRun<'_> {
         if replans.len() > *replans_seen {
             for r in &replans[*replans_seen..] {
                 rep.plans_checked += 1;
+                rep.tamp_fallbacks += usize::from(r.fallback);
                 if let Err(why) = self.models.validate(self.bench, pre, &r.plan) {
                     rep.invalid_plans += 1;
                     rep.find(self.finding(

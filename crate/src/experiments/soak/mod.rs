@@ -141,6 +141,10 @@ pub struct SoakReport {
     pub plans_checked: usize,
     /// Plans the validator rejected.
     pub invalid_plans: usize,
+    /// Of the plans, those Logic-LfD made from scratch because no skeleton joining the
+    /// demonstration bound (its TAMP fallback).
+    #[serde(default)]
+    pub tamp_fallbacks: usize,
     /// Episodes that reached the goal.
     pub successes: usize,
     /// Episodes that ended with a legitimate stated reason, by reason.
@@ -196,6 +200,7 @@ impl SoakReport {
         self.partial_applies += o.partial_applies;
         self.plans_checked += o.plans_checked;
         self.invalid_plans += o.invalid_plans;
+        self.tamp_fallbacks += o.tamp_fallbacks;
         self.successes += o.successes;
         for (k, v) in o.legitimate_failures {
             *self.legitimate_failures.entry(k).or_default() += v;
