@@ -144,12 +144,23 @@ pub(crate) fn duplicate(src: &Source, what: &str, n: &Name, prev: Span) -> PddlE
     )
 }
 
-/// `(:types a b - c c d - object)`: parents are declared implicitly; cycles and redeclarations
-/// are errors.
+/// `(:types a b - c c d - object)`: parents are declared implicitly.
+///
+/// A type may be declared more than once, as Fast Downward reads it: with the same parent, or
+/// with parents of which one descends from the other (IPC-2006 storage writes `area - object`
+/// and `area - surface`), when it takes the most specific. Two unrelated parents (multiple
+/// inheritance) and cycles are errors.
 fn type_hierarchy(src: &Source, items: &[SExpr]) -> Result<Vec<TypeDecl>, PddlError> {
     let mut types = vec![object_type()];
     let mut explicit: Vec<bool> = vec![true];
-    fn index(types: &mut Vec<TypeDecl>, explicit: &mut Vec<bool>, n: &Name) -> usize {
+    // Every parent each type was declared under, with the name that declared it.
+    let mut parents: Vec<Vec<(usize, Name)>> = vec![vec![]];
+    fn index(
+        types: &mut Vec<TypeDecl>,
+        explicit: &mut Vec<bool>,
+        parents: &mut Vec<Vec<(usize, Name)>>,
+        n: &Name,
+    ) -> usize {
         match types.iter().position(|t| t.name.text == n.text) {
             Some(i) => i,
             None => {
@@ -158,6 +169,7 @@ fn type_hierarchy(src: &Source, items: &[SExpr]) -> Result<Vec<TypeDecl>, PddlEr
                     parent: Some(0),
                 });
                 explicit.push(false);
+                parents.push(vec![]);
                 types.len() - 1
             }
         }
@@ -169,37 +181,111 @@ fn type_hierarchy(src: &Source, items: &[SExpr]) -> Result<Vec<TypeDecl>, PddlEr
             }
             continue;
         }
-        let i = index(&mut types, &mut explicit, &n);
-        if explicit[i] {
-            return Err(duplicate(src, "type", &n, types[i].name.span));
+        let i = index(&mut types, &mut explicit, &mut parents, &n);
+        if !explicit[i] {
+            explicit[i] = true;
+            types[i].name.span = n.span;
         }
-        explicit[i] = true;
-        types[i].name.span = n.span;
         let p = match &parent {
-            Some(p) => index(&mut types, &mut explicit, p),
+            Some(p) => index(&mut types, &mut explicit, &mut parents, p),
             None => 0,
         };
-        types[i].parent = Some(p);
+        if !parents[i].iter().any(|(q, _)| *q == p) {
+            parents[i].push((p, n));
+        }
     }
-    // Cycle check: every chain must reach `object` within `types.len()` steps.
-    for (i, t) in types.iter().enumerate() {
-        let mut cur = Some(i);
-        let mut steps = 0;
-        while let Some(c) = cur {
-            if c == 0 {
-                break;
-            }
-            steps += 1;
-            if steps > types.len() {
+    check_acyclic(src, &types, &parents)?;
+    for i in 1..types.len() {
+        let declared = &parents[i];
+        // Keep the parents that no other declared parent descends from.
+        let specific: Vec<&(usize, Name)> = declared
+            .iter()
+            .filter(|(p, _)| {
+                !declared
+                    .iter()
+                    .any(|(q, _)| q != p && descends(&parents, *q, *p))
+            })
+            .collect();
+        match specific.as_slice() {
+            [] => types[i].parent = Some(0),
+            [(p, _)] => types[i].parent = Some(*p),
+            [(a, _), (b, n), ..] => {
                 return Err(src.error(
-                    t.name.span,
-                    format!("the type hierarchy has a cycle through `{}`", t.name.text),
-                ));
+                    n.span,
+                    format!(
+                        "type `{}` is declared under both `{}` and `{}`, neither a subtype of \
+                         the other: a type with two parents is not supported",
+                        types[i].name.text, types[*a].name.text, types[*b].name.text
+                    ),
+                ))
             }
-            cur = types[c].parent;
         }
     }
     Ok(types)
+}
+
+/// Whether type `sub` descends from `sup` through any declared parent (the declarations are
+/// acyclic). Iterative: a file may chain thousands of types.
+fn descends(parents: &[Vec<(usize, Name)>], sub: usize, sup: usize) -> bool {
+    let mut seen = vec![false; parents.len()];
+    let mut todo = vec![sub];
+    while let Some(t) = todo.pop() {
+        if t == sup || sup == 0 {
+            return true;
+        }
+        if !std::mem::replace(&mut seen[t], true) {
+            todo.extend(parents[t].iter().map(|(p, _)| *p));
+        }
+    }
+    false
+}
+
+/// Every chain of declared parents must reach `object`: a type declared (indirectly) under
+/// itself is an error.
+fn check_acyclic(
+    src: &Source,
+    types: &[TypeDecl],
+    parents: &[Vec<(usize, Name)>],
+) -> Result<(), PddlError> {
+    // Iterative depth-first search with colours: 0 unvisited, 1 on the path, 2 done.
+    let mut colour = vec![0u8; types.len()];
+    for root in 0..types.len() {
+        if colour[root] != 0 {
+            continue;
+        }
+        // (type, index of the next parent to visit)
+        let mut path = vec![(root, 0usize)];
+        colour[root] = 1;
+        while let Some(&mut (t, ref mut next)) = path.last_mut() {
+            match parents[t].get(*next) {
+                Some((p, _)) => {
+                    *next += 1;
+                    let p = *p;
+                    match colour[p] {
+                        1 => {
+                            return Err(src.error(
+                                types[p].name.span,
+                                format!(
+                                    "the type hierarchy has a cycle through `{}`",
+                                    types[p].name.text
+                                ),
+                            ))
+                        }
+                        0 => {
+                            colour[p] = 1;
+                            path.push((p, 0));
+                        }
+                        _ => {}
+                    }
+                }
+                None => {
+                    colour[t] = 2;
+                    path.pop();
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The type index of a declared type name (`object` when absent).

@@ -99,13 +99,7 @@ pub(crate) fn read_one(src: &Source) -> Result<SExpr, PddlError> {
             i += 1;
         } else {
             let start = i;
-            while i < bytes.len() {
-                let c = bytes[i];
-                if c.is_ascii_whitespace() || c == b'(' || c == b')' || c == b';' {
-                    break;
-                }
-                i += 1;
-            }
+            i = atom_end(bytes, start);
             // `i` stops at an ASCII byte or the end, so it is a char boundary.
             let atom = SExpr::Atom(text[start..i].to_lowercase(), Span { start, end: i });
             match stack.last_mut() {
@@ -137,6 +131,26 @@ pub(crate) fn read_one(src: &Source) -> Result<SExpr, PddlError> {
             "empty file: expected `(define …)`",
         )
     })
+}
+
+/// Where the name or number starting at `start` ends: at whitespace, `(`, `)`, `;`, or a `?`
+/// that starts a variable (`(aircraft?a)` is `aircraft ?a`, as Fast Downward, VAL and pyperplan
+/// read it).
+fn atom_end(bytes: &[u8], start: usize) -> usize {
+    let mut i = start;
+    while i < bytes.len() {
+        let c = bytes[i];
+        if c.is_ascii_whitespace()
+            || c == b'('
+            || c == b')'
+            || c == b';'
+            || (c == b'?' && i > start)
+        {
+            break;
+        }
+        i += 1;
+    }
+    i
 }
 
 /// Reads a sequence of top-level lists (a plan file: one `(action arg …)` per line).
@@ -185,13 +199,7 @@ pub(crate) fn read_many(src: &Source) -> Result<Vec<SExpr>, PddlError> {
                     ));
                 }
                 let s = i;
-                while i < bytes.len() {
-                    let c = bytes[i];
-                    if c.is_ascii_whitespace() || c == b'(' || c == b')' || c == b';' {
-                        break;
-                    }
-                    i += 1;
-                }
+                i = atom_end(bytes, s);
                 items.push(SExpr::Atom(
                     text[s..i].to_lowercase(),
                     Span { start: s, end: i },
@@ -229,6 +237,15 @@ mod tests {
         assert_eq!(items[0].atom(), Some("define"));
         assert_eq!(items[1].head(), Some("a"));
         assert_eq!(items[2].atom(), Some(":k"));
+    }
+
+    #[test]
+    fn a_question_mark_inside_a_name_starts_a_variable() {
+        let e = read("(p?x ?y?z q?)").unwrap();
+        let SExpr::List(items, _) = e else { panic!() };
+        let atoms: Vec<_> = items.iter().map(|i| i.atom().unwrap()).collect();
+        assert_eq!(atoms, ["p", "?x", "?y", "?z", "q", "?"]);
+        assert_eq!(items[1].span(), Span { start: 2, end: 4 });
     }
 
     #[test]

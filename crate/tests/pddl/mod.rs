@@ -5,6 +5,8 @@ use logic_lfd::pddl::{decode_source, parse_domain, parse_problem, Domain, Formul
 
 use crate::ground::{data_dir, ipc_dir};
 
+mod permissive;
+
 fn read(path: &std::path::Path) -> String {
     std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
