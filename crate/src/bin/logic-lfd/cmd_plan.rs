@@ -12,8 +12,8 @@ use std::time::Instant;
 
 use logic_lfd::pddl::{parse_domain, parse_problem, read_source, Domain, Problem};
 use logic_lfd::plan::{
-    ground, search, Algorithm, Clock, HeuristicKind, SearchConfig, SearchOutcome, SearchResult,
-    SearchStats, Task,
+    ground, search, Algorithm, Clock, HeuristicEvaluator, HeuristicKind, SearchConfig,
+    SearchOutcome, SearchResult, SearchStats, Task,
 };
 
 use crate::exit;
@@ -189,6 +189,10 @@ fn json(task: &Task, config: &SearchConfig, r: &SearchResult, total: f64) -> ser
         "total_secs": total,
         "search": config.algorithm.name(),
         "heuristic": config.heuristic.name(),
+        // The heuristic's value of the initial state (null: a dead end), as Fast Downward
+        // prints "Initial heuristic value".
+        "initial_h": HeuristicEvaluator::new(task, std::slice::from_ref(&task.goal), config.heuristic)
+            .value(&task.init),
     });
     if let SearchOutcome::BudgetExhausted { which } = &r.outcome {
         j["budget"] = serde_json::Value::from(which.to_string());
