@@ -233,9 +233,10 @@ impl Schedule {
         }
     }
 
-    /// Whether to try now.
+    /// Whether to try now (never once the plan's last action is done: the goal holds then).
     fn due(&self, s: &Session) -> bool {
-        if s.actions_done() < self.next_try {
+        let c = s.controller();
+        if s.actions_done() < self.next_try || c.cursor() >= c.plan_ops().len() {
             return false;
         }
         match self.delay {
