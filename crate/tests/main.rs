@@ -6,6 +6,7 @@ mod exec;
 mod fuzz;
 mod ground;
 mod layers;
+mod levels;
 mod lfd;
 mod lfd_cli;
 mod lqt;

@@ -7,13 +7,16 @@
 //!   whole closed-loop episode from that state; success rate, and planning time of the first plan
 //!   (mean ± sd and median, caller's clock).
 //! * Table II: per benchmark and level, `trials` episodes from the template scene with one
-//!   disturbance injected at a seeded action boundary; methods `linear`, `rlds`, `logic-lfd`;
-//!   simulated execution time mean ± sd over the successful trials (N/A if none succeeds).
+//!   disturbance injected at a seeded moment, during a motion or at an idle moment
+//!   ([`episode`]); methods `linear`, `rlds`, `logic-lfd`; simulated execution time mean ± sd
+//!   over the successful trials (N/A if none succeeds), and what a mid-motion L1 cost
+//!   ([`table2_motion`]).
 
 pub mod episode;
 pub mod fuzz;
 pub mod scaling;
 pub mod soak;
+pub mod table2_motion;
 pub mod tables;
 pub mod tasks;
 

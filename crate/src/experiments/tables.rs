@@ -534,6 +534,22 @@ pub struct Table2Cell {
     pub failures: Vec<(String, usize)>,
     /// Seeds of the trials.
     pub seeds: Vec<u64>,
+    /// Trials in which the level could not be injected (left out of `times` and `failures`).
+    #[serde(default)]
+    pub not_injected: usize,
+    /// Trials whose disturbance hit a moving arm (L1: the approached body moved or the hand
+    /// pushed).
+    #[serde(default)]
+    pub mid_motion: usize,
+    /// Per mid-motion L1 trial: the TCP's largest distance from the undisturbed path (mm).
+    #[serde(default)]
+    pub deviation_mm: Vec<f64>,
+    /// Per mid-motion L1 trial with a push: the push (mm).
+    #[serde(default)]
+    pub push_mm: Vec<f64>,
+    /// Per successful trial: simulated time lost against the undisturbed run (s).
+    #[serde(default)]
+    pub time_lost_s: Vec<f64>,
 }
 
 /// Table II.
@@ -571,6 +587,11 @@ pub fn table2(
                     trials: 0,
                     failures: vec![],
                     seeds: vec![],
+                    not_injected: 0,
+                    mid_motion: 0,
+                    deviation_mm: vec![],
+                    push_mm: vec![],
+                    time_lost_s: vec![],
                 };
                 for t in 0..trials {
                     let s = seed.wrapping_add(t as u64);
@@ -585,11 +606,7 @@ pub fn table2(
                     let r = run_episode(&spec, params, clock)?;
                     cell.trials += 1;
                     cell.seeds.push(s);
-                    if r.success {
-                        cell.times.push(r.execution_s);
-                    } else if let Some(reason) = &r.reason {
-                        count(&mut cell.failures, reason_kind(reason));
-                    }
+                    record_trial(&mut cell, &r);
                 }
                 progress(&format!(
                     "table2 {} {} {}: {}/{} succeeded",
@@ -610,12 +627,33 @@ pub fn table2(
     })
 }
 
+/// Adds trial `r` to `cell`: a trial the level could not be injected into counts apart.
+fn record_trial(cell: &mut Table2Cell, r: &super::episode::EpisodeReport) {
+    if r.injection.is_none() {
+        cell.not_injected += 1;
+        return;
+    }
+    if let Some(m) = &r.motion {
+        cell.mid_motion += 1;
+        cell.deviation_mm.push(m.deviation_mm);
+    }
+    if let Some(p) = r.injection.as_ref().and_then(|i| i.push.as_ref()) {
+        cell.push_mm.push(p.displacement_mm);
+    }
+    if r.success {
+        cell.times.push(r.execution_s);
+        cell.time_lost_s.extend(r.time_lost_s);
+    } else if let Some(reason) = &r.reason {
+        count(&mut cell.failures, reason_kind(reason));
+    }
+}
+
 impl Table2 {
     /// Markdown: per level, each method × benchmark as "ours (paper)".
     pub fn markdown(&self) -> String {
         let mut out = String::new();
         out.push_str(&format!(
-            "Table II — simulated execution time [s], mean ± sd over the successful trials of {} per cell (seeds {}..{}); paper in parentheses; N/A = no successful trial.\n\n",
+            "Table II — simulated execution time [s], mean ± sd over the successful trials of {} per cell (seeds {}..{}), [successes/trials the level was injected into]; paper in parentheses; N/A = no successful trial.\n\n",
             self.trials,
             self.seed,
             self.seed + self.trials as u64 - 1
@@ -644,13 +682,13 @@ impl Table2 {
                         .cells
                         .iter()
                         .find(|c| c.level == level && c.method == *m && c.benchmark == *b);
+                    let injected = cell.map_or(0, |c| c.trials - c.not_injected);
                     let ours = match cell.and_then(|c| stats(&c.times)) {
                         Some((mean, sd, _)) => format!(
-                            "{mean:.2} ± {sd:.2} [{}/{}]",
+                            "{mean:.2} ± {sd:.2} [{}/{injected}]",
                             cell.map_or(0, |c| c.times.len()),
-                            cell.map_or(0, |c| c.trials)
                         ),
-                        None => format!("N/A [0/{}]", cell.map_or(0, |c| c.trials)),
+                        None => format!("N/A [0/{injected}]"),
                     };
                     let paper = PAPER_TABLE2[mi].1[level as usize][*b as usize]
                         .map(|(m, s)| format!("{m:.2} ± {s:.2}"))
@@ -660,6 +698,7 @@ impl Table2 {
             }
             out.push('\n');
         }
+        out.push_str(&self.motion_markdown());
         out.push_str("\nFailure reasons (ours):\n\n");
         for c in &self.cells {
             if !c.failures.is_empty() {

@@ -4,7 +4,9 @@
 //! A task of level L is the template world after the level-L disturbance of
 //! [`crate::lfd::disturb`] (seeded), applied to the *initial* state: L1 moves blocks without
 //! changing a fact, L2 starts from another state of the demonstration, L3 from a state it never
-//! visits, L4 with an extra block in the way.
+//! visits, L4 with an extra block in the way of the demonstration's plan (on a block the tower
+//! needs, or, in B2, in the hand). A level the injector cannot produce is an error naming it,
+//! never a task of another level (`docs/levels.md`).
 
 use crate::lfd::demo::DemoTrace;
 use crate::lfd::disturb::{self, Level};
@@ -13,7 +15,7 @@ use crate::lfd::TaskBuilder as _;
 use crate::sim::benchmark::Benchmark;
 use crate::sim::{SceneGraph, World};
 
-/// Seeded attempts at a level before a task falls back to a motion-level variant.
+/// Seeded attempts at a level before the generator gives up with an error.
 const ATTEMPTS: u64 = 8;
 
 /// The benchmark's demonstration trace L_0..L_N, derived on its template task: what "seen in
@@ -75,11 +77,6 @@ pub fn initial_scene_for(
             }
             Err(e) => last = e,
         }
-    }
-    // A level that no single move produces from the template (B2 has no L2 state one move
-    // away) falls back to a motion-level variant.
-    if level != Level::L1 {
-        return initial_scene_for(b, blocks, Level::L1, seed);
     }
     Err(SessionError::Json(format!(
         "{}: cannot generate a {} task: {last}",

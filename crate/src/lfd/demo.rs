@@ -61,6 +61,9 @@ pub struct DemoTrace {
     pub actions: Vec<String>,
     /// L_0..L_N: the fluents that hold before a_1, after a_1, …, after a_N.
     pub states: Vec<BTreeSet<String>>,
+    /// The task's static facts (true throughout, left out of every L_k): what a scene's facts
+    /// drop before they are compared with an L_k.
+    pub static_facts: BTreeSet<String>,
 }
 
 impl DemoTrace {
@@ -106,6 +109,7 @@ impl DemoTrace {
         Ok(DemoTrace {
             actions: names,
             states,
+            static_facts: task.static_facts.iter().cloned().collect(),
         })
     }
 

@@ -2,9 +2,11 @@
 //!
 //! ```text
 //!   L1  move one free block on its support; S_C unchanged
+//!       (during a motion: move the body the arm approaches, or push the arm's hand)
 //!   L2  move one clear block (to the table or onto another block) so that S_C = L_k for some k
 //!   L3  move one clear block so that no L_k ⊆ S_C (a state the demonstration never visits)
-//!   L4  add a new block on top of a clear block so that no L_k ⊆ S_C (it is in the way)
+//!   L4  add a new block on top of a clear block so that no L_k ⊆ S_C (it is in the way);
+//!       without stacking (B2), put it into an idle arm's empty hand: no grasp can run
 //! ```
 //!
 //! Candidates are tried in a seeded random order through the simulator's own user-move rule
@@ -36,6 +38,9 @@ use crate::sim::snapshot::{BodyKind, BodySnapshot, PoseSnapshot, ShapeSnapshot};
 use crate::sim::{SceneGraph, World};
 
 use super::demo::DemoTrace;
+
+mod motion;
+pub use motion::{inject_during_motion, Moving, TcpPush};
 
 /// Disturbance levels of the paper (§IV-B); JSON and CLI: `l1`..`l4`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -82,6 +87,12 @@ pub struct Injection {
     pub description: String,
     /// Bodies moved or added: (name, new centre).
     pub moved: Vec<(String, [f64; 3])>,
+    /// The action being executed when it came (`None`: the arm was idle).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub during: Option<String>,
+    /// The push given to an arm's hand (a mid-motion L1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub push: Option<TcpPush>,
 }
 
 /// Margin kept inside a table region when a spot is drawn in it (m).
@@ -97,14 +108,13 @@ const REACH_INNER_MARGIN: f64 = 0.03;
 const REACH_OUTER_MARGIN: f64 = 0.05;
 /// Range of an L1 displacement (m): at least 2 cm, so it is a visible motion-level change.
 const L1_SHIFT: std::ops::Range<f64> = 0.02..0.05;
+/// Directions drawn for a push or a move before the candidate is given up.
+const MOTION_TRIES: usize = 12;
 /// Height above its centre to which an L1 move lifts a block before it settles (m).
 const L1_LIFT: f64 = 0.001;
 /// Height above its target (a block's centre, or the table top) from which a moved or added
 /// block is dropped to settle (m).
 const DROP_HEIGHT: f64 = 0.1;
-/// Height from which an added block is dropped onto a spot where the demonstration puts a
-/// block down (m): above every support of the scenes.
-const SPOT_DROP_Z: f64 = 0.3;
 /// Names an added block may take, in order.
 const NEW_BLOCK_NAMES: [&str; 7] = ["e", "f", "g", "h", "x", "y", "z"];
 
@@ -226,43 +236,63 @@ struct Before<'a> {
 }
 
 impl Before<'_> {
+    /// `f` as the demonstration's states list facts: the task's static facts left out (a
+    /// scene reports `(inreach panda hook)`, which no action of B2 changes).
+    fn fluents(&self, f: &BTreeSet<String>) -> BTreeSet<String> {
+        f.difference(&self.trace.static_facts).cloned().collect()
+    }
+
     /// Some L_k ⊆ `f`.
     fn seen_subset(&self, f: &BTreeSet<String>) -> bool {
         self.trace.states.iter().any(|l| l.is_subset(f))
     }
 
-    /// Some L_k = `f`.
+    /// The k of every L_k equal to `f`'s fluents.
+    fn seen_at(&self, f: &BTreeSet<String>) -> Vec<usize> {
+        let f = self.fluents(f);
+        (0..self.trace.states.len())
+            .filter(|&k| self.trace.states[k] == f)
+            .collect()
+    }
+
+    /// Some L_k equals `f`'s fluents.
     fn seen_equal(&self, f: &BTreeSet<String>) -> bool {
-        self.trace.states.iter().any(|l| l == f)
+        !self.seen_at(f).is_empty()
+    }
+}
+
+impl<'a> Before<'a> {
+    fn of(world: &World, trace: &'a DemoTrace) -> Before<'a> {
+        Before {
+            facts: facts(world),
+            blocks: free_blocks(world),
+            // Domains without `on` (B2) cannot express a block on a block: only table moves
+            // there, and a severe change is a block moved out of reach.
+            has_on: world.motions().reports(Relation::OnBlock),
+            motions: world.motions_arc(),
+            trace,
+        }
     }
 }
 
 /// Injects a disturbance of `level` into `world`; `trace` defines "seen in the
 /// demonstration". Deterministic in `seed`.
 ///
-/// `spots` are places the demonstration puts blocks down (its placements): where the scene has
-/// no stacking (B2), the L4 block appears on one of them, in the way of the plan.
+/// `busy` are the arms executing an action now: where the scene has no stacking (B2), the L4
+/// block is handed to an idle arm (one not in `busy`, its hand empty).
 pub fn inject(
     world: &mut World,
     level: Level,
     trace: &DemoTrace,
-    spots: &[(f64, f64)],
+    busy: &[usize],
     seed: u64,
 ) -> Result<Injection, String> {
     let mut rng = Pcg64Mcg::seed_from_u64(seed);
-    let before = Before {
-        facts: facts(world),
-        blocks: free_blocks(world),
-        // Domains without `on` (B2) cannot express a block on a block: only table moves there,
-        // and a severe change is a block moved out of reach.
-        has_on: world.motions().reports(Relation::OnBlock),
-        motions: world.motions_arc(),
-        trace,
-    };
+    let before = Before::of(world, trace);
     match level {
         Level::L1 => motion_level(world, &before, &mut rng),
         Level::L2 | Level::L3 => task_level(world, level, &before, &mut rng),
-        Level::L4 => new_block(world, &before, spots, &mut rng),
+        Level::L4 => new_block(world, &before, busy, &mut rng),
     }
 }
 
@@ -274,9 +304,21 @@ fn motion_level(
 ) -> Result<Injection, String> {
     let mut order = before.blocks.clone();
     order.shuffle(rng);
+    shift_one_of(world, before, &order, rng)
+        .ok_or_else(|| "L1: no block can be moved without changing the facts".into())
+}
+
+/// The first of `order` that moves by 2–5 cm on its support with the facts unchanged and stays
+/// workable ([`handleable`]).
+fn shift_one_of(
+    world: &mut World,
+    before: &Before,
+    order: &[String],
+    rng: &mut Pcg64Mcg,
+) -> Option<Injection> {
     for b in order {
-        let Some(c) = centre(world, &b) else { continue };
-        for _ in 0..12 {
+        let Some(c) = centre(world, b) else { continue };
+        for _ in 0..MOTION_TRIES {
             let a = rng.random_range(0.0..std::f64::consts::TAU);
             let r = rng.random_range(L1_SHIFT);
             let target = Vector3::new(
@@ -285,24 +327,26 @@ fn motion_level(
                 c[2] + L1_LIFT,
             );
             let saved = world.clone();
-            if world.move_block(&b, target).is_ok()
+            if world.move_block(b, target).is_ok()
                 && facts(world) == before.facts
-                && handleable(world, &b).is_ok()
+                && handleable(world, b).is_ok()
             {
-                let to = centre(world, &b).unwrap_or(c);
-                return Ok(Injection {
+                let to = centre(world, b).unwrap_or(c);
+                return Some(Injection {
                     level: Level::L1,
                     description: format!(
                         "L1: moved {b} by {:.0} mm; the facts are unchanged",
                         r * 1e3
                     ),
                     moved: vec![(b.clone(), to)],
+                    during: None,
+                    push: None,
                 });
             }
             *world = saved;
         }
     }
-    Err("L1: no block can be moved without changing the facts".into())
+    None
 }
 
 /// L2 / L3: one clear block moved to the table or onto another clear block, to a state of the
@@ -316,7 +360,7 @@ fn task_level(
     let want_seen = level == Level::L2;
     let trace = before.trace;
     let n = trace.states.len().saturating_sub(1);
-    let cur = trace.states.iter().position(|l| *l == before.facts);
+    let cur = before.seen_at(&before.facts).first().copied();
     let mut moves: Vec<(String, Option<String>)> = vec![];
     for b in &before.blocks {
         if !is_clear(&before.motions, &before.facts, b) {
@@ -360,9 +404,10 @@ fn task_level(
                         .any(|f| is_about(&before.motions, f, Relation::InReach, Slot::Body, b));
                 let ok = after != before.facts
                     && if want_seen {
-                        trace.states.iter().enumerate().any(|(k, l)| {
-                            *l == after && k < n && (pass == 1 || cur.is_some_and(|c| k < c))
-                        })
+                        before
+                            .seen_at(&after)
+                            .into_iter()
+                            .any(|k| k < n && (pass == 1 || cur.is_some_and(|c| k < c)))
                     } else {
                         !before.seen_subset(&after) && out_of_reach
                     };
@@ -385,6 +430,8 @@ fn task_level(
                             level.as_str().to_uppercase()
                         ),
                         moved: vec![(b.clone(), to)],
+                        during: None,
+                        push: None,
                     });
                 }
             }
@@ -398,12 +445,12 @@ fn task_level(
 }
 
 /// L4: a new block on top of a clear block (blocks something must still be stacked on first),
-/// such that no L_k ⊆ S_C; without stacking, on a spot where the demonstration puts a block
-/// down ([`new_block_in_the_way`]).
+/// such that no L_k ⊆ S_C. Without stacking (B2, whose facts say nothing else a new block could
+/// spoil) it is handed to an idle arm instead ([`new_block_in_hand`]).
 fn new_block(
     world: &mut World,
     before: &Before,
-    spots: &[(f64, f64)],
+    busy: &[usize],
     rng: &mut Pcg64Mcg,
 ) -> Result<Injection, String> {
     let snap = world.snapshot();
@@ -413,6 +460,9 @@ fn new_block(
             !snap.bodies.iter().any(|b| b.name == *n) && !snap.arms.iter().any(|a| a.name == *n)
         })
         .ok_or("L4: no free block name")?;
+    if !before.has_on {
+        return new_block_in_hand(world, before, name, busy, rng);
+    }
     let mut targets: Vec<String> = before
         .blocks
         .iter()
@@ -435,23 +485,9 @@ fn new_block(
         return Err("L4: no room for a new block".into());
     };
     let mut with_block = snap.clone();
-    let half = 0.5 * BLOCK_SIZE;
-    with_block.bodies.push(BodySnapshot {
-        name: name.to_string(),
-        kind: BodyKind::Block,
-        shape: ShapeSnapshot::Cuboid {
-            half_extents: [half; 3],
-        },
-        pose: PoseSnapshot {
-            position: [x, y, half],
-            quaternion: [0.0, 0.0, 0.0, 1.0],
-        },
-        color: BLOCK_COLORS[4].into(),
-        lost: false,
-    });
-    if !before.has_on {
-        return new_block_in_the_way(world, before, name, &with_block, [x, y, half], spots, rng);
-    }
+    with_block
+        .bodies
+        .push(new_block_body(name, [x, y, 0.5 * BLOCK_SIZE], 0.0));
     let n_targets = targets.len();
     for (ti, t) in targets.into_iter().enumerate() {
         let last_resort = ti + 1 == n_targets;
@@ -478,58 +514,79 @@ fn new_block(
                 level: Level::L4,
                 description: format!("L4: a new block {name} appeared on {t}"),
                 moved: vec![(name.to_string(), to)],
+                during: None,
+                push: None,
             });
         }
     }
     Err("L4: no block can take a new block on top".into())
 }
 
-/// L4 without stacking: the new block appears where the demonstration puts a block down (in
-/// the way), else at its table spot `on_table` in `with_block`.
-fn new_block_in_the_way(
+/// A new 6 cm block called `name` centred at `at`, turned by `yaw` about world `z`.
+fn new_block_body(name: &str, at: [f64; 3], yaw: f64) -> BodySnapshot {
+    let q = nalgebra::UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw);
+    BodySnapshot {
+        name: name.to_string(),
+        kind: BodyKind::Block,
+        shape: ShapeSnapshot::Cuboid {
+            half_extents: [0.5 * BLOCK_SIZE; 3],
+        },
+        pose: PoseSnapshot {
+            position: at,
+            quaternion: [q.i, q.j, q.k, q.w],
+        },
+        color: BLOCK_COLORS[4].into(),
+        lost: false,
+    }
+}
+
+/// L4 without stacking: a new block handed to an idle arm with an empty hand (a person puts it
+/// between the fingers), so the hand is no longer empty and no L_k ⊆ S_C: every grasp of the
+/// demonstration waits until the block is put down. Refused when every arm is busy or
+/// holding something, or the block would touch another body.
+fn new_block_in_hand(
     world: &mut World,
     before: &Before,
     name: &str,
-    with_block: &crate::sim::snapshot::WorldSnapshot,
-    on_table: [f64; 3],
-    spots: &[(f64, f64)],
+    busy: &[usize],
     rng: &mut Pcg64Mcg,
 ) -> Result<Injection, String> {
-    let mut order: Vec<(f64, f64)> = spots.to_vec();
-    order.shuffle(rng);
-    if let Ok(w2) = World::from_snapshot(with_block).map(|w| w.with_motions(world.motions_arc())) {
-        for (sx, sy) in order {
-            let mut w3 = w2.clone();
-            // Not on the shelf: a block left on the shelf can take the room the goal needs
-            // there, and no action takes a block off the shelf.
-            if w3
-                .move_block(name, Vector3::new(sx, sy, SPOT_DROP_Z))
-                .is_ok()
-                && !before.seen_equal(&facts(&w3))
-                && !facts(&w3)
-                    .iter()
-                    .any(|f| is_about(&before.motions, f, Relation::OnShelf, Slot::Body, name))
-                && handleable(&w3, name).is_ok()
-            {
-                let to = centre(&w3, name).unwrap_or([sx, sy, 0.0]);
-                *world = w3;
-                return Ok(Injection {
-                    level: Level::L4,
-                    description: format!(
-                        "L4: a new block {name} appeared where the demonstration puts a block down"
-                    ),
-                    moved: vec![(name.to_string(), to)],
-                });
-            }
+    let snap = world.snapshot();
+    let mut arms: Vec<usize> = (0..snap.arms.len())
+        .filter(|a| !busy.contains(a) && world.held_by(*a).is_none())
+        .collect();
+    arms.shuffle(rng);
+    for a in arms {
+        let Some(tcp) = world.tcp_pose(a) else {
+            continue;
+        };
+        // Square to the fingers, centred between them.
+        let (_, _, yaw) = tcp.rotation.euler_angles();
+        let mut with_block = snap.clone();
+        with_block
+            .bodies
+            .push(new_block_body(name, tcp.translation.vector.into(), yaw));
+        with_block.arms[a].holding = Some(name.to_string());
+        with_block.arms[a].gripper_opening = BLOCK_SIZE;
+        let Ok(w2) = World::from_snapshot(&with_block).map(|w| w.with_motions(world.motions_arc()))
+        else {
+            continue;
+        };
+        if w2.check_invariants().is_err() || before.seen_subset(&facts(&w2)) {
+            continue;
         }
-        if !before.seen_equal(&facts(&w2)) && handleable(&w2, name).is_ok() {
-            *world = w2;
-            return Ok(Injection {
-                level: Level::L4,
-                description: format!("L4: a new block {name} appeared on the table"),
-                moved: vec![(name.to_string(), on_table)],
-            });
-        }
+        let to = centre(&w2, name).unwrap_or([0.0; 3]);
+        let arm = snap.arms[a].name.clone();
+        *world = w2;
+        return Ok(Injection {
+            level: Level::L4,
+            description: format!(
+                "L4: a new block {name} was put into the hand of {arm}: no grasp of the plan can run before it is put down"
+            ),
+            moved: vec![(name.to_string(), to)],
+            during: None,
+            push: None,
+        });
     }
-    Err("L4: no room for a new block".into())
+    Err("L4: no idle arm has an empty hand to take a new block (the domain cannot put one in the plan's way otherwise)".into())
 }

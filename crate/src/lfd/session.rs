@@ -34,7 +34,7 @@ mod log;
 mod options;
 mod tick;
 
-pub use super::disturb::Injection;
+pub use super::disturb::{Injection, Moving, TcpPush};
 pub use crate::sim::benchmark::BenchmarkSources;
 pub use frame::{EePoint, Frame, PerturbOutcome, Status};
 pub use log::{ActionRecord, EpisodeEvent, EpisodeLog, EpisodeResult};
@@ -240,6 +240,26 @@ impl Session {
         self.exec.is_some()
     }
 
+    /// The arm in the middle of a move (not at a gripper event) and the body it approaches
+    /// (a grasp's object); `None` when no action moves an arm now.
+    pub fn moving(&self) -> Option<Moving> {
+        let e = self.exec.as_ref()?;
+        e.target()?;
+        Some(Moving {
+            arm: e.arm(),
+            approached: match &e.kind {
+                crate::tamp::ActionKind::Grasp { body, .. } => Some(body.clone()),
+                _ => None,
+            },
+        })
+    }
+
+    /// Ticks since the running action started (`None` when idle).
+    pub fn action_ticks(&self) -> Option<u64> {
+        self.exec.as_ref()?;
+        self.actions.last().map(|a| self.tick - a.start_tick)
+    }
+
     /// The episode's outcome, once it ended.
     pub fn outcome(&self) -> Option<&Result<(), FailReason>> {
         self.outcome.as_ref()
@@ -303,15 +323,21 @@ impl Session {
             )));
         };
         let n = self.injections;
-        let spots: Vec<(f64, f64)> = self.hints.values().map(|h| (h.x, h.y)).collect();
-        let inj = super::disturb::inject(
-            &mut self.world,
-            parsed,
-            &self.trace,
-            &spots,
-            mix(self.options.seed, INJECT_SEED_BASE + n),
-        )
+        let seed = mix(self.options.seed, INJECT_SEED_BASE + n);
+        let during = self.exec.as_ref().map(|e| e.action.clone());
+        let moving = self.moving();
+        let mut inj = match (parsed, moving) {
+            // While the arm moves, L1 acts on that motion: the approached body or the hand.
+            (Level::L1, Some(m)) => {
+                super::disturb::inject_during_motion(&mut self.world, &self.trace, &m, seed)
+            }
+            _ => {
+                let busy: Vec<usize> = self.exec.iter().map(ActionExec::arm).collect();
+                super::disturb::inject(&mut self.world, parsed, &self.trace, &busy, seed)
+            }
+        }
         .map_err(SessionError::Json)?;
+        inj.during = during;
         self.injections += 1;
         self.events.push(EpisodeEvent::Inject {
             tick: self.tick,

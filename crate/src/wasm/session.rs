@@ -63,7 +63,7 @@ export interface PerturbOutcome {
   alsoMoved: [string, [number, number, number]][];
 }
 /** What an injected disturbance (l1..l4) did. */
-export interface Injection { level: string; description: string; moved: [string, [number, number, number]][]; }
+export interface Injection { level: string; description: string; moved: [string, [number, number, number]][]; during?: string; push?: { arm: string; from: [number, number, number]; to: [number, number, number]; displacement_mm: number }; }
 "#;
 /// [`Frame`] as JS reads it: the same data with camelCase names.
 #[derive(Serialize)]

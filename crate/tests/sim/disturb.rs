@@ -54,7 +54,9 @@ mod disturbances {
                         }
                         Level::L2 => {
                             assert_ne!(after, before, "{b:?} L2 seed {seed}");
-                            assert!(states.contains(&after), "{b:?} L2 seed {seed}: {after:?}");
+                            let fluents: BTreeSet<String> =
+                                after.difference(&trace.static_facts).cloned().collect();
+                            assert!(states.contains(&fluents), "{b:?} L2 seed {seed}: {after:?}");
                         }
                         Level::L3 => {
                             assert!(
@@ -75,20 +77,14 @@ mod disturbances {
                 }
             }
         }
-        // B2's template is no single block move away from another state of its demonstration
-        // (the Table I tasks fall back to L1 there); every other level is produced from the
-        // template for some seed.
+        // Every level is produced from the template for some seed.
         for b in Benchmark::ALL {
             for level in Level::ALL {
                 let n = refused
                     .iter()
                     .filter(|&&(rb, rl, _)| rb == b && rl == level)
                     .count();
-                if b == Benchmark::B2 && level == Level::L2 {
-                    assert_eq!(n, 4, "{refused:?}");
-                } else {
-                    assert!(n < 4, "{b:?} {level:?} refused for every seed");
-                }
+                assert!(n < 4, "{b:?} {level:?} refused for every seed");
             }
         }
     }

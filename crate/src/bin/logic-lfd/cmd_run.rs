@@ -160,7 +160,22 @@ fn print_summary(spec: &EpisodeSpec, r: &EpisodeReport) {
         spec.seed
     );
     if let Some(i) = &r.injection {
-        println!("disturbance: {}", i.description);
+        match &i.during {
+            Some(a) => println!("disturbance: {} (during {a})", i.description),
+            None => println!("disturbance: {}", i.description),
+        }
+    }
+    if let Some(why) = &r.not_injected {
+        println!("no disturbance injected: {why}");
+    }
+    if let Some(m) = &r.motion {
+        println!(
+            "  absorbed: the TCP left the undisturbed path by at most {:.1} mm; {} took {:+.2} s",
+            m.deviation_mm, m.action, m.action_time_lost_s
+        );
+    }
+    if let Some(t) = r.time_lost_s {
+        println!("  time lost against the undisturbed run: {t:+.2} s");
     }
     match &r.reason {
         None => println!("success: true"),
