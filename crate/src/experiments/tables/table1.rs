@@ -1,0 +1,303 @@
+//! Table I: `tasks` random initial states per benchmark (levels L1–L4 in turn), every method run
+//! in closed loop from each; success, first-plan time split into search and binding, Logic-LfD's
+//! TAMP fallbacks.
+
+use serde::{Deserialize, Serialize};
+
+use crate::lfd::session::{mix, SessionError, SessionParams};
+use crate::lfd::{Method, Mode};
+use crate::plan::Clock;
+use crate::sim::benchmark::Benchmark;
+use crate::sim::World;
+
+use super::{count, infeasible, reason_kind, stats, PAPER_TABLE1};
+use crate::experiments::episode::{run_episode, EpisodeSpec, Level};
+
+/// One method on one benchmark in Table I.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Table1Cell {
+    /// Benchmark.
+    pub benchmark: Benchmark,
+    /// Method.
+    pub method: Method,
+    /// Multi-goal mode (Logic-LfD; `paper` for the others).
+    pub mode: Mode,
+    /// Tasks solved.
+    pub successes: usize,
+    /// Tasks run.
+    pub tasks: usize,
+    /// Planning time of the first plan per task (ms).
+    pub plan_ms: Vec<f64>,
+    /// The part of each first plan's time spent in symbolic search (ms): `plan_ms − bind_ms`.
+    #[serde(default)]
+    pub search_ms: Vec<f64>,
+    /// The part of each first plan's time spent binding actions to motions (ms).
+    #[serde(default)]
+    pub bind_ms: Vec<f64>,
+    /// Replans of Logic-LfD that planned to G from scratch (the TAMP fallback), over all tasks.
+    #[serde(default)]
+    pub fallbacks: usize,
+    /// Actions executed per successful task.
+    pub actions: Vec<usize>,
+    /// Failure reasons seen (kind → count).
+    pub failures: Vec<(String, usize)>,
+}
+
+impl Table1Cell {
+    /// The method's row name: `linear`, `tamp`, `logic-lfd (paper)`, `logic-lfd (prioritised)`.
+    pub fn method_label(&self) -> String {
+        match (self.method, self.mode) {
+            (Method::LogicLfd, Mode::Prioritised) => "logic-lfd (prioritised)".to_string(),
+            (Method::LogicLfd, Mode::Paper) => "logic-lfd (paper)".to_string(),
+            (m, _) => m.as_str().to_string(),
+        }
+    }
+}
+
+/// Table I.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Table1 {
+    /// Tasks per benchmark.
+    pub tasks: usize,
+    /// Seed of the task generator and episodes.
+    pub seed: u64,
+    /// Cells.
+    pub cells: Vec<Table1Cell>,
+    /// Tasks whose first draw was infeasible ([`infeasible`]) and were redrawn.
+    pub redrawn: Vec<Redraw>,
+    /// Whether Logic-LfD could fall back to TAMP from scratch
+    /// ([`ControlParams::tamp_fallback`](crate::lfd::control::ControlParams::tamp_fallback)).
+    #[serde(default)]
+    pub tamp_fallback: bool,
+}
+
+/// A Table I task whose initial state was redrawn.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Redraw {
+    /// Benchmark.
+    pub benchmark: Benchmark,
+    /// Task index.
+    pub task: usize,
+    /// Draws made (the last one is used).
+    pub draws: usize,
+}
+
+/// The methods of Table I (Logic-LfD in both modes).
+pub const TABLE1_METHODS: [(Method, Mode); 4] = [
+    (Method::Linear, Mode::Paper),
+    (Method::Tamp, Mode::Paper),
+    (Method::LogicLfd, Mode::Paper),
+    (Method::LogicLfd, Mode::Prioritised),
+];
+
+/// Draws of a Table I initial state before the task is reported as infeasible.
+pub const MAX_DRAWS: usize = 16;
+
+/// The initial scene of Table I task `index` of benchmark `b` at `level`: the first feasible
+/// ([`infeasible`]) of up to [`MAX_DRAWS`] draws, draw `d` from seed `mix(task_seed, d)` (draw 0:
+/// `task_seed` itself). Returns the scene JSON and the draw used; an error names the task when
+/// every draw is infeasible (tasks are never dropped silently).
+pub fn table1_scene(
+    b: Benchmark,
+    level: Level,
+    task_seed: u64,
+) -> Result<(String, usize), SessionError> {
+    let mut why = String::new();
+    for draw in 0..MAX_DRAWS {
+        let seed = if draw == 0 {
+            task_seed
+        } else {
+            mix(task_seed, draw as u64)
+        };
+        let scene = crate::experiments::tasks::initial_scene(b, level, seed)?;
+        let world = World::from_json(&scene)?.with_motions(b.motions());
+        match infeasible(&world) {
+            None => return Ok((scene, draw)),
+            Some(w) => why = w,
+        }
+    }
+    Err(SessionError::Json(format!(
+        "{} {} task seed {task_seed}: no feasible initial state in {MAX_DRAWS} draws ({why})",
+        b.as_str(),
+        level.as_str()
+    )))
+}
+
+/// The seed of Table I task `index` of benchmark `b` in a run seeded `seed`.
+pub fn table1_task_seed(b: Benchmark, index: usize, seed: u64) -> u64 {
+    mix(seed, (b as u64) << 32 | index as u64)
+}
+
+/// Runs Table I: `tasks` initial states per benchmark ([`table1_scene`]), levels L1..L4 in
+/// turn; every method runs the closed loop from each state.
+pub fn table1(
+    benchmarks: &[Benchmark],
+    tasks: usize,
+    seed: u64,
+    params: SessionParams,
+    clock: &dyn Clock,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Table1, SessionError> {
+    let mut cells = vec![];
+    let mut redrawn = vec![];
+    for &b in benchmarks {
+        let mut row: Vec<Table1Cell> = TABLE1_METHODS
+            .iter()
+            .map(|&(method, mode)| Table1Cell {
+                benchmark: b,
+                method,
+                mode,
+                successes: 0,
+                tasks: 0,
+                plan_ms: vec![],
+                search_ms: vec![],
+                bind_ms: vec![],
+                fallbacks: 0,
+                actions: vec![],
+                failures: vec![],
+            })
+            .collect();
+        for i in 0..tasks {
+            let level = Level::ALL[i % 4];
+            let task_seed = table1_task_seed(b, i, seed);
+            let (scene, draw) = table1_scene(b, level, task_seed)?;
+            if draw > 0 {
+                redrawn.push(Redraw {
+                    benchmark: b,
+                    task: i,
+                    draws: draw + 1,
+                });
+            }
+            for cell in &mut row {
+                let spec = EpisodeSpec {
+                    benchmark: b,
+                    level: None,
+                    method: cell.method,
+                    mode: cell.mode,
+                    seed: task_seed,
+                    scene: Some(scene.clone()),
+                };
+                let r = run_episode(&spec, params, clock)?;
+                cell.tasks += 1;
+                if let Some(first) = r.log.replans.first() {
+                    cell.plan_ms.push(first.time_ms);
+                    cell.search_ms.push(first.time_ms - first.bind_ms);
+                    cell.bind_ms.push(first.bind_ms);
+                }
+                cell.fallbacks += r.log.replans.iter().filter(|p| p.fallback).count();
+                if r.success {
+                    cell.successes += 1;
+                    cell.actions.push(r.actions_executed);
+                } else if let Some(reason) = &r.reason {
+                    count(&mut cell.failures, reason_kind(reason));
+                    progress(&format!(
+                        "table1 {} task {i} ({}) {}: failed: {reason}",
+                        b.as_str(),
+                        level.as_str(),
+                        cell.method_label()
+                    ));
+                }
+            }
+            progress(&format!("table1 {} task {}/{}", b.as_str(), i + 1, tasks));
+        }
+        cells.extend(row);
+    }
+    Ok(Table1 {
+        tasks,
+        seed,
+        cells,
+        redrawn,
+        tamp_fallback: params.control.tamp_fallback,
+    })
+}
+
+/// Medians of the search and binding parts of the first plans: `0.21 / 0.09`.
+fn fmt_split(search: &[f64], bind: &[f64]) -> String {
+    match (stats(search), stats(bind)) {
+        (Some((_, _, s)), Some((_, _, b))) => format!("{s:.3} / {b:.3}"),
+        _ => "N/A".into(),
+    }
+}
+
+fn fmt_ms(v: &[f64]) -> String {
+    match stats(v) {
+        Some((m, sd, med)) => format!("{m:.3} ± {sd:.3} (median {med:.3})"),
+        None => "N/A".into(),
+    }
+}
+
+impl Table1 {
+    /// Markdown: ours beside the paper's.
+    pub fn markdown(&self) -> String {
+        let mut out = String::new();
+        out.push_str(&format!(
+            "Table I — generalisation over {} random initial states per benchmark (levels L1–L4 in turn), seed {}.\n\n",
+            self.tasks, self.seed
+        ));
+        if self.redrawn.is_empty() {
+            out.push_str(&format!(
+                "Every first draw was feasible (rule: `experiments::tables::infeasible`, up to {MAX_DRAWS} draws).\n\n"
+            ));
+        } else {
+            out.push_str(&format!(
+                "Redrawn as infeasible (rule: `experiments::tables::infeasible`, up to {MAX_DRAWS} draws): {}.\n\n",
+                self.redrawn
+                    .iter()
+                    .map(|r| format!("{} task {} ({} draws)", r.benchmark.as_str().to_uppercase(), r.task, r.draws))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+        out.push_str(if self.tamp_fallback {
+            "Logic-LfD's TAMP fallback on: the fallbacks column counts its replans that planned to G from scratch.\n\n"
+        } else {
+            "Logic-LfD's TAMP fallback off: its success is its own.\n\n"
+        });
+        out.push_str("| method | benchmark | success (ours) | success (paper) | first-plan time, ms (ours: mean ± sd, median) | of which search / binding, ms (medians) | planning time, s (paper) | TAMP fallbacks | failures (ours) |\n");
+        out.push_str("|---|---|---|---|---|---|---|---|---|\n");
+        for c in &self.cells {
+            let col = match c.method {
+                Method::Linear => 0,
+                Method::Tamp => 1,
+                _ => 2,
+            };
+            let (ps, pt) = PAPER_TABLE1[col].1[c.benchmark as usize];
+            let name = c.method_label();
+            let (ours_t, split) = if c.method == Method::Linear {
+                ("N/A (no planning)".to_string(), "N/A".to_string())
+            } else {
+                (fmt_ms(&c.plan_ms), fmt_split(&c.search_ms, &c.bind_ms))
+            };
+            let fallbacks = match (c.method, self.tamp_fallback) {
+                (Method::LogicLfd, true) => c.fallbacks.to_string(),
+                (Method::LogicLfd, false) => "off".to_string(),
+                _ => "—".to_string(),
+            };
+            let failures = if c.failures.is_empty() {
+                "—".to_string()
+            } else {
+                c.failures
+                    .iter()
+                    .map(|(k, n)| format!("{k} ×{n}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            out.push_str(&format!(
+                "| {} | {} | {:.0} % ({}/{}) | {:.0} % | {} | {} | {} | {} | {} |\n",
+                name,
+                c.benchmark.as_str().to_uppercase(),
+                100.0 * c.successes as f64 / c.tasks.max(1) as f64,
+                c.successes,
+                c.tasks,
+                ps,
+                ours_t,
+                split,
+                pt.map(|(m, s)| format!("{m:.2} ± {s:.2}"))
+                    .unwrap_or_else(|| "N/A".into()),
+                fallbacks,
+                failures
+            ));
+        }
+        out
+    }
+}
