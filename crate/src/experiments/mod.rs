@@ -11,6 +11,7 @@
 //!   simulated execution time mean ± sd over the successful trials (N/A if none succeeds).
 
 pub mod episode;
+pub mod fig4;
 pub mod fuzz;
 pub mod scaling;
 pub mod soak;

@@ -32,6 +32,48 @@ enum Which {
     Table2(crate::cmd_tables::Table2Args),
     /// Scaling study: B1 tower tasks with N blocks, first-plan time per method.
     Scaling(ScalingArgs),
+    /// The paper's Fig. 4: LQT-CP against the DMP, picking B2's hook and pulling its block.
+    Fig4(Fig4Args),
+}
+
+/// Arguments of `bench fig4`.
+#[derive(clap::Args)]
+pub struct Fig4Args {
+    /// Print JSON (with every path) instead of markdown tables.
+    #[arg(long)]
+    json: bool,
+    /// Write an SVG of the figure (view from above) to this file.
+    #[arg(long)]
+    svg: Option<PathBuf>,
+}
+
+fn fig4(a: Fig4Args) -> ExitCode {
+    use logic_lfd::experiments::fig4;
+    let f = match fig4::fig4() {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("bench fig4: {e}");
+            return ExitCode::from(exit::BAD_INPUT);
+        }
+    };
+    if let Some(path) = &a.svg {
+        if let Err(e) = std::fs::write(path, fig4::plot::svg(&f)) {
+            eprintln!("{}: {e}", path.display());
+            return ExitCode::from(exit::BAD_INPUT);
+        }
+    }
+    if a.json {
+        match serde_json::to_string_pretty(&f) {
+            Ok(s) => println!("{s}"),
+            Err(e) => {
+                eprintln!("cannot write JSON: {e}");
+                return ExitCode::from(exit::BAD_INPUT);
+            }
+        }
+    } else {
+        print!("{}", fig4::markdown(&f));
+    }
+    ExitCode::from(exit::OK)
 }
 
 /// Arguments of `bench scaling`.
@@ -114,6 +156,7 @@ pub fn run(args: Args) -> ExitCode {
         Which::Table1(a) => crate::cmd_tables::run_table1(a),
         Which::Table2(a) => crate::cmd_tables::run_table2(a),
         Which::Scaling(a) => scaling(a),
+        Which::Fig4(a) => fig4(a),
     }
 }
 
