@@ -9,7 +9,7 @@
 //!   goals: strokes turned by [`PULL_GOAL_TURNS`] from the line through the arm's base, each
 //!   ending with the block [`PULL_TARGET_RADIUS`] from the base. The hand holds the hook (the
 //!   demo's pick, executed) above the contact pose of the radial stroke, the same start for all
-//!   three goals; the learned stroke (`pull/stroke`) is planned there with its two via-points
+//!   three goals, turned along the stroke to come; the learned stroke (`pull/stroke`) is planned there with its two via-points
 //!   (the TCP where the blade passes the block's far top edge and where it is down behind its
 //!   far face, `lfd::skill::stroke`). Reported: the distance of the planned trajectory from each
 //!   via-point at its step and from the goal (LQT-CP passes the via-points, the DMP cannot encode
@@ -40,7 +40,7 @@ use crate::tamp::action::ActionKind;
 pub const GOAL_TOLERANCE: f64 = 0.01;
 
 /// The three goals of the pull: turns of the stroke from the line through the arm's base (rad).
-pub const PULL_GOAL_TURNS: [f64; 3] = [-0.26, 0.26, 0.52];
+pub const PULL_GOAL_TURNS: [f64; 3] = [-0.26, 0.26, -0.45];
 
 /// The three hook positions of the pick: offsets from the template's hook position (m, x and y).
 pub const HOOK_OFFSETS: [[f64; 2]; 3] = [[0.0, 0.0], [0.06, 0.08], [-0.05, -0.07]];
@@ -53,6 +53,12 @@ const PICK_TICKS: usize = 6000;
 
 /// Duration of the move to the pull's start pose (s).
 const START_MOVE_TIME: f64 = 1.5;
+
+/// The hand must settle this close to the pull's start pose (m) ...
+const START_TOLERANCE: f64 = 0.004;
+
+/// ... and turned this close to it (rad).
+const START_TURN_TOLERANCE: f64 = 0.05;
 
 /// The methods compared, in the order they are reported.
 const METHODS: [(SkillKind, &str); 2] = [(SkillKind::Lqt, "lqt-cp"), (SkillKind::Dmp, "dmp")];
@@ -252,8 +258,7 @@ fn picks(s: &Setup) -> Result<Vec<PickRow>, String> {
     Ok(rows)
 }
 
-/// The world of (b): the demo's hook grasp executed, the hand moved above the contact pose of
-/// the radial stroke.
+/// The world of (b): the demo's hook grasp executed.
 fn holding_hook(s: &Setup) -> Result<World, String> {
     let mut w = s.world.clone();
     let (lib, _) = &s.libraries[0];
@@ -273,27 +278,48 @@ fn holding_hook(s: &Setup) -> Result<World, String> {
     if status != ExecStatus::Done {
         return Err(format!("{}: {status:?}", s.pick.action));
     }
-    let block = w.body_pose(&s.pull.anchor).ok_or("no block")?;
-    let base = w.arm_base(s.arm).ok_or("no arm")?;
-    let (contact, _) =
-        pull_hook_poses_turned(&base, &block, PULL_TARGET_RADIUS, 0.0).ok_or("no radial stroke")?;
-    let above = raised(&tcp_for_body_pose(&w, s.arm, &contact), PULL_LIFT);
+    Ok(w)
+}
+
+/// `w` with the hand moved to `above` turned as `turned` (the hook along the stroke to come)
+/// and settled there.
+fn moved_to(
+    w: &World,
+    s: &Setup,
+    above: &Isometry3<f64>,
+    turned: &Isometry3<f64>,
+) -> Result<World, String> {
+    let mut w = w.clone();
+    let (lib, _) = &s.libraries[0];
+    let target = Isometry3::from_parts(above.translation, turned.rotation);
     let from = w.tcp_pose(s.arm).ok_or("no arm")?;
     let steps = libm::round(START_MOVE_TIME / w.dt()) as usize;
-    let seg = lib.segment("", &from, &above, None, steps);
-    run_segment(&mut w, s.arm, seg, &above, steps);
+    let seg = lib.segment("", &from, &target, None, steps);
+    run_segment(&mut w, s.arm, seg, &target, steps);
+    let tcp = w.tcp_pose(s.arm).ok_or("no arm")?;
+    let off = (tcp.translation.vector - target.translation.vector).norm();
+    let turn = (tcp.rotation * target.rotation.inverse()).angle();
+    if off > START_TOLERANCE || turn > START_TURN_TOLERANCE {
+        return Err(format!(
+            "the hand stops {:.1} mm and {:.1}° from the pull's start",
+            off * 1e3,
+            turn.to_degrees()
+        ));
+    }
     Ok(w)
 }
 
 /// (b): every method pulls the block to every goal of [`PULL_GOAL_TURNS`].
 fn pulls(s: &Setup) -> Result<(Vec<PullRow>, Vec<String>), String> {
-    let w0 = holding_hook(s)?;
+    let held = holding_hook(s)?;
     let block = &s.pull.anchor;
     let key = skill_key(&s.pull.name, SegmentKind::Stroke, false);
-    let bp = w0.body_pose(block).ok_or("no block")?;
-    let base = w0.arm_base(s.arm).ok_or("no arm")?;
-    let start = w0.tcp_pose(s.arm).ok_or("no arm")?;
-    let from = Point3::from(start.translation.vector);
+    let bp = held.body_pose(block).ok_or("no block")?;
+    let base = held.arm_base(s.arm).ok_or("no arm")?;
+    // Every pull starts above the contact pose of the radial stroke.
+    let (radial, _) =
+        pull_hook_poses_turned(&base, &bp, PULL_TARGET_RADIUS, 0.0).ok_or("no radial stroke")?;
+    let above = raised(&tcp_for_body_pose(&held, s.arm, &radial), PULL_LIFT);
     let mut rows = Vec::new();
     let mut labels = Vec::new();
     for (i, &turn) in PULL_GOAL_TURNS.iter().enumerate() {
@@ -301,9 +327,12 @@ fn pulls(s: &Setup) -> Result<(Vec<PullRow>, Vec<String>), String> {
             .ok_or_else(|| format!("no stroke turned by {turn} rad"))?;
         let goal = pulled_block_position(&bp, &c, &p);
         let (ct, pt) = (
-            tcp_for_body_pose(&w0, s.arm, &c),
-            tcp_for_body_pose(&w0, s.arm, &p),
+            tcp_for_body_pose(&held, s.arm, &c),
+            tcp_for_body_pose(&held, s.arm, &p),
         );
+        let w0 = moved_to(&held, s, &above, &ct)?;
+        let start = w0.tcp_pose(s.arm).ok_or("no arm")?;
+        let from = Point3::from(start.translation.vector);
         let point = |q: &Isometry3<f64>| Point3::from(q.translation.vector);
         for (lib, method) in &s.libraries {
             let plan = lib

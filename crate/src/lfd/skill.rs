@@ -70,13 +70,19 @@ impl LearnedSkill {
         }
     }
 
-    /// Learns a skill of family `kind` from `demo` (object frame) sampled every `dt`.
-    fn learn(kind: SkillKind, demo: &[Point3<f64>], dt: f64) -> Option<LearnedSkill> {
+    /// Learns a skill of family `kind` from `demo` (object frame) sampled every `dt`, an LQT-CP
+    /// one with `params`.
+    fn learn(
+        kind: SkillKind,
+        demo: &[Point3<f64>],
+        dt: f64,
+        params: SkillParams,
+    ) -> Option<LearnedSkill> {
         if demo.len() < MIN_SKILL_SAMPLES {
             return None;
         }
         match kind {
-            SkillKind::Lqt => Skill::learn(demo, dt, SkillParams::default())
+            SkillKind::Lqt => Skill::learn(demo, dt, params)
                 .ok()
                 .map(|s| LearnedSkill::Lqt(Box::new(s))),
             SkillKind::Dmp => Dmp::learn(demo, dt, DmpParams::default())
@@ -296,12 +302,13 @@ impl SkillLibrary {
                 continue;
             };
             let on_hook = hooks.contains(&a.anchor);
-            let learn = |seg: &[Point3<f64>]| LearnedSkill::learn(kind, seg, demo.dt);
+            let learn =
+                |seg: &[Point3<f64>], params| LearnedSkill::learn(kind, seg, demo.dt, params);
             let learned: Vec<(SegmentKind, Entry)> = match motion {
                 MotionKind::Grasp | MotionKind::Release => event_segments(a)
                     .into_iter()
                     .filter_map(|(segment, seg)| {
-                        let skill = learn(&seg)?;
+                        let skill = learn(&seg, SkillParams::default())?;
                         Some((
                             segment,
                             Entry {
@@ -314,7 +321,7 @@ impl SkillLibrary {
                     .collect(),
                 MotionKind::Pull => stroke::demo_stroke(a, demo.dt)
                     .and_then(|st| {
-                        let skill = learn(&st.positions)?;
+                        let skill = learn(&st.positions, stroke::params())?;
                         Some(vec![(
                             SegmentKind::Stroke,
                             Entry {

@@ -15,8 +15,32 @@
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 
 use super::{LearnedSkill, SkillLibrary, SkillSegment};
-use crate::lqt::{Trajectory, ViaPoint};
+use crate::lqt::{Basis, SkillParams, Trajectory, ViaPoint};
 use crate::sim::demo::DemoAction;
+
+/// Basis functions of a stroke's controls: three times an approach's, as its via-points (position
+/// and velocity, twice) bend the motion within a third of its duration, which ten functions
+/// cannot do without swinging the hook aside after them.
+const STROKE_BASIS: usize = 30;
+
+/// The LQT-CP parameters of a stroke: the default ones with [`STROKE_BASIS`] RBFs overlapping as
+/// the default's do (λ scaled with the square of their number).
+pub(super) fn params() -> SkillParams {
+    let d = SkillParams::default();
+    let k = d.basis.n_fct().max(2) as f64;
+    let lambda = match &d.basis {
+        Basis::Rbf { lambda, .. } => *lambda,
+        _ => DEFAULT_LAMBDA,
+    };
+    let scale = (STROKE_BASIS as f64 - 1.0) / (k - 1.0);
+    SkillParams {
+        basis: Basis::rbf_uniform(STROKE_BASIS, lambda * scale * scale),
+        ..d
+    }
+}
+
+/// RBF width λ when the default basis is not RBF.
+const DEFAULT_LAMBDA: f64 = 100.0;
 
 /// A stroke's via-point as learned: when, and where relative to the hook's contact pose.
 #[derive(Clone, Debug)]
