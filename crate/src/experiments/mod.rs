@@ -9,6 +9,8 @@
 //! * Table II: per benchmark and level, `trials` episodes from the template scene with one
 //!   disturbance injected at a seeded action boundary; methods `linear`, `rlds`, `logic-lfd`;
 //!   simulated execution time mean ± sd over the successful trials (N/A if none succeeds).
+//! * Fig. 4 ([`fig4`]): LQT-CP against the classic DMP picking B2's hook and pulling its block
+//!   to three goals through the stroke's via-points.
 
 pub mod episode;
 pub mod fig4;
