@@ -128,13 +128,20 @@ pub(super) fn demo_stroke(a: &DemoAction, dt: f64) -> Option<DemoStroke> {
         .via_points
         .iter()
         .filter(|v| v.step > descent && v.step <= pulled)
-        .map(|v| StrokeVia {
-            label: v.label.clone(),
-            phase: (v.step - descent) as f64 / last,
-            offset: frame.inverse_transform_vector(
+        .map(|v| {
+            let mut offset = frame.inverse_transform_vector(
                 &(anchor * Point3::from(Vector3::from(v.position)) - world[contact]),
-            ),
-            velocity: velocity(v.step),
+            );
+            // Never nearer the block (towards the base, −x) than at contact: the expert's descent
+            // comes down a few mm inside, which a block turned across the stroke (its corner 1 mm
+            // from the blade at contact) would catch on the blade.
+            offset.x = offset.x.max(0.0);
+            StrokeVia {
+                label: v.label.clone(),
+                phase: (v.step - descent) as f64 / last,
+                offset,
+                velocity: velocity(v.step),
+            }
         })
         .collect();
     Some(DemoStroke { positions, vias })
