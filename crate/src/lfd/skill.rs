@@ -336,9 +336,9 @@ impl SkillLibrary {
             };
             for (segment, entry) in learned {
                 let key = skill_key(&a.name, segment, on_hook);
-                if !skills.contains_key(&key) {
-                    order.push(key.clone());
-                    skills.insert(key, entry);
+                if let std::collections::btree_map::Entry::Vacant(slot) = skills.entry(key) {
+                    order.push(slot.key().clone());
+                    slot.insert(entry);
                 }
             }
         }
