@@ -56,14 +56,30 @@ fn fig4(a: Fig4Args) -> ExitCode {
             return ExitCode::from(exit::BAD_INPUT);
         }
     };
-    if let Some(path) = &a.svg {
-        if let Err(e) = std::fs::write(path, fig4::plot::svg(&f)) {
+    report(
+        a.svg.as_deref().map(|p| (p, fig4::plot::svg(&f))),
+        a.json,
+        &f,
+        || fig4::markdown(&f),
+    )
+}
+
+/// Writes an experiment's SVG (`svg`: the file and the document) and prints its result as JSON
+/// or as `markdown`.
+fn report<T: serde::Serialize>(
+    svg: Option<(&Path, String)>,
+    json: bool,
+    value: &T,
+    markdown: impl FnOnce() -> String,
+) -> ExitCode {
+    if let Some((path, doc)) = svg {
+        if let Err(e) = std::fs::write(path, doc) {
             eprintln!("{}: {e}", path.display());
             return ExitCode::from(exit::BAD_INPUT);
         }
     }
-    if a.json {
-        match serde_json::to_string_pretty(&f) {
+    if json {
+        match serde_json::to_string_pretty(value) {
             Ok(s) => println!("{s}"),
             Err(e) => {
                 eprintln!("cannot write JSON: {e}");
@@ -71,7 +87,7 @@ fn fig4(a: Fig4Args) -> ExitCode {
             }
         }
     } else {
-        print!("{}", fig4::markdown(&f));
+        print!("{}", markdown());
     }
     ExitCode::from(exit::OK)
 }
@@ -106,24 +122,14 @@ fn scaling(a: ScalingArgs) -> ExitCode {
             return ExitCode::from(exit::BAD_INPUT);
         }
     };
-    if let Some(path) = &a.svg {
-        if let Err(e) = std::fs::write(path, scaling::plot::svg(&scaling::series(&rows))) {
-            eprintln!("{}: {e}", path.display());
-            return ExitCode::from(exit::BAD_INPUT);
-        }
-    }
-    if a.json {
-        match serde_json::to_string_pretty(&rows) {
-            Ok(s) => println!("{s}"),
-            Err(e) => {
-                eprintln!("cannot write JSON: {e}");
-                return ExitCode::from(exit::BAD_INPUT);
-            }
-        }
-    } else {
-        print!("{}", scaling::markdown(&rows));
-    }
-    ExitCode::from(exit::OK)
+    report(
+        a.svg
+            .as_deref()
+            .map(|p| (p, scaling::plot::svg(&scaling::series(&rows)))),
+        a.json,
+        &rows,
+        || scaling::markdown(&rows),
+    )
 }
 
 /// Arguments of `bench planner`.
