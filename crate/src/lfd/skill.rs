@@ -238,8 +238,8 @@ struct Entry {
     skill: LearnedSkill,
     /// The declared motion of the action it was learned from.
     motion: MotionKind,
-    /// A stroke's via-points (relative to the hook's contact pose).
-    vias: Vec<stroke::StrokeVia>,
+    /// A stroke's demonstration and via-points (relative to the hook's contact pose).
+    stroke: Option<stroke::DemoStroke>,
 }
 
 /// The skills available to the executor, by [`skill_key`].
@@ -314,7 +314,7 @@ impl SkillLibrary {
                             Entry {
                                 skill,
                                 motion,
-                                vias: vec![],
+                                stroke: None,
                             },
                         ))
                     })
@@ -327,7 +327,7 @@ impl SkillLibrary {
                             Entry {
                                 skill,
                                 motion,
-                                vias: st.vias,
+                                stroke: Some(st),
                             },
                         )])
                     })

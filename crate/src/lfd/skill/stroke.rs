@@ -11,10 +11,13 @@
 //! there, in the same axes); for a new stroke they
 //! become `p = p_contact + R_z(ψ) o` and, in G, `G⁻¹ p`, at phase `(k_via − k_descent)/(T − 1)`,
 //! and LQT-CP passes them with the goal's precision. A DMP has no via-points (the paper's point).
+//! A drag longer than the executor's stroke speed allows in the demonstrated time is learned
+//! afresh from the demonstration played slower (the same motion, stretched in time).
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 
-use super::{LearnedSkill, SkillLibrary, SkillSegment};
+use super::{LearnedSkill, SkillKind, SkillLibrary, SkillSegment};
+use crate::lfd::exec::ExecParams;
 use crate::lqt::{Basis, SkillParams, Trajectory, ViaPoint};
 use crate::sim::demo::DemoAction;
 
@@ -39,6 +42,9 @@ pub(super) fn params() -> SkillParams {
     }
 }
 
+/// A slowdown this close to 1 plays the demonstration as it is.
+const SLOWDOWN_TOLERANCE: f64 = 1e-3;
+
 /// RBF width λ when the default basis is not RBF.
 const DEFAULT_LAMBDA: f64 = 100.0;
 
@@ -57,9 +63,43 @@ pub(super) struct StrokeVia {
 }
 
 /// A demonstrated stroke: its positions in the stroke frame and its via-points.
+#[derive(Clone, Debug)]
 pub(super) struct DemoStroke {
     pub(super) positions: Vec<Point3<f64>>,
-    pub(super) vias: Vec<StrokeVia>,
+    vias: Vec<StrokeVia>,
+    /// Sample period (s).
+    dt: f64,
+    /// Samples of the drag (contact to pulled).
+    drag_steps: usize,
+}
+
+impl DemoStroke {
+    /// How much slower than demonstrated a drag of `length` (m) runs: at most the executor's
+    /// stroke speed ([`ExecParams::stroke_speed`]; the tracker lags a faster stroke that folds
+    /// the arm towards its base, and the lagging hand lifts the blade over the block), never
+    /// faster than demonstrated.
+    fn slowdown(&self, length: f64) -> f64 {
+        let speed = ExecParams::default().stroke_speed();
+        let time = self.drag_steps as f64 * self.dt;
+        if time <= 0.0 {
+            return 1.0;
+        }
+        (length / speed / time).max(1.0)
+    }
+
+    /// The demonstration played `slow` times slower (linear interpolation of its samples).
+    fn slowed(&self, slow: f64) -> Vec<Point3<f64>> {
+        let n = self.positions.len();
+        let m = (libm::round((n - 1) as f64 * slow) as usize).max(1) + 1;
+        (0..m)
+            .map(|j| {
+                let s = j as f64 * (n - 1) as f64 / (m - 1) as f64;
+                let i = (s as usize).min(n - 2);
+                let f = s - i as f64;
+                self.positions[i] + (self.positions[i + 1] - self.positions[i]) * f
+            })
+            .collect()
+    }
 }
 
 /// A stroke's via-point in the world.
@@ -144,7 +184,12 @@ pub(super) fn demo_stroke(a: &DemoAction, dt: f64) -> Option<DemoStroke> {
             }
         })
         .collect();
-    Some(DemoStroke { positions, vias })
+    Some(DemoStroke {
+        positions,
+        vias,
+        dt,
+        drag_steps: pulled - contact,
+    })
 }
 
 impl SkillLibrary {
@@ -158,13 +203,28 @@ impl SkillLibrary {
         pulled: &Point3<f64>,
     ) -> Option<StrokePlan> {
         let entry = self.skills.get(key)?;
+        let demo = entry.stroke.as_ref()?;
         let frame = stroke_frame(contact, pulled);
         let along = frame.rotation;
-        let n = match &entry.skill {
+        // A longer drag than the demonstrated one runs slower: the same skill, learned from the
+        // demonstration played slower.
+        let slow = demo.slowdown((contact - pulled).norm());
+        let slowed;
+        let skill = if slow > 1.0 + SLOWDOWN_TOLERANCE {
+            let kind = match &entry.skill {
+                LearnedSkill::Lqt(_) => SkillKind::Lqt,
+                LearnedSkill::Dmp(_) => SkillKind::Dmp,
+            };
+            slowed = LearnedSkill::learn(kind, &demo.slowed(slow), demo.dt, params())?;
+            &slowed
+        } else {
+            &entry.skill
+        };
+        let n = match skill {
             LearnedSkill::Lqt(s) => s.demo().len(),
             LearnedSkill::Dmp(d) => d.n_steps(),
         };
-        let via_points: Vec<StrokeViaPoint> = entry
+        let via_points: Vec<StrokeViaPoint> = demo
             .vias
             .iter()
             .map(|v| StrokeViaPoint {
@@ -173,7 +233,7 @@ impl SkillLibrary {
                 position: contact + along * v.offset,
             })
             .collect();
-        let in_frame: Vec<ViaPoint> = entry
+        let in_frame: Vec<ViaPoint> = demo
             .vias
             .iter()
             .zip(&via_points)
@@ -181,10 +241,10 @@ impl SkillLibrary {
                 phase: v.phase,
                 position: frame.inverse_transform_point(&w.position).coords,
                 weight: None,
-                velocity: Some(v.velocity),
+                velocity: Some(v.velocity / slow),
             })
             .collect();
-        let trajectory = entry.skill.plan(start, &frame, &in_frame)?;
+        let trajectory = skill.plan(start, &frame, &in_frame)?;
         Some(StrokePlan {
             trajectory,
             frame,
