@@ -244,15 +244,6 @@ fn a_stroke_whose_hook_presses_into_the_shelf_is_neither_planned_nor_possible() 
         "{status:?}"
     );
 }
-    let (params, skills) = (ExecParams::default(), b2_skills());
-    let exec = ActionExec::new("(pull panda hook a)", kind, &world, &skills, &params);
-    let status = tick_to_end_watching(exec, &mut world, &skills, &params, |_| {});
-    assert!(
-        matches!(&status, ExecStatus::Failed(why)
-            if why.contains("held body is stopped by shelf") || why.contains("held body is stopped by a")),
-        "{status:?}"
-    );
-}
 
 #[test]
 fn a_pull_turns_the_hook_as_planned_before_it_lowers_it() {
