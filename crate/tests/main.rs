@@ -3,6 +3,7 @@
 mod any_domain;
 mod declared_names;
 mod exec;
+mod fig4;
 mod fuzz;
 mod ground;
 mod layers;

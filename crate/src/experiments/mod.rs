@@ -11,8 +11,11 @@
 //!   ([`episode`]); methods `linear`, `rlds`, `logic-lfd`; simulated execution time mean ± sd
 //!   over the successful trials (N/A if none succeeds), and what a mid-motion L1 cost
 //!   ([`table2_motion`]).
+//! * Fig. 4 ([`fig4`]): LQT-CP against the classic DMP picking B2's hook and pulling its block
+//!   to three goals through the stroke's via-points.
 
 pub mod episode;
+pub mod fig4;
 pub mod fuzz;
 pub mod scaling;
 pub mod soak;

@@ -1,28 +1,36 @@
 //! The motion skills the executor runs for each segment of an action (paper §III-B, Algorithm 1
-//! line 14: τ = LQT-CP(a)).
+//! line 14: τ = LQT-CP(a)): one skill per demonstrated action primitive.
 //!
-//! Every demonstrated action is split at its gripper event into an *approach* (start → grasp or
-//! release point) and a *retreat* (after the event), both in the frame of the action's anchor
-//! object (`sim::demo`: the picked object, or the carried object's resting pose). One skill is
-//! learned per segment kind from the first demonstrated occurrence:
+//! Every demonstrated action is split into segments, each in the frame of the action's anchor
+//! object (`sim::demo`): a grasp or a release at its gripper event into an *approach* (start →
+//! grasp or release point) and a *retreat* (after the event); a pull into its *stroke* (from the
+//! hook's descent behind the block to the end of the drag, `skill/stroke.rs`). One skill is
+//! learned per action schema and segment, keyed `action/segment` by the names the domain's
+//! `motions.json` declares (`pick/approach`, `place-on-shelf/retreat`, `pull/stroke`, …), with
+//! `@hook` appended when the action's object is a hook (it is grasped at its handle, not at its
+//! centre). Where a schema occurs several times in the demo, its first occurrence with a usable
+//! segment is learned (a retreat only when it stays near the object). A schema the demo never
+//! shows borrows the skill of the first demonstrated schema with the same declared motion
+//! (`unstack` moves as `pick` does).
 //!
-//! ```text
-//!   grasp-approach, grasp-retreat   (pick, unstack)
-//!   place-approach, place-retreat   (place, stack, place-on-shelf)
-//! ```
-//!
-//! as an LQT-CP skill (`lqt::Skill`, DMP mode: track the demo's acceleration profile, reach the
-//! goal with high precision) or a classic DMP (`lqt::Dmp`). At execution a segment is planned from
-//! the current TCP to the anchor's *current* pose and run through its feedback controller
-//! (u_t = −K̃_t x̃_t); when the anchor moves the controller is re-targeted to the new frame.
-//! Segments without a learned skill (hook strokes, custom demonstrations without trajectories)
-//! follow the minimum-jerk profile x(s) = x_0 + (x_T − x_0)(10 s³ − 15 s⁴ + 6 s⁵), s = t/T.
+//! A skill is LQT-CP (`lqt::Skill`, DMP mode: track the demo's acceleration profile, reach the
+//! goal with high precision, pass the via-points with the goal's precision) or a classic DMP
+//! (`lqt::Dmp`, no via-points). At execution a segment is planned from the current TCP to the
+//! anchor's *current* pose and run through its feedback controller (u_t = −K̃_t x̃_t); when the
+//! anchor moves the controller is re-targeted to the new frame. Segments without a learned skill
+//! (custom demonstrations without trajectories) follow the minimum-jerk profile
+//! x(s) = x_0 + (x_T − x_0)(10 s³ − 15 s⁴ + 6 s⁵), s = t/T.
+
+mod stroke;
+
+pub use stroke::{stroke_frame, StrokePlan, StrokeViaPoint};
 
 use std::collections::BTreeMap;
 
 use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 
-use crate::lqt::{Dmp, DmpParams, FeedbackController, Skill, SkillParams};
+use crate::lqt::{Dmp, DmpParams, FeedbackController, Skill, SkillParams, Trajectory, ViaPoint};
+use crate::sim::demo::DemoAction;
 use crate::sim::motions::{MotionKind, Motions};
 
 use super::session::SkillKind;
@@ -44,16 +52,69 @@ pub enum LearnedSkill {
 }
 
 impl LearnedSkill {
-    fn plan(
+    /// Plans from `start` (world, at rest) for the object frame `object_pose`, through
+    /// `via_points` (object frame; a DMP ignores them).
+    pub fn plan(
         &self,
         start: &Point3<f64>,
         object_pose: &Isometry3<f64>,
-    ) -> Option<crate::lqt::Trajectory> {
+        via_points: &[ViaPoint],
+    ) -> Option<Trajectory> {
         match self {
-            LearnedSkill::Lqt(s) => s.plan(start, object_pose, &[]).ok(),
-            LearnedSkill::Dmp(d) => d.plan(start, object_pose, &[]).ok(),
+            LearnedSkill::Lqt(s) => s.plan(start, object_pose, via_points).ok(),
+            LearnedSkill::Dmp(d) => d.plan(start, object_pose, via_points).ok(),
         }
     }
+
+    /// Learns a skill of family `kind` from `demo` (object frame) sampled every `dt`, an LQT-CP
+    /// one with `params`.
+    fn learn(
+        kind: SkillKind,
+        demo: &[Point3<f64>],
+        dt: f64,
+        params: SkillParams,
+    ) -> Option<LearnedSkill> {
+        if demo.len() < MIN_SKILL_SAMPLES {
+            return None;
+        }
+        match kind {
+            SkillKind::Lqt => Skill::learn(demo, dt, params)
+                .ok()
+                .map(|s| LearnedSkill::Lqt(Box::new(s))),
+            SkillKind::Dmp => Dmp::learn(demo, dt, DmpParams::default())
+                .ok()
+                .map(|d| LearnedSkill::Dmp(Box::new(d))),
+        }
+    }
+}
+
+/// The segments of an action a skill is learned for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SegmentKind {
+    /// From the start to the gripper event (grasp or release point).
+    Approach,
+    /// From the gripper event on (a lift near the object).
+    Retreat,
+    /// A pull's descent behind the block and its drag (via-points: the block's far edges).
+    Stroke,
+}
+
+impl SegmentKind {
+    /// The segment's name in a skill key.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SegmentKind::Approach => "approach",
+            SegmentKind::Retreat => "retreat",
+            SegmentKind::Stroke => "stroke",
+        }
+    }
+}
+
+/// The key of the skill of action schema `action`'s `segment`: `action/segment`, with `@hook`
+/// when the action's object is a hook.
+pub fn skill_key(action: &str, segment: SegmentKind, on_hook: bool) -> String {
+    let hook = if on_hook { "@hook" } else { "" };
+    format!("{action}/{}{hook}", segment.as_str())
 }
 
 /// One planned segment.
@@ -78,6 +139,19 @@ pub enum SkillSegment {
 }
 
 impl SkillSegment {
+    /// A learned skill's planned trajectory run in closed loop from orientation
+    /// `start_rotation`; `None` for an empty trajectory.
+    pub fn closed(traj: &Trajectory, start_rotation: UnitQuaternion<f64>) -> Option<SkillSegment> {
+        if traj.positions.is_empty() {
+            return None;
+        }
+        Some(SkillSegment::Closed {
+            nominal: traj.positions.iter().map(|p| p.coords).collect(),
+            ctrl: Box::new(traj.controller()),
+            start_rotation,
+        })
+    }
+
     /// The planned positions, one per tick: the profile, or a learned skill's nominal motion.
     fn path(&self) -> &[Vector3<f64>] {
         match self {
@@ -159,26 +233,59 @@ impl SkillSegment {
     }
 }
 
-/// The skills available to the executor, by segment kind.
-#[derive(Clone, Debug, Default)]
-pub struct SkillLibrary {
-    skills: BTreeMap<String, LearnedSkill>,
+/// A learned skill with what it was learned for.
+#[derive(Clone, Debug)]
+struct Entry {
+    skill: LearnedSkill,
+    /// The declared motion of the action it was learned from.
+    motion: MotionKind,
+    /// A stroke's demonstration and via-points (relative to the hook's contact pose).
+    stroke: Option<stroke::DemoStroke>,
 }
 
-/// Segment kinds of a demonstrated action schema, by its declared motion.
-fn kinds_of(motions: &Motions, name: &str) -> Option<(&'static str, &'static str)> {
-    match motions.actions.get(name)?.motion {
-        MotionKind::Grasp => Some(("grasp-approach", "grasp-retreat")),
-        MotionKind::Release => Some(("place-approach", "place-retreat")),
-        MotionKind::Pull | MotionKind::None => None,
+/// The skills available to the executor, by [`skill_key`].
+#[derive(Clone, Debug, Default)]
+pub struct SkillLibrary {
+    skills: BTreeMap<String, Entry>,
+}
+
+/// The TCP positions of a demonstrated action's samples, in its anchor frame.
+fn positions(a: &DemoAction) -> Vec<Point3<f64>> {
+    a.samples
+        .iter()
+        .map(|s| Point3::new(s[0], s[1], s[2]))
+        .collect()
+}
+
+/// The approach and retreat of a demonstrated grasp or release, split at its gripper event; the
+/// retreat only when it stays near the object (in B3 the demo's retreat returns to the arm's
+/// home pose: not object-centric, so it is a plain lift).
+fn event_segments(a: &DemoAction) -> Vec<(SegmentKind, Vec<Point3<f64>>)> {
+    let Some(ev) = a
+        .gripper
+        .iter()
+        .find(|g| g.step > 0 && g.step < a.samples.len())
+    else {
+        return vec![];
+    };
+    let pts = positions(a);
+    let mut out = vec![(SegmentKind::Approach, pts[..=ev.step].to_vec())];
+    let retreat = &pts[ev.step..];
+    let local = retreat
+        .first()
+        .zip(retreat.last())
+        .is_some_and(|(a, b)| (a - b).norm() < LOCAL_RETREAT_SPAN);
+    if local {
+        out.push((SegmentKind::Retreat, retreat.to_vec()));
     }
+    out
 }
 
 impl SkillLibrary {
-    /// Learns the segment skills from a `demo.json` with trajectories (see `sim::demo`). A demo
-    /// without trajectories (only `actions` names) gives an empty library (minimum-jerk motion).
-    /// Actions whose anchor is one of `hooks` learn `hook-…` skills (the hook is grasped at its
-    /// handle, not at its centre). What each action does comes from the domain's `motions`.
+    /// Learns the skills from a `demo.json` with trajectories (see `sim::demo`). A demo without
+    /// trajectories (only `actions` names) gives an empty library (minimum-jerk motion).
+    /// Actions whose anchor is one of `hooks` learn `…@hook` skills. What each action does comes
+    /// from the domain's `motions`.
     pub fn learn(
         demo_json: &str,
         kind: SkillKind,
@@ -189,64 +296,73 @@ impl SkillLibrary {
         let Ok(demo) = crate::sim::demo::from_json(demo_json) else {
             return SkillLibrary { skills };
         };
+        // The learned keys in demo order (the donors of undemonstrated schemas).
+        let mut order = Vec::new();
         for a in &demo.actions {
-            let Some((approach, retreat)) = kinds_of(motions, &a.name) else {
+            let Some(motion) = motions.actions.get(&a.name).map(|d| d.motion) else {
                 continue;
             };
-            let Some(ev) = a
-                .gripper
-                .iter()
-                .find(|g| g.step > 0 && g.step < a.samples.len())
-            else {
-                continue;
+            let on_hook = hooks.contains(&a.anchor);
+            let learn =
+                |seg: &[Point3<f64>], params| LearnedSkill::learn(kind, seg, demo.dt, params);
+            let learned: Vec<(SegmentKind, Entry)> = match motion {
+                MotionKind::Grasp | MotionKind::Release => event_segments(a)
+                    .into_iter()
+                    .filter_map(|(segment, seg)| {
+                        let skill = learn(&seg, SkillParams::default())?;
+                        Some((
+                            segment,
+                            Entry {
+                                skill,
+                                motion,
+                                stroke: None,
+                            },
+                        ))
+                    })
+                    .collect(),
+                MotionKind::Pull => stroke::demo_stroke(a, demo.dt)
+                    .and_then(|st| {
+                        let skill = learn(&st.positions, stroke::params())?;
+                        Some(vec![(
+                            SegmentKind::Stroke,
+                            Entry {
+                                skill,
+                                motion,
+                                stroke: Some(st),
+                            },
+                        )])
+                    })
+                    .unwrap_or_default(),
+                MotionKind::None => vec![],
             };
-            let pts: Vec<Point3<f64>> = a
-                .samples
-                .iter()
-                .map(|s| Point3::new(s[0], s[1], s[2]))
-                .collect();
-            // The retreat is learned only when it stays near the object (in B3 the demo's
-            // retreat returns to the arm's home pose: not object-centric, so it is a plain lift).
-            let local = |seg: &[Point3<f64>]| {
-                seg.first()
-                    .zip(seg.last())
-                    .is_some_and(|(a, b)| (a - b).norm() < LOCAL_RETREAT_SPAN)
-            };
-            let prefix = if hooks.contains(&a.anchor) {
-                "hook-"
-            } else {
-                ""
-            };
-            for (name, seg) in [(approach, &pts[..=ev.step]), (retreat, &pts[ev.step..])] {
-                if name == retreat && !local(seg) {
-                    continue;
-                }
-                let name = &format!("{prefix}{name}");
-                if skills.contains_key(name.as_str()) || seg.len() < MIN_SKILL_SAMPLES {
-                    continue;
-                }
-                let learned = match kind {
-                    SkillKind::Lqt => Skill::learn(seg, demo.dt, SkillParams::default())
-                        .ok()
-                        .map(|s| LearnedSkill::Lqt(Box::new(s))),
-                    SkillKind::Dmp => Dmp::learn(seg, demo.dt, DmpParams::default())
-                        .ok()
-                        .map(|d| LearnedSkill::Dmp(Box::new(d))),
-                };
-                if let Some(l) = learned {
-                    skills.insert(name.clone(), l);
+            for (segment, entry) in learned {
+                let key = skill_key(&a.name, segment, on_hook);
+                if let std::collections::btree_map::Entry::Vacant(slot) = skills.entry(key) {
+                    order.push(slot.key().clone());
+                    slot.insert(entry);
                 }
             }
         }
+        borrow_undemonstrated(&mut skills, &order, motions);
         SkillLibrary { skills }
     }
 
-    /// Whether a learned skill exists for the segment kind.
+    /// The keys of the learned skills, in order.
+    pub fn keys(&self) -> impl Iterator<Item = &str> {
+        self.skills.keys().map(String::as_str)
+    }
+
+    /// The learned skill of `key`.
+    pub fn get(&self, key: &str) -> Option<&LearnedSkill> {
+        self.skills.get(key).map(|e| &e.skill)
+    }
+
+    /// Whether a learned skill exists for `key` ([`skill_key`]).
     pub fn has(&self, name: &str) -> bool {
         self.skills.contains_key(name)
     }
 
-    /// Plans the segment `name` from `start`: with a learned skill relative to `anchor` (the
+    /// Plans the segment of skill `name` from `start`: with a learned skill relative to `anchor` (the
     /// object frame: centre + yaw), else a minimum-jerk profile to `goal` over `steps` ticks.
     pub fn segment(
         &self,
@@ -256,15 +372,14 @@ impl SkillLibrary {
         anchor: Option<&Isometry3<f64>>,
         steps: usize,
     ) -> SkillSegment {
-        if let (Some(skill), Some(anchor)) = (self.skills.get(name), anchor) {
-            if let Some(traj) = skill.plan(&Point3::from(start.translation.vector), anchor) {
-                if !traj.positions.is_empty() {
-                    return SkillSegment::Closed {
-                        nominal: traj.positions.iter().map(|p| p.coords).collect(),
-                        ctrl: Box::new(traj.controller()),
-                        start_rotation: start.rotation,
-                    };
-                }
+        if let (Some(entry), Some(anchor)) = (self.skills.get(name), anchor) {
+            let from = Point3::from(start.translation.vector);
+            let closed = entry
+                .skill
+                .plan(&from, anchor, &[])
+                .and_then(|traj| SkillSegment::closed(&traj, start.rotation));
+            if let Some(seg) = closed {
+                return seg;
             }
         }
         let x0 = start.translation.vector;
@@ -280,6 +395,39 @@ impl SkillLibrary {
         SkillSegment::Profile {
             positions,
             start_rotation: start.rotation,
+        }
+    }
+}
+
+/// Gives every grasp or release schema of `motions` the demo does not show the skills (per
+/// segment, plain and `@hook`) of the first demonstrated schema (`order`: the learned keys in
+/// demo order) with the same declared motion.
+fn borrow_undemonstrated(
+    skills: &mut BTreeMap<String, Entry>,
+    order: &[String],
+    motions: &Motions,
+) {
+    for (name, decl) in &motions.actions {
+        if !matches!(decl.motion, MotionKind::Grasp | MotionKind::Release) {
+            continue;
+        }
+        for segment in [SegmentKind::Approach, SegmentKind::Retreat] {
+            for on_hook in [false, true] {
+                let key = skill_key(name, segment, on_hook);
+                if skills.contains_key(&key) {
+                    continue;
+                }
+                let suffix = skill_key("", segment, on_hook);
+                let donor = order
+                    .iter()
+                    .filter(|k| k.ends_with(&suffix))
+                    .filter_map(|k| skills.get(k))
+                    .find(|e| e.motion == decl.motion)
+                    .cloned();
+                if let Some(e) = donor {
+                    skills.insert(key, e);
+                }
+            }
         }
     }
 }

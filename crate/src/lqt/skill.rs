@@ -74,6 +74,10 @@ pub struct ViaPoint {
     pub position: Vector3<f64>,
     /// Precision (1/m²); `None` uses the goal's.
     pub weight: Option<f64>,
+    /// Velocity to pass with, in the object frame (m/s), held with the goal velocity's
+    /// precision; `None` leaves it free.
+    #[serde(default)]
+    pub velocity: Option<Vector3<f64>>,
 }
 
 /// What the gripper does when the skill ends.
@@ -362,6 +366,7 @@ impl Skill {
         let t_n = self.demo.len();
         let goal = self.demo[t_n - 1];
         let mut targets = Vec::with_capacity(via_points.len() + 1);
+        let with_vel = self.params.order >= 2 && self.params.w_goal_vel > 0.0;
         for (j, v) in via_points.iter().enumerate() {
             if !(v.phase.is_finite() && (0.0..=1.0).contains(&v.phase)) {
                 return Err(LqtError::input(
@@ -369,13 +374,14 @@ impl Skill {
                     format!("expected a number in [0, 1], got {}", v.phase),
                 ));
             }
+            let vel = v.velocity.filter(|_| with_vel);
             targets.push(Target {
                 t: ((v.phase * (t_n - 1) as f64).round() as usize).max(1),
                 role: TargetRole::Via,
                 pos: v.position.as_slice().to_vec(),
                 w_pos: v.weight.unwrap_or(self.params.w_goal),
-                vel: None,
-                w_vel: None,
+                vel: vel.map(|u| u.as_slice().to_vec()),
+                w_vel: vel.map(|_| self.params.w_goal_vel),
             });
         }
         targets.push(Target {

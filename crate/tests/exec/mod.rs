@@ -5,3 +5,4 @@
 mod certified;
 mod grasp;
 mod release;
+mod skills;

@@ -74,6 +74,7 @@ fn skill_passes_via_point() {
         phase: 0.5,
         position: Vector3::new(-0.1, -0.1, 0.2),
         weight: None,
+        velocity: None,
     };
     let tr = skill
         .plan(&demo[0], &Isometry3::identity(), std::slice::from_ref(&via))
@@ -190,6 +191,7 @@ fn a_skill_round_trips_through_json_and_bad_input_is_refused() {
         phase: 1.5,
         position: Vector3::zeros(),
         weight: None,
+        velocity: None,
     };
     assert!(skill
         .plan(&demo[0], &Isometry3::identity(), &[via])

@@ -32,6 +32,64 @@ enum Which {
     Table2(crate::cmd_tables::Table2Args),
     /// Scaling study: B1 tower tasks with N blocks, first-plan time per method.
     Scaling(ScalingArgs),
+    /// The paper's Fig. 4: LQT-CP against the DMP, picking B2's hook and pulling its block.
+    Fig4(Fig4Args),
+}
+
+/// Arguments of `bench fig4`.
+#[derive(clap::Args)]
+pub struct Fig4Args {
+    /// Print JSON (with every path) instead of markdown tables.
+    #[arg(long)]
+    json: bool,
+    /// Write an SVG of the figure (view from above) to this file.
+    #[arg(long)]
+    svg: Option<PathBuf>,
+}
+
+fn fig4(a: Fig4Args) -> ExitCode {
+    use logic_lfd::experiments::fig4;
+    let f = match fig4::fig4() {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("bench fig4: {e}");
+            return ExitCode::from(exit::BAD_INPUT);
+        }
+    };
+    report(
+        a.svg.as_deref().map(|p| (p, fig4::plot::svg(&f))),
+        a.json,
+        &f,
+        || fig4::markdown(&f),
+    )
+}
+
+/// Writes an experiment's SVG (`svg`: the file and the document) and prints its result as JSON
+/// or as `markdown`.
+fn report<T: serde::Serialize>(
+    svg: Option<(&Path, String)>,
+    json: bool,
+    value: &T,
+    markdown: impl FnOnce() -> String,
+) -> ExitCode {
+    if let Some((path, doc)) = svg {
+        if let Err(e) = std::fs::write(path, doc) {
+            eprintln!("{}: {e}", path.display());
+            return ExitCode::from(exit::BAD_INPUT);
+        }
+    }
+    if json {
+        match serde_json::to_string_pretty(value) {
+            Ok(s) => println!("{s}"),
+            Err(e) => {
+                eprintln!("cannot write JSON: {e}");
+                return ExitCode::from(exit::BAD_INPUT);
+            }
+        }
+    } else {
+        print!("{}", markdown());
+    }
+    ExitCode::from(exit::OK)
 }
 
 /// Arguments of `bench scaling`.
@@ -64,24 +122,14 @@ fn scaling(a: ScalingArgs) -> ExitCode {
             return ExitCode::from(exit::BAD_INPUT);
         }
     };
-    if let Some(path) = &a.svg {
-        if let Err(e) = std::fs::write(path, scaling::plot::svg(&scaling::series(&rows))) {
-            eprintln!("{}: {e}", path.display());
-            return ExitCode::from(exit::BAD_INPUT);
-        }
-    }
-    if a.json {
-        match serde_json::to_string_pretty(&rows) {
-            Ok(s) => println!("{s}"),
-            Err(e) => {
-                eprintln!("cannot write JSON: {e}");
-                return ExitCode::from(exit::BAD_INPUT);
-            }
-        }
-    } else {
-        print!("{}", scaling::markdown(&rows));
-    }
-    ExitCode::from(exit::OK)
+    report(
+        a.svg
+            .as_deref()
+            .map(|p| (p, scaling::plot::svg(&scaling::series(&rows)))),
+        a.json,
+        &rows,
+        || scaling::markdown(&rows),
+    )
 }
 
 /// Arguments of `bench planner`.
@@ -114,6 +162,7 @@ pub fn run(args: Args) -> ExitCode {
         Which::Table1(a) => crate::cmd_tables::run_table1(a),
         Which::Table2(a) => crate::cmd_tables::run_table2(a),
         Which::Scaling(a) => scaling(a),
+        Which::Fig4(a) => fig4(a),
     }
 }
 

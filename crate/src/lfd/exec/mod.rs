@@ -53,7 +53,7 @@ pub struct ActionExec {
     event_frame: Option<Isometry3<f64>>,
     /// Phase before which a transit (rise, move over, descend) was inserted.
     transit_at: Option<usize>,
-    /// The body acted on is the hook (its skills are the `hook-…` ones).
+    /// The body acted on is the hook (its skills are the `…@hook` ones).
     hook: bool,
     /// The motion's heights: the grasp is chosen with the hand clear up to half the approach
     /// height.
@@ -75,6 +75,9 @@ struct Running {
     goal: Isometry3<f64>,
     /// Body watched for re-anchoring, where it was, and the skill frame planned for.
     anchor: Option<Anchor>,
+    /// The step from which the anchor is no longer followed (a stroke's: the hook is behind the
+    /// block, which moves because the hook drags it).
+    anchor_until: Option<usize>,
     frame: Option<Isometry3<f64>>,
     lag: usize,
     /// Joint-space recovery: the joint goals still to reach, the first followed instead of the
@@ -115,7 +118,7 @@ impl ActionExec {
             }
             ActionKind::Pull { .. } => true,
         };
-        let (arm, mut phases) = action_phases(&kind, skills, p, hook);
+        let (arm, mut phases) = action_phases(action, &kind, skills, p, hook);
         prepare_arm(world, arm, p, &mut phases);
         let gripper = world
             .arm_command(arm)

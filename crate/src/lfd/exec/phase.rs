@@ -8,7 +8,7 @@ use crate::sim::{GripperCommand, World};
 use crate::tamp::action::{ActionKind, Placement};
 use crate::tamp::motion::rise_before_action;
 
-use crate::lfd::skill::SkillLibrary;
+use crate::lfd::skill::{skill_key, SegmentKind, SkillLibrary};
 
 /// One step of an action's motion.
 #[derive(Clone, Debug, PartialEq)]
@@ -38,6 +38,9 @@ pub(super) enum Via {
     /// A pull stroke: hook blade behind `body`, then dragged towards the base (`stage` 0..3),
     /// the stroke turned by `turn` rad.
     Pull { body: String, stage: u8, turn: f64 },
+    /// A pull's learned stroke (stages 1 and 2 in one skill): from above the contact pose down
+    /// behind `body`, through the skill's via-points, and the drag to the pulled pose.
+    Stroke { body: String, turn: f64 },
     /// Transit: straight up (or down) to TCP height `z`.
     Rise { z: f64 },
     /// Where the TCP is, with the joints that leave the most room to their limits: a joint-space
@@ -62,8 +65,10 @@ impl Via {
 /// Whether a segment to `via` must not be replaced by a transit: the hook's stroke itself (from
 /// its contact pose on), and transits.
 pub(super) fn no_transit(via: &Via) -> bool {
-    matches!(via, Via::Rise { .. } | Via::Over { .. } | Via::Unwind)
-        || matches!(via, Via::Pull { stage, .. } if *stage > 0)
+    matches!(
+        via,
+        Via::Rise { .. } | Via::Over { .. } | Via::Unwind | Via::Stroke { .. }
+    ) || matches!(via, Via::Pull { stage, .. } if *stage > 0)
 }
 
 /// Below this [`panda::limit_margin`] (of a joint's range) an action starts by unwinding the
@@ -96,62 +101,89 @@ impl ActionExec {
         self.segment = None;
     }
 
+    /// The key of the learned skill a move to `via` runs (`profile` when none).
     pub(super) fn skill_name(&self, via: &Via) -> String {
-        let grasping = matches!(self.kind, ActionKind::Grasp { .. });
-        let base = match via {
-            Via::Grasp { skill: true, .. } => "grasp-approach",
-            Via::Place { skill: true, .. } => "place-approach",
-            Via::Up { skill: true, .. } if grasping => "grasp-retreat",
-            Via::Up { skill: true, .. } => "place-retreat",
+        let segment = match via {
+            Via::Grasp { skill: true, .. } | Via::Place { skill: true, .. } => {
+                SegmentKind::Approach
+            }
+            Via::Up { skill: true, .. } => SegmentKind::Retreat,
+            Via::Stroke { .. } => SegmentKind::Stroke,
             _ => return "profile".into(),
         };
-        if self.hook {
-            format!("hook-{base}")
-        } else {
-            base.to_string()
-        }
+        skill_key(
+            schema_of(&self.action),
+            segment,
+            self.hook && !matches!(via, Via::Stroke { .. }),
+        )
     }
+}
+
+/// The schema name of a grounded action `(name arg …)`.
+pub(super) fn schema_of(action: &str) -> &str {
+    action
+        .trim_start_matches('(')
+        .split([' ', ')'])
+        .next()
+        .unwrap_or_default()
 }
 
 /// The arm that executes `kind` and its phases: the learned skills' segments where the library
 /// has them (`hook`: the `hook-…` ones), straight moves otherwise.
 pub(super) fn action_phases(
+    action: &str,
     kind: &ActionKind,
     skills: &SkillLibrary,
     p: &ExecParams,
     hook: bool,
 ) -> (usize, Vec<Phase>) {
-    let pre = if hook { "hook-" } else { "" };
+    let key = |segment| skill_key(schema_of(action), segment, hook);
     match kind {
-        ActionKind::Grasp { arm, body } => (*arm, grasp_phases(body, skills, p, pre)),
+        ActionKind::Grasp { arm, body } => (*arm, grasp_phases(body, skills, p, &key)),
         ActionKind::Release { arm, placement, .. } => {
             let placement = placement.clone().unwrap_or(Placement::At {
                 x: 0.0,
                 y: 0.0,
                 yaw: 0.0,
             });
-            (*arm, release_phases(placement, skills, p, pre))
+            (*arm, release_phases(placement, skills, p, &key))
         }
         ActionKind::Pull {
             arm, body, turn, ..
-        } => (
-            *arm,
-            (0..4)
-                .map(|stage| {
-                    Phase::Move(Via::Pull {
-                        body: body.clone(),
-                        stage,
-                        turn: *turn,
-                    })
+        } => {
+            let stage = |stage| {
+                Phase::Move(Via::Pull {
+                    body: body.clone(),
+                    stage,
+                    turn: *turn,
                 })
-                .collect(),
-        ),
+            };
+            // The learned stroke replaces the descent and the drag; without one, straight moves.
+            let phases = if skills.has(&skill_key(schema_of(action), SegmentKind::Stroke, false)) {
+                vec![
+                    stage(0),
+                    Phase::Move(Via::Stroke {
+                        body: body.clone(),
+                        turn: *turn,
+                    }),
+                    stage(3),
+                ]
+            } else {
+                (0..4).map(stage).collect()
+            };
+            (*arm, phases)
+        }
     }
 }
 
 /// A grasp of `body`: open, approach (the learned one, or above and down), close, lift.
-fn grasp_phases(body: &str, skills: &SkillLibrary, p: &ExecParams, pre: &str) -> Vec<Phase> {
-    if skills.has(&format!("{pre}grasp-approach")) {
+fn grasp_phases(
+    body: &str,
+    skills: &SkillLibrary,
+    p: &ExecParams,
+    key: &dyn Fn(SegmentKind) -> String,
+) -> Vec<Phase> {
+    if skills.has(&key(SegmentKind::Approach)) {
         return vec![
             Phase::Gripper(GripperCommand::Open),
             Phase::Move(Via::Grasp {
@@ -162,7 +194,7 @@ fn grasp_phases(body: &str, skills: &SkillLibrary, p: &ExecParams, pre: &str) ->
             Phase::Gripper(GripperCommand::Close),
             Phase::Move(Via::Up {
                 dz: p.motion.lift_height,
-                skill: skills.has(&format!("{pre}grasp-retreat")),
+                skill: skills.has(&key(SegmentKind::Retreat)),
             }),
         ];
     }
@@ -192,9 +224,9 @@ fn release_phases(
     placement: Placement,
     skills: &SkillLibrary,
     p: &ExecParams,
-    pre: &str,
+    key: &dyn Fn(SegmentKind) -> String,
 ) -> Vec<Phase> {
-    if skills.has("place-approach") && skills.has("place-retreat") {
+    if skills.has(&key(SegmentKind::Approach)) && skills.has(&key(SegmentKind::Retreat)) {
         return vec![
             Phase::Move(Via::Place {
                 placement,
@@ -204,7 +236,7 @@ fn release_phases(
             Phase::Gripper(GripperCommand::Open),
             Phase::Move(Via::Up {
                 dz: p.motion.approach_height,
-                skill: skills.has(&format!("{pre}place-retreat")),
+                skill: true,
             }),
         ];
     }

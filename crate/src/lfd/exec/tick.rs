@@ -2,11 +2,11 @@
 //! move (plan or re-anchor the segment, command the arm and step the world, undo a stuck lift,
 //! fly a transit when blocked, and at the segment's end: go on, recover, or fail).
 
-use nalgebra::{Isometry3, Translation3};
+use nalgebra::{Isometry3, Point3, Translation3};
 
 use super::phase::{no_transit, Phase, Via};
 use super::recovery::{rise_by_ready, stuck_lift, unwound};
-use super::via::{anchor_frame, ViaPose};
+use super::via::{anchor_frame, pull_stroke, ViaPose};
 use super::{ActionExec, ExecParams, ExecStatus, Running};
 use crate::lfd::skill::SkillLibrary;
 use crate::sim::{GripperCommand, World, WorldEvent};
@@ -139,7 +139,7 @@ impl ActionExec {
         // via-point of a pull: a hook turned otherwise lowers its long arm elsewhere.
         let turn_matters = match self.phases.get(self.phase) {
             Some(Phase::Move(Via::Grasp { dz, .. })) => *dz <= 0.0,
-            Some(Phase::Move(Via::Pull { .. })) => true,
+            Some(Phase::Move(Via::Pull { .. } | Via::Stroke { .. })) => true,
             _ => false,
         };
         if let Some(status) = self.step_segment(world) {
@@ -155,6 +155,10 @@ impl ActionExec {
             return ExecStatus::Failed("no segment".into());
         };
         seg.t += 1;
+        // Once the hook is down behind the block, the block moves because the stroke drags it.
+        if seg.anchor_until.is_some_and(|u| seg.t >= u) {
+            seg.anchor = None;
+        }
         if seg.t >= seg.traj.len() {
             if let Some(status) = self.segment_ended(world, via, turn_matters, dt, p) {
                 return status;
@@ -476,12 +480,32 @@ impl ActionExec {
         };
         let duration = (dist / speed).max(p.min_segment);
         let steps = ((duration / world.dt()).round() as usize).max(2);
-        let traj = skills.segment(&self.skill_name(via), &start, &goal, frame.as_ref(), steps);
+        let name = self.skill_name(via);
+        let (traj, anchor_until) = match via {
+            Via::Stroke { body, turn } => {
+                let stroke = pull_stroke(world, self.arm, body, *turn)?;
+                let point = |p: &Isometry3<f64>| Point3::from(p.translation.vector);
+                let (seg, _, behind) = skills
+                    .stroke_segment(
+                        &name,
+                        &start,
+                        &point(&stroke.contact),
+                        &point(&stroke.pulled),
+                    )
+                    .ok_or_else(|| format!("the learned stroke {name} cannot be planned"))?;
+                (seg, Some(behind))
+            }
+            _ => (
+                skills.segment(&name, &start, &goal, frame.as_ref(), steps),
+                None,
+            ),
+        };
         Ok(Running {
             traj,
             t: 0,
             goal,
             anchor,
+            anchor_until,
             frame,
             lag: 0,
             joint_goals: match via {

@@ -1,10 +1,11 @@
 //! Via-point poses: where the TCP goes for each kind of via-point, computed from the world when
 //! a segment starts (and again when its anchor moves), with the object frame of its skill.
 
-use nalgebra::{Isometry3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 
 use super::phase::Via;
 use super::ActionExec;
+use crate::lfd::skill::stroke_frame;
 use crate::sim::geometry::{raised, rest_pose, rest_pose_on, tcp_for_body_pose};
 use crate::sim::World;
 use crate::tamp::action::{ActionKind, Placement};
@@ -98,6 +99,18 @@ impl ActionExec {
                     anchor,
                 })
             }
+            Via::Stroke { body, turn } => {
+                let stroke = pull_stroke(world, self.arm, body, *turn)?;
+                let at = world.body_pose(body).map(|q| q.translation.vector);
+                Ok(ViaPose {
+                    goal: stroke.pulled,
+                    frame: Some(stroke.frame()),
+                    anchor: at.map(|at| Anchor {
+                        body: body.clone(),
+                        at,
+                    }),
+                })
+            }
             Via::Pull { body, stage, turn } => {
                 let g = pull_via(world, self.arm, body, *stage, *turn)?;
                 let at = world.body_pose(body).map(|q| q.translation.vector);
@@ -161,16 +174,31 @@ fn placement_pose(
     }
 }
 
-/// Via-points of a pull stroke (the simulator's hook geometry, `sim::demo::pull_hook_poses`):
-/// 0 above the contact pose (blade behind the block), 1 the contact pose, 2 the pulled pose
-/// (block at `PULL_TARGET_RADIUS` from the base), 3 lifted from there.
-fn pull_via(
+/// The TCP poses of a pull stroke: the hook behind the block and at the end of the drag.
+pub(super) struct PullStroke {
+    pub(super) contact: Isometry3<f64>,
+    pub(super) pulled: Isometry3<f64>,
+}
+
+impl PullStroke {
+    /// The stroke's skill frame (`lfd::skill::stroke_frame`).
+    pub(super) fn frame(&self) -> Isometry3<f64> {
+        stroke_frame(
+            &Point3::from(self.contact.translation.vector),
+            &Point3::from(self.pulled.translation.vector),
+        )
+    }
+}
+
+/// The TCP poses of the stroke turned by `turn` that pulls `body` into reach of `arm` (the
+/// simulator's hook geometry, `sim::demo::pull_hook_poses_turned`: the block ends
+/// `PULL_TARGET_RADIUS` from the base).
+pub(super) fn pull_stroke(
     world: &World,
     arm: usize,
     body: &str,
-    stage: u8,
     turn: f64,
-) -> Result<Isometry3<f64>, String> {
+) -> Result<PullStroke, String> {
     let base = world.arm_base(arm).ok_or("no such arm")?;
     let bp = world
         .body_pose(body)
@@ -178,13 +206,27 @@ fn pull_via(
     let reach = crate::sim::demo::PULL_TARGET_RADIUS;
     let (contact, pulled) = crate::sim::demo::pull_hook_poses_turned(&base, &bp, reach, turn)
         .ok_or_else(|| format!("no stroke turned by {turn:.2} rad pulls {body} into reach"))?;
+    Ok(PullStroke {
+        contact: tcp_for_body_pose(world, arm, &contact),
+        pulled: tcp_for_body_pose(world, arm, &pulled),
+    })
+}
+
+/// Via-points of a pull stroke: 0 above the contact pose (blade behind the block), 1 the contact
+/// pose, 2 the pulled pose, 3 lifted from there.
+fn pull_via(
+    world: &World,
+    arm: usize,
+    body: &str,
+    stage: u8,
+    turn: f64,
+) -> Result<Isometry3<f64>, String> {
+    let PullStroke { contact, pulled } = pull_stroke(world, arm, body, turn)?;
     let lift = |iso: Isometry3<f64>| raised(&iso, crate::sim::demo::PULL_LIFT);
-    let tc = tcp_for_body_pose(world, arm, &contact);
-    let tp = tcp_for_body_pose(world, arm, &pulled);
     Ok(match stage {
-        0 => lift(tc),
-        1 => tc,
-        2 => tp,
-        _ => lift(tp),
+        0 => lift(contact),
+        1 => contact,
+        2 => pulled,
+        _ => lift(pulled),
     })
 }

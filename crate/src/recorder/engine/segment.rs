@@ -153,6 +153,7 @@ impl Recorder {
             samples,
             gripper,
             key_points,
+            via_points: Vec::new(),
         })
     }
 

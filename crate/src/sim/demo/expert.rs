@@ -3,7 +3,7 @@
 
 use super::flight::{execute, reachable_height};
 use super::template::{template_steps, Script, TemplateAction};
-use super::{fail, AnchorPose, DemoAction, DemoError, Demonstration};
+use super::{fail, AnchorPose, DemoAction, DemoError, DemoViaPoint, Demonstration};
 use super::{pull_hook_poses, FRAME_CONVENTION, PULL_TARGET_RADIUS};
 use crate::sim::benchmark::Benchmark;
 use crate::sim::geometry;
@@ -186,6 +186,7 @@ fn perform(
         samples: Vec::new(),
         gripper: Vec::new(),
         key_points: Vec::new(),
+        via_points: Vec::new(),
     };
     let start = world
         .tcp_pose(arm)
@@ -203,7 +204,14 @@ fn perform(
         Step::Pull { hook, x, .. } => expert.pull(world, &from, hook, x)?,
     };
     rec.anchor_pose = AnchorPose::from_pose(&motion.anchor);
+    // The pulled block's top in the anchor frame, before the stroke moves it.
+    let top = world
+        .body_aabb(&anchor_name)
+        .map(|(_, hi)| hi.z - motion.anchor.translation.z);
     execute(world, arm, &motion.segs, &motion.anchor, action, &mut rec)?;
+    if let (Step::Pull { hook, .. }, Some(top)) = (step, top) {
+        rec.via_points = pull_via_points(world, arm, hook, top, &rec);
+    }
     Ok(rec)
 }
 
@@ -371,7 +379,7 @@ impl Expert {
                 to: tcp_contact,
                 duration: ct * self.scale(),
                 gripper: None,
-                key: None,
+                key: Some("descent"),
             },
             Seg {
                 to: tcp_pulled,
@@ -391,6 +399,46 @@ impl Expert {
             anchor: AnchorPose::from_pose(&bp).isometry(),
         })
     }
+}
+
+/// The via-points of a recorded pull `rec` (module docs of [`super::DemoViaPoint`]): the first
+/// sample of the descent at which the held `hook`'s lowest point is down to the block's top
+/// (`top`, anchor frame), and the contact. Empty without `descent` and `contact` key points.
+fn pull_via_points(
+    world: &World,
+    arm: usize,
+    hook: &str,
+    top: f64,
+    rec: &DemoAction,
+) -> Vec<DemoViaPoint> {
+    let key = |label: &str| {
+        rec.key_points
+            .iter()
+            .find(|k| k.label == label)
+            .map(|k| k.step)
+    };
+    let (Some(descent), Some(contact)) = (key("descent"), key("contact")) else {
+        return vec![];
+    };
+    // The hook is held rigidly: its lowest point stays this far below the TCP (m).
+    let (Some(tcp), Some((lo, _))) = (world.tcp_pose(arm), world.body_aabb(hook)) else {
+        return vec![];
+    };
+    let below = tcp.translation.z - lo.z;
+    let at = |step: usize, label: &str| {
+        rec.samples.get(step).map(|s| DemoViaPoint {
+            step,
+            label: label.to_string(),
+            position: [s[0], s[1], s[2]],
+        })
+    };
+    let edge = (descent..=contact)
+        .find(|&k| rec.samples.get(k).is_some_and(|s| s[2] - below <= top))
+        .unwrap_or(contact);
+    [at(edge, "top-edge"), at(contact, "bottom-edge")]
+        .into_iter()
+        .flatten()
+        .collect()
 }
 
 /// Records the template task's demonstration of `b` with the scripted expert (seeded variation),

@@ -13,7 +13,8 @@
 //! (`panda::down_orientation`). Samples are taken every `dt` = 10 ms after each simulator step,
 //! rounded to 0.1 mm / 1 mrad. A gripper event at sample `k` was commanded at the step that
 //! produced sample `k`. `key_points` name the samples that matter to a motion skill (grasp,
-//! release, hook contact) — the via-points of LQT-CP.
+//! release, the hook's descent and contact, the end of its stroke) and a pull's `via_points`
+//! name where its hook must pass: the via-points of its LQT-CP skill.
 //!
 //! **Expert.** Each motion is a chain of minimum-jerk segments `p(τ) = p₀ + (p₁ − p₀)(10τ³ −
 //! 15τ⁴ + 6τ⁵)` between way-points (approach above the object, the grasp / place pose, a lift),
@@ -28,7 +29,8 @@ mod template;
 
 pub use expert::{record, record_script, ExpertParams};
 pub use pull::{
-    pull_hook_poses, pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TURNS,
+    pull_hook_poses, pull_hook_poses_turned, pulled_block_position, PULL_LIFT, PULL_TARGET_RADIUS,
+    PULL_TURNS,
 };
 pub use replay::{demo_states, replay};
 pub use template::{Script, ScriptStep};
@@ -80,8 +82,22 @@ pub struct GripperEvent {
 pub struct KeyPoint {
     /// Sample index (0-based, within the action).
     pub step: usize,
-    /// What happens there: `grasp`, `release`, `contact` (hook behind the block), `pulled`.
+    /// What happens there: `grasp`, `release`, `descent` (the hook starts down behind the
+    /// block), `contact` (hook behind the block), `pulled`.
     pub label: String,
+}
+
+/// A point an action's motion must pass through, recorded from the demonstration: the LQT-CP
+/// via-point of its skill (a pull: where the hook's blade passed the pulled block's far edges).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DemoViaPoint {
+    /// Sample index (0-based, within the action).
+    pub step: usize,
+    /// What the motion does there: `top-edge` (the blade's bottom passes the block's far top
+    /// edge on the way down), `bottom-edge` (the blade is down behind the block's far face).
+    pub label: String,
+    /// The TCP in the anchor frame at that sample (m), as the sample's `[x, y, z]`.
+    pub position: [f64; 3],
 }
 
 /// One demonstrated action with its motion.
@@ -105,6 +121,9 @@ pub struct DemoAction {
     pub gripper: Vec<GripperEvent>,
     /// Named samples (via-points).
     pub key_points: Vec<KeyPoint>,
+    /// The via-points of the action's skill (a pull's; empty for the others).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub via_points: Vec<DemoViaPoint>,
 }
 
 /// A demonstration of a benchmark's template task.

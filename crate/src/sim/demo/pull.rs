@@ -21,6 +21,25 @@ pub const PULL_LIFT: f64 = 0.11;
 /// ±30°, ±45°, ±60° (a block right behind the shelf comes into reach only along it).
 pub const PULL_TURNS: [f64; 9] = [0.0, 0.26, -0.26, 0.52, -0.52, 0.79, -0.79, 1.05, -1.05];
 
+/// Gap between the hook's blade and the block's far face at the contact pose (m): the stroke
+/// moves the hook this much farther than the block.
+const PULL_GAP: f64 = 0.01;
+
+/// Where a stroke from hook pose `contact` to `pulled` leaves the block lying at `block`: moved
+/// along with the hook, less the gap the blade closes first.
+pub fn pulled_block_position(
+    block: &Isometry3<f64>,
+    contact: &Isometry3<f64>,
+    pulled: &Isometry3<f64>,
+) -> Vector3<f64> {
+    let stroke = pulled.translation.vector - contact.translation.vector;
+    let n = stroke.norm();
+    if n <= PULL_GAP {
+        return block.translation.vector;
+    }
+    block.translation.vector + stroke * ((n - PULL_GAP) / n)
+}
+
 /// Hook poses for pulling the block at `block` towards the arm based at `base` until its centre
 /// is `reach` metres from the base axis: `(contact, pulled)`. At `contact` the hook lies 12 mm above
 /// the table with its blade 1 cm behind the block's far face and the block in the middle of the
@@ -58,7 +77,7 @@ pub fn pull_hook_poses_turned(
     let rot = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw);
     let v = rot * Vector3::x(); // away from the base, turned
                                 // Block centre in the hook frame: 1 cm gap to the blade's inner face (x = 0.18), mid-blade.
-    let local = Vector3::new(0.18 - 0.01 - 0.5 * BLOCK_SIZE, 0.08, 0.0);
+    let local = Vector3::new(0.18 - PULL_GAP - 0.5 * BLOCK_SIZE, 0.08, 0.0);
     let mut origin = b - rot * local;
     origin.z = PULL_HOOK_Z;
     // |w − v·s| = reach along the stroke: s = w·v − √(reach² − |w|² + (w·v)²).
@@ -67,7 +86,7 @@ pub fn pull_hook_poses_turned(
     if disc < 0.0 {
         return None;
     }
-    let dist = (along - libm::sqrt(disc)).max(0.0) + 0.01;
+    let dist = (along - libm::sqrt(disc)).max(0.0) + PULL_GAP;
     let contact = Isometry3::from_parts(Translation3::from(origin), rot);
     let pulled = Isometry3::from_parts(Translation3::from(origin - v * dist), rot);
     Some((contact, pulled))
