@@ -159,7 +159,7 @@ pub fn svg(f: &Fig4) -> String {
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" \
          font-family=\"sans-serif\" font-size=\"12\">\n\
          <rect width=\"{width}\" height=\"{height}\" fill=\"white\"/>\n\
-         <text x=\"{:.0}\" y=\"16\" text-anchor=\"middle\">(a) pick the hook {} at three positions</text>\n\
+         <text x=\"{:.0}\" y=\"16\" text-anchor=\"middle\">(a) pick {} at three positions</text>\n\
          <text x=\"{:.0}\" y=\"16\" text-anchor=\"middle\">(b) pull {} to three goals</text>\n",
         0.5 * PANEL,
         f.hook,
