@@ -96,14 +96,7 @@ fn rlds_joins_where_the_remaining_demonstration_applies() {
         trace.states.iter().all(|l| *l != seen),
         "no demonstration state equals it"
     );
-    let mut c = Controller::new(
-        Method::Rlds,
-        Mode::Paper,
-        ControlParams::default(),
-        trace,
-        task.clone(),
-        vec![],
-    );
+    let mut c = controller(Method::Rlds, &task, trace, ControlParams::default());
     let d = decide(
         &mut c,
         &task,
@@ -136,19 +129,16 @@ fn rlds_fails_when_no_remaining_demonstration_applies() {
         "(ontable e)",
         "(clear e)",
     ]);
-    let mut c = Controller::new(
-        Method::Rlds,
-        Mode::Paper,
-        ControlParams::default(),
-        trace,
-        task.clone(),
-        vec![],
-    );
+    let mut c = controller(Method::Rlds, &task, trace, ControlParams::default());
     let d = decide(&mut c, &task, &s, &mut FailFirst { fail: 0, calls: 0 });
     assert!(
         matches!(d, Decision::Failed(FailReason::NoDemoStateMatches { .. })),
         "{d:?}"
     );
+}
+
+fn controller(method: Method, task: &Task, trace: DemoTrace, params: ControlParams) -> Controller {
+    Controller::new(method, Mode::Paper, params, trace, task.clone(), vec![])
 }
 
 fn logic_lfd(task: &Task, trace: DemoTrace, tamp_fallback: bool) -> Controller {
@@ -157,14 +147,7 @@ fn logic_lfd(task: &Task, trace: DemoTrace, tamp_fallback: bool) -> Controller {
         tamp_fallback,
         ..ControlParams::default()
     };
-    Controller::new(
-        Method::LogicLfd,
-        Mode::Paper,
-        params,
-        trace,
-        task.clone(),
-        vec![],
-    )
+    controller(Method::LogicLfd, task, trace, params)
 }
 
 #[test]
