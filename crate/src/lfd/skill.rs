@@ -183,7 +183,7 @@ impl SkillSegment {
     }
 
     /// The commanded position for tick `t`; `measured` is the TCP now (fed back to a learned
-    /// skill's controller when it is more than [`FEEDBACK_DEVIATION`] off: a perturbation).
+    /// skill's controller when it is more than 1 cm off: a perturbation).
     pub fn command(&mut self, t: usize, measured: &Vector3<f64>) -> Vector3<f64> {
         match self {
             SkillSegment::Profile { positions, .. } => positions[t.min(positions.len() - 1)],

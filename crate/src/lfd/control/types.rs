@@ -92,7 +92,7 @@ pub struct Replan {
 pub enum Decision {
     /// Execute this action (index into the current plan).
     Execute {
-        /// Index into [`Controller::plan_names`].
+        /// Index into [`Controller::plan_names`](super::Controller::plan_names).
         index: usize,
         /// The action `(stack a b)`.
         action: String,
