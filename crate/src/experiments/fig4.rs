@@ -31,7 +31,6 @@ use crate::sim::demo::{
 };
 use crate::sim::geometry::{grasp_pose, raised, tcp_for_body_pose};
 use crate::sim::motions::MotionKind;
-use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
 use crate::tamp::action::ActionKind;
 
@@ -140,13 +139,7 @@ fn setup() -> Result<Setup, String> {
     let world = b.scene();
     let demo = demo::committed(b).map_err(|e| e.to_string())?;
     let motions = b.motions();
-    let hooks: Vec<String> = world
-        .snapshot()
-        .bodies
-        .iter()
-        .filter(|x| x.kind == BodyKind::Hook)
-        .map(|x| x.name.clone())
-        .collect();
+    let hooks = world.hook_names();
     let motion_of = |a: &DemoAction| motions.actions.get(&a.name).map(|d| d.motion);
     let pull = demo
         .actions

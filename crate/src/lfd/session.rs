@@ -45,7 +45,7 @@ pub use options::{
 use nalgebra::Vector3;
 use std::sync::Arc;
 
-use crate::sim::snapshot::{BodyKind, WorldSnapshot};
+use crate::sim::snapshot::WorldSnapshot;
 use crate::sim::{Refused, SceneGraph, World};
 
 use super::control::{Controller, FailReason, TaskBuilder};
@@ -168,13 +168,7 @@ impl Session {
             objects,
         );
         let prev_facts = facts_of(&world);
-        let hooks: Vec<String> = world
-            .snapshot()
-            .bodies
-            .iter()
-            .filter(|b| b.kind == BodyKind::Hook)
-            .map(|b| b.name.clone())
-            .collect();
+        let hooks = world.hook_names();
         let skills = SkillLibrary::learn(
             demo_json.unwrap_or(&files.demo),
             options.skill,

@@ -139,12 +139,7 @@ fn names_of(world: &World, kind: ObjectKind) -> Vec<String> {
             blocks.sort();
             blocks
         }
-        ObjectKind::Hook => world
-            .bodies
-            .iter()
-            .filter(|b| b.kind == BodyKind::Hook)
-            .map(|b| b.name.clone())
-            .collect(),
+        ObjectKind::Hook => world.hook_names(),
         ObjectKind::Region => world.regions.iter().map(|r| r.name.clone()).collect(),
     }
 }

@@ -76,6 +76,15 @@ impl World {
             .collect()
     }
 
+    /// Names of the hooks (kind [`BodyKind::Hook`]), in body order.
+    pub fn hook_names(&self) -> Vec<String> {
+        self.bodies
+            .iter()
+            .filter(|b| b.kind == BodyKind::Hook)
+            .map(|b| b.name.clone())
+            .collect()
+    }
+
     /// Names of the table regions.
     pub fn region_names(&self) -> Vec<&str> {
         self.regions.iter().map(|r| r.name.as_str()).collect()
