@@ -8,6 +8,10 @@ exits 1 when an initial LM-cut value or a proved optimal cost differs (expansion
 not checked: tie-breaking differs).
 
     python3 scripts/compare-fd.py [DIR ...] [--time-limit S] [--random N] [--seed S] [--json]
+                                  [--h0-only]
+
+--h0-only compares the initial LM-cut values alone (both planners stop after the first state):
+seconds per problem instead of the time limit.
 
 Fast Downward comes from PyPI (`up-fast-downward`), installed on first use into a virtual
 environment under target/fd-venv (FD_PYTHON=/path/to/python with it installed skips that).
@@ -55,12 +59,13 @@ def logic_lfd_bin():
     return b
 
 
-def run_fd(py, script, domain, problem, limit):
+def run_fd(py, script, domain, problem, limit, h0_only=False):
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.monotonic()
         p = subprocess.run(
             [py, script, "--overall-time-limit", f"{int(limit)}s", "--plan-file",
-             os.path.join(tmp, "plan"), domain, problem, "--search", "astar(lmcut())"],
+             os.path.join(tmp, "plan"), domain, problem, "--search",
+             "astar(lmcut(), bound=0)" if h0_only else "astar(lmcut())"],
             cwd=tmp, capture_output=True, text=True)
         wall = time.monotonic() - t0
     out = p.stdout
@@ -78,10 +83,11 @@ def run_fd(py, script, domain, problem, limit):
     }
 
 
-def run_ours(binary, domain, problem, limit):
+def run_ours(binary, domain, problem, limit, h0_only=False):
     t0 = time.monotonic()
-    p = subprocess.run([binary, "plan", domain, problem, "--json", "--time-limit", str(limit)],
-                       capture_output=True, text=True)
+    budget = ["--max-nodes", "1"] if h0_only else []
+    p = subprocess.run([binary, "plan", domain, problem, "--json", "--time-limit", str(limit)]
+                       + budget, capture_output=True, text=True)
     wall = time.monotonic() - t0
     try:
         j = json.loads(p.stdout)
@@ -125,6 +131,7 @@ def main():
     ap.add_argument("--random", type=int, default=50, help="random STRIPS tasks (0: none)")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--json", action="store_true")
+    ap.add_argument("--h0-only", action="store_true", help="compare initial LM-cut values only")
     a = ap.parse_args()
     dirs = a.dirs or sorted(d for d in glob.glob(os.path.join(ROOT, "..", "shared", "ipc", "*"))
                             if os.path.isdir(d))
@@ -148,8 +155,8 @@ def main():
         cases.append((f"random/{a.seed}-{i}", dp, pp))
     rows, h_diff, cost_diff = [], [], []
     for name, domain, prob in cases:
-        fd = run_fd(py, script, domain, prob, a.time_limit)
-        us = run_ours(ours_bin, domain, prob, a.time_limit)
+        fd = run_fd(py, script, domain, prob, a.time_limit, a.h0_only)
+        us = run_ours(ours_bin, domain, prob, a.time_limit, a.h0_only)
         fd_h = None if fd["dead_end"] else fd["initial_h"]
         if (fd["initial_h"] is not None or fd["dead_end"]) and fd_h != us.get("initial_h"):
             h_diff.append(name)

@@ -118,6 +118,33 @@ fn heuristics_are_ordered_and_admissible_on_all_states() {
         .unwrap();
 }
 
+/// LM-cut bound to a search start drops operators h² proves inapplicable from that start: on
+/// every state reachable from it the value stays admissible, dominates h_max, and proves dead
+/// ends only where there are no plans.
+#[test]
+fn lmcut_for_a_search_start_is_admissible_on_its_reachable_states() {
+    runner(60)
+        .run(&(any::<u64>(), any::<bool>()), |(seed, unit)| {
+            let task = random_task(seed, unit);
+            let goals = [task.goal.clone()];
+            let mut pruned =
+                HeuristicEvaluator::for_search(&task, &goals, HeuristicKind::LmCut, &task.init);
+            let mut hmax = HeuristicEvaluator::new(&task, &goals, HeuristicKind::HMax);
+            let (states, _) = reachable(&task, &task.init);
+            for s in &states {
+                let Some(hs) = brute_force_cost(&task, s, &goals) else {
+                    continue;
+                };
+                let (v, m) = (pruned.value(s), hmax.value(s));
+                prop_assert!(v.is_some(), "solvable state proved dead, seed {}", seed);
+                prop_assert!(v.unwrap() <= hs, "{:?} > h* {} seed {}", v, hs, seed);
+                prop_assert!(m <= v, "hmax {:?} > {:?} seed {}", m, v, seed);
+            }
+            Ok(())
+        })
+        .unwrap();
+}
+
 #[test]
 fn optimal_configs_agree_on_random_blocksworld() {
     for seed in 0..12 {

@@ -191,8 +191,13 @@ fn json(task: &Task, config: &SearchConfig, r: &SearchResult, total: f64) -> ser
         "heuristic": config.heuristic.name(),
         // The heuristic's value of the initial state (null: a dead end), as Fast Downward
         // prints "Initial heuristic value".
-        "initial_h": HeuristicEvaluator::new(task, std::slice::from_ref(&task.goal), config.heuristic)
-            .value(&task.init),
+        "initial_h": HeuristicEvaluator::for_search(
+            task,
+            std::slice::from_ref(&task.goal),
+            config.heuristic,
+            &task.init,
+        )
+        .value(&task.init),
     });
     if let SearchOutcome::BudgetExhausted { which } = &r.outcome {
         j["budget"] = serde_json::Value::from(which.to_string());

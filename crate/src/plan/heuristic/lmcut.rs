@@ -6,7 +6,9 @@
 //!    it is 0 stop;
 //! 2. precondition choice function: `pcf(o) ∈ argmax_{q ∈ pre(o)} h_max(s, q)`;
 //! 3. justification graph: an edge `pcf(o) → e` labelled `o` for every `e ∈ add(o)`;
-//! 4. goal zone `V*`: facts from which `G★` is reached through edges of cost-0 operators;
+//! 4. goal zone `V*`: facts from which `G★` is reached through edges of cost-0 operators (while
+//!    marking it, a cost-0 operator's pcf is re-chosen among tied maximisers in favour of the
+//!    zone's border or the zone itself, as Fast Downward does);
 //! 5. `V⁰`: facts reached from `s ∪ {⊤}` through edges of operators with no effect in `V*`;
 //!    the cut `L = { o : pcf(o) ∈ V⁰, add(o) ∩ V* ≠ ∅ }` is a disjunctive action landmark
 //!    (every relaxed plan's first operator adding a fact of `V*` is in `L`);
@@ -44,6 +46,8 @@ pub(crate) struct LmCut {
     reached: Vec<u32>,
     epoch: u32,
     stack: Vec<u32>,
+    /// Depth-first marking of `V*`: (fact, next index into its achievers).
+    dfs: Vec<(u32, usize)>,
     cut: Vec<u32>,
 }
 
@@ -159,6 +163,53 @@ impl LmCut {
         self.epoch += 1;
     }
 
+    /// Marks the goal zone `V*` (facts from which `G★` is reached through zero-cost operators'
+    /// pcf edges), depth first from `goal` in `add_of` order.
+    ///
+    /// On the way each zero-cost operator's pcf is re-chosen among its tied maximisers: first a
+    /// precondition with no zero-cost achiever (the zone's border) or one already in the zone
+    /// (Fickert, HSDIP 2020; Fast Downward's default). Either keeps the zone small, so the cut
+    /// lies closer to the goal and later rounds find more landmarks. Any tied maximiser is a
+    /// valid pcf, so the value stays admissible.
+    fn mark_goal_zone(&mut self, rt: &RelaxedTask, goal: u32, ep: u32) {
+        self.zone[goal as usize] = ep;
+        self.dfs.clear();
+        self.dfs.push((goal, 0));
+        while let Some(top) = self.dfs.last_mut() {
+            let (e, i) = *top;
+            let achievers = rt.add_of(e);
+            let Some(&o) = achievers.get(i) else {
+                self.dfs.pop();
+                continue;
+            };
+            top.1 += 1;
+            let o = o as usize;
+            if self.cost[o] != 0 || self.unsat[o] != 0 {
+                continue;
+            }
+            self.break_pcf_tie(rt, o, ep);
+            let p = self.pcf[o];
+            if self.zone[p as usize] != ep {
+                self.zone[p as usize] = ep;
+                self.dfs.push((p, 0));
+            }
+        }
+    }
+
+    /// Re-chooses `pcf(o)` among the preconditions of maximal h_max (see `mark_goal_zone`).
+    fn break_pcf_tie(&mut self, rt: &RelaxedTask, o: usize, ep: u32) {
+        for &q in rt.pre(o) {
+            if self.fact_cost[q as usize] != self.pre_max[o] {
+                continue;
+            }
+            let border = rt.add_of(q).iter().all(|&a| self.cost[a as usize] != 0);
+            if border || self.zone[q as usize] == ep {
+                self.pcf[o] = q;
+                return;
+            }
+        }
+    }
+
     /// LM-cut value of the packed state, `None` for a dead end (`h_max = ∞`).
     pub fn eval(&mut self, rt: &RelaxedTask, words: &[u64]) -> Option<u64> {
         self.cost.clear();
@@ -173,22 +224,7 @@ impl LmCut {
         while self.fact_cost[goal as usize] != 0 {
             self.next_epoch(nf);
             let ep = self.epoch;
-            // Goal zone V*: backwards from G★ through zero-cost operators' pcf edges.
-            self.zone[goal as usize] = ep;
-            self.stack.clear();
-            self.stack.push(goal);
-            while let Some(e) = self.stack.pop() {
-                for &o in rt.add_of(e) {
-                    let o = o as usize;
-                    if self.cost[o] == 0 && self.unsat[o] == 0 {
-                        let p = self.pcf[o] as usize;
-                        if self.zone[p] != ep {
-                            self.zone[p] = ep;
-                            self.stack.push(p as u32);
-                        }
-                    }
-                }
-            }
+            self.mark_goal_zone(rt, goal, ep);
             // V⁰: forward from s ∪ {⊤}; an operator with an effect in V* joins the cut and
             // is not followed. h_max(G★) > 0 keeps every fact of s ∪ {⊤} outside V*.
             self.cut.clear();

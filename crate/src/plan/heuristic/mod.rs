@@ -13,6 +13,7 @@
 //! with cost `c_k`. Negative preconditions and negative goal literals are ignored by the
 //! relaxation. `None` means a proved dead end (no goal reachable even in the relaxation).
 
+mod h2;
 mod lmcut;
 pub(crate) mod relaxed;
 
@@ -125,7 +126,25 @@ pub struct HeuristicEvaluator {
 impl HeuristicEvaluator {
     /// Binds heuristic `kind` to `task` with the goals `goals` (terminal costs `c_k` included).
     pub fn new(task: &Task, goals: &[Goal], kind: HeuristicKind) -> Self {
-        let rt = RelaxedTask::new(task, goals);
+        Self::with_relaxed(RelaxedTask::new(task, goals), goals, kind)
+    }
+
+    /// Binds heuristic `kind` for a search from `start`: values hold for states reachable
+    /// from `start`.
+    ///
+    /// LM-cut leaves out the operators no such state can apply (their preconditions are never
+    /// true together, by h² reachability from `start`; see `h2`), which only raises its values;
+    /// the other heuristics are those of [`HeuristicEvaluator::new`].
+    pub fn for_search(task: &Task, goals: &[Goal], kind: HeuristicKind, start: &State) -> Self {
+        let keep = match kind {
+            HeuristicKind::LmCut => h2::reachable_operators(task, start),
+            _ => None,
+        };
+        let rt = RelaxedTask::with_operators(task, goals, keep.as_deref());
+        Self::with_relaxed(rt, goals, kind)
+    }
+
+    fn with_relaxed(rt: RelaxedTask, goals: &[Goal], kind: HeuristicKind) -> Self {
         HeuristicEvaluator {
             kind,
             marked: vec![false; rt.num_ops()],

@@ -83,6 +83,11 @@ fn invert(lists: &[Vec<u32>], num_facts: usize) -> (Vec<u32>, Vec<u32>) {
 impl RelaxedTask {
     /// Builds Π⁺ for `task` and `goals` (terminal costs included as given).
     pub fn new(task: &Task, goals: &[Goal]) -> Self {
+        Self::with_operators(task, goals, None)
+    }
+
+    /// Builds Π⁺ over the operators with `keep[i]` (all operators without `keep`).
+    pub fn with_operators(task: &Task, goals: &[Goal], keep: Option<&[bool]>) -> Self {
         let n = task.facts.len();
         let top = n as u32;
         let goal_fact = n as u32 + 1;
@@ -91,6 +96,9 @@ impl RelaxedTask {
         let mut cost = Vec::new();
         let mut op_real = Vec::new();
         for (i, op) in task.operators.iter().enumerate() {
+            if keep.is_some_and(|k| !k[i]) {
+                continue;
+            }
             let mut p: Vec<u32> = op.pre.clone();
             p.sort_unstable();
             p.dedup();

@@ -112,7 +112,7 @@ pub(crate) fn run(
         h: Vec::new(),
         status: Vec::new(),
         succ: SuccessorGenerator::new(task),
-        heur: HeuristicEvaluator::new(task, &h_goals, heuristic),
+        heur: HeuristicEvaluator::for_search(task, &h_goals, heuristic, &start),
         stats: SearchStats::default(),
         ops_buf: Vec::new(),
         words_buf: Vec::new(),
