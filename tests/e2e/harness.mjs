@@ -116,3 +116,14 @@ export async function finish(page, timeout = 120000) {
   );
   return currentFrame(page);
 }
+
+/** An IPC blocks-world file from the `shared` folder beside the checkout. */
+export const ipcBlocks = (f) => readFile(join(root, '..', 'shared', 'ipc', 'blocks', f), 'utf8');
+
+/** A blocks-world problem with `n` blocks in one tower, goal the reversed tower: blind BFS cannot finish. */
+export function bigBlocks(n) {
+  const b = Array.from({ length: n }, (_, i) => `b${i}`);
+  const init = ['(handempty)', `(ontable ${b[0]})`, `(clear ${b[n - 1]})`, ...b.slice(1).map((x, i) => `(on ${x} ${b[i]})`)];
+  const goal = b.slice(0, -1).map((x, i) => `(on ${x} ${b[i + 1]})`);
+  return `(define (problem big-${n}) (:domain BLOCKS)\n (:objects ${b.join(' ')})\n (:init ${init.join(' ')})\n (:goal (and ${goal.join(' ')})))\n`;
+}
