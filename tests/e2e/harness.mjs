@@ -127,3 +127,26 @@ export function bigBlocks(n) {
   const goal = b.slice(0, -1).map((x, i) => `(on ${x} ${b[i + 1]})`);
   return `(define (problem big-${n}) (:domain BLOCKS)\n (:objects ${b.join(' ')})\n (:init ${init.join(' ')})\n (:goal (and ${goal.join(' ')})))\n`;
 }
+
+/** The scene's clear colour (web/src/view.ts), as [r, g, b]. */
+export const BACKGROUND = [0x14, 0x17, 0x1c];
+
+/**
+ * The colour [r, g, b] the page shows at client point (x, y): a 1-pixel screenshot (what is
+ * composited on screen, whatever the WebGL drawing buffer keeps), decoded in the page.
+ */
+export async function pixelAt(page, x, y) {
+  const png = await page.screenshot({ clip: { x: Math.round(x), y: Math.round(y), width: 1, height: 1 } });
+  return page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const c = document.createElement('canvas').getContext('2d');
+    if (!c) throw new Error('no 2d context');
+    c.drawImage(img, 0, 0);
+    return [...c.getImageData(0, 0, 1, 1).data.slice(0, 3)];
+  }, png.toString('base64'));
+}
+
+/** Sum of the channel differences of two colours. */
+export const colourDistance = (a, b) => a.reduce((s, v, i) => s + Math.abs(v - b[i]), 0);
