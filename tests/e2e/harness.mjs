@@ -150,3 +150,21 @@ export async function pixelAt(page, x, y) {
 
 /** Sum of the channel differences of two colours. */
 export const colourDistance = (a, b) => a.reduce((s, v, i) => s + Math.abs(v - b[i]), 0);
+
+/** Opens the PDDL tab and types `domain` and `problem` into its editors (replacing their texts). */
+export async function typeIntoEditor(page, domain, problem) {
+  const visible = '#panel-pddl .cm-host:not([hidden]) .cm-content';
+  await page.click('#tab-pddl');
+  // The benchmark's own texts arrive first; the typed text replaces them.
+  await page.waitForFunction((sel) => document.querySelector(sel)?.textContent.includes('define'), visible);
+  for (const [which, text] of [['domain', domain], ['problem', problem]]) {
+    await page.click(`#pddl-tab-${which}`);
+    await page.click(visible);
+    await page.keyboard.press('ControlOrMeta+A');
+    // Typed as one input event (key by key, the editor's bracket closing would double parentheses).
+    await page.keyboard.insertText(text);
+  }
+  await page.click('#pddl-tab-domain');
+  const head = domain.slice(0, 200).replace(/\s+/g, ' ').trim().slice(0, 40);
+  await page.waitForFunction(([sel, h]) => document.querySelector(sel)?.textContent.replace(/\s+/g, ' ').includes(h), [visible, head]);
+}

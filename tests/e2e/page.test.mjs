@@ -2,30 +2,17 @@
 // real mouse and keyboard events against the production build in web/dist.
 import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFile } from 'node:fs/promises';
 import { join } from 'node:path';
-import { currentFrame, finish, openApp, screenshots, useBrowser } from './harness.mjs';
+import { currentFrame, finish, ipcBlocks, openApp, screenshots, typeIntoEditor, useBrowser } from './harness.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 
 const open = (query = '') => openApp(ctx.browser, ctx.server, query);
-const ipc = (f) => readFile(new URL(`../../../shared/ipc/blocks/${f}`, import.meta.url), 'utf8');
 
 /** Opens the PDDL tab and types IPC blocks 4-0 into its domain and problem editors. */
 async function blocksInEditor(page) {
-  const [d, p] = await Promise.all([ipc('domain.pddl'), ipc('probBLOCKS-4-0.pddl')]);
-  await page.click('#tab-pddl');
-  // The benchmark's own texts arrive first; the typed text replaces them.
-  await page.waitForFunction(() => document.querySelector('#panel-pddl .cm-host:not([hidden]) .cm-content')?.textContent.includes('define'));
-  for (const [which, text] of [['domain', d], ['problem', p]]) {
-    await page.click(`#pddl-tab-${which}`);
-    await page.click('#panel-pddl .cm-host:not([hidden]) .cm-content');
-    await page.keyboard.press('ControlOrMeta+A');
-    // Typed as one input event (key by key, the editor's bracket closing would double parentheses).
-    await page.keyboard.insertText(text);
-  }
-  await page.click('#pddl-tab-domain');
-  await page.waitForFunction(() => document.querySelector('#panel-pddl .cm-host:not([hidden]) .cm-content')?.textContent.includes('BLOCKS'));
+  const [d, p] = await Promise.all([ipcBlocks('domain.pddl'), ipcBlocks('probBLOCKS-4-0.pddl')]);
+  await typeIntoEditor(page, d, p);
 }
 
 describe('page', () => {
