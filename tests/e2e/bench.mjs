@@ -84,7 +84,8 @@ for (let r = 0; r < runs; r++) {
 
 /** Five Cancel clicks while B1 executes: ms from click to the worker dropping the plan, and to the reply. */
 async function cancelTimes() {
-  const { page } = await openPage(browser, `${server.url}?benchmark=b1&seed=2`);
+  // Quarter speed: the episode outlasts the five cancels.
+  const { page } = await openPage(browser, `${server.url}?benchmark=b1&seed=2&speed=0.25`);
   await page.waitForSelector('#app[data-ready="true"]', { timeout: 30000 });
   const applied = [];
   const replied = [];
@@ -93,6 +94,7 @@ async function cancelTimes() {
       timeout: 60000,
       polling: 10,
     });
+    await page.waitForSelector('#cancel:not([disabled])', { timeout: 60000 });
     const before = await page.evaluate(() => window.lfd.lastCancel());
     await page.click('#cancel');
     await page.waitForFunction((prev) => window.lfd.lastCancel() !== null && window.lfd.lastCancel().clickedAt !== prev?.clickedAt, before, {

@@ -18,6 +18,7 @@ describe('cancel', () => {
         timeout: 60000,
         polling: 10,
       });
+      await page.waitForSelector('#cancel:not([disabled])', { timeout: 60000 });
       const before = await page.evaluate(() => ({
         replans: window.lfd.frame().replans,
         cancel: window.lfd.lastCancel(),
