@@ -1,5 +1,6 @@
 //! Logic-LfD end to end: closed-loop episodes for every benchmark × level × method at two seeds
-//! (world invariants after every step, every plan valid in the PDDL model, the expected outcome
+//! (every world invariant after every tick for every method, only the hook's shallow contact with
+//! the shelf tolerated; every plan adopted in a tick valid in the PDDL model; the expected outcome
 //! and failure reason per method), replay identity, prioritised vs paper mode, and the multi-goal
 //! specification on the real B1 PDDL.
 
@@ -13,12 +14,54 @@ use logic_lfd::plan::{validate_names, Algorithm, HeuristicKind, NoClock, SearchC
 use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::{SceneGraph, Violation};
 
+use crate::support::invariants::{broken, tolerated, HOOK_SHELF_DEPTH};
+
+/// How an episode ended, as the tests see it: its outcome, or the first tick at which the world
+/// broke an invariant (beyond the hook's tolerated contact with the shelf), which ends it as a
+/// failure whatever the session would have reported later.
+#[derive(Debug)]
+enum End {
+    Success,
+    Failed(FailReason),
+    Broke {
+        tick: u64,
+        violations: Vec<Violation>,
+    },
+    Unfinished,
+}
+
 /// What one episode did, as the tests see it.
 struct Run {
-    success: bool,
-    reason: Option<FailReason>,
+    end: End,
     injected: bool,
     actions: usize,
+}
+
+impl std::fmt::Display for End {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            End::Success => write!(f, "success"),
+            End::Failed(r) => write!(f, "failed: {r}"),
+            End::Broke { tick, violations } => {
+                let v: Vec<String> = violations.iter().map(|v| v.to_string()).collect();
+                write!(f, "broke the world at tick {tick}: {}", v.join("; "))
+            }
+            End::Unfinished => write!(f, "no outcome"),
+        }
+    }
+}
+
+impl Run {
+    fn success(&self) -> bool {
+        matches!(self.end, End::Success)
+    }
+
+    fn reason(&self) -> Option<&FailReason> {
+        match &self.end {
+            End::Failed(r) => Some(r),
+            _ => None,
+        }
+    }
 }
 
 fn objects(s: &Session) -> Vec<(String, String)> {
@@ -29,8 +72,8 @@ fn objects(s: &Session) -> Vec<(String, String)> {
 }
 
 /// Runs an episode like `logic-lfd run` does, checking the world's invariants after every tick
-/// and every new plan (Logic-LfD, TAMP, RLDS; linear's only at the start) in the PDDL model from
-/// the facts it was planned from.
+/// and every plan adopted in a tick (Logic-LfD, TAMP, RLDS; linear's only at the start) in the
+/// PDDL model from the facts it was planned from.
 fn episode(b: Benchmark, level: Level, method: Method, mode: Mode, seed: u64) -> Run {
     let opts = SessionOptions {
         benchmark: b,
@@ -58,50 +101,39 @@ fn episode(b: Benchmark, level: Level, method: Method, mode: Mode, seed: u64) ->
         let facts = SceneGraph::from_world(s.world()).to_strings();
         let objs = objects(&s);
         s.tick_once(&NoClock);
-        if let Err(v) = s.world().check_invariants() {
-            // A blindly executed baseline may knock blocks over: that is its failure. TAMP's
-            // motions are certified along a straight-line model of the skills' paths (arm links
-            // and carried body every 1.5 cm), which the learned skills do not follow exactly: a
-            // carried block may still graze another (B3 L4 seed 3: b–e 6 mm). Blocks must
-            // never be lost or left unsupported. Logic-LfD and RLDS keep every invariant, except
-            // that the carried hook may sweep through the shelf's edge.
-            let carried_graze = v
-                .iter()
-                .all(|x| matches!(x, Violation::Interpenetration { .. }));
-            let hook_graze = v.iter().all(|x| {
-                matches!(x, Violation::Interpenetration { a, b, .. }
-                    if a == "hook" || b == "hook")
-            });
-            assert!(
-                method == Method::Linear || hook_graze || (method == Method::Tamp && carried_graze),
-                "{b:?} {level:?} {method:?} seed {seed}: invariants broken at tick {}: {v:?}",
-                s.tick()
-            );
+        let violations = broken(s.world());
+        if !violations.is_empty() {
+            return Run {
+                end: End::Broke {
+                    tick: s.tick(),
+                    violations,
+                },
+                injected,
+                actions: s.actions_done(),
+            };
         }
         let replans = s.controller().replans();
-        if replans.len() > checked {
-            checked = replans.len();
-            let r = replans.last().unwrap();
-            if method != Method::Linear || checked == 1 {
+        for (i, r) in replans.iter().enumerate().skip(checked) {
+            if method != Method::Linear || i == 0 {
                 let problem = s.model().problem(&objs, &facts).expect("problem");
                 let report = validate_names(s.model().domain(), &problem, &r.plan);
                 assert!(
                     report.is_valid(),
-                    "{b:?} {level:?} {method:?} seed {seed}: plan {:?} invalid from {facts:?}: {:?}",
+                    "{b:?} {level:?} {method:?} seed {seed}: plan {i} {:?} invalid from {facts:?}: {:?}",
                     r.plan,
                     report.outcome
                 );
             }
         }
+        checked = replans.len();
     }
-    let (success, reason) = match s.outcome() {
-        Some(Ok(())) => (true, None),
-        Some(Err(r)) => (false, Some(r.clone())),
-        None => (false, None),
+    let end = match s.outcome() {
+        Some(Ok(())) => End::Success,
+        Some(Err(r)) => End::Failed(r.clone()),
+        None => End::Unfinished,
     };
     Run {
-        success,
-        reason,
+        end,
         injected,
         actions: s.actions_done(),
     }
@@ -112,41 +144,71 @@ fn matrix(b: Benchmark) {
         for level in Level::ALL {
             for method in Method::ALL {
                 let r = episode(b, level, method, Mode::Paper, seed);
-                let tag = format!("{b:?} {level:?} {method:?} seed {seed}: {:?}", r.reason);
+                let tag = format!(
+                    "{b:?} {level:?} {method:?} seed {seed}: {} after {} actions",
+                    r.end, r.actions
+                );
                 // Every level can be injected. On B2 the linear baseline may succeed at L2–L4
                 // (its skills re-target the pull to the moved block, and its first grasp opens
                 // the hand the L4 block was put into) and RLDS at L4 (docs/levels.md).
                 assert!(r.injected, "{tag}: no disturbance injected");
+                assert!(!matches!(r.end, End::Unfinished), "{tag}: no outcome");
+                let blind_failure = matches!(
+                    r.end,
+                    End::Broke { .. }
+                        | End::Failed(
+                            FailReason::GoalNotReached { .. } | FailReason::ActionFailed { .. }
+                        )
+                );
                 match (method, level) {
-                    (Method::LogicLfd | Method::Tamp, _) => assert!(r.success, "{tag}"),
-                    (_, Level::L1) => assert!(r.success, "{tag}"),
-                    (Method::Rlds, Level::L2) => assert!(r.success, "{tag}"),
+                    (Method::LogicLfd | Method::Tamp, _) => assert!(r.success(), "{tag}"),
+                    (_, Level::L1) => assert!(r.success(), "{tag}"),
+                    (Method::Rlds, Level::L2) => assert!(r.success(), "{tag}"),
                     (Method::Rlds, Level::L3) => assert!(
-                        matches!(r.reason, Some(FailReason::NoDemoStateMatches { .. })),
+                        matches!(r.reason(), Some(FailReason::NoDemoStateMatches { .. })),
                         "{tag}"
                     ),
                     (Method::Rlds, Level::L4) if b != Benchmark::B2 => assert!(
-                        matches!(r.reason, Some(FailReason::NoDemoStateMatches { .. })),
+                        matches!(r.reason(), Some(FailReason::NoDemoStateMatches { .. })),
                         "{tag}"
                     ),
-                    (Method::Linear, Level::L2 | Level::L3 | Level::L4) if b != Benchmark::B2 => {
-                        assert!(
-                            matches!(
-                                r.reason,
-                                Some(
-                                    FailReason::GoalNotReached { .. }
-                                        | FailReason::ActionFailed { .. }
-                                )
-                            ),
-                            "{tag}"
-                        )
-                    }
-                    _ => {}
+                    (Method::Rlds, Level::L4) => assert!(
+                        r.success()
+                            || matches!(r.reason(), Some(FailReason::NoDemoStateMatches { .. })),
+                        "{tag}"
+                    ),
+                    // B1's L3 takes b's support away: the blind baseline releases it in the air.
+                    (Method::Linear, Level::L3) if b == Benchmark::B1 => assert!(
+                        matches!(&r.end, End::Broke { violations, .. }
+                            if matches!(violations[..], [Violation::Unsupported { .. }])),
+                        "{tag}"
+                    ),
+                    (Method::Linear, _) if b != Benchmark::B2 => assert!(blind_failure, "{tag}"),
+                    (Method::Linear, _) => assert!(r.success() || blind_failure, "{tag}"),
                 }
-                assert!(r.success || r.actions < 40, "{tag}");
             }
         }
     }
+}
+
+/// Only the hook in the shelf, and only to the stated depth, is tolerated.
+#[test]
+fn only_a_shallow_hook_in_the_shelf_is_tolerated() {
+    let w = Benchmark::B2.scene();
+    let cut = |a: &str, b: &str, depth: f64| Violation::Interpenetration {
+        a: a.into(),
+        b: b.into(),
+        depth,
+    };
+    assert!(tolerated(&w, &cut("hook", "shelf", 0.8 * HOOK_SHELF_DEPTH)));
+    assert!(tolerated(&w, &cut("shelf", "hook", HOOK_SHELF_DEPTH)));
+    assert!(!tolerated(
+        &w,
+        &cut("hook", "shelf", 1.5 * HOOK_SHELF_DEPTH)
+    ));
+    assert!(!tolerated(&w, &cut("hook", "a", 0.001)));
+    assert!(!tolerated(&w, &cut("a", "shelf", 0.001)));
+    assert!(!tolerated(&w, &cut("hook", "table", 0.001)));
 }
 
 #[test]
@@ -236,11 +298,16 @@ fn prioritised_mode_never_executes_more_actions_than_paper_mode() {
                 // Known failure (README, "Reproducing the paper's tables"): B2 seed 2 L3, both
                 // modes plan the same repair and the demonstrated hook placement is stopped by
                 // block b. Any other failure, or a failure of one mode only, fails the test.
-                if b == Benchmark::B2 && seed == 2 && level == Level::L3 && !p.success {
-                    assert_eq!(p.reason, q.reason, "{b:?} seed {seed} {level:?}");
+                if b == Benchmark::B2 && seed == 2 && level == Level::L3 && !p.success() {
+                    assert_eq!(p.reason(), q.reason(), "{b:?} seed {seed} {level:?}");
                     continue;
                 }
-                assert!(p.success && q.success, "{b:?} seed {seed} {level:?}");
+                assert!(
+                    p.success() && q.success(),
+                    "{b:?} seed {seed} {level:?}: {} / {}",
+                    p.end,
+                    q.end
+                );
                 assert!(
                     q.actions <= p.actions,
                     "{b:?} seed {seed} {level:?}: prioritised {} > paper {}",

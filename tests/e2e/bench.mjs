@@ -2,13 +2,18 @@
 //   * the whole page's size gzipped (wasm + JS + CSS + HTML of web/dist);
 //   * time from navigation to interactive (the wasm loaded in the worker and the first frame drawn);
 //   * the worker's closed-loop tick (Session::step, replans included) over a B1 run with drags;
-//   * Logic-LfD replanning time in wasm on B1 (from the frames' lastReplan.timeMs).
+//   * Logic-LfD replanning time in wasm on B1 (from the frames' lastReplan.timeMs);
+//   * Cancel: five clicks while B1 executes, the times until the worker drops the plan and until
+//     the page hears back (clocks compared through performance.timeOrigin); and, while a 60-block
+//     blind BFS runs in the PDDL editor's worker, the main thread's longest stall, a click's
+//     handling time and the robot's ticks in 1.5 s (beside the same with no search), and the time
+//     Cancel takes to stop that search.
 // Usage: node tests/e2e/bench.mjs [--benchmark b1] [--runs 3] [--blocks N]
 // (--blocks: the benchmark's generated N-block tower task instead of its template.)
 import { readdir, readFile } from 'node:fs/promises';
 import { gzipSync } from 'node:zlib';
 import { join } from 'node:path';
-import { dist, launch, openPage, serve } from './harness.mjs';
+import { bigBlocks, dist, ipcBlocks, launch, openPage, serve } from './harness.mjs';
 
 const arg = (k, d) => {
   const i = process.argv.indexOf(`--${k}`);
@@ -76,6 +81,75 @@ for (let r = 0; r < runs; r++) {
   results.push({ interactiveMs, ...out });
   await page.close();
 }
+
+/** Five Cancel clicks while B1 executes: ms from click to the worker dropping the plan, and to the reply. */
+async function cancelTimes() {
+  // Quarter speed: the episode outlasts the five cancels.
+  const { page } = await openPage(browser, `${server.url}?benchmark=b1&seed=2&speed=0.25`);
+  await page.waitForSelector('#app[data-ready="true"]', { timeout: 30000 });
+  const applied = [];
+  const replied = [];
+  for (let round = 0; round < 5; round++) {
+    await page.waitForFunction(() => window.lfd.frame()?.executing != null && window.lfd.frame().status.kind === 'executing', null, {
+      timeout: 60000,
+      polling: 10,
+    });
+    await page.waitForSelector('#cancel:not([disabled])', { timeout: 60000 });
+    const before = await page.evaluate(() => window.lfd.lastCancel());
+    await page.click('#cancel');
+    await page.waitForFunction((prev) => window.lfd.lastCancel() !== null && window.lfd.lastCancel().clickedAt !== prev?.clickedAt, before, {
+      polling: 10,
+    });
+    const c = await page.evaluate(() => window.lfd.lastCancel());
+    applied.push(c.appliedAt - c.clickedAt);
+    replied.push(c.repliedAt - c.clickedAt);
+  }
+  await page.close();
+  return { applied, replied };
+}
+
+/** The page while the editor's worker runs a search that cannot finish, beside the page at rest. */
+async function editorSearch() {
+  const { page } = await openPage(browser, `${server.url}?benchmark=b1&seed=1`);
+  await page.waitForSelector('#app[data-ready="true"]', { timeout: 30000 });
+  await page.evaluate(([d, p]) => window.lfd.setPddl(d, p), [await ipcBlocks('domain.pddl'), bigBlocks(60)]);
+  await page.selectOption('#pddl-search', 'bfs');
+  await page.selectOption('#pddl-heuristic', 'blind');
+  await page.click('#pddl-plan');
+  await page.waitForSelector('#pddl-cancel:not([hidden])');
+  const probe = () =>
+    page.evaluate(async () => {
+      const tick0 = window.lfd.frame().tick;
+      let maxGap = 0;
+      let last = performance.now();
+      const end = last + 1500;
+      while (performance.now() < end) {
+        await new Promise((r) => setTimeout(r, 5));
+        const now = performance.now();
+        maxGap = Math.max(maxGap, now - last);
+        last = now;
+      }
+      const t0 = performance.now();
+      document.getElementById('help').click();
+      await new Promise((r) => requestAnimationFrame(r));
+      const clickMs = performance.now() - t0;
+      document.getElementById('help-close').click();
+      return { maxGap, clickMs, ticks: window.lfd.frame().tick - tick0 };
+    });
+  const busy = await probe();
+  const cancelMs = await page.evaluate(async () => {
+    const t0 = performance.now();
+    document.getElementById('pddl-cancel').click();
+    while (!document.getElementById('pddl-stopped')) await new Promise((r) => setTimeout(r, 0));
+    return performance.now() - t0;
+  });
+  const quiet = await probe();
+  await page.close();
+  return { busy, quiet, cancelMs };
+}
+
+const cancel = await cancelTimes();
+const editor = await editorSearch();
 await browser.close();
 await server.close();
 
@@ -96,6 +170,15 @@ const summary = {
   replan_ms_max: replans.length ? +Math.max(...replans).toFixed(3) : null,
   replans: replans.length,
   outcomes: results.map((r) => r.status.kind),
+  cancel_applied_ms: cancel.applied.map((t) => +t.toFixed(1)),
+  cancel_replied_ms: cancel.replied.map((t) => +t.toFixed(1)),
+  editor_search_max_stall_ms: +editor.busy.maxGap.toFixed(1),
+  editor_idle_max_stall_ms: +editor.quiet.maxGap.toFixed(1),
+  editor_search_click_ms: +editor.busy.clickMs.toFixed(1),
+  editor_idle_click_ms: +editor.quiet.clickMs.toFixed(1),
+  editor_search_robot_ticks_1500ms: editor.busy.ticks,
+  editor_idle_robot_ticks_1500ms: editor.quiet.ticks,
+  editor_search_cancel_ms: +editor.cancelMs.toFixed(1),
 };
 console.log(JSON.stringify(summary, null, 2));
 console.log('\n| file | bytes | gzipped |\n|---|---:|---:|');

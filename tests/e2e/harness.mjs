@@ -116,3 +116,55 @@ export async function finish(page, timeout = 120000) {
   );
   return currentFrame(page);
 }
+
+/** An IPC blocks-world file from the `shared` folder beside the checkout. */
+export const ipcBlocks = (f) => readFile(join(root, '..', 'shared', 'ipc', 'blocks', f), 'utf8');
+
+/** A blocks-world problem with `n` blocks in one tower, goal the reversed tower: blind BFS cannot finish. */
+export function bigBlocks(n) {
+  const b = Array.from({ length: n }, (_, i) => `b${i}`);
+  const init = ['(handempty)', `(ontable ${b[0]})`, `(clear ${b[n - 1]})`, ...b.slice(1).map((x, i) => `(on ${x} ${b[i]})`)];
+  const goal = b.slice(0, -1).map((x, i) => `(on ${x} ${b[i + 1]})`);
+  return `(define (problem big-${n}) (:domain BLOCKS)\n (:objects ${b.join(' ')})\n (:init ${init.join(' ')})\n (:goal (and ${goal.join(' ')})))\n`;
+}
+
+/** The scene's clear colour (web/src/view.ts), as [r, g, b]. */
+export const BACKGROUND = [0x14, 0x17, 0x1c];
+
+/**
+ * The colour [r, g, b] the page shows at client point (x, y): a 1-pixel screenshot (what is
+ * composited on screen, whatever the WebGL drawing buffer keeps), decoded in the page.
+ */
+export async function pixelAt(page, x, y) {
+  const png = await page.screenshot({ clip: { x: Math.round(x), y: Math.round(y), width: 1, height: 1 } });
+  return page.evaluate(async (b64) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${b64}`;
+    await img.decode();
+    const c = document.createElement('canvas').getContext('2d');
+    if (!c) throw new Error('no 2d context');
+    c.drawImage(img, 0, 0);
+    return [...c.getImageData(0, 0, 1, 1).data.slice(0, 3)];
+  }, png.toString('base64'));
+}
+
+/** Sum of the channel differences of two colours. */
+export const colourDistance = (a, b) => a.reduce((s, v, i) => s + Math.abs(v - b[i]), 0);
+
+/** Opens the PDDL tab and types `domain` and `problem` into its editors (replacing their texts). */
+export async function typeIntoEditor(page, domain, problem) {
+  const visible = '#panel-pddl .cm-host:not([hidden]) .cm-content';
+  await page.click('#tab-pddl');
+  // The benchmark's own texts arrive first; the typed text replaces them.
+  await page.waitForFunction((sel) => document.querySelector(sel)?.textContent.includes('define'), visible);
+  for (const [which, text] of [['domain', domain], ['problem', problem]]) {
+    await page.click(`#pddl-tab-${which}`);
+    await page.click(visible);
+    await page.keyboard.press('ControlOrMeta+A');
+    // Typed as one input event (key by key, the editor's bracket closing would double parentheses).
+    await page.keyboard.insertText(text);
+  }
+  await page.click('#pddl-tab-domain');
+  const head = domain.slice(0, 200).replace(/\s+/g, ' ').trim().slice(0, 40);
+  await page.waitForFunction(([sel, h]) => document.querySelector(sel)?.textContent.replace(/\s+/g, ' ').includes(h), [visible, head]);
+}

@@ -2,20 +2,17 @@
 // real mouse and keyboard events against the production build in web/dist.
 import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readFile } from 'node:fs/promises';
 import { join } from 'node:path';
-import { currentFrame, finish, openApp, screenshots, useBrowser } from './harness.mjs';
+import { currentFrame, finish, ipcBlocks, openApp, screenshots, typeIntoEditor, useBrowser } from './harness.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 
 const open = (query = '') => openApp(ctx.browser, ctx.server, query);
-const ipc = (f) => readFile(new URL(`../../../shared/ipc/blocks/${f}`, import.meta.url), 'utf8');
 
-/** Opens the PDDL tab holding IPC blocks 4-0. */
+/** Opens the PDDL tab and types IPC blocks 4-0 into its domain and problem editors. */
 async function blocksInEditor(page) {
-  const [d, p] = await Promise.all([ipc('domain.pddl'), ipc('probBLOCKS-4-0.pddl')]);
-  await page.evaluate(([d, p]) => window.lfd.setPddl(d, p), [d, p]);
-  await page.waitForFunction(() => document.querySelector('#panel-pddl .cm-content')?.textContent.includes('define'));
+  const [d, p] = await Promise.all([ipcBlocks('domain.pddl'), ipcBlocks('probBLOCKS-4-0.pddl')]);
+  await typeIntoEditor(page, d, p);
 }
 
 describe('page', () => {

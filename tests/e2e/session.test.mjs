@@ -4,13 +4,49 @@ import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
 import { join } from 'node:path';
-import { currentFrame, finish, openApp, screenshots, useBrowser } from './harness.mjs';
+import { BACKGROUND, colourDistance, currentFrame, finish, openApp, pixelAt, screenshots, useBrowser } from './harness.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 
 const open = (query = '') => openApp(ctx.browser, ctx.server, query);
 const frame = currentFrame;
 
+
+/** Colour distance below which a pixel counts as the background (anti-aliasing, dithering). */
+const SAME_COLOUR = 24;
+
+/**
+ * The canvas draws the scene: at every block's screen position the pixel is neither the
+ * background nor the table beside the block, and at the middle of the arm's upper arm (its third
+ * link capsule) it is not the background.
+ */
+async function assertDrawn(page, f) {
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  const points = await page.evaluate((f) => {
+    const onCanvas = (p) => p && document.elementFromPoint(p.x, p.y)?.tagName === 'CANVAS';
+    const blocks = f.world.bodies
+      .filter((b) => b.kind === 'block')
+      .map((b) => {
+        const [x, y, z] = b.pose.position;
+        // A table spot 9 cm beside the block, on the side away from the arm.
+        return { name: b.name, at: window.lfd.screenPosition(b.name), table: window.lfd.project([x + 0.09, y, z - 0.03]) };
+      })
+      .filter((b) => onCanvas(b.at) && onCanvas(b.table));
+    const link = f.world.arms[0].links[2];
+    const mid = link.a.map((v, i) => (v + link.b[i]) / 2);
+    return { blocks, arm: window.lfd.project(mid) };
+  }, f);
+  assert.ok(points.blocks.length >= 2, `only ${points.blocks.length} blocks on the canvas`);
+  for (const b of points.blocks) {
+    const px = await pixelAt(page, b.at.x, b.at.y);
+    const table = await pixelAt(page, b.table.x, b.table.y);
+    assert.ok(colourDistance(px, BACKGROUND) > SAME_COLOUR, `block ${b.name} at ${JSON.stringify(b.at)} shows the background ${px}`);
+    assert.ok(colourDistance(table, BACKGROUND) > SAME_COLOUR, `the table beside ${b.name} shows the background ${table}`);
+    assert.ok(colourDistance(px, table) > SAME_COLOUR, `block ${b.name} shows the table's colour ${px} (table ${table})`);
+  }
+  const arm = await pixelAt(page, points.arm.x, points.arm.y);
+  assert.ok(colourDistance(arm, BACKGROUND) > SAME_COLOUR, `the arm at ${JSON.stringify(points.arm)} shows the background ${arm}`);
+}
 
 describe('closed-loop session in the page', () => {
   test('draws B1: blocks, tables and the arm from its link capsules', async () => {
@@ -21,6 +57,7 @@ describe('closed-loop session in the page', () => {
     assert.equal(f.world.bodies.filter((b) => b.kind === 'block').length, 4);
     assert.ok(f.world.arms.length >= 1 && f.world.arms[0].links.length > 0);
     assert.equal(f.status.kind === 'failed', false, f.status.message);
+    await assertDrawn(page, f);
     assert.deepEqual(errors, []);
     await page.close();
   });
@@ -169,6 +206,10 @@ describe('closed-loop session in the page', () => {
       await page.waitForFunction(() => (window.lfd.frame()?.t ?? 0) > 3, null, { timeout: 60000 });
       await page.waitForTimeout(300);
       await page.screenshot({ path: join(screenshots, `${b}.png`) });
+      // Paused, the frame and the picture agree: check the canvas draws what the frame holds.
+      if ((await page.getAttribute('#play', 'aria-pressed')) === 'true') await page.click('#play');
+      await page.waitForSelector('#play[aria-pressed="false"]');
+      await assertDrawn(page, await frame(page));
       assert.deepEqual(errors, []);
       await page.close();
     });

@@ -10,7 +10,7 @@
 // exceptions, no geometry/texture leak, and growth ≤ 10 % (SOAK_MAX_GROWTH).
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { openApp, useBrowser } from './harness.mjs';
+import { currentFrame, openApp, useBrowser } from './harness.mjs';
 
 // CI (CI=true, `.ci/run`) runs 200 cycles unless SOAK_CYCLES says otherwise: 1000 take 3–10 min
 // on the shared 2-core machine; the README reports a 1000-cycle run.
@@ -171,26 +171,20 @@ test(`page soak: ${CYCLES} perturb-and-replan cycles, memory flat after ${WARMUP
     }
     let a;
     if (text == null) {
-      // A click on the L-button, its notice, and the loop running on: one round trip to the page.
+      // A real click on the L-button, its notice, and the loop running on.
       const level = `l${(i % 5) + (i % 5 === 4 ? -3 : 1)}`;
-      a = await page.evaluate(async (level) => {
-        const notice = document.getElementById('notice');
-        notice.hidden = true;
-        const t0 = performance.now();
-        document.getElementById(`inject-${level}`).click();
-        while (notice.hidden) {
-          if (performance.now() - t0 > 15000) throw new Error(`no notice after pressing ${level}`);
-          await new Promise((r) => setTimeout(r, 5));
-        }
-        const text = notice.textContent;
-        const tick = window.lfd.frame().tick;
-        for (;;) {
+      text = await act(page, () => page.click(`#inject-${level}`));
+      const tick = (await currentFrame(page)).tick;
+      const h = await page.waitForFunction(
+        (tick) => {
           const g = window.lfd.frame();
-          if (g.tick >= tick + 3 || g.status.kind === 'done' || g.status.kind === 'failed') return { text, replans: g.replans };
-          if (performance.now() - t0 > 30000) throw new Error(`the loop stopped after ${level}: ${g.status.message}`);
-          await new Promise((r) => setTimeout(r, 5));
-        }
-      }, level);
+          return (g.tick >= tick + 3 || g.status.kind === 'done' || g.status.kind === 'failed') && { replans: g.replans };
+        },
+        tick,
+        { timeout: 30000, polling: 10 },
+      );
+      a = { text, ...(await h.jsonValue()) };
+      await h.dispose();
       text = a.text;
       stats.injections++;
     } else {

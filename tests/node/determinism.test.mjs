@@ -7,21 +7,22 @@
 import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { existsSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const lfd = await import(new URL('../../pkg/node/index.mjs', import.meta.url).href);
 const root = fileURLToPath(new URL('../..', import.meta.url));
 
-/** The native CLI: `$LOGIC_LFD_BIN`, else target/debug (built by CI's cargo steps; built here if missing). */
+/**
+ * The native CLI: `$LOGIC_LFD_BIN`, else target/debug, brought up to date with the sources first
+ * (cargo does nothing when it is), so the comparison never runs a stale binary against a fresh
+ * wasm build.
+ */
 function cli() {
+  if (process.env.LOGIC_LFD_BIN) return process.env.LOGIC_LFD_BIN;
   const target = process.env.CARGO_TARGET_DIR ?? join(root, 'target');
-  const bin = process.env.LOGIC_LFD_BIN ?? join(target, 'debug', 'logic-lfd');
-  if (!existsSync(bin)) {
-    execFileSync('cargo', ['build', '-p', 'logic-lfd', '--bin', 'logic-lfd', '--locked'], { cwd: root, stdio: 'inherit' });
-  }
-  return bin;
+  execFileSync('cargo', ['build', '-p', 'logic-lfd', '--bin', 'logic-lfd', '--locked'], { cwd: root, stdio: 'inherit' });
+  return join(target, 'debug', 'logic-lfd');
 }
 const BIN = cli();
 

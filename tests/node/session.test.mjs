@@ -45,7 +45,8 @@ describe('Session', () => {
     assert.equal(injected.inj.level, 'l3');
     assert.ok(injected.inj.description.length > 0);
     assert.ok(f.replans > injected.replans, 'no replan after L3');
-    assert.ok(f.lastReplan.timeMs >= 0);
+    // The replan was timed by the caller's clock: it took some time, and less than the episode.
+    assert.ok(f.lastReplan.timeMs > 0 && Number.isFinite(f.lastReplan.timeMs), String(f.lastReplan.timeMs));
     assert.equal(f.status.kind, 'done', f.status.message);
     s.free();
   });

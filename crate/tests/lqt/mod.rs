@@ -3,6 +3,7 @@
 //! example and the error measure its test files compare with.
 
 mod cli;
+mod pinned;
 mod skills;
 mod solver;
 

@@ -426,13 +426,19 @@ mod mutations {
                 &(0..corpus.len(), prop::collection::vec(edit(), 1..4)),
                 |(k, edits)| {
                     let bytes = apply(&corpus[k].0, &edits);
+                    let mut problem_error = None;
                     check(bytes, |t| {
                         let d = parse_domain(t, "m.pddl")?;
-                        // A mutated domain that still parses must still take its problem or
-                        // refuse it with a located error.
-                        let _ = parse_problem(&corpus[k].1, "p.pddl", &d);
+                        problem_error = parse_problem(&corpus[k].1, "p.pddl", &d).err();
                         Ok(())
-                    })
+                    })?;
+                    // A mutated domain that still parses must still take its problem or refuse
+                    // it with an error located in the problem.
+                    if let Some(e) = problem_error {
+                        prop_assert!(in_bounds(&corpus[k].1, &e), "{e} out of bounds");
+                        prop_assert_eq!(e.file.as_str(), "p.pddl");
+                    }
+                    Ok(())
                 },
             )
             .unwrap();

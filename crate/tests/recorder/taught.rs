@@ -1,5 +1,6 @@
 //! Taught tasks (`recorder::taught`): loading checks a taught demo completely, and taught tasks
-//! run closed loop with Logic-LfD from random worlds to their goals.
+//! run closed loop with Logic-LfD from random worlds to their goals, keeping the world's
+//! invariants every tick.
 
 use std::path::PathBuf;
 
@@ -9,6 +10,7 @@ use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::{SceneGraph, World};
 
 use super::drag;
+use crate::support::invariants::broken;
 
 /// A taught demo is checked completely on load: not a taught demo, an action that does not
 /// apply, a goal that does not hold at the end — each refused with the key.
@@ -80,6 +82,8 @@ fn taught_reverse_tower_runs_to_success_under_l3() {
             injected = s.inject("l3").is_ok();
         }
         s.tick_once(&NoClock);
+        let v = broken(s.world());
+        assert!(v.is_empty(), "tick {}: {v:?}", s.tick());
     }
     assert!(injected, "no L3 disturbance could be injected");
     assert_eq!(
@@ -136,7 +140,14 @@ fn taught_b3_hand_over_runs_from_a_random_world() {
         },
     )
     .unwrap();
-    s.run_to_end(40_000, &NoClock);
+    for _ in 0..40_000 {
+        if s.outcome().is_some() {
+            break;
+        }
+        s.tick_once(&NoClock);
+        let v = broken(s.world());
+        assert!(v.is_empty(), "tick {}: {v:?}", s.tick());
+    }
     assert_eq!(s.outcome(), Some(&Ok(())), "{:?}", s.log().result);
     let facts = SceneGraph::from_world(s.world());
     for g in &goal {

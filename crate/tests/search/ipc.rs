@@ -68,11 +68,12 @@ fn optimal_configs_agree_on_small_ipc_problems() {
 
 #[test]
 fn satisficing_plans_are_valid_on_ipc_blocks_gripper_logistics() {
-    let mut solved = 0;
+    let mut solved = std::collections::BTreeMap::new();
     let mut total = 0;
     for dir in ["blocks", "gripper", "logistics00"] {
         for prob in ipc_problems(dir) {
             let case = ipc_case(&format!("{dir}/domain.pddl"), &format!("{dir}/{prob}"));
+            total += 1;
             for (alg, h) in [
                 (Algorithm::LazyGbfs, HeuristicKind::HFf),
                 (Algorithm::Gbfs, HeuristicKind::HFf),
@@ -83,11 +84,11 @@ fn satisficing_plans_are_valid_on_ipc_blocks_gripper_logistics() {
                     ..SearchConfig::new(alg, h)
                 };
                 let r = search(&case.task, &cfg, &NoClock);
-                total += 1;
+                let n = solved.entry(format!("{alg} {h}")).or_insert(0usize);
                 match &r.outcome {
                     SearchOutcome::Plan(p) => {
                         case.assert_valid(p);
-                        solved += 1;
+                        *n += 1;
                     }
                     SearchOutcome::BudgetExhausted { .. } => {}
                     SearchOutcome::Unsolvable => panic!("{dir}/{prob} {alg} {h}: unsolvable"),
@@ -95,6 +96,14 @@ fn satisficing_plans_are_valid_on_ipc_blocks_gripper_logistics() {
             }
         }
     }
-    // Lazy GBFS with h_FF and preferred operators solves nearly all within the small budget.
-    assert!(solved * 10 >= total * 8, "solved {solved} of {total}");
+    // Lazy GBFS with preferred operators solves every problem within the small budget (83 of
+    // 83); eager GBFS, without them, most (77 of 83).
+    for (config, n) in &solved {
+        if config.starts_with("lazy") {
+            assert_eq!(*n, total, "{config}: {solved:?} of {total}");
+        } else {
+            assert!(n * 10 >= total * 9, "{config}: {solved:?} of {total}");
+        }
+    }
+    assert_eq!(solved.len(), 3);
 }

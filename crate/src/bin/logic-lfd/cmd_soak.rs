@@ -29,8 +29,8 @@ pub struct Args {
     /// --episodes 1`).
     #[arg(long, default_value_t = 0)]
     first_episode: usize,
-    /// Save the episode JSON of every episode with a finding to this directory
-    /// (`soak-<seed>-<episode>.json`; re-run it with `logic-lfd run --replay`).
+    /// Save the episode JSON of every episode with a finding or a failure accepted as legitimate
+    /// to this directory (`soak-<seed>-<episode>.json`; re-run it with `logic-lfd run --replay`).
     #[arg(long)]
     save_findings: Option<std::path::PathBuf>,
     /// Skip the replay-identity check of every episode (halves the run time).
@@ -64,7 +64,7 @@ pub fn run(args: Args) -> ExitCode {
     }
     let report = soak_with(&params, |e, ep, json| {
         if let Some(dir) = &args.save_findings {
-            if !ep.findings.is_empty() {
+            if !ep.findings.is_empty() || !ep.explained.is_empty() {
                 let name = dir.join(format!("soak-{}-{e}.json", args.seed));
                 if let Err(err) = std::fs::write(&name, json) {
                     eprintln!("soak: cannot save {}: {err}", name.display());
@@ -118,9 +118,21 @@ fn print_summary(r: &SoakReport) {
         r.plans_checked, r.invalid_plans, r.tamp_fallbacks
     );
     println!(
-        "outcomes: success {}, legitimate failures {:?}, budget exhausted {}, unexplained {}",
-        r.successes, r.legitimate_failures, r.budget_exhausted, r.unexplained_failures
+        "outcomes: success {}, legitimate failures {:?}, budget exhausted {}, stalls {}, no outcome {}, input errors {}, unexplained {}",
+        r.successes,
+        r.legitimate_failures,
+        r.budget_exhausted,
+        r.stalls,
+        r.no_outcome,
+        r.input_errors,
+        r.unexplained_failures
     );
+    for x in &r.explained {
+        println!(
+            "  legitimate: episode {} {} session seed {}: {} ({}): {}",
+            x.episode, x.benchmark, x.session_seed, x.reason, x.class, x.proof
+        );
+    }
     println!(
         "replays checked {}: mismatches {}; panics {}",
         r.replays_checked, r.replay_mismatches, r.panics

@@ -3,16 +3,16 @@
 //! every guarantee on the way (invariants, nothing partially applied, adopted plans valid, the
 //! outcome stated and legitimate, the replay identical).
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 use nalgebra::Vector3;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
 use super::reasons::{
-    dragged_out_of_reach, fails_on, shelf_full_for, Models, DRAGGED_AWAY, SHELF_FULL,
+    drag_proof, shelf_full_for, Check, Models, DRAGGED_AWAY, SHELF_FULL, UNSOLVABLE,
 };
-use super::{SoakFinding, SoakParams, SoakReport};
+use super::{ExplainedFailure, SoakFinding, SoakParams, SoakReport};
 use crate::lfd::control::FailReason;
 use crate::lfd::session::{mix, Session, SessionOptions, SkillKind};
 use crate::lfd::{Method, Mode};
@@ -186,8 +186,10 @@ struct EpisodeRun<'a> {
     rng: Pcg64Mcg,
     /// Blocks moved by accepted user drags (with what stood on them).
     dragged: BTreeSet<String>,
-    /// Those of `dragged` that their last drag left where no arm can work them.
-    dragged_away: BTreeSet<String>,
+    /// Those of `dragged` that their last drag left where no arm can work them, with IK's reason.
+    dragged_away: BTreeMap<String, String>,
+    /// The session stopped advancing (no tick, no outcome, not executing).
+    stalled: bool,
 }
 
 /// Runs episode `e` of a soak into `rep` (an empty report) and its episode JSON into
@@ -223,7 +225,8 @@ pub(super) fn soak_episode(
         s,
         rng,
         dragged: BTreeSet::new(),
-        dragged_away: BTreeSet::new(),
+        dragged_away: BTreeMap::new(),
+        stalled: false,
     };
     run.run_ticks(&draw.schedule, rep);
     rep.ticks = run.s.tick();
@@ -286,6 +289,7 @@ impl EpisodeRun<'_> {
                 broken |= self.invariant_check(rep, "after a tick");
             }
             if self.s.tick() == t0 && self.s.outcome().is_none() && !self.s.is_executing() {
+                self.stalled = true;
                 break;
             }
         }
@@ -335,10 +339,13 @@ impl EpisodeRun<'_> {
                     .chain(out.also_moved.iter().map(|(b, _)| b.clone()));
                 for b in moved {
                     let block = self.s.world().body_kind(&b) == Some(BodyKind::Block);
-                    if block && handleable(self.s.world(), &b).is_err() {
-                        self.dragged_away.insert(b.clone());
-                    } else {
-                        self.dragged_away.remove(&b);
+                    match handleable(self.s.world(), &b) {
+                        Err(why) if block => {
+                            self.dragged_away.insert(b.clone(), why);
+                        }
+                        _ => {
+                            self.dragged_away.remove(&b);
+                        }
                     }
                     self.dragged.insert(b);
                 }
@@ -372,17 +379,17 @@ impl EpisodeRun<'_> {
         }
     }
 
-    /// A user drag explains the failure: a block it moved is now where no arm can work it, or
-    /// the failure is on a block its last drag left so.
-    fn drag_explains(&self, reason: &FailReason) -> bool {
-        dragged_out_of_reach(self.s.world(), &self.dragged) || fails_on(reason, &self.dragged_away)
+    /// The proof that a user drag explains the failure: its action acts on a dragged block
+    /// that IK shows no arm can work.
+    fn drag_explains(&self, reason: &FailReason) -> Option<String> {
+        drag_proof(self.s.world(), reason, &self.dragged, &self.dragged_away)
     }
 
-    /// Whether a block the (single-alternative) goal puts on a shelf finds no room on any.
-    fn shelf_full(&self) -> bool {
+    /// The block a (single-alternative) goal puts on a shelf that finds no room on any.
+    fn shelf_full(&self) -> Option<String> {
         let task = self.s.controller().task();
         let [goal] = task.goal.alternatives.as_slice() else {
-            return false;
+            return None;
         };
         let goal_facts: Vec<String> = goal
             .pos
@@ -390,68 +397,120 @@ impl EpisodeRun<'_> {
             .filter_map(|&f| task.facts.get(f as usize).cloned())
             .collect();
         let facts = crate::sim::SceneGraph::from_world(self.s.world()).to_strings();
-        shelf_full_for(self.s.world(), &goal_facts, &facts).is_some()
+        shelf_full_for(self.s.world(), &goal_facts, &facts)
     }
 
-    /// Counts the episode's outcome: a success, an exhausted budget, a legitimate reason, or an
-    /// unexplained failure (a finding).
+    /// Counts a legitimate failure with its class and proof.
+    fn explained(&self, rep: &mut SoakReport, reason: &FailReason, class: &str, proof: String) {
+        *rep.legitimate_failures.entry(class.into()).or_default() += 1;
+        rep.explain(ExplainedFailure {
+            episode: self.e,
+            benchmark: self.bench.as_str().into(),
+            session_seed: self.session_seed,
+            reason: reason.to_string(),
+            class: class.into(),
+            proof,
+        });
+    }
+
+    /// The proof of a failure other than an unsolvable task: a drag left the block its action
+    /// acts on unworkable, or the shelf has no room for a block the goal puts on it.
+    fn other_proof(&self, reason: &FailReason) -> Option<(&'static str, String)> {
+        if let Some(p) = self.drag_explains(reason) {
+            return Some((DRAGGED_AWAY, format!("IK: {p}")));
+        }
+        self.shelf_full().map(|b| {
+            (
+                SHELF_FULL,
+                format!("no free footprint for {b} on any shelf's top"),
+            )
+        })
+    }
+
+    /// Counts the episode's outcome: a success, or a failure that is legitimate only with a
+    /// proof (an exhaustive search that finds no plan, IK on a dragged block the failing action
+    /// acts on, a full shelf); everything else is a finding: an exhausted budget, a stall, no
+    /// outcome, an observed task that cannot be built, a failure without a proof.
     fn classify_outcome(&self, rep: &mut SoakReport) {
         let s = &self.s;
-        match s.outcome() {
-            Some(Ok(())) => rep.successes += 1,
-            Some(Err(FailReason::Budget { .. })) => rep.budget_exhausted += 1,
-            Some(Err(FailReason::NoPlan { message })) if message.contains("exhausted") => {
-                rep.budget_exhausted += 1
+        let tick = s.tick();
+        let reason = match s.outcome() {
+            Some(Ok(())) => {
+                rep.successes += 1;
+                return;
             }
-            Some(Err(reason @ FailReason::NoPlan { message })) => {
-                match self
-                    .models
-                    .unsolvable(self.bench, s.world(), self.params.check_nodes)
-                {
-                    Some(true) => {
-                        *rep.legitimate_failures
-                            .entry("no plan: the disturbed task is unsolvable".into())
-                            .or_default() += 1
-                    }
-                    Some(false) if self.drag_explains(reason) => {
-                        *rep.legitimate_failures
-                            .entry(DRAGGED_AWAY.into())
-                            .or_default() += 1
-                    }
-                    Some(false) if self.shelf_full() => {
-                        *rep.legitimate_failures
-                            .entry(SHELF_FULL.into())
-                            .or_default() += 1
-                    }
-                    Some(false) => {
-                        rep.unexplained_failures += 1;
-                        rep.find(self.finding(
-                            s.tick(),
-                            "unexplained_failure",
-                            format!("no plan ({message}) but the observed task is solvable"),
-                        ));
-                    }
-                    None => rep.budget_exhausted += 1,
-                }
-            }
-            Some(Err(other)) if self.drag_explains(other) => {
-                *rep.legitimate_failures
-                    .entry(DRAGGED_AWAY.into())
-                    .or_default() += 1
-            }
-            Some(Err(_)) if self.shelf_full() => {
-                *rep.legitimate_failures
-                    .entry(SHELF_FULL.into())
-                    .or_default() += 1
-            }
-            Some(Err(other)) => {
-                rep.unexplained_failures += 1;
-                rep.find(self.finding(s.tick(), "unexplained_failure", other.to_string()));
+            Some(Err(r)) => r,
+            None if self.stalled => {
+                rep.stalls += 1;
+                rep.find(self.finding(
+                    tick,
+                    "stall",
+                    "the session stopped advancing without an outcome".into(),
+                ));
+                return;
             }
             None => {
-                rep.budget_exhausted += 1;
+                rep.no_outcome += 1;
+                rep.find(self.finding(
+                    tick,
+                    "no_outcome",
+                    format!("no outcome after {} ticks", self.params.max_ticks),
+                ));
+                return;
             }
+        };
+        let exhausted = match reason {
+            FailReason::Budget { .. } => true,
+            FailReason::NoPlan { message } => message.contains("exhausted"),
+            _ => false,
+        };
+        if exhausted {
+            rep.budget_exhausted += 1;
+            rep.find(self.finding(tick, "budget", reason.to_string()));
+            return;
         }
+        let check = match reason {
+            FailReason::NoPlan { .. } => {
+                match self
+                    .models
+                    .check_solvable(self.bench, s.world(), self.params.check_nodes)
+                {
+                    Ok(c) => Some(c),
+                    Err(e) => {
+                        rep.input_errors += 1;
+                        rep.find(self.finding(
+                            tick,
+                            "input_error",
+                            format!("{reason}; the observed task cannot be checked: {e}"),
+                        ));
+                        return;
+                    }
+                }
+            }
+            _ => None,
+        };
+        if let Some(Check::Unsolvable { states }) = check {
+            let proof = format!(
+                "breadth-first search exhausted all {states} reachable states of the observed task without reaching the goal"
+            );
+            self.explained(rep, reason, UNSOLVABLE, proof);
+            return;
+        }
+        if let Some((class, proof)) = self.other_proof(reason) {
+            self.explained(rep, reason, class, proof);
+            return;
+        }
+        rep.unexplained_failures += 1;
+        let detail = match check {
+            Some(Check::Solvable { length }) => format!(
+                "{reason}, but the observed task has a plan of {length} actions"
+            ),
+            Some(Check::Undecided { expanded }) => format!(
+                "{reason}, and the exhaustive check stopped after {expanded} expansions without a proof that no plan exists"
+            ),
+            _ => reason.to_string(),
+        };
+        rep.find(self.finding(tick, "unexplained_failure", detail));
     }
 
     /// Replays the episode JSON and compares the replay's JSON byte for byte.

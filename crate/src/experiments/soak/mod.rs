@@ -16,16 +16,23 @@
 //!   ([`crate::plan::validate_names`]) from the observed state it was planned in (the scene graph
 //!   of the world at that tick, as a PDDL problem) to the benchmark's goal;
 //! * **stated outcome**: every episode ends in success or in a
-//!   [`FailReason`](crate::lfd::control::FailReason) that is *legitimate*: the planner's "no
-//!   plan" is confirmed by an independent exhaustive search that proves the disturbed task
-//!   unsolvable, or a block a user dragged is now where no arm can grasp it or pull it with the
-//!   hook (checked with IK, [`handleable`](crate::sim::reach::handleable)), or the failed action
-//!   (or the one the planner could not bind) is on a block that its last drag left where no arm
-//!   can work it (an arm that still closed on a block inside its minimum reach gets stuck with
-//!   it elsewhere), or a block the goal puts on a shelf has no room left on it (the footprints
-//!   on its top all taken, `shelf_full_for`; B2 cannot take a block off a shelf); an exhausted
-//!   budget is stated as such and counted apart; anything else (an action that failed, a "no
-//!   plan" for a solvable task) is *unexplained*;
+//!   [`FailReason`](crate::lfd::control::FailReason) that is *legitimate*, each class with its
+//!   proof (kept in [`SoakReport::explained`]):
+//!   - "no plan", when breadth-first search of the observed task (the world's facts, the
+//!     benchmark's goal; no heuristic, duplicate detection) exhausts its reachable states within
+//!     [`SoakParams::check_nodes`] expansions without reaching the goal;
+//!   - a failure whose action (the failed one, or the one the planner could not bind) acts on a
+//!     block a user dragged, when IK ([`handleable`](crate::sim::reach::handleable): no arm can
+//!     grasp it nor pull it in with a clear stroke of the hook) shows that block unworkable now
+//!     or right after its last drag (a block in a hand is judged where it is);
+//!   - a block the goal puts on a shelf finding no room on any (the footprints on its top all
+//!     taken, `shelf_full_for`; B2 cannot take a block off a shelf).
+//!
+//!   Everything else is a finding: a failure without such a proof (a "no plan" for a task the
+//!   check solves, or one it could not decide within its budget), an exhausted planning or
+//!   simulated-time budget, a session that stops advancing without an outcome, an episode with no
+//!   outcome after [`SoakParams::max_ticks`], an observed task that cannot be written, parsed or
+//!   grounded;
 //! * **replay identity** (optional): the episode JSON replays to the byte-identical log.
 //!
 //! No clock is read: planning runs under the controller's node budgets, so a soak's report is a
@@ -104,10 +111,28 @@ pub struct SoakFinding {
     pub session_seed: u64,
     /// Tick at which it was found.
     pub tick: u64,
-    /// `invariant`, `partial_apply`, `invalid_plan`, `unexplained_failure`, `replay`, `panic`.
+    /// `invariant`, `partial_apply`, `invalid_plan`, `unexplained_failure`, `budget`, `stall`,
+    /// `no_outcome`, `input_error`, `replay`, `panic`.
     pub kind: String,
     /// What happened, in words.
     pub detail: String,
+}
+
+/// A failure the soak accepts as legitimate, with the proof that made it so.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ExplainedFailure {
+    /// Episode index within the soak.
+    pub episode: usize,
+    /// Benchmark.
+    pub benchmark: String,
+    /// The session seed of that episode.
+    pub session_seed: u64,
+    /// The session's stated reason.
+    pub reason: String,
+    /// The legitimate class (a key of [`SoakReport::legitimate_failures`]).
+    pub class: String,
+    /// What proves it: the exhaustive search's state count, IK's reason, the full shelf.
+    pub proof: String,
 }
 
 /// The figures of a soak.
@@ -149,8 +174,18 @@ pub struct SoakReport {
     pub successes: usize,
     /// Episodes that ended with a legitimate stated reason, by reason.
     pub legitimate_failures: BTreeMap<String, usize>,
-    /// Episodes that ended with an exhausted budget (stated, counted apart).
+    /// Episodes that ended with an exhausted planning or simulated-time budget (findings).
     pub budget_exhausted: usize,
+    /// Episodes whose session stopped advancing without an outcome (findings).
+    #[serde(default)]
+    pub stalls: usize,
+    /// Episodes stopped at `max_ticks` without an outcome (findings).
+    #[serde(default)]
+    pub no_outcome: usize,
+    /// Failures whose observed task could not be written, parsed or grounded for the check
+    /// (findings).
+    #[serde(default)]
+    pub input_errors: usize,
     /// Episodes whose failure is not explained.
     pub unexplained_failures: usize,
     /// Episodes whose replay differed.
@@ -161,6 +196,9 @@ pub struct SoakReport {
     pub panics: usize,
     /// Every broken guarantee (at most 100 kept).
     pub findings: Vec<SoakFinding>,
+    /// Every legitimate failure with its proof (at most 100 kept).
+    #[serde(default)]
+    pub explained: Vec<ExplainedFailure>,
 }
 
 impl SoakReport {
@@ -170,6 +208,10 @@ impl SoakReport {
             && self.partial_applies == 0
             && self.invalid_plans == 0
             && self.unexplained_failures == 0
+            && self.budget_exhausted == 0
+            && self.stalls == 0
+            && self.no_outcome == 0
+            && self.input_errors == 0
             && self.replay_mismatches == 0
             && self.panics == 0
     }
@@ -179,6 +221,25 @@ impl SoakReport {
         if self.findings.len() < MAX_FINDINGS {
             self.findings.push(f);
         }
+    }
+
+    /// Keeps a legitimate failure's proof (at most [`MAX_FINDINGS`]).
+    fn explain(&mut self, x: ExplainedFailure) {
+        if self.explained.len() < MAX_FINDINGS {
+            self.explained.push(x);
+        }
+    }
+
+    /// Episodes that ended, each counted once: successes, legitimate failures and every kind of
+    /// unlegitimate end. Equals `episodes` unless an episode panicked.
+    pub fn ends(&self) -> usize {
+        self.successes
+            + self.legitimate_failures.values().sum::<usize>()
+            + self.budget_exhausted
+            + self.stalls
+            + self.no_outcome
+            + self.input_errors
+            + self.unexplained_failures
     }
 
     /// Adds an episode's figures and findings.
@@ -206,12 +267,18 @@ impl SoakReport {
             *self.legitimate_failures.entry(k).or_default() += v;
         }
         self.budget_exhausted += o.budget_exhausted;
+        self.stalls += o.stalls;
+        self.no_outcome += o.no_outcome;
+        self.input_errors += o.input_errors;
         self.unexplained_failures += o.unexplained_failures;
         self.replay_mismatches += o.replay_mismatches;
         self.replays_checked += o.replays_checked;
         self.panics += o.panics;
         for f in o.findings {
             self.find(f);
+        }
+        for x in o.explained {
+            self.explain(x);
         }
     }
 }

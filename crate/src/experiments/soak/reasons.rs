@@ -2,14 +2,14 @@
 //! that left a block out of every arm's reach, a full shelf, a disturbed task proved
 //! unsolvable), and the parsed benchmark models the plan check and the unsolvability proof use.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::query;
 use parry3d_f64::shape::Cuboid;
 
 use crate::lfd::control::FailReason;
-use crate::pddl::{parse_domain, parse_problem, Domain};
+use crate::pddl::{parse_domain, parse_problem, Domain, Problem};
 use crate::plan::fact_args;
 use crate::plan::{
     ground, search, validate_names, Algorithm, HeuristicKind, NoClock, Outcome, SearchConfig,
@@ -22,21 +22,32 @@ use crate::sim::reach::handleable;
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
 
-/// A stated, legitimate reason for a failure that a user drag explains: a block the user moved
-/// (directly, or standing on a moved one) is now where no arm can grasp it or pull it with the
-/// hook, by IK ([`handleable`]). A block in a hand counts too: an arm may close on a block
-/// dragged inside its minimum reach and then be unable to lift it.
-pub(super) fn dragged_out_of_reach(world: &World, dragged: &BTreeSet<String>) -> bool {
-    dragged.iter().any(|b| {
-        !world.is_lost(b)
-            && world.body_kind(b) == Some(BodyKind::Block)
-            && handleable(world, b).is_err()
-    })
+/// The block the failure `reason` acts on that a user drag left unworkable, with the proof: the
+/// failed action (or the action the planner could not bind) names a block in `dragged`, and IK
+/// ([`handleable`]: no arm can grasp it, nor pull it in with a clear stroke of the hook) says
+/// why that block cannot be worked, either now or, in `away`, right after its last drag. A block
+/// in a hand is judged where it is: an arm may close on a block dragged inside its minimum reach
+/// and then be unable to lift it.
+pub(super) fn drag_proof(
+    world: &World,
+    reason: &FailReason,
+    dragged: &BTreeSet<String>,
+    away: &BTreeMap<String, String>,
+) -> Option<String> {
+    acted_on(reason)
+        .into_iter()
+        .filter(|b| dragged.contains(b))
+        .find_map(|b| {
+            let now = (!world.is_lost(&b) && world.body_kind(&b) == Some(BodyKind::Block))
+                .then(|| handleable(world, &b).err())
+                .flatten();
+            now.or_else(|| away.get(&b).cloned())
+                .map(|why| format!("{b} (dragged): {why}"))
+        })
 }
 
-/// Whether the failure `reason` is about a block in `away`: the failed action, or the action
-/// the planner could not bind, names it.
-pub(super) fn fails_on(reason: &FailReason, away: &BTreeSet<String>) -> bool {
+/// The objects the failed action, or the action the planner could not bind, acts on.
+pub(super) fn acted_on(reason: &FailReason) -> Vec<String> {
     let action = match reason {
         FailReason::ActionFailed { action, .. } => action.as_str(),
         FailReason::NoPlan { message } => message
@@ -45,7 +56,7 @@ pub(super) fn fails_on(reason: &FailReason, away: &BTreeSet<String>) -> bool {
         _ => "",
     };
     let (_, args) = fact_args(action.trim_start_matches('(').trim_end_matches(')'));
-    args.iter().any(|a| away.contains(*a))
+    args.iter().map(|a| a.to_string()).collect()
 }
 
 /// Overlap allowed between a block on a shelf and its neighbours (m): the contact slack.
@@ -161,9 +172,23 @@ fn shelf_has_room(
 /// The legitimate reason of [`shelf_full_for`].
 pub(super) const SHELF_FULL: &str = "the shelf has no room left for a block the goal puts on it (disturbances filled it; the domain cannot take a block off the shelf)";
 
-/// The legitimate reason of [`dragged_out_of_reach`].
+/// The legitimate reason of [`drag_proof`].
 pub(super) const DRAGGED_AWAY: &str =
-    "a user drag put a block where no arm can grasp it (IK) or pull it in with a clear stroke of the hook";
+    "the failing action acts on a block a user drag put where no arm can grasp it (IK) or pull it in with a clear stroke of the hook";
+
+/// The legitimate reason of [`Check::Unsolvable`].
+pub(super) const UNSOLVABLE: &str = "no plan: the disturbed task is unsolvable";
+
+/// What the exhaustive search of the observed task found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Check {
+    /// Breadth-first search exhausted the reachable states (this many) without a goal state.
+    Unsolvable { states: u64 },
+    /// It found a plan of this many actions.
+    Solvable { length: usize },
+    /// It ran out of its node budget after this many expansions: nothing is proved.
+    Undecided { expanded: u64 },
+}
 
 /// Parsed benchmark domains (for the validator and the unsolvability check).
 pub(super) struct Models {
@@ -205,13 +230,9 @@ impl Models {
             .1
     }
 
-    /// Validates `plan` from the world's observed state to the benchmark's goal.
-    pub(super) fn validate(
-        &self,
-        b: Benchmark,
-        world: &World,
-        plan: &[String],
-    ) -> Result<(), String> {
+    /// The benchmark's domain and the parsed problem "reach its goal from the world's observed
+    /// state".
+    fn observed(&self, b: Benchmark, world: &World) -> Result<(&Domain, Problem), String> {
         let text = self.problem_text(b, world).ok_or_else(|| {
             format!(
                 "no {}-block task of {}",
@@ -221,6 +242,17 @@ impl Models {
         })?;
         let d = self.domain(b);
         let p = parse_problem(&text, "observed.pddl", d).map_err(|e| e.to_string())?;
+        Ok((d, p))
+    }
+
+    /// Validates `plan` from the world's observed state to the benchmark's goal.
+    pub(super) fn validate(
+        &self,
+        b: Benchmark,
+        world: &World,
+        plan: &[String],
+    ) -> Result<(), String> {
+        let (d, p) = self.observed(b, world)?;
         let r = validate_names(d, &p, plan);
         match r.outcome {
             Outcome::Valid => Ok(()),
@@ -240,22 +272,34 @@ impl Models {
         }
     }
 
-    /// Whether the benchmark's goal is provably unreachable from the world's observed state
-    /// (`Some(true)`), reachable (`Some(false)`), or undecided within `nodes` expansions.
-    pub(super) fn unsolvable(&self, b: Benchmark, world: &World, nodes: u64) -> Option<bool> {
-        let text = self.problem_text(b, world)?;
-        let d = self.domain(b);
-        let p = parse_problem(&text, "observed.pddl", d).ok()?;
-        let task = ground(d, &p).ok()?;
+    /// Searches the observed task (the world's facts, the benchmark's goal) exhaustively:
+    /// breadth-first with duplicate detection and no heuristic, so an exhausted state space is a
+    /// proof that no plan exists, up to `nodes` expansions. `Err`: the observed task could not be
+    /// written, parsed or grounded.
+    pub(super) fn check_solvable(
+        &self,
+        b: Benchmark,
+        world: &World,
+        nodes: u64,
+    ) -> Result<Check, String> {
+        let (d, p) = self.observed(b, world)?;
+        let task = ground(d, &p).map_err(|e| e.to_string())?;
         let cfg = SearchConfig {
             max_nodes: Some(nodes),
-            ..SearchConfig::new(Algorithm::Astar, HeuristicKind::HMax)
+            ..SearchConfig::new(Algorithm::Bfs, HeuristicKind::Blind)
         };
-        match search(&task, &cfg, &NoClock).outcome {
-            SearchOutcome::Unsolvable => Some(true),
-            SearchOutcome::Plan(_) => Some(false),
-            SearchOutcome::BudgetExhausted { .. } => None,
-        }
+        let r = search(&task, &cfg, &NoClock);
+        Ok(match r.outcome {
+            SearchOutcome::Unsolvable => Check::Unsolvable {
+                states: r.stats.states,
+            },
+            SearchOutcome::Plan(plan) => Check::Solvable {
+                length: plan.operators.len(),
+            },
+            SearchOutcome::BudgetExhausted { .. } => Check::Undecided {
+                expanded: r.stats.expanded,
+            },
+        })
     }
 }
 
@@ -299,35 +343,61 @@ mod tests {
     }
 
     #[test]
-    fn a_failure_is_the_drags_only_when_its_action_names_a_block_dragged_out_of_reach() {
-        let away: BTreeSet<String> = ["c".to_string()].into();
+    fn a_failure_is_the_drags_only_when_its_action_names_a_dragged_unworkable_block() {
+        let world = Benchmark::B1.scene();
+        let dragged: BTreeSet<String> = ["c".to_string(), "a".to_string()].into();
+        let away: BTreeMap<String, String> = [("c".to_string(), "beyond reach".to_string())].into();
         let failed = |action: &str| FailReason::ActionFailed {
             action: action.into(),
             why: "the arm cannot reach its via-point (4.4 mm away)".into(),
         };
-        assert!(fails_on(&failed("(stack panda c d)"), &away));
-        assert!(!fails_on(&failed("(stack panda a b)"), &away));
+        let proof = drag_proof(&world, &failed("(stack panda c d)"), &dragged, &away);
+        assert_eq!(proof.as_deref(), Some("c (dragged): beyond reach"));
+        assert_eq!(
+            drag_proof(&world, &failed("(stack panda b d)"), &dragged, &away),
+            None
+        );
+        // a was dragged but can be worked where it is: no proof.
+        assert_eq!(
+            drag_proof(&world, &failed("(pick panda a)"), &dragged, &away),
+            None
+        );
         let unbound = |message: &str| FailReason::NoPlan {
             message: message.into(),
         };
-        assert!(fails_on(
+        assert!(drag_proof(
+            &world,
             &unbound("2 skeletons tried; last failure: cannot bind (pick panda c) (link 6 hits b)"),
+            &dragged,
             &away
-        ));
-        assert!(!fails_on(
-            &unbound("2 skeletons tried; last failure: cannot bind (pick panda a) (c overhangs a)"),
-            &away
-        ));
-        assert!(!fails_on(
-            &unbound("no action skeleton: the goal is unreachable"),
-            &away
-        ));
+        )
+        .is_some());
+        assert_eq!(
+            drag_proof(
+                &world,
+                &unbound(
+                    "2 skeletons tried; last failure: cannot bind (pick panda a) (c overhangs a)"
+                ),
+                &dragged,
+                &away
+            ),
+            None
+        );
+        assert_eq!(
+            drag_proof(
+                &world,
+                &unbound("no action skeleton: the goal is unreachable"),
+                &dragged,
+                &away
+            ),
+            None
+        );
     }
 
     #[test]
     fn a_held_block_dragged_inside_the_arms_minimum_reach_is_a_legitimate_failure() {
-        // Found by the soak. A user dragged a 15 cm from the base (the arm's reach starts at
-        // 25 cm); the arm closed on it and cannot lift it.
+        // A user dragged a 15 cm from the base (the arm's reach starts at 25 cm); the arm closed
+        // on it and cannot lift it.
         let text = std::fs::read_to_string(concat!(
             env!("CARGO_MANIFEST_DIR"),
             "/tests/data/worlds/b1-a-held-inside-minimum-reach.json"
@@ -335,9 +405,36 @@ mod tests {
         .unwrap();
         let world = World::from_json(&text).unwrap();
         assert_eq!(world.held_by(0), Some("a"));
+        let failed = FailReason::ActionFailed {
+            action: "(stack panda a b)".into(),
+            why: "the arm cannot reach its via-point".into(),
+        };
+        let none = BTreeMap::new();
         let dragged: BTreeSet<String> = ["a".to_string()].into();
-        assert!(dragged_out_of_reach(&world, &dragged));
-        // A block the user did not move explains nothing, and neither does one within reach.
-        assert!(!dragged_out_of_reach(&world, &["b".to_string()].into()));
+        assert!(drag_proof(&world, &failed, &dragged, &none).is_some());
+        // A block the user did not move explains nothing.
+        assert_eq!(
+            drag_proof(&world, &failed, &["b".to_string()].into(), &none),
+            None
+        );
+    }
+
+    #[test]
+    fn the_unsolvability_check_proves_by_exhausting_the_states() {
+        let models = Models::new(None).unwrap();
+        let world = Benchmark::B1.scene();
+        let c = models
+            .check_solvable(Benchmark::B1, &world, 1_000_000)
+            .unwrap();
+        assert!(
+            matches!(c, Check::Solvable { length } if length > 0),
+            "{c:?}"
+        );
+        // A budget too small to finish proves nothing.
+        let c = models.check_solvable(Benchmark::B1, &world, 2).unwrap();
+        assert!(
+            matches!(c, Check::Undecided { expanded } if expanded <= 3),
+            "{c:?}"
+        );
     }
 }
