@@ -227,6 +227,38 @@ fn a_user_drag_is_logged_and_replayed() {
 }
 
 #[test]
+fn a_drag_after_done_reopens_the_episode_which_finishes_again_and_replays() {
+    let opts = SessionOptions {
+        benchmark: Benchmark::B1,
+        method: Method::LogicLfd,
+        mode: Mode::Paper,
+        seed: 1,
+        skill: SkillKind::Lqt,
+        blocks: None,
+    };
+    let mut s = Session::new(opts).unwrap();
+    let start = s.world().body_pose("a").unwrap().translation.vector;
+    s.run_to_end(40_000, &NoClock);
+    assert_eq!(s.outcome(), Some(&Ok(())));
+    let replans = s.controller().replans().len();
+    // Take the top block off the finished tower back to where it started.
+    let out = s.perturb("a", [start.x, start.y, start.z + 0.01]);
+    assert!(out.is_ok(), "{out:?}");
+    assert_eq!(
+        s.outcome(),
+        None,
+        "the drag opens the finished episode again"
+    );
+    assert_eq!(s.frame().status.kind, "planning");
+    s.run_to_end(40_000, &NoClock);
+    assert_eq!(s.outcome(), Some(&Ok(())));
+    assert!(s.controller().replans().len() > replans);
+    let log = s.log();
+    let replayed = Session::replay(&s.episode_json()).unwrap().log();
+    assert_eq!(replayed.canonical(), log.canonical());
+}
+
+#[test]
 fn prioritised_mode_never_executes_more_actions_than_paper_mode() {
     for b in Benchmark::ALL {
         for seed in [1, 2, 3] {

@@ -25,9 +25,8 @@ const status = new StatusBar(ui.stage);
 const client = new WorkerClient((m) => session.onPush(m));
 const view = new View(ui.stage.root, {
   onDrop: (d) => session.drop(d),
-  onDragStart: () => {
-    state.resumeAfterDrag = state.playing;
-  },
+  onDragStart: () => void session.guard(() => session.dragStart()),
+  onDragEnd: () => void session.guard(() => session.dragEnd()),
   onNotice: (t, k) => status.notice(t, k),
 });
 const charts = new Charts(ui.chartsPanel);

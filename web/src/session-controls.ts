@@ -24,6 +24,7 @@ export interface SessionParts {
   tabs: () => Tabs;
 }
 
+const isFinished = (kind: string) => kind === 'done' || kind === 'failed';
 const withoutLevel = (level: Level, m: string) => m.replace(new RegExp(`^${level}:\\s*`, 'i'), '');
 const withLevel = (level: Level, m: string) => `${level.toUpperCase()}: ${withoutLevel(level, m)}`;
 
@@ -45,9 +46,38 @@ export class SessionControls {
 
   async play(): Promise<void> {
     const f = this.p.state.frame;
-    if (f && (f.status.kind === 'done' || f.status.kind === 'failed')) return;
+    if (this.p.state.dragging) {
+      // The world stays still under the user's hand; it plays once the block is dropped.
+      this.p.state.resumeAfterDrag = true;
+      return;
+    }
+    if (f && isFinished(f.status.kind)) {
+      // Nothing changed since the end: say what reopens the episode instead of a dead button.
+      this.p.status.notice(
+        f.status.kind === 'done'
+          ? 'The goal holds: drag a block or inject a disturbance and the robot replans.'
+          : 'The run failed: move a block to fix the scene, then press Play to resume.',
+        'info',
+      );
+      return;
+    }
     this.setPlaying(true);
     await this.p.client.call('play', { speed: this.p.state.speed });
+  }
+
+  /** A drag begins: the world stops while the user holds the block (resumed on the drop). */
+  async dragStart(): Promise<void> {
+    const { state } = this.p;
+    state.resumeAfterDrag = state.playing;
+    state.dragging = true;
+    if (state.playing) await this.pause();
+  }
+
+  /** A drag ended without a drop (refused, cancelled): play on if it played before. */
+  async dragEnd(): Promise<void> {
+    const { state } = this.p;
+    state.dragging = false;
+    if (!state.playing && state.resumeAfterDrag) await this.play();
   }
 
   async pause(): Promise<void> {
@@ -120,11 +150,13 @@ export class SessionControls {
   async drop(d: DropRequest): Promise<string | null> {
     const teach = this.p.tabs().teach;
     if (teach?.active) return teach.drop(d);
+    const ended = this.p.state.frame?.status.kind === 'done';
     const r = await this.p.client.call('perturb', { body: d.body, position: d.position });
     if (!r.ok) return r.reason;
     this.p.status.notice(r.message || `Moved ${d.body}`, 'info');
     this.p.renderer.render(r.frame);
-    if (!this.p.state.playing && this.p.state.resumeAfterDrag) await this.play();
+    // A finished run reopens on a drag and goes on at once; a failed one waits for Play.
+    if (ended) this.p.state.resumeAfterDrag = true;
     return null;
   }
 

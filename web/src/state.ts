@@ -83,6 +83,8 @@ export interface PageState {
   playing: boolean;
   /** Whether to resume playing after the user's drag (it was playing when the drag began). */
   resumeAfterDrag: boolean;
+  /** Whether the user is dragging a block (the world is paused meanwhile). */
+  dragging: boolean;
   /** The latest frame: session status, plan, demo states, facts. */
   frame: Frame | null;
   /** Wall time of the worker's last `Session::step` (ms), and the recent ones. */
@@ -119,6 +121,7 @@ export function initialState(search: string): PageState {
     autoplay: params.get('autoplay') !== '0',
     playing: false,
     resumeAfterDrag: false,
+    dragging: false,
     frame: null,
     lastStepMs: 0,
     stepTimes: [],

@@ -17,8 +17,10 @@ export interface DropRequest {
 export interface ViewOptions {
   /** Called when the user releases a dragged block; resolves to a refusal message or null. */
   onDrop: (d: DropRequest) => Promise<string | null>;
-  /** Called when a drag starts (the page may pause the run meanwhile). */
+  /** Called when a drag starts (the page pauses the run meanwhile). */
   onDragStart?: (body: string) => void;
+  /** Called when a drag has ended, after its drop was accepted or refused (or it was cancelled). */
+  onDragEnd?: () => void;
   /** Shows a short message over the view (refused drops). */
   onNotice?: (text: string, kind: 'info' | 'error') => void;
 }
@@ -403,11 +405,15 @@ export class View {
     this.dropGhost(d.ghost);
     this.controls.enabled = true;
     this.renderer.domElement.style.cursor = '';
-    if (d.target) {
-      const refusal = await this.opts.onDrop({ body: d.name, position: [d.target.x, d.target.y, d.target.z] });
-      if (refusal) this.opts.onNotice?.(`Drop refused: ${refusal}`, 'error');
+    try {
+      if (d.target) {
+        const refusal = await this.opts.onDrop({ body: d.name, position: [d.target.x, d.target.y, d.target.z] });
+        if (refusal) this.opts.onNotice?.(`Drop refused: ${refusal}`, 'error');
+      }
+    } finally {
+      if (this.snapshot) this.update(this.snapshot);
+      this.opts.onDragEnd?.();
     }
-    if (this.snapshot) this.update(this.snapshot);
   }
 
   /** The drag ghost borrows the block's geometry: only its own material is freed. */
@@ -422,6 +428,7 @@ export class View {
     this.drag = null;
     this.controls.enabled = true;
     if (this.snapshot) this.update(this.snapshot);
+    this.opts.onDragEnd?.();
   }
 
   /** Projects a body's centre to client coordinates (for tests and tooltips). */

@@ -7,7 +7,8 @@
 //! (world snapshot, status line, plan and the step being executed, the demonstration and
 //! L_0..L_N, S_C, and the facts added and removed since the previous step). [`Session::frame`]
 //! returns it again without stepping. [`Session::perturb`], [`Session::inject`] and
-//! [`Session::cancel`] act between steps and are logged with their tick.
+//! [`Session::cancel`] act between steps and are logged with their tick; a drag or an injection
+//! after the episode ended (done or failed) opens it again, so the loop stays reactive.
 //!
 //! Per tick (paper Algorithm 1, with the executor of [`super::exec`]; file `tick.rs`):
 //!
@@ -279,7 +280,17 @@ impl Session {
             body: body.to_string(),
             position,
         });
+        self.reopen();
         Ok(out)
+    }
+
+    /// A disturbance after the episode ended opens it again: the loop observes the new scene and
+    /// plans on (a finished tower knocked over is rebuilt; a failure the user fixed is retried
+    /// with a fresh failure count).
+    fn reopen(&mut self) {
+        if self.outcome.take().is_some() {
+            self.failures_in_a_row = 0;
+        }
     }
 
     /// Drops the current plan; the loop replans on the next step.
@@ -338,6 +349,7 @@ impl Session {
             level: level.to_string(),
             description: inj.description.clone(),
         });
+        self.reopen();
         Ok(inj)
     }
 }
