@@ -3,7 +3,8 @@
 // arm can work are refused with the reason, and errors are shown whole.
 import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
-import { currentFrame, finish, openApp, useBrowser } from './harness.mjs';
+import { join } from 'node:path';
+import { currentFrame, finish, openApp, screenshots, useBrowser } from './harness.mjs';
 import { dragBody, dropPoint, waitStatus } from './ux-helpers.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
@@ -36,6 +37,13 @@ describe('always reactive', () => {
     await page.click('#inject-l3');
     const failed = await finish(page);
     assert.equal(failed.status.kind, 'failed', failed.status.message);
+    // The reason is one sentence, shown whole.
+    assert.doesNotMatch(failed.status.message, /failed: failed/);
+    await page.waitForFunction(() => document.querySelector('#status-text')?.textContent?.startsWith('failed because'));
+    assert.ok(await page.$eval('#status-text', (e) => e.scrollWidth <= e.clientWidth + 1 && e.scrollHeight <= e.clientHeight + 1), 'the reason is cut off');
+    // The failed step is marked in the plan.
+    assert.match(await page.$eval('#plan li.failed', (e) => e.textContent), /\(pick panda a\)/);
+    await page.screenshot({ path: join(screenshots, 'ux-failed-1440.png') });
     // Press Play: nothing to resume yet, the page says what to do.
     await page.click('#play');
     await page.waitForSelector('#notice:not([hidden])');
@@ -93,6 +101,65 @@ describe('honest interaction', () => {
     await page.mouse.move(from.x, from.y, { steps: 5 });
     await page.mouse.up();
     await page.waitForFunction((t) => window.lfd.frame().t > t + 0.2, t0, { timeout: 20000 });
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
+
+  test('a drop no arm can reach is refused with the reason, the reach shaded meanwhile; nothing moves', async () => {
+    const { page, errors } = await open('?benchmark=b1&seed=1&autoplay=0');
+    const f0 = await currentFrame(page);
+    // The corner of the table farthest from the arm's base.
+    const corner = await page.evaluate(() => {
+      const f = window.lfd.frame();
+      const base = f.world.arms[0].base.position;
+      const t = f.world.bodies.find((b) => b.kind === 'table');
+      if (t.shape.type !== 'cuboid') return null;
+      const [hx, hy] = t.shape.half_extents;
+      const corners = [-1, 1].flatMap((sx) => [-1, 1].map((sy) => [t.pose.position[0] + sx * (hx - 0.03), t.pose.position[1] + sy * (hy - 0.03)]));
+      return corners.sort((p, q) => Math.hypot(q[0] - base[0], q[1] - base[1]) - Math.hypot(p[0] - base[0], p[1] - base[1]))[0];
+    });
+    assert.ok(corner);
+    const to = await dropPoint(page, [corner[0], corner[1], 0]);
+    const from = await page.evaluate(() => window.lfd.screenPosition('a'));
+    await page.mouse.move(from.x, from.y);
+    await page.mouse.down();
+    await page.mouse.move(to.x, to.y, { steps: 10 });
+    assert.equal(await page.getAttribute('.stage canvas', 'data-reach-shown'), 'true', 'the reach is shaded while dragging');
+    assert.equal(await page.getAttribute('.stage canvas', 'data-drop-reachable'), 'false', 'the ghost says the spot is out of reach');
+    await page.screenshot({ path: join(screenshots, 'ux-reach-1440.png') });
+    await page.mouse.up();
+    await page.waitForSelector('#notice.error:not([hidden])');
+    const notice = await page.textContent('#notice');
+    assert.match(notice, /^Drop refused: cannot move a: no arm could grasp it there/);
+    assert.ok(await page.$eval('#notice', (e) => e.scrollWidth <= e.clientWidth + 1), 'the message is cut off');
+    assert.equal(await page.getAttribute('.stage canvas', 'data-reach-shown'), 'false');
+    const f1 = await currentFrame(page);
+    assert.deepEqual(f1.world.bodies.find((b) => b.name === 'a').pose, f0.world.bodies.find((b) => b.name === 'a').pose);
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
+});
+
+describe('loading', () => {
+  test('a broken scene file is refused with the field named, and the run goes on unchanged', async () => {
+    const { page, errors } = await open('?benchmark=b1&seed=1');
+    await waitStatus(page, ['executing']);
+    const scene = JSON.parse(await page.evaluate(() => JSON.stringify(window.lfd.frame().world)));
+    const block = scene.bodies.findIndex((b) => b.kind === 'block');
+    scene.bodies[block].shape.half_extents[0] = -0.02;
+    const chooser = page.waitForEvent('filechooser');
+    await page.click('#load-scene');
+    await (await chooser).setFiles({ name: 'broken-scene.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(scene)) });
+    await page.waitForSelector('#notice.error:not([hidden])');
+    const msg = await page.textContent('#notice');
+    assert.match(msg, /^broken-scene\.json was not loaded: /);
+    assert.match(msg, new RegExp(`bodies\\[${block}\\]|${scene.bodies[block].name}`), msg);
+    assert.match(msg, /half.extents|size/i, msg);
+    // The same session plays on.
+    const t = (await currentFrame(page)).t;
+    await page.waitForFunction((t) => window.lfd.frame().t > t + 0.3, t, { timeout: 20000 });
+    assert.equal(await page.getAttribute('#play', 'aria-pressed'), 'true');
+    assert.notEqual((await currentFrame(page)).status.kind, 'failed');
     assert.deepEqual(errors, []);
     await page.close();
   });

@@ -46,7 +46,7 @@ export class HelpOverlay {
           {},
           'The robot was shown the task once. It plans with PDDL to reach ',
           el('em', {}, 'any'),
-          ' state seen in that demonstration, then follows the rest of it. Drag a block with the mouse while it works: it notices the change, replans in milliseconds and still finishes.',
+          ' state seen in that demonstration, then follows the rest of it. Drag a block with the mouse (or a finger) while it works: it notices the change, replans in milliseconds and still finishes. Compare runs the same disturbance with every method.',
         ),
         el('table', { class: 'keys' }, ...KEYS.map(([k, v]) => el('tr', {}, el('th', {}, el('kbd', {}, k)), el('td', {}, v)))),
         el(
@@ -73,7 +73,13 @@ export class HelpOverlay {
   open(): void {
     this.root.hidden = false;
     this.closeBtn.focus();
+    this.explained ??= import('./help-text').then(({ helpExplanations }) => {
+      this.root.querySelector('.keys')?.before(helpExplanations());
+    });
   }
+
+  /** The explanations' chunk, once asked for. */
+  private explained: Promise<void> | null = null;
 
   close(): void {
     this.root.hidden = true;

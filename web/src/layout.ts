@@ -5,6 +5,7 @@
  * use; no behaviour lives here.
  */
 import { button, el, select } from './dom';
+import { METHOD_NOTES, MODE_NOTES, noteOf } from './explain';
 import { HelpOverlay } from './help';
 import { BENCHMARKS, BLOCK_RANGES, LEVELS, METHODS, MODES, SPEEDS, blockItems, type Benchmark, type PageState, type TabId } from './state';
 
@@ -40,6 +41,8 @@ export interface Stage {
 
 /** The Run tab's lists. */
 export interface RunLists {
+  /** The task's goal in words. */
+  goal: HTMLElement;
   planCount: HTMLElement;
   plan: HTMLOListElement;
   replanInfo: HTMLElement;
@@ -59,6 +62,8 @@ export interface Tab {
 export interface Layout {
   app: HTMLElement;
   version: HTMLElement;
+  /** Says the Run runs a taught task (hidden otherwise). */
+  taskTag: HTMLElement;
   controls: Controls;
   stage: Stage;
   run: RunLists;
@@ -67,6 +72,7 @@ export interface Layout {
   chartsPanel: HTMLElement;
   editorHost: HTMLElement;
   teachSlot: HTMLElement;
+  compareSlot: HTMLElement;
   help: HelpOverlay;
 }
 
@@ -80,6 +86,16 @@ export function setBlockChoices(sel: HTMLSelectElement, b: Benchmark, blocks: nu
   const r = BLOCK_RANGES[b];
   sel.disabled = r === null;
   sel.title = r ? `${BLOCKS_TITLE} (${b.toUpperCase()}: ${r[0]} to ${r[1]})` : `${b.toUpperCase()} has no N-block variant: it runs its template task`;
+}
+
+/** Gives each option of `sel` its one-line explanation as a tooltip, and the select the chosen
+ * one's (kept up to date on change). */
+function explained(sel: HTMLSelectElement, notes: [string, string, string][], label: string): HTMLSelectElement {
+  for (const o of sel.options) o.title = noteOf(notes, o.value);
+  const update = () => (sel.title = `${label}: ${noteOf(notes, sel.value)}`);
+  sel.addEventListener('change', update);
+  update();
+  return sel;
 }
 
 function blockSelect(b: Benchmark, blocks: number | null | undefined): HTMLSelectElement {
@@ -98,8 +114,8 @@ function buildControls(s: PageState): Controls {
   return {
     benchSel: select('benchmark', 'Benchmark', BENCHMARKS, o.benchmark),
     blocksSel: blockSelect(o.benchmark, o.blocks),
-    methodSel: select('method', 'Method', METHODS, o.method),
-    modeSel: select('mode', 'Multi-goal mode', MODES, o.mode),
+    methodSel: explained(select('method', 'Method', METHODS, o.method), METHOD_NOTES, 'Method'),
+    modeSel: explained(select('mode', 'Multi-goal mode', MODES, o.mode), MODE_NOTES, 'Multi-goal mode'),
     seedIn: el('input', { id: 'seed', type: 'number', min: '0', step: '1', 'aria-label': 'Random seed', title: 'Random seed', value: String(o.seed) }),
     resetBtn: button('reset', 'Reset the episode with this seed (R)', '↺ Reset'),
     playBtn: button('play', 'Play (Space)', '▶ Play', 'primary'),
@@ -127,6 +143,7 @@ function buildStage(): Stage {
 
 function buildRunPanel(): { panel: HTMLElement; lists: RunLists } {
   const lists: RunLists = {
+    goal: el('p', { id: 'goal', class: 'goal' }),
     planCount: el('span', { class: 'muted', id: 'plan-count' }),
     plan: el('ol', { id: 'plan', class: 'plan-list', 'aria-label': 'Current plan' }),
     replanInfo: el('div', { id: 'replan-info', class: 'replan-info' }),
@@ -138,6 +155,8 @@ function buildRunPanel(): { panel: HTMLElement; lists: RunLists } {
   const panel = el(
     'div',
     { class: 'panel', id: 'panel-run', role: 'tabpanel' },
+    el('h2', {}, 'Goal ', el('span', { class: 'muted' }, 'G')),
+    lists.goal,
     el('h2', {}, 'Plan ', lists.planCount),
     lists.plan,
     lists.replanInfo,
@@ -150,11 +169,11 @@ function buildRunPanel(): { panel: HTMLElement; lists: RunLists } {
   return { panel, lists };
 }
 
-function buildTopBar(c: Controls, version: HTMLElement): HTMLElement {
+function buildTopBar(c: Controls, version: HTMLElement, taskTag: HTMLElement): HTMLElement {
   return el(
     'header',
     { class: 'topbar' },
-    el('div', { class: 'brand' }, el('strong', {}, 'logic-lfd'), version),
+    el('div', { class: 'brand' }, el('strong', {}, 'logic-lfd'), version, taskTag),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Scenario' }, c.benchSel, c.blocksSel, c.methodSel, c.modeSel, el('label', { class: 'seed' }, 'seed', c.seedIn), c.resetBtn),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Playback' }, c.playBtn, c.stepBtn, c.speedSel),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Inject a disturbance' }, el('span', { class: 'muted small' }, 'inject'), ...c.levelBtns),
@@ -170,11 +189,13 @@ export function buildLayout(s: PageState): Layout {
   const chartsPanel = el('div', { class: 'panel', id: 'panel-charts', role: 'tabpanel', hidden: '' });
   const editorHost = el('div', { class: 'panel panel-editor', id: 'panel-pddl', role: 'tabpanel', hidden: '' });
   const teachSlot = el('div', { class: 'panel', id: 'panel-teach', role: 'tabpanel', hidden: '' });
+  const compareSlot = el('div', { class: 'panel', id: 'panel-compare', role: 'tabpanel', hidden: '' });
   const tabDefs: [TabId, string, HTMLElement][] = [
     ['run', 'Run', run.panel],
     ['teach', 'Teach', teachSlot],
     ['charts', 'Charts', chartsPanel],
     ['pddl', 'PDDL', editorHost],
+    ['compare', 'Compare', compareSlot],
   ];
   const tabs: Tab[] = tabDefs.map(([id, text, panel]) => ({
     id,
@@ -189,7 +210,8 @@ export function buildLayout(s: PageState): Layout {
   );
   const help = new HelpOverlay(controls.helpBtn);
   const version = el('span', { id: 'version', class: 'muted' });
+  const taskTag = el('span', { id: 'task-tag', class: 'task-tag', hidden: '' });
   const app = document.getElementById('app')!;
-  app.replaceChildren(buildTopBar(controls, version), el('main', { class: 'layout' }, stage.root, side), help.root);
-  return { app, version, controls, stage, run: run.lists, tabs, chartsPanel, editorHost, teachSlot, help };
+  app.replaceChildren(buildTopBar(controls, version, taskTag), el('main', { class: 'layout' }, stage.root, side), help.root);
+  return { app, version, taskTag, controls, stage, run: run.lists, tabs, chartsPanel, editorHost, teachSlot, compareSlot, help };
 }

@@ -7,6 +7,7 @@ import './style.css';
 import { Charts } from './charts';
 import { WorkerClient } from './client';
 import { FrameRenderer } from './frame-renderer';
+import { FirstVisitHint } from './guide';
 import { buildLayout } from './layout';
 import { RunPanel } from './run-panel';
 import { SessionControls } from './session-controls';
@@ -31,9 +32,11 @@ const view = new View(ui.stage.root, {
 });
 const charts = new Charts(ui.chartsPanel);
 const renderer = new FrameRenderer(state, { view, charts, chartsPanel: ui.chartsPanel, status, run: new RunPanel(ui.run) });
-const session: SessionControls = new SessionControls({ state, ui, client, view, renderer, status, tabs: () => tabs });
+const hint = new FirstVisitHint(ui.stage.root);
+const session: SessionControls = new SessionControls({ state, ui, client, view, renderer, status, tabs: () => tabs, hint });
 const tabs = new Tabs({ state, ui, client, view, charts, renderer, status, playback: session });
 session.wire();
+renderer.onFrame = (f) => session.refreshLevels(f);
 installShortcuts({ help: ui.help, session, tabs, controls: ui.controls, stage: ui.stage });
 installTestHooks({ state, view, charts, tabs, client });
 

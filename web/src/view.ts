@@ -7,6 +7,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { ArmSnapshot, BodySnapshot, WorldSnapshot } from 'logic-lfd';
+import { ReachShading } from './reach-shading';
 import { addRoom, applyPose, bodyObject, disposeObject, isSoftwareRenderer, regionObjects } from './view-scene';
 
 export interface DropRequest {
@@ -26,6 +27,8 @@ export interface ViewOptions {
 }
 
 const UP = new THREE.Vector3(0, 0, 1);
+/** How long a disturbance's move stays marked (ms). */
+const MOVE_MARK_MS = 3000;
 const Y = new THREE.Vector3(0, 1, 0);
 
 interface BodyEntry {
@@ -54,6 +57,7 @@ export class View {
   private readonly targets = new THREE.Group();
   private readonly trail: THREE.Line;
   private trailPoints: THREE.Vector3[] = [];
+  private readonly reach = new ReachShading();
   private readonly raycaster = new THREE.Raycaster();
   private readonly pointer = new THREE.Vector2();
   private drag: { name: string; ghost: THREE.Mesh; target: THREE.Vector3 | null; halfZ: number; planeZ: number } | null =
@@ -102,7 +106,7 @@ export class View {
     this.controls.addEventListener('change', () => (this.dirty = true));
 
     addRoom(this.scene);
-    this.scene.add(this.regions, this.targets);
+    this.scene.add(this.regions, this.targets, this.reach.group);
     this.trail = new THREE.Line(
       new THREE.BufferGeometry(),
       new THREE.LineBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.85 }),
@@ -354,6 +358,8 @@ export class View {
     ghost.visible = false;
     this.scene.add(ghost);
     this.drag = { name, ghost, target: null, halfZ: entry.halfZ, planeZ: entry.object.position.z };
+    if (this.snapshot) this.reach.show(this.snapshot, tableTop(this.snapshot));
+    this.renderer.domElement.dataset.reachShown = 'true';
     this.opts.onDragStart?.(name);
     this.onPointerMove(e);
   }
@@ -391,7 +397,13 @@ export class View {
     }
     d.target = target;
     d.ghost.visible = !!target;
-    if (target) d.ghost.position.copy(target);
+    if (target) {
+      d.ghost.position.copy(target);
+      // Red outside every arm's ring (a hook may still pull a block in from beyond).
+      const reachable = this.reach.covers(target.x, target.y) || !!this.snapshot?.bodies.some((b) => b.kind === 'hook');
+      (d.ghost.material as THREE.MeshStandardMaterial).color.set(reachable ? 0xffffff : 0xe5484d);
+      this.renderer.domElement.dataset.dropReachable = String(reachable);
+    }
     const obj = this.bodies.get(d.name)?.object;
     if (obj && target) obj.position.set(target.x, target.y, target.z + 0.04);
     this.dirty = true;
@@ -402,6 +414,8 @@ export class View {
     if (!d) return;
     this.renderer.domElement.releasePointerCapture(e.pointerId);
     this.drag = null;
+    this.reach.hide();
+    this.renderer.domElement.dataset.reachShown = 'false';
     this.dropGhost(d.ghost);
     this.controls.enabled = true;
     this.renderer.domElement.style.cursor = '';
@@ -425,10 +439,43 @@ export class View {
   private cancelDrag(): void {
     if (!this.drag) return;
     this.dropGhost(this.drag.ghost);
+    this.reach.hide();
+    this.renderer.domElement.dataset.reachShown = 'false';
     this.drag = null;
     this.controls.enabled = true;
     if (this.snapshot) this.update(this.snapshot);
     this.opts.onDragEnd?.();
+  }
+
+  /** Marks a disturbance's move of `body` for a few seconds: a yellow ghost where it was and a
+   * line to where it is. */
+  markMove(body: string, from: [number, number, number]): void {
+    const e = this.bodies.get(body);
+    const src = e?.object.children.find((c): c is THREE.Mesh => c instanceof THREE.Mesh);
+    if (!e || !src) return;
+    const ghost = new THREE.Mesh(src.geometry, new THREE.MeshBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.35, depthWrite: false }));
+    ghost.position.set(...from);
+    ghost.quaternion.copy(e.object.quaternion);
+    const line = new THREE.Line(
+      new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(...from), e.object.position.clone()]),
+      new THREE.LineBasicMaterial({ color: 0xffb224 }),
+    );
+    const mark = new THREE.Group().add(ghost, line);
+    mark.name = `moved:${body}`;
+    this.scene.add(mark);
+    this.dirty = true;
+    window.setTimeout(() => {
+      mark.removeFromParent();
+      (ghost.material as THREE.Material).dispose();
+      line.geometry.dispose();
+      (line.material as THREE.Material).dispose();
+      this.dirty = true;
+    }, MOVE_MARK_MS);
+  }
+
+  /** The bodies whose disturbance move is marked now. */
+  moveMarks(): string[] {
+    return this.scene.children.filter((c) => c.name.startsWith('moved:')).map((c) => c.name.slice('moved:'.length));
   }
 
   /** Projects a body's centre to client coordinates (for tests and tooltips). */
@@ -448,4 +495,10 @@ export class View {
     const r = this.renderer.domElement.getBoundingClientRect();
     return { x: r.left + ((v.x + 1) / 2) * r.width, y: r.top + ((1 - v.y) / 2) * r.height };
   }
+}
+
+/** The height of the highest table top in `s` (m; 0 without tables). */
+function tableTop(s: WorldSnapshot): number {
+  const tops = s.bodies.filter((b) => b.kind === 'table' && b.shape.type === 'cuboid').map((b) => b.pose.position[2] + (b.shape.type === 'cuboid' ? b.shape.half_extents[2] : 0));
+  return tops.length ? Math.max(...tops) : 0;
 }

@@ -270,11 +270,20 @@ impl Session {
         &self.controller
     }
 
-    /// Moves a block as a user drag does (refused with a reason if impossible).
+    /// Moves a block as a user drag does (refused with a reason if impossible, or if no arm
+    /// could work the block where it would lie: [`crate::sim::reach::handleable`]).
     pub fn perturb(&mut self, body: &str, position: [f64; 3]) -> Result<PerturbOutcome, Refused> {
-        let out = self
-            .world
-            .move_block(body, Vector3::new(position[0], position[1], position[2]))?;
+        let mut trial = self.world.clone();
+        let out = trial.move_block(body, Vector3::new(position[0], position[1], position[2]))?;
+        crate::sim::reach::handleable(&trial, body).map_err(|_| Refused {
+            body: body.to_string(),
+            reason: if trial.hook_names().is_empty() {
+                "no arm could grasp it there (beyond every arm's reach)".into()
+            } else {
+                "no arm could grasp it there, nor pull it in with the hook".into()
+            },
+        })?;
+        self.world = trial;
         self.events.push(EpisodeEvent::Perturb {
             tick: self.tick,
             body: body.to_string(),
@@ -321,28 +330,10 @@ impl Session {
     /// Injects a disturbance of level `l1`..`l4` now (seeded by the session's seed and the
     /// number of injections so far); what it did, in words and data.
     pub fn inject(&mut self, level: &str) -> Result<Injection, SessionError> {
-        let Some(parsed) = Level::parse(level) else {
-            return Err(SessionError::Json(format!(
-                "unknown disturbance level {:?} (l1..l4)",
-                level.to_ascii_lowercase()
-            )));
-        };
-        let n = self.injections;
-        let seed = mix(self.options.seed, INJECT_SEED_BASE + n);
-        let during = self.exec.as_ref().map(|e| e.action.clone());
-        let moving = self.moving();
-        let mut inj = match (parsed, moving) {
-            // While the arm moves, L1 acts on that motion: the approached body or the hand.
-            (Level::L1, Some(m)) => {
-                super::disturb::inject_during_motion(&mut self.world, &self.trace, &m, seed)
-            }
-            _ => {
-                let busy: Vec<usize> = self.exec.iter().map(ActionExec::arm).collect();
-                super::disturb::inject(&mut self.world, parsed, &self.trace, &busy, seed)
-            }
-        }
-        .map_err(SessionError::Json)?;
-        inj.during = during;
+        let mut world = self.world.clone();
+        let mut inj = self.injection_on(&mut world, level)?;
+        self.world = world;
+        inj.during = self.exec.as_ref().map(|e| e.action.clone());
         self.injections += 1;
         self.events.push(EpisodeEvent::Inject {
             tick: self.tick,
@@ -351,5 +342,35 @@ impl Session {
         });
         self.reopen();
         Ok(inj)
+    }
+
+    /// Whether [`Session::inject`] of `level` would apply now (`Err` says why not), without
+    /// changing anything: the same injection tried on a copy of the world.
+    pub fn can_inject(&self, level: &str) -> Result<(), SessionError> {
+        self.injection_on(&mut self.world.clone(), level)
+            .map(|_| ())
+    }
+
+    /// The injection of `level` that [`Session::inject`] makes now, applied to `world` (the
+    /// session's world or a copy of it).
+    fn injection_on(&self, world: &mut World, level: &str) -> Result<Injection, SessionError> {
+        let Some(parsed) = Level::parse(level) else {
+            return Err(SessionError::Json(format!(
+                "unknown disturbance level {:?} (l1..l4)",
+                level.to_ascii_lowercase()
+            )));
+        };
+        let seed = mix(self.options.seed, INJECT_SEED_BASE + self.injections);
+        match (parsed, self.moving()) {
+            // While the arm moves, L1 acts on that motion: the approached body or the hand.
+            (Level::L1, Some(m)) => {
+                super::disturb::inject_during_motion(world, &self.trace, &m, seed)
+            }
+            _ => {
+                let busy: Vec<usize> = self.exec.iter().map(ActionExec::arm).collect();
+                super::disturb::inject(world, parsed, &self.trace, &busy, seed)
+            }
+        }
+        .map_err(SessionError::Json)
     }
 }
