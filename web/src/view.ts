@@ -166,7 +166,8 @@ export class View {
     if (box.isEmpty()) return;
     const c = box.getCenter(new THREE.Vector3());
     const size = box.getSize(new THREE.Vector3()).length();
-    const d = Math.max(1.2, size * 1.2);
+    // A portrait view (a phone) needs more distance to show the same width.
+    const d = Math.max(1.2, size * 1.2) * Math.max(1, 1 / this.camera.aspect);
     this.controls.target.set(c.x, c.y, Math.max(0.05, c.z * 0.6));
     this.camera.position.set(c.x + d * 0.55, c.y - d * 0.8, c.z + d * 0.55);
     this.controls.update();
