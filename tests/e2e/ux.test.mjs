@@ -120,6 +120,7 @@ describe('honest interaction', () => {
     });
     assert.ok(corner);
     const to = await dropPoint(page, [corner[0], corner[1], 0]);
+    await page.waitForSelector('.stage canvas[data-extras="loaded"]');
     const from = await page.evaluate(() => window.lfd.screenPosition('a'));
     await page.mouse.move(from.x, from.y);
     await page.mouse.down();

@@ -1,6 +1,7 @@
 /**
  * One-line explanations of the methods and the multi-goal modes: the tooltips of their selects
- * and options, the help overlay and the Compare view's table.
+ * and options (set once the page is ready: this is a chunk of its own), the help overlay and the
+ * Compare view's table.
  */
 import type { Method, Mode } from './state';
 
@@ -18,3 +19,18 @@ export const MODE_NOTES: [Mode, string, string][] = [
 
 /** The one-line explanation of method `m` (or mode). */
 export const noteOf = (notes: [string, string, string][], v: string): string => notes.find(([k]) => k === v)?.[2] ?? '';
+
+/** Gives each option of `sel` its one-line explanation as a tooltip, and the select the chosen
+ * one's (kept up to date on change). */
+function explain(sel: HTMLSelectElement, notes: [string, string, string][], label: string): void {
+  for (const o of sel.options) o.title = noteOf(notes, o.value);
+  const update = () => (sel.title = `${label}: ${noteOf(notes, sel.value)}`);
+  sel.addEventListener('change', update);
+  update();
+}
+
+/** The tooltips of the method and mode selects. */
+export function explainSelects(method: HTMLSelectElement, mode: HTMLSelectElement): void {
+  explain(method, METHOD_NOTES, 'Method');
+  explain(mode, MODE_NOTES, 'Multi-goal mode');
+}

@@ -5,7 +5,6 @@
  * use; no behaviour lives here.
  */
 import { button, el, select } from './dom';
-import { METHOD_NOTES, MODE_NOTES, noteOf } from './explain';
 import { HelpOverlay } from './help';
 import { BENCHMARKS, BLOCK_RANGES, LEVELS, METHODS, MODES, SPEEDS, blockItems, type Benchmark, type PageState, type TabId } from './state';
 
@@ -88,16 +87,6 @@ export function setBlockChoices(sel: HTMLSelectElement, b: Benchmark, blocks: nu
   sel.title = r ? `${BLOCKS_TITLE} (${b.toUpperCase()}: ${r[0]} to ${r[1]})` : `${b.toUpperCase()} has no N-block variant: it runs its template task`;
 }
 
-/** Gives each option of `sel` its one-line explanation as a tooltip, and the select the chosen
- * one's (kept up to date on change). */
-function explained(sel: HTMLSelectElement, notes: [string, string, string][], label: string): HTMLSelectElement {
-  for (const o of sel.options) o.title = noteOf(notes, o.value);
-  const update = () => (sel.title = `${label}: ${noteOf(notes, sel.value)}`);
-  sel.addEventListener('change', update);
-  update();
-  return sel;
-}
-
 function blockSelect(b: Benchmark, blocks: number | null | undefined): HTMLSelectElement {
   const sel = el('select', { id: 'blocks', 'aria-label': 'Blocks' });
   setBlockChoices(sel, b, blocks);
@@ -114,8 +103,8 @@ function buildControls(s: PageState): Controls {
   return {
     benchSel: select('benchmark', 'Benchmark', BENCHMARKS, o.benchmark),
     blocksSel: blockSelect(o.benchmark, o.blocks),
-    methodSel: explained(select('method', 'Method', METHODS, o.method), METHOD_NOTES, 'Method'),
-    modeSel: explained(select('mode', 'Multi-goal mode', MODES, o.mode), MODE_NOTES, 'Multi-goal mode'),
+    methodSel: select('method', 'Method', METHODS, o.method),
+    modeSel: select('mode', 'Multi-goal mode', MODES, o.mode),
     seedIn: el('input', { id: 'seed', type: 'number', min: '0', step: '1', 'aria-label': 'Random seed', title: 'Random seed', value: String(o.seed) }),
     resetBtn: button('reset', 'Reset the episode with this seed (R)', '↺ Reset'),
     playBtn: button('play', 'Play (Space)', '▶ Play', 'primary'),

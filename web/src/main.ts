@@ -7,7 +7,6 @@ import './style.css';
 import { Charts } from './charts';
 import { WorkerClient } from './client';
 import { FrameRenderer } from './frame-renderer';
-import { FirstVisitHint } from './guide';
 import { buildLayout } from './layout';
 import { RunPanel } from './run-panel';
 import { SessionControls } from './session-controls';
@@ -32,8 +31,7 @@ const view = new View(ui.stage.root, {
 });
 const charts = new Charts(ui.chartsPanel);
 const renderer = new FrameRenderer(state, { view, charts, chartsPanel: ui.chartsPanel, status, run: new RunPanel(ui.run) });
-const hint = new FirstVisitHint(ui.stage.root);
-const session: SessionControls = new SessionControls({ state, ui, client, view, renderer, status, tabs: () => tabs, hint });
+const session: SessionControls = new SessionControls({ state, ui, client, view, renderer, status, tabs: () => tabs });
 const tabs = new Tabs({ state, ui, client, view, charts, renderer, status, playback: session });
 session.wire();
 renderer.onFrame = (f) => session.refreshLevels(f);
@@ -47,6 +45,10 @@ client.ready.then(
     await session.open();
     window.lfd.loadedAt = performance.now();
     ui.app.dataset.ready = 'true';
+    // Not needed for the first frame: fetched once the page is interactive.
+    void import('./explain').then(({ explainSelects }) => explainSelects(ui.controls.methodSel, ui.controls.modeSel));
+    view.loadExtras();
+    void import('./guide').then(({ FirstVisitHint }) => session.setHint(new FirstVisitHint(ui.stage.root)));
   },
   (e: Error) => status.fail(e.message),
 );

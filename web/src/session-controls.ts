@@ -7,7 +7,7 @@ import type { Frame } from 'logic-lfd';
 import type { DropRequest, View } from './view';
 import type { WorkerClient } from './client';
 import { downloadJson, guard } from './dom';
-import { goalFacts, goalWords, type FirstVisitHint } from './guide';
+import type { FirstVisitHint } from './guide';
 import type { FrameRenderer } from './frame-renderer';
 import { setBlockChoices, type Layout } from './layout';
 import type { FromWorker, Level } from './protocol';
@@ -24,7 +24,6 @@ export interface SessionParts {
   status: StatusBar;
   /** The side tabs (made after the controls: they need the playback). */
   tabs: () => Tabs;
-  hint: FirstVisitHint;
 }
 
 /** `m` as the end of a sentence: a full stop unless it has one. */
@@ -34,7 +33,17 @@ const withoutLevel = (level: Level, m: string) => m.replace(new RegExp(`^${level
 const withLevel = (level: Level, m: string) => `${level.toUpperCase()}: ${withoutLevel(level, m)}`;
 
 export class SessionControls {
+  /** The first-visit hint, once its chunk has loaded (after the first frame). */
+  private hint: FirstVisitHint | null = null;
+  private goal = '';
+
   constructor(private readonly p: SessionParts) {}
+
+  /** Shows the first-visit hint (unless dismissed before) with the current goal. */
+  setHint(h: FirstVisitHint): void {
+    this.hint = h;
+    h.setGoal(this.goal);
+  }
 
   /** Runs a UI action; a rejected call (no session, a refused request) becomes a notice. */
   guard(f: () => unknown): Promise<void> {
@@ -77,7 +86,7 @@ export class SessionControls {
   /** A drag begins: the world stops while the user holds the block (resumed on the drop). */
   async dragStart(): Promise<void> {
     const { state } = this.p;
-    this.p.hint.dismiss();
+    this.hint?.dismiss();
     state.resumeAfterDrag = state.playing;
     state.dragging = true;
     if (state.playing) await this.pause();
@@ -136,7 +145,7 @@ export class SessionControls {
 
   /** States the task's goal in words (a generated tower's from its demonstration's last state). */
   private async showGoal(f: Frame): Promise<void> {
-    const b = await this.p.client.call('benchmark', { id: this.p.state.options.benchmark });
+    const [b, { goalFacts, goalWords }] = await Promise.all([this.p.client.call('benchmark', { id: this.p.state.options.benchmark }), import('./guide')]);
     let facts = goalFacts(b.problem);
     if (this.p.state.options.blocks != null) {
       const preds = new Set(facts.map((x) => x.slice(1).split(' ')[0]));
@@ -145,7 +154,8 @@ export class SessionControls {
     const words = goalWords(facts);
     this.p.ui.run.goal.textContent = words;
     this.p.ui.run.goal.title = facts.join(' ');
-    this.p.hint.setGoal(words);
+    this.goal = words;
+    this.hint?.setGoal(words);
   }
 
   /** Opens a scene file's world; a file the core refuses changes nothing and says why. */

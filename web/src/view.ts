@@ -7,7 +7,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { ArmSnapshot, BodySnapshot, WorldSnapshot } from 'logic-lfd';
-import { ReachShading } from './reach-shading';
+import type { ReachShading } from './reach-shading';
 import { addRoom, applyPose, bodyObject, disposeObject, isSoftwareRenderer, regionObjects } from './view-scene';
 
 export interface DropRequest {
@@ -57,7 +57,8 @@ export class View {
   private readonly targets = new THREE.Group();
   private readonly trail: THREE.Line;
   private trailPoints: THREE.Vector3[] = [];
-  private readonly reach = new ReachShading();
+  /** Loaded after the first frame (`loadExtras`): a drag before that shows no shading. */
+  private reach: ReachShading | null = null;
   private readonly raycaster = new THREE.Raycaster();
   private readonly pointer = new THREE.Vector2();
   private drag: { name: string; ghost: THREE.Mesh; target: THREE.Vector3 | null; halfZ: number; planeZ: number } | null =
@@ -106,7 +107,7 @@ export class View {
     this.controls.addEventListener('change', () => (this.dirty = true));
 
     addRoom(this.scene);
-    this.scene.add(this.regions, this.targets, this.reach.group);
+    this.scene.add(this.regions, this.targets);
     this.trail = new THREE.Line(
       new THREE.BufferGeometry(),
       new THREE.LineBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.85 }),
@@ -121,6 +122,15 @@ export class View {
     el.addEventListener('pointercancel', () => this.cancelDrag());
     new ResizeObserver(() => this.resize()).observe(host);
     this.resize();
+  }
+
+  /** Loads what only a drag needs (the reach shading), in a chunk of its own. */
+  loadExtras(): void {
+    void import('./reach-shading').then(({ ReachShading }) => {
+      this.reach = new ReachShading();
+      this.scene.add(this.reach.group);
+      this.renderer.domElement.dataset.extras = 'loaded';
+    });
   }
 
   /** Starts the render loop (renders only when something changed). */
@@ -359,8 +369,8 @@ export class View {
     ghost.visible = false;
     this.scene.add(ghost);
     this.drag = { name, ghost, target: null, halfZ: entry.halfZ, planeZ: entry.object.position.z };
-    if (this.snapshot) this.reach.show(this.snapshot, tableTop(this.snapshot));
-    this.renderer.domElement.dataset.reachShown = 'true';
+    if (this.snapshot) this.reach?.show(this.snapshot, tableTop(this.snapshot));
+    this.renderer.domElement.dataset.reachShown = String(!!this.reach);
     this.opts.onDragStart?.(name);
     this.onPointerMove(e);
   }
@@ -401,7 +411,7 @@ export class View {
     if (target) {
       d.ghost.position.copy(target);
       // Red outside every arm's ring (a hook may still pull a block in from beyond).
-      const reachable = this.reach.covers(target.x, target.y) || !!this.snapshot?.bodies.some((b) => b.kind === 'hook');
+      const reachable = (this.reach?.covers(target.x, target.y) ?? true) || !!this.snapshot?.bodies.some((b) => b.kind === 'hook');
       (d.ghost.material as THREE.MeshStandardMaterial).color.set(reachable ? 0xffffff : 0xe5484d);
       this.renderer.domElement.dataset.dropReachable = String(reachable);
     }
@@ -415,7 +425,7 @@ export class View {
     if (!d) return;
     this.renderer.domElement.releasePointerCapture(e.pointerId);
     this.drag = null;
-    this.reach.hide();
+    this.reach?.hide();
     this.renderer.domElement.dataset.reachShown = 'false';
     this.dropGhost(d.ghost);
     this.controls.enabled = true;
@@ -440,7 +450,7 @@ export class View {
   private cancelDrag(): void {
     if (!this.drag) return;
     this.dropGhost(this.drag.ghost);
-    this.reach.hide();
+    this.reach?.hide();
     this.renderer.domElement.dataset.reachShown = 'false';
     this.drag = null;
     this.controls.enabled = true;
