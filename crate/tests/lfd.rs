@@ -228,15 +228,7 @@ fn a_user_drag_is_logged_and_replayed() {
 
 #[test]
 fn a_drag_after_done_reopens_the_episode_which_finishes_again_and_replays() {
-    let opts = SessionOptions {
-        benchmark: Benchmark::B1,
-        method: Method::LogicLfd,
-        mode: Mode::Paper,
-        seed: 1,
-        skill: SkillKind::Lqt,
-        blocks: None,
-    };
-    let mut s = Session::new(opts).unwrap();
+    let mut s = Session::new(b1_paper(1)).unwrap();
     let start = s.world().body_pose("a").unwrap().translation.vector;
     s.run_to_end(40_000, &NoClock);
     assert_eq!(s.outcome(), Some(&Ok(())));
