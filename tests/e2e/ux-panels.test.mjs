@@ -55,18 +55,18 @@ describe('guidance', () => {
 });
 
 describe('disturbance buttons', () => {
-  test('L1–L4 are enabled only when they can apply, and an L1 move is marked in the view', async () => {
+  test('L1–L4 are greyed with the reason when they cannot apply, and an L1 move is marked in the view', async () => {
     const { page, errors } = await open('?benchmark=b1&seed=1');
     // While the arm holds a block, no single block move reaches a demonstrated state (L2).
     await page.waitForFunction(() => window.lfd.frame()?.world.arms.some((a) => a.holding), null, { timeout: 60000, polling: 20 });
     await page.click('#play');
-    await page.waitForSelector('#inject-l2:disabled', { timeout: 10000 });
+    await page.waitForSelector('#inject-l2[aria-disabled="true"]', { timeout: 10000 });
     assert.match(await page.getAttribute('#inject-l2', 'title'), /not now: L2: /);
     // Once it has put it down L1 applies, and its few centimetres are marked.
     await page.click('#play');
     await page.waitForFunction(() => !window.lfd.frame()?.world.arms.some((a) => a.holding), null, { timeout: 60000, polling: 20 });
     await page.click('#play');
-    await page.waitForSelector('#inject-l1:not(:disabled)');
+    await page.waitForSelector('#inject-l1[aria-disabled="false"]');
     await page.click('#inject-l1');
     await page.waitForFunction(() => window.lfd.moveMarks().length === 1, null, { timeout: 10000, polling: 20 });
     await page.screenshot({ path: join(screenshots, 'ux-l1-mark-1440.png') });

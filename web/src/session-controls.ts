@@ -240,7 +240,9 @@ export class SessionControls {
       (why) => {
         for (const b of this.p.ui.controls.levelBtns) {
           const reason = why[b.dataset.level as Level];
-          b.disabled = reason !== null;
+          // Greyed but still clickable: a press says why it cannot apply now.
+          b.setAttribute('aria-disabled', String(reason !== null));
+          b.classList.toggle('unavailable', reason !== null);
           b.title = reason ? `${b.getAttribute('aria-label')} — not now: ${reason}` : (b.getAttribute('aria-label') ?? '');
         }
       },
