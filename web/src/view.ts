@@ -459,34 +459,44 @@ export class View {
   }
 
   /** Marks a disturbance's move of `body` for a few seconds: a yellow ghost where it was and a
-   * line to where it is. */
+   * line to where it is. One mark at a time, its objects reused (nothing to leak). */
   markMove(body: string, from: [number, number, number]): void {
     const e = this.bodies.get(body);
     const src = e?.object.children.find((c): c is THREE.Mesh => c instanceof THREE.Mesh);
     if (!e || !src) return;
-    const ghost = new THREE.Mesh(src.geometry, new THREE.MeshBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.35, depthWrite: false }));
-    ghost.position.set(...from);
-    ghost.quaternion.copy(e.object.quaternion);
-    const line = new THREE.Line(
-      new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(...from), e.object.position.clone()]),
-      new THREE.LineBasicMaterial({ color: 0xffb224 }),
-    );
-    const mark = new THREE.Group().add(ghost, line);
-    mark.name = `moved:${body}`;
-    this.scene.add(mark);
+    const m = this.moveMark;
+    m.ghost.geometry = src.geometry;
+    m.ghost.position.set(...from);
+    m.ghost.quaternion.copy(e.object.quaternion);
+    const pos = m.line.geometry.getAttribute('position') as THREE.BufferAttribute;
+    pos.setXYZ(0, ...from);
+    pos.setXYZ(1, e.object.position.x, e.object.position.y, e.object.position.z);
+    pos.needsUpdate = true;
+    m.group.name = `moved:${body}`;
+    m.group.visible = true;
     this.dirty = true;
-    window.setTimeout(() => {
-      mark.removeFromParent();
-      (ghost.material as THREE.Material).dispose();
-      line.geometry.dispose();
-      (line.material as THREE.Material).dispose();
+    clearTimeout(m.timer);
+    m.timer = window.setTimeout(() => {
+      m.group.visible = false;
       this.dirty = true;
     }, MOVE_MARK_MS);
   }
 
+  private readonly moveMark = (() => {
+    const ghost = new THREE.Mesh(undefined, new THREE.MeshBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.35, depthWrite: false }));
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6), 3));
+    const line = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: 0xffb224 }));
+    line.frustumCulled = false;
+    const group = new THREE.Group().add(ghost, line);
+    group.visible = false;
+    this.scene.add(group);
+    return { group, ghost, line, timer: 0 };
+  })();
+
   /** The bodies whose disturbance move is marked now. */
   moveMarks(): string[] {
-    return this.scene.children.filter((c) => c.name.startsWith('moved:')).map((c) => c.name.slice('moved:'.length));
+    return this.moveMark.group.visible ? [this.moveMark.group.name.slice('moved:'.length)] : [];
   }
 
   /** Projects a body's centre to client coordinates (for tests and tooltips). */
