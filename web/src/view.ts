@@ -236,6 +236,9 @@ export class View {
   }
 
   private clearScene(): void {
+    // The mark's ghost borrows a block's geometry, which is freed with the block: drawn after
+    // that, the geometry would be uploaded again and never freed.
+    this.moveMark.group.visible = false;
     for (const e of this.bodies.values()) this.dropObject(e.object);
     this.bodies.clear();
     for (const a of this.arms) this.dropObject(a.group);
