@@ -289,6 +289,102 @@ fn a_user_drag_is_logged_and_replayed() {
 }
 
 #[test]
+fn a_drag_after_done_reopens_the_episode_which_finishes_again_and_replays() {
+    let mut s = Session::new(b1_paper(1)).unwrap();
+    let start = s.world().body_pose("a").unwrap().translation.vector;
+    s.run_to_end(40_000, &NoClock);
+    assert_eq!(s.outcome(), Some(&Ok(())));
+    let replans = s.controller().replans().len();
+    // Take the top block off the finished tower back to where it started.
+    let out = s.perturb("a", [start.x, start.y, start.z + 0.01]);
+    assert!(out.is_ok(), "{out:?}");
+    assert_eq!(
+        s.outcome(),
+        None,
+        "the drag opens the finished episode again"
+    );
+    assert_eq!(s.frame().status.kind, "planning");
+    s.run_to_end(40_000, &NoClock);
+    assert_eq!(s.outcome(), Some(&Ok(())));
+    assert!(s.controller().replans().len() > replans);
+    let log = s.log();
+    let replayed = Session::replay(&s.episode_json()).unwrap().log();
+    assert_eq!(replayed.canonical(), log.canonical());
+}
+
+fn b1_paper(seed: u64) -> SessionOptions {
+    SessionOptions {
+        benchmark: Benchmark::B1,
+        method: Method::LogicLfd,
+        mode: Mode::Paper,
+        seed,
+        skill: SkillKind::Lqt,
+        blocks: None,
+    }
+}
+
+#[test]
+fn can_inject_answers_as_inject_would_and_changes_nothing() {
+    let mut s = Session::new(b1_paper(1)).unwrap();
+    s.step(1.0, &NoClock);
+    for level in ["l1", "l2", "l3", "l4"] {
+        let before = s.episode_json();
+        let can = s.can_inject(level);
+        assert_eq!(
+            s.episode_json(),
+            before,
+            "{level}: can_inject changed the session"
+        );
+        let mut twin = Session::new(b1_paper(1)).unwrap();
+        twin.step(1.0, &NoClock);
+        assert_eq!(can.is_ok(), twin.inject(level).is_ok(), "{level}");
+    }
+    assert!(s.can_inject("l9").is_err());
+}
+
+#[test]
+fn a_drop_no_arm_can_grasp_is_refused_and_changes_nothing() {
+    let mut s = Session::new(b1_paper(1)).unwrap();
+    let before = s.episode_json();
+    // The table corner farthest from the arm's base.
+    let snap = serde_json::to_value(s.world().snapshot()).unwrap();
+    let base = &snap["arms"][0]["base"]["position"];
+    let (bx, by) = (base[0].as_f64().unwrap(), base[1].as_f64().unwrap());
+    let table = snap["bodies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|b| b["kind"] == "table")
+        .unwrap();
+    let p = &table["pose"]["position"];
+    let h = &table["shape"]["half_extents"];
+    let f = |v: &serde_json::Value, i: usize| v[i].as_f64().unwrap();
+    let corner = [-1.0, 1.0]
+        .iter()
+        .flat_map(|sx| [-1.0, 1.0].map(|sy| (*sx, sy)))
+        .map(|(sx, sy)| {
+            (
+                f(p, 0) + sx * (f(h, 0) - 0.03),
+                f(p, 1) + sy * (f(h, 1) - 0.03),
+            )
+        })
+        .max_by(|a, b| {
+            let d = |q: &(f64, f64)| libm::hypot(q.0 - bx, q.1 - by);
+            d(a).total_cmp(&d(b))
+        })
+        .unwrap();
+    let top = f(p, 2) + f(h, 2);
+    let out = s.perturb("a", [corner.0, corner.1, top + 0.03]);
+    let why = out.expect_err("a drop out of every arm's reach").reason;
+    assert!(why.contains("no arm could grasp it there"), "{why}");
+    assert_eq!(s.episode_json(), before);
+    let a = s.world().body_pose("a").unwrap().translation.vector;
+    let near = s.perturb("a", [a.x + 0.05, a.y, a.z + 0.01]);
+    assert!(near.is_ok(), "{near:?}");
+    assert_ne!(s.episode_json(), before);
+}
+
+#[test]
 fn prioritised_mode_never_executes_more_actions_than_paper_mode() {
     for b in Benchmark::ALL {
         for seed in [1, 2, 3] {

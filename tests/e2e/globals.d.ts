@@ -14,6 +14,7 @@ declare global {
       lastCancel: () => { clickedAt: number; appliedAt: number; repliedAt: number } | null;
       memory: () => Promise<{ wasmBytes: number; geometries: number; textures: number }>;
       loadedAt: number;
+      moveMarks: () => string[];
     };
   }
 }

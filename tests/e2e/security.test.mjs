@@ -82,10 +82,13 @@ describe('security', () => {
     const { page, errors, check } = await openGuarded('?benchmark=b1&autoplay=0');
     const scene = JSON.parse(await page.evaluate(() => JSON.stringify(window.lfd.frame().world)));
     const load = async (s, what) => {
-      await page.evaluate(() => (document.getElementById('status-text').textContent = 'Loading (test)'));
+      await page.evaluate(() => {
+        document.getElementById('status-text').textContent = 'Loading (test)';
+        document.getElementById('notice').hidden = true;
+      });
       await page.setInputFiles('input[type=file]', { name: 'scene.json', mimeType: 'application/json', buffer: Buffer.from(JSON.stringify(s)) });
-      // Wait for the page to settle on the outcome of this load.
-      await page.waitForFunction(() => !/Loading/.test(document.getElementById('status-text').textContent), null, { timeout: 20000 });
+      // Wait for the page to settle on the outcome of this load (a refusal is a notice).
+      await page.waitForFunction(() => !/Loading/.test(document.getElementById('status-text').textContent) || !document.getElementById('notice').hidden, null, { timeout: 20000 });
       await check(what);
     };
     const shown = [];
@@ -95,7 +98,7 @@ describe('security', () => {
       s.bodies.find((b) => b.kind === 'block').name = p;
       await load(s, `block named ${p}`);
       const status = await page.evaluate(() => {
-        const e = document.getElementById('status-text');
+        const e = document.getElementById('notice');
         return { text: e.textContent, children: e.children.length };
       });
       // The core quotes the name as a Rust string literal (`"` becomes `\"`).

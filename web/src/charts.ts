@@ -21,7 +21,9 @@ const REDRAW_MS = 100;
 
 const axis = { stroke: '#8b949e', grid: { stroke: '#21262d', width: 1 }, ticks: { stroke: '#30363d', width: 1 } };
 
-function chart(UPlot: UPlot, host: HTMLElement, title: string, xLabel: string, yLabel: string, series: uPlot.Series[]): uPlot {
+/** `xRange`: both charts share one time axis, from 0 to the latest data (a margin keeps the last
+ * point inside). */
+function chart(UPlot: UPlot, host: HTMLElement, title: string, xLabel: string, yLabel: string, series: uPlot.Series[], xRange: () => [number, number]): uPlot {
   const data = [[], ...series.slice(1).map(() => [])] as unknown as uPlot.AlignedData;
   return new UPlot(
     {
@@ -29,8 +31,9 @@ function chart(UPlot: UPlot, host: HTMLElement, title: string, xLabel: string, y
       width: Math.max(200, host.clientWidth),
       height: 170,
       cursor: { drag: { x: false, y: false } },
-      legend: { live: false },
-      scales: { x: { time: false } },
+      // Hovering shows the values under the cursor.
+      legend: { live: true },
+      scales: { x: { time: false, range: xRange } },
       axes: [
         { ...axis, label: xLabel, size: 36 },
         { ...axis, label: yLabel, size: 48 },
@@ -50,6 +53,8 @@ export class Charts {
   private readonly hosts: [HTMLElement, HTMLElement];
   private replanX: number[] = [];
   private replanY: number[] = [];
+  /** Why each replan happened (the hover shows it). */
+  private replanWhy: string[] = [];
   private lastReplanKey = '';
   private ee: number[][] = [[], [], [], [], [], [], []];
   private lastT = -1;
@@ -74,19 +79,30 @@ export class Charts {
   private async create(): Promise<void> {
     const UPlot = await loadUPlot();
     const [a, b] = this.hosts;
+    const range = (): [number, number] => {
+      const end = Math.max(this.lastT, this.replanX[this.replanX.length - 1] ?? 0, 1);
+      return [0, end * 1.03];
+    };
     this.replanChart = chart(UPlot, a, 'Replanning time', 'simulated time (s)', 'ms', [
       {},
-      { label: 'replan (ms)', stroke: '#ffb224', width: 0, paths: () => null, points: { show: true, size: 7, fill: '#ffb224' } },
-    ]);
+      {
+        label: 'replan (ms)',
+        stroke: '#ffb224',
+        width: 0,
+        paths: () => null,
+        points: { show: true, size: 7, fill: '#ffb224' },
+        value: (_u, v, _s, i) => (v == null || i == null ? '–' : `${v.toFixed(2)} ms: ${this.replanWhy[i] ?? ''}`),
+      },
+    ], range);
     this.eeChart = chart(UPlot, b, 'End-effector trajectory (arm 1)', 'simulated time (s)', 'm', [
       {},
       { label: 'x', stroke: '#e5484d', width: 1.5 },
       { label: 'y', stroke: '#46a758', width: 1.5 },
       { label: 'z', stroke: '#3e63dd', width: 1.5 },
-      { label: 'x*', stroke: '#e5484d80', width: 1, dash: [4, 4] },
-      { label: 'y*', stroke: '#46a75880', width: 1, dash: [4, 4] },
-      { label: 'z*', stroke: '#3e63dd80', width: 1, dash: [4, 4] },
-    ]);
+      { label: 'x*', stroke: '#ff8a8d', width: 1.5, dash: [5, 4] },
+      { label: 'y*', stroke: '#8fd99c', width: 1.5, dash: [5, 4] },
+      { label: 'z*', stroke: '#8fa8ff', width: 1.5, dash: [5, 4] },
+    ], range);
     new ResizeObserver(() => this.resize()).observe(this.root);
     this.dirty = true;
     this.draw();
@@ -101,6 +117,7 @@ export class Charts {
   reset(): void {
     this.replanX = [];
     this.replanY = [];
+    this.replanWhy = [];
     this.lastReplanKey = '';
     this.ee = [[], [], [], [], [], [], []];
     this.lastT = -1;
@@ -117,9 +134,11 @@ export class Charts {
         this.lastReplanKey = key;
         this.replanX.push(r.tick * (f.world.dt || 0.01));
         this.replanY.push(r.timeMs);
+        this.replanWhy.push(r.reason);
         if (this.replanX.length > MAX_REPLANS) {
           this.replanX.shift();
           this.replanY.shift();
+          this.replanWhy.shift();
         }
         this.dirty = true;
       }

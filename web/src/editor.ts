@@ -119,6 +119,11 @@ export class EditorPanel {
       'section',
       { class: 'editor-panel', 'aria-label': 'PDDL editor', 'data-mode': this.mode },
       el(
+        'p',
+        { id: 'pddl-own', class: 'pddl-own' },
+        'A sandbox: this tab plans on its own. Edits here never change the robot’s task in the Run (edits are kept per benchmark).',
+      ),
+      el(
         'div',
         { class: 'editor-modes' },
         el('div', { class: 'seg-group', role: 'group', 'aria-label': 'Planning mode' }, this.modeButtons.classical, this.modeButtons.lfd),
@@ -242,7 +247,7 @@ export class EditorPanel {
   }
 
   private async plan(): Promise<void> {
-    this.output.replaceChildren(el('li', { class: 'muted' }, 'Planning… (Cancel stops the search)'));
+    this.output.replaceChildren(el('li', { class: 'muted empty' }, 'Planning… (Cancel stops the search)'));
     this.stateView.replaceChildren();
     try {
       const out = await this.opts.plan(this.text('domain'), this.text('problem'), {
@@ -253,7 +258,8 @@ export class EditorPanel {
       if (!out.ok) {
         this.lastPlan = null;
         this.showDiagnostics(out.diagnostics);
-        this.output.replaceChildren(el('li', { class: 'muted' }, out.message));
+        // A message, not a step: no number in front of it.
+        this.output.replaceChildren(el('li', { class: 'muted empty', id: 'pddl-no-plan' }, out.message));
         this.stateView.replaceChildren();
         return;
       }
@@ -272,7 +278,7 @@ export class EditorPanel {
       this.lastPlan = null;
       const err = e as Error;
       const text = err.name === 'CancelledError' ? `Search ${err.message}.` : err.message;
-      this.output.replaceChildren(el('li', { class: 'muted', id: 'pddl-stopped' }, text));
+      this.output.replaceChildren(el('li', { class: 'muted empty', id: 'pddl-stopped' }, text));
     }
   }
 
@@ -283,10 +289,17 @@ export class EditorPanel {
     this.output.querySelectorAll('button.step').forEach((b, j) => b.classList.toggle('current', j === this.selected));
     const facts = p.states[this.selected] ?? [];
     const before = new Set(this.selected > 0 ? p.states[this.selected - 1] : []);
+    const now = new Set(facts);
+    const removed = [...before].filter((f) => !now.has(f));
     const title = this.selected === 0 ? 'Initial state' : `After step ${this.selected}: ${p.plan[this.selected - 1]}`;
     this.stateView.replaceChildren(
       el('div', { class: 'state-title' }, title),
-      el('ul', { class: 'facts' }, ...facts.map((f) => el('li', { class: this.selected > 0 && !before.has(f) ? 'added' : '' }, f))),
+      el(
+        'ul',
+        { class: 'facts' },
+        ...facts.map((f) => el('li', { class: this.selected > 0 && !before.has(f) ? 'added' : '' }, f)),
+        ...removed.map((f) => el('li', { class: 'removed', title: 'removed by this step' }, f)),
+      ),
     );
   }
 }

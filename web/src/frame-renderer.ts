@@ -23,8 +23,12 @@ export class FrameRenderer {
     return this.pendingFrame !== null;
   }
 
+  /** Called with every frame (the L1–L4 buttons follow it). */
+  onFrame: (f: Frame) => void = () => {};
+
   render(f: Frame): void {
     this.state.frame = f;
+    this.onFrame(f);
     this.parts.charts.push(f);
     if (this.pendingFrame === null) requestAnimationFrame(() => this.flush());
     this.pendingFrame = f;
@@ -39,7 +43,7 @@ export class FrameRenderer {
   /** Renders `f` as the first frame of a new episode: empty charts and trail, lists redrawn. */
   restart(f: Frame): void {
     this.clearHistory();
-    this.parts.run.invalidate();
+    this.parts.run.restart();
     this.render(f);
   }
 

@@ -40,6 +40,8 @@ export interface Stage {
 
 /** The Run tab's lists. */
 export interface RunLists {
+  /** The task's goal in words. */
+  goal: HTMLElement;
   planCount: HTMLElement;
   plan: HTMLOListElement;
   replanInfo: HTMLElement;
@@ -59,6 +61,8 @@ export interface Tab {
 export interface Layout {
   app: HTMLElement;
   version: HTMLElement;
+  /** Says the Run runs a taught task (hidden otherwise). */
+  taskTag: HTMLElement;
   controls: Controls;
   stage: Stage;
   run: RunLists;
@@ -67,6 +71,7 @@ export interface Layout {
   chartsPanel: HTMLElement;
   editorHost: HTMLElement;
   teachSlot: HTMLElement;
+  compareSlot: HTMLElement;
   help: HelpOverlay;
 }
 
@@ -127,6 +132,7 @@ function buildStage(): Stage {
 
 function buildRunPanel(): { panel: HTMLElement; lists: RunLists } {
   const lists: RunLists = {
+    goal: el('p', { id: 'goal', class: 'goal' }),
     planCount: el('span', { class: 'muted', id: 'plan-count' }),
     plan: el('ol', { id: 'plan', class: 'plan-list', 'aria-label': 'Current plan' }),
     replanInfo: el('div', { id: 'replan-info', class: 'replan-info' }),
@@ -138,6 +144,8 @@ function buildRunPanel(): { panel: HTMLElement; lists: RunLists } {
   const panel = el(
     'div',
     { class: 'panel', id: 'panel-run', role: 'tabpanel' },
+    el('h2', {}, 'Goal ', el('span', { class: 'muted' }, 'G')),
+    lists.goal,
     el('h2', {}, 'Plan ', lists.planCount),
     lists.plan,
     lists.replanInfo,
@@ -150,11 +158,11 @@ function buildRunPanel(): { panel: HTMLElement; lists: RunLists } {
   return { panel, lists };
 }
 
-function buildTopBar(c: Controls, version: HTMLElement): HTMLElement {
+function buildTopBar(c: Controls, version: HTMLElement, taskTag: HTMLElement): HTMLElement {
   return el(
     'header',
     { class: 'topbar' },
-    el('div', { class: 'brand' }, el('strong', {}, 'logic-lfd'), version),
+    el('div', { class: 'brand' }, el('strong', {}, 'logic-lfd'), version, taskTag),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Scenario' }, c.benchSel, c.blocksSel, c.methodSel, c.modeSel, el('label', { class: 'seed' }, 'seed', c.seedIn), c.resetBtn),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Playback' }, c.playBtn, c.stepBtn, c.speedSel),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Inject a disturbance' }, el('span', { class: 'muted small' }, 'inject'), ...c.levelBtns),
@@ -170,11 +178,13 @@ export function buildLayout(s: PageState): Layout {
   const chartsPanel = el('div', { class: 'panel', id: 'panel-charts', role: 'tabpanel', hidden: '' });
   const editorHost = el('div', { class: 'panel panel-editor', id: 'panel-pddl', role: 'tabpanel', hidden: '' });
   const teachSlot = el('div', { class: 'panel', id: 'panel-teach', role: 'tabpanel', hidden: '' });
+  const compareSlot = el('div', { class: 'panel', id: 'panel-compare', role: 'tabpanel', hidden: '' });
   const tabDefs: [TabId, string, HTMLElement][] = [
     ['run', 'Run', run.panel],
     ['teach', 'Teach', teachSlot],
     ['charts', 'Charts', chartsPanel],
     ['pddl', 'PDDL', editorHost],
+    ['compare', 'Compare', compareSlot],
   ];
   const tabs: Tab[] = tabDefs.map(([id, text, panel]) => ({
     id,
@@ -189,7 +199,8 @@ export function buildLayout(s: PageState): Layout {
   );
   const help = new HelpOverlay(controls.helpBtn);
   const version = el('span', { id: 'version', class: 'muted' });
+  const taskTag = el('span', { id: 'task-tag', class: 'task-tag', hidden: '' });
   const app = document.getElementById('app')!;
-  app.replaceChildren(buildTopBar(controls, version), el('main', { class: 'layout' }, stage.root, side), help.root);
-  return { app, version, controls, stage, run: run.lists, tabs, chartsPanel, editorHost, teachSlot, help };
+  app.replaceChildren(buildTopBar(controls, version, taskTag), el('main', { class: 'layout' }, stage.root, side), help.root);
+  return { app, version, taskTag, controls, stage, run: run.lists, tabs, chartsPanel, editorHost, teachSlot, compareSlot, help };
 }

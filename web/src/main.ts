@@ -25,9 +25,8 @@ const status = new StatusBar(ui.stage);
 const client = new WorkerClient((m) => session.onPush(m));
 const view = new View(ui.stage.root, {
   onDrop: (d) => session.drop(d),
-  onDragStart: () => {
-    state.resumeAfterDrag = state.playing;
-  },
+  onDragStart: () => void session.guard(() => session.dragStart()),
+  onDragEnd: () => void session.guard(() => session.dragEnd()),
   onNotice: (t, k) => status.notice(t, k),
 });
 const charts = new Charts(ui.chartsPanel);
@@ -35,6 +34,7 @@ const renderer = new FrameRenderer(state, { view, charts, chartsPanel: ui.charts
 const session: SessionControls = new SessionControls({ state, ui, client, view, renderer, status, tabs: () => tabs });
 const tabs = new Tabs({ state, ui, client, view, charts, renderer, status, playback: session });
 session.wire();
+renderer.onFrame = (f) => session.refreshLevels(f);
 installShortcuts({ help: ui.help, session, tabs, controls: ui.controls, stage: ui.stage });
 installTestHooks({ state, view, charts, tabs, client });
 
@@ -45,6 +45,10 @@ client.ready.then(
     await session.open();
     window.lfd.loadedAt = performance.now();
     ui.app.dataset.ready = 'true';
+    // Not needed for the first frame: fetched once the page is interactive.
+    void import('./explain').then(({ explainSelects }) => explainSelects(ui.controls.methodSel, ui.controls.modeSel));
+    view.loadExtras();
+    void import('./guide').then(({ FirstVisitHint }) => session.setHint(new FirstVisitHint(ui.stage.root)));
   },
   (e: Error) => status.fail(e.message),
 );

@@ -27,6 +27,8 @@ export type DropOutcome = { ok: true; message: string; frame: Frame } | { ok: fa
 export interface InjectOutcome {
   message: string;
   frame: Frame;
+  /** The bodies it moved. */
+  moved: string[];
 }
 
 /** Every request the page can make: its arguments and the value its reply carries. */
@@ -46,6 +48,8 @@ export interface Api extends TeachApi {
   speed: { args: { speed: number }; result: null };
   perturb: { args: { body: string; position: Vec3 }; result: DropOutcome };
   inject: { args: { level: Level }; result: InjectOutcome };
+  /** Per level, why an injection would be refused now (null: it would apply). */
+  levels: { args: Record<string, never>; result: Record<Level, string | null> };
   reset: { args: { seed: number }; result: Frame };
   /** `appliedAt`: when the worker dropped the plan (ms, `performance.timeOrigin + performance.now()`). */
   cancel: { args: Record<string, never>; result: { frame: Frame; appliedAt: number } };

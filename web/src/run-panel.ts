@@ -3,12 +3,27 @@
  * actions with the state the robot joined, the current facts S_C with the last change, and the
  * last replan. Redrawn only when what it shows changed.
  */
-import type { Frame } from 'logic-lfd';
+import type { Frame, Replan } from 'logic-lfd';
+
+/** Replans listed under the plan (the newest). */
+const MAX_REPLANS_SHOWN = 6;
 import { demoStateItem, el, factChips } from './dom';
 import type { RunLists } from './layout';
 
+/** The last change of the facts: kept on screen until the next one. */
+interface FactChange {
+  added: string[];
+  removed: string[];
+  t: number;
+}
+
 export class RunPanel {
   private lastKey = '';
+  private lastChange: FactChange | null = null;
+  /** The plan step being executed in the latest frame that executed one (the failed step). */
+  private lastStep: number | null = null;
+  /** The episode's replans so far (the frame carries the last one only). */
+  private replans: Replan[] = [];
 
   constructor(private readonly ui: RunLists) {}
 
@@ -17,8 +32,20 @@ export class RunPanel {
     this.lastKey = '';
   }
 
+  /** A new episode: forgets the last change and step too. */
+  restart(): void {
+    this.invalidate();
+    this.lastChange = null;
+    this.lastStep = null;
+    this.replans = [];
+  }
+
   show(f: Frame): void {
-    const key = JSON.stringify([f.plan, f.executing, f.demo.length, f.matchedK, f.facts, f.lastReplan?.tick]);
+    if (f.factsAdded.length || f.factsRemoved.length) this.lastChange = { added: f.factsAdded, removed: f.factsRemoved, t: f.t };
+    if (f.executing != null) this.lastStep = f.executing;
+    const r = f.lastReplan;
+    if (r && this.replans[this.replans.length - 1]?.tick !== r.tick) this.replans.push(r);
+    const key = JSON.stringify([f.plan, f.executing, f.demo.length, f.matchedK, f.facts, f.lastReplan?.tick, f.status.kind, this.lastChange?.t]);
     if (key === this.lastKey) return;
     this.lastKey = key;
     this.showPlan(f);
@@ -29,10 +56,14 @@ export class RunPanel {
   private showPlan(f: Frame): void {
     const list = this.ui.plan;
     this.ui.planCount.textContent = f.plan.length ? `${f.plan.length} actions` : '';
+    const done = stepsDone(f);
+    const failed = f.status.kind === 'failed' ? this.lastStep : null;
     list.replaceChildren(
       ...f.plan.map((a, i) => {
-        const cls = f.executing === i ? 'current' : f.executing != null && i < f.executing ? 'done' : '';
-        return el('li', { class: cls, 'aria-current': f.executing === i ? 'step' : 'false' }, a);
+        const cls = i === failed ? 'failed' : f.executing === i ? 'current' : i < done ? 'done' : '';
+        const li = el('li', { class: cls, 'aria-current': f.executing === i ? 'step' : 'false' }, a);
+        if (i === failed) li.title = f.status.message;
+        return li;
       }),
     );
     if (!f.plan.length) list.append(el('li', { class: 'muted empty' }, 'no plan yet'));
@@ -41,10 +72,11 @@ export class RunPanel {
 
   private showDemo(f: Frame): void {
     const k = f.matchedK ?? null;
-    this.ui.matched.textContent = k == null ? '' : `joined at L${k}`;
+    const at = demoPosition(f);
+    this.ui.matched.textContent = k == null ? '' : `joined at L${k}${at != null && at !== k ? `, now at L${at}` : ''}`;
     const items: HTMLElement[] = [];
     f.demoStates.forEach((facts, i) => {
-      items.push(demoStateItem(i, facts, `demo-state${k === i ? ' matched' : ''}`));
+      items.push(demoStateItem(i, facts, `demo-state${k === i ? ' matched' : ''}${at === i ? ' at' : ''}`));
       if (i < f.demo.length) items.push(el('li', { class: `demo-action${k != null && i >= k ? ' ahead' : ''}` }, `a${i + 1} ${f.demo[i]}`));
     });
     this.ui.demo.replaceChildren(...items);
@@ -53,10 +85,34 @@ export class RunPanel {
   private showFacts(f: Frame): void {
     const added = new Set(f.factsAdded);
     this.ui.facts.replaceChildren(...f.facts.map((x) => el('li', { class: added.has(x) ? 'added' : '' }, x)));
-    this.ui.factsDiff.replaceChildren(...factChips(f.factsAdded, f.factsRemoved));
-    const r = f.lastReplan;
-    this.ui.replanInfo.textContent = r
-      ? `Last replan at tick ${r.tick}: ${r.reason} — ${r.timeMs.toFixed(2)} ms${r.k != null ? `, joined the demo at L${r.k}` : ''}${r.fallback ? ', no skeleton joining the demo bound: planned to G from scratch (TAMP fallback)' : ''}`
-      : '';
+    const c = this.lastChange;
+    this.ui.factsDiff.replaceChildren(
+      ...(c ? [el('span', { class: 'muted small' }, `last change at ${c.t.toFixed(1)} s:`), ...factChips(c.added, c.removed)] : []),
+    );
+    // Every replan of the episode, newest first: why, how long, which L_k it joined.
+    this.ui.replanInfo.replaceChildren(
+      ...[...this.replans].reverse().slice(0, MAX_REPLANS_SHOWN).map((r, i) =>
+        el(
+          'div',
+          { class: i === 0 ? 'replan last' : 'replan' },
+          `${i === 0 ? 'Last replan' : 'Replan'} at tick ${r.tick}: ${r.reason} — ${r.timeMs.toFixed(2)} ms${r.k != null ? `, joined the demo at L${r.k} (${r.newActions} new actions)` : ''}${r.fallback ? ', no skeleton joining the demo bound: planned to G from scratch (TAMP fallback)' : ''}`,
+        ),
+      ),
+    );
   }
+}
+
+/** How many leading steps of the plan are finished (all of them once the goal holds). */
+function stepsDone(f: Frame): number {
+  if (f.status.kind === 'done') return f.plan.length;
+  return f.executing ?? 0;
+}
+
+/** The demonstration state the robot is at on its way: L_k once the new prefix is done, then one
+ * further per demonstration action executed (null without a joined state). */
+function demoPosition(f: Frame): number | null {
+  const k = f.matchedK;
+  if (k == null) return null;
+  const prefix = f.plan.length - (f.demo.length - k);
+  return Math.min(f.demo.length, k + Math.max(0, stepsDone(f) - prefix));
 }

@@ -3,9 +3,11 @@
  * play, pause, step, reset, change the speed, inject a disturbance, cancel the plan, drop a dragged
  * block, save the scene, copy the permalink; and the frames the worker pushes while it plays.
  */
+import type { Frame } from 'logic-lfd';
 import type { DropRequest, View } from './view';
 import type { WorkerClient } from './client';
 import { downloadJson, guard } from './dom';
+import type { FirstVisitHint } from './guide';
 import type { FrameRenderer } from './frame-renderer';
 import { setBlockChoices, type Layout } from './layout';
 import type { FromWorker, Level } from './protocol';
@@ -24,11 +26,24 @@ export interface SessionParts {
   tabs: () => Tabs;
 }
 
+/** `m` as the end of a sentence: a full stop unless it has one. */
+const sentence = (m: string) => (/[.!?]$/.test(m.trim()) ? m.trim() : `${m.trim()}.`);
+const isFinished = (kind: string) => kind === 'done' || kind === 'failed';
 const withoutLevel = (level: Level, m: string) => m.replace(new RegExp(`^${level}:\\s*`, 'i'), '');
 const withLevel = (level: Level, m: string) => `${level.toUpperCase()}: ${withoutLevel(level, m)}`;
 
 export class SessionControls {
+  /** The first-visit hint, once its chunk has loaded (after the first frame). */
+  private hint: FirstVisitHint | null = null;
+  private goal = '';
+
   constructor(private readonly p: SessionParts) {}
+
+  /** Shows the first-visit hint (unless dismissed before) with the current goal. */
+  setHint(h: FirstVisitHint): void {
+    this.hint = h;
+    h.setGoal(this.goal);
+  }
 
   /** Runs a UI action; a rejected call (no session, a refused request) becomes a notice. */
   guard(f: () => unknown): Promise<void> {
@@ -45,9 +60,43 @@ export class SessionControls {
 
   async play(): Promise<void> {
     const f = this.p.state.frame;
-    if (f && (f.status.kind === 'done' || f.status.kind === 'failed')) return;
+    if (this.p.tabs().teach?.active) {
+      this.p.status.notice('Teach mode owns the view: run the taught task, or open the Run tab to play.', 'info');
+      return;
+    }
+    if (this.p.state.dragging) {
+      // The world stays still under the user's hand; it plays once the block is dropped.
+      this.p.state.resumeAfterDrag = true;
+      return;
+    }
+    if (f && isFinished(f.status.kind)) {
+      // Nothing changed since the end: say what reopens the episode instead of a dead button.
+      this.p.status.notice(
+        f.status.kind === 'done'
+          ? 'The goal holds: drag a block or inject a disturbance and the robot replans.'
+          : 'The run failed: move a block to fix the scene, then press Play to resume.',
+        'info',
+      );
+      return;
+    }
     this.setPlaying(true);
     await this.p.client.call('play', { speed: this.p.state.speed });
+  }
+
+  /** A drag begins: the world stops while the user holds the block (resumed on the drop). */
+  async dragStart(): Promise<void> {
+    const { state } = this.p;
+    this.hint?.dismiss();
+    state.resumeAfterDrag = state.playing;
+    state.dragging = true;
+    if (state.playing) await this.pause();
+  }
+
+  /** A drag ended without a drop (refused, cancelled): play on if it played before. */
+  async dragEnd(): Promise<void> {
+    const { state } = this.p;
+    state.dragging = false;
+    if (!state.playing && state.resumeAfterDrag) await this.play();
   }
 
   async pause(): Promise<void> {
@@ -60,15 +109,27 @@ export class SessionControls {
     return this.guard(() => (this.p.state.playing ? this.pause() : this.play()));
   }
 
+  /** The Run runs a taught task: no permalink can restore it, so the URL and the top bar say so. */
+  taught(f: Frame): void {
+    this.p.state.taught = true;
+    history.replaceState(null, '', location.pathname);
+    this.p.ui.taskTag.textContent = `taught task · ${f.world.name}`;
+    this.p.ui.taskTag.hidden = false;
+    this.p.ui.run.goal.textContent = 'the taught goal (Teach tab)';
+  }
+
   /** Opens a session of the chosen scenario (or of a scene file's world). */
   async open(scene?: string): Promise<void> {
     const { state, client, renderer, status, view } = this.p;
+    state.taught = false;
+    this.p.ui.taskTag.hidden = true;
     this.setPlaying(false);
     updateUrl(state);
     status.say('Loading the benchmark…');
     try {
       const f = await client.call('open', { options: { ...state.options }, scene });
       renderer.restart(f);
+      void this.guard(() => this.showGoal(f));
       if (state.editorBenchmark !== state.options.benchmark && !this.p.ui.editorHost.hidden) void this.p.tabs().loadEditor();
       if (state.autoplay) await this.play();
     } catch (e) {
@@ -82,10 +143,41 @@ export class SessionControls {
     }
   }
 
+  /** States the task's goal in words (a generated tower's from its demonstration's last state). */
+  private async showGoal(f: Frame): Promise<void> {
+    const [b, { goalFacts, goalWords }] = await Promise.all([this.p.client.call('benchmark', { id: this.p.state.options.benchmark }), import('./guide')]);
+    let facts = goalFacts(b.problem);
+    if (this.p.state.options.blocks != null) {
+      const preds = new Set(facts.map((x) => x.slice(1).split(' ')[0]));
+      facts = (f.demoStates[f.demoStates.length - 1] ?? []).filter((x) => preds.has(x.slice(1).split(/[ )]/)[0]));
+    }
+    const words = goalWords(facts);
+    this.p.ui.run.goal.textContent = words;
+    this.p.ui.run.goal.title = facts.join(' ');
+    this.goal = words;
+    this.hint?.setGoal(words);
+  }
+
+  /** Opens a scene file's world; a file the core refuses changes nothing and says why. */
+  async loadScene(name: string, text: string): Promise<void> {
+    const { state, client, renderer, status } = this.p;
+    const was = state.playing;
+    if (was) await this.pause();
+    try {
+      const f = await client.call('open', { options: { ...state.options }, scene: text });
+      renderer.restart(f);
+      status.notice(`Loaded the scene ${name}.`, 'info');
+      if (state.autoplay) await this.play();
+    } catch (e) {
+      // The worker keeps the session it had: the run goes on as before.
+      status.notice(`${name} was not loaded: ${sentence((e as Error).message)}`, 'error');
+      if (was) await this.play();
+    }
+  }
+
   async reset(): Promise<void> {
     this.setPlaying(false);
-    this.p.renderer.clearHistory();
-    this.p.renderer.render(await this.p.client.call('reset', { seed: this.p.state.options.seed }));
+    this.p.renderer.restart(await this.p.client.call('reset', { seed: this.p.state.options.seed }));
     if (this.p.state.autoplay) await this.play();
   }
 
@@ -98,8 +190,14 @@ export class SessionControls {
 
   async inject(level: Level): Promise<void> {
     try {
+      const before = this.p.state.frame?.world.bodies;
       const r = await this.p.client.call('inject', { level });
       this.p.status.notice(withLevel(level, r.message), 'info');
+      // Small moves (L1's few centimetres) are easy to miss: mark where each body was.
+      for (const name of r.moved) {
+        const from = before?.find((b) => b.name === name)?.pose.position;
+        if (from) this.p.view.markMove(name, from);
+      }
       this.p.renderer.render(r.frame);
       if (!this.p.state.playing) await this.play();
     } catch (e) {
@@ -120,12 +218,38 @@ export class SessionControls {
   async drop(d: DropRequest): Promise<string | null> {
     const teach = this.p.tabs().teach;
     if (teach?.active) return teach.drop(d);
+    const ended = this.p.state.frame?.status.kind === 'done';
     const r = await this.p.client.call('perturb', { body: d.body, position: d.position });
     if (!r.ok) return r.reason;
     this.p.status.notice(r.message || `Moved ${d.body}`, 'info');
     this.p.renderer.render(r.frame);
-    if (!this.p.state.playing && this.p.state.resumeAfterDrag) await this.play();
+    // A finished run reopens on a drag and goes on at once; a failed one waits for Play.
+    if (ended) this.p.state.resumeAfterDrag = true;
     return null;
+  }
+
+  private levelsKey = '';
+
+  /** Enables the L1–L4 buttons that would apply now (the core tries each on a copy of the
+   * world), asked again whenever the loop reaches another decision. */
+  refreshLevels(f: Frame): void {
+    const key = JSON.stringify([f.status.kind, f.executing, f.replans, f.facts, f.world.arms.map((a) => a.holding)]);
+    if (key === this.levelsKey || this.p.tabs().teach?.active) return;
+    this.levelsKey = key;
+    this.p.client.call('levels', {}).then(
+      (why) => {
+        for (const b of this.p.ui.controls.levelBtns) {
+          const reason = why[b.dataset.level as Level];
+          // Greyed but still clickable: a press says why it cannot apply now.
+          b.setAttribute('aria-disabled', String(reason !== null));
+          b.classList.toggle('unavailable', reason !== null);
+          b.title = reason ? `${b.getAttribute('aria-label')} — not now: ${reason}` : (b.getAttribute('aria-label') ?? '');
+        }
+      },
+      () => {
+        /* no session: the buttons stay as they are */
+      },
+    );
   }
 
   /** A message the worker sent on its own: a frame of the playing session, or a fatal error. */
@@ -163,6 +287,10 @@ export class SessionControls {
   }
 
   private async copyLink(): Promise<void> {
+    if (this.p.state.taught) {
+      this.p.status.notice('A taught task has no link: save its demonstration in the Teach tab to share it.', 'info');
+      return;
+    }
     updateUrl(this.p.state);
     try {
       await navigator.clipboard.writeText(location.href);
@@ -221,9 +349,8 @@ export class SessionControls {
     c.fileIn.onchange = () =>
       void this.guard(async () => {
         const file = c.fileIn.files?.[0];
-        if (!file) return;
-        await this.open(await file.text());
         c.fileIn.value = '';
+        if (file) await this.loadScene(file.name, await file.text());
       });
     c.linkBtn.onclick = () => void this.copyLink();
   }

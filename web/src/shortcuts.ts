@@ -27,7 +27,18 @@ export function installShortcuts(p: { help: HelpOverlay; session: SessionControl
     p: () => tabs.select('pddl'),
     '?': () => help.open(),
   };
+  // A Space released on a bar button would press it (the keydown below already acted).
+  document.addEventListener('keyup', (e) => {
+    if (spaceOnTopBar(e)) e.preventDefault();
+  });
   document.addEventListener('keydown', (e) => {
+    if (spaceOnTopBar(e)) {
+      // Space means play / pause even right after a select or a button of the bar was used
+      // (it would open the select or press the button again).
+      e.preventDefault();
+      if (!help.shown && !tabs.teach?.active) void session.togglePlay();
+      return;
+    }
     if (!isShortcut(e)) return;
     if (e.key === 'Escape' && help.shown) return help.close();
     if (help.shown) return;
@@ -39,4 +50,11 @@ export function installShortcuts(p: { help: HelpOverlay; session: SessionControl
       f();
     }
   });
+}
+
+/** Whether `e` is a plain Space on a select or a button of the top bar. */
+function spaceOnTopBar(e: KeyboardEvent): boolean {
+  const t = e.target as HTMLElement;
+  if (e.key !== ' ' || e.ctrlKey || e.metaKey || e.altKey || !t.closest?.('.topbar')) return false;
+  return t instanceof HTMLSelectElement || t instanceof HTMLButtonElement;
 }

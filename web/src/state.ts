@@ -10,7 +10,7 @@ import type { Level } from './protocol';
 export type Benchmark = SessionOptions['benchmark'];
 export type Method = SessionOptions['method'];
 export type Mode = SessionOptions['mode'];
-export type TabId = 'run' | 'teach' | 'charts' | 'pddl';
+export type TabId = 'run' | 'teach' | 'charts' | 'pddl' | 'compare';
 
 export const BENCHMARKS: [Benchmark, string][] = [
   ['b1', 'B1 · tower'],
@@ -83,6 +83,10 @@ export interface PageState {
   playing: boolean;
   /** Whether to resume playing after the user's drag (it was playing when the drag began). */
   resumeAfterDrag: boolean;
+  /** Whether the Run runs a task taught in Teach mode (no permalink restores it). */
+  taught: boolean;
+  /** Whether the user is dragging a block (the world is paused meanwhile). */
+  dragging: boolean;
   /** The latest frame: session status, plan, demo states, facts. */
   frame: Frame | null;
   /** Wall time of the worker's last `Session::step` (ms), and the recent ones. */
@@ -119,6 +123,8 @@ export function initialState(search: string): PageState {
     autoplay: params.get('autoplay') !== '0',
     playing: false,
     resumeAfterDrag: false,
+    dragging: false,
+    taught: false,
     frame: null,
     lastStepMs: 0,
     stepTimes: [],
@@ -143,6 +149,7 @@ export function meanStepMs(s: PageState): number {
 /** Puts the scenario into the address bar (without a new history entry), so a reload or a copied
  * link restores it. */
 export function updateUrl(s: PageState): void {
+  if (s.taught) return;
   const p = new URLSearchParams();
   p.set('benchmark', s.options.benchmark);
   p.set('method', s.options.method);

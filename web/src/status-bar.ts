@@ -35,7 +35,9 @@ export class StatusBar {
   /** The status, Cancel and the clock of a frame. */
   showFrame(f: Frame, s: PageState): void {
     const k = f.status.kind;
-    this.show(k, f.status.message || k);
+    // A reopened episode waits for Play: "planning" would promise work that is not happening.
+    const waiting = k === 'planning' && !s.playing && !s.dragging;
+    this.show(k, waiting ? 'paused: press Play (Space) to go on' : f.status.message || k);
     this.ui.cancelBtn.disabled = !(k === 'planning' || k === 'executing' || k === 'replanning');
     this.ui.hud.textContent = `t = ${f.t.toFixed(2)} s · tick ${f.tick} · step ${s.lastStepMs.toFixed(2)} ms (mean ${meanStepMs(s).toFixed(2)}) · ${f.replans} replans`;
   }

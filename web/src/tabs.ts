@@ -19,6 +19,8 @@ export interface Playback {
   play(): Promise<void>;
   pause(): Promise<void>;
   setPlaying(p: boolean): void;
+  /** The Run now runs a taught task (not the benchmark's): the URL and the link say so. */
+  taught(f: Frame): void;
 }
 
 export interface TabsParts {
@@ -37,6 +39,9 @@ export class Tabs {
   teach: TeachPanel | null = null;
   private teachPromise: Promise<TeachPanel> | null = null;
   private editorPromise: Promise<EditorPanel> | null = null;
+  private comparePromise: Promise<void> | null = null;
+  /** The PDDL tab's texts per benchmark (domain, problem, demonstration). */
+  private readonly edits = new Map<string, [string, string, string]>();
   private readonly search = new SearchRunner();
 
   constructor(private readonly p: TabsParts) {
@@ -62,14 +67,22 @@ export class Tabs {
     if (id !== 'teach') renderer.redraw();
     if (id === 'pddl') void this.loadEditor();
     if (id === 'charts') charts.draw();
+    if (id === 'compare') void this.loadCompare();
   }
 
   /** Loads the benchmark's PDDL into the editor, unless it holds it already. */
   async loadEditor(): Promise<void> {
     const { state, client } = this.p;
     if (state.editorBenchmark === state.options.benchmark) return;
-    state.editorBenchmark = state.options.benchmark;
-    const [editor, b] = await Promise.all([this.getEditor(), client.call('benchmark', { id: state.options.benchmark })]);
+    const left = state.editorBenchmark;
+    const id = state.options.benchmark;
+    state.editorBenchmark = id;
+    const editor = await this.getEditor();
+    // The user's edits of the benchmark left behind come back when it is chosen again.
+    if (left) this.edits.set(left, [editor.text('domain'), editor.text('problem'), editor.text('demo')]);
+    const kept = this.edits.get(id);
+    if (kept) return editor.setTexts(...kept);
+    const b = await client.call('benchmark', { id });
     editor.setTexts(b.domain, b.problem, b.demoPlan);
   }
 
@@ -79,6 +92,16 @@ export class Tabs {
     this.p.state.editorBenchmark = this.p.state.options.benchmark;
     this.select('pddl');
     (await this.getEditor()).setTexts(domain, problem, demo);
+  }
+
+  /** Loads the Compare view's chunk and mounts it (once). */
+  private loadCompare(): Promise<void> {
+    this.comparePromise ??= import('./compare').then(({ ComparePanel }) => {
+      const o = this.p.state.options;
+      const c = new ComparePanel(() => ({ benchmark: o.benchmark, seed: o.seed, ...(o.blocks != null ? { blocks: o.blocks } : {}) }));
+      this.p.ui.compareSlot.append(c.root);
+    });
+    return this.comparePromise;
   }
 
   private getEditor(): Promise<EditorPanel> {
@@ -119,12 +142,18 @@ export class Tabs {
       benchmark: () => state.options.benchmark,
       options: () => state.options,
       notice: (t, k) => status.notice(t, k),
-      status: (kind, text) => status.show(kind, text),
+      status: (kind, text) => {
+        // Teach mode's own status: no run to cancel, no run clock.
+        status.show(kind, text);
+        ui.stage.cancelBtn.disabled = true;
+        ui.stage.hud.textContent = '';
+      },
       pauseRun: async () => {
         if (state.playing) await playback.pause();
       },
       runTaught: async (f: Frame, autoplay: boolean) => {
         playback.setPlaying(false);
+        playback.taught(f);
         this.select('run');
         renderer.restart(f);
         if (autoplay) await playback.play();

@@ -161,6 +161,8 @@ export class TeachPanel {
   private async record(): Promise<void> {
     await this.host.pauseRun();
     const s = await this.host.client.call('teachStart', { benchmark: this.host.benchmark() });
+    // The last run's arm trail is not part of the recording.
+    this.host.view.clearTrail();
     this.forgetDemo();
     this.closed = false;
     this.newSegments.clear();
@@ -363,7 +365,8 @@ export class TeachPanel {
   private refresh(): void {
     const s = this.state;
     const recording = s !== null;
-    this.ui.stopBtn.disabled = !recording;
+    // Stopped: the demonstration is made; Stop has nothing left to end.
+    this.ui.stopBtn.disabled = !recording || this.demoJson !== null;
     this.ui.undoBtn.disabled = !recording || s.segments.length === 0;
     this.ui.recBtn.disabled = !recording;
     this.ui.saveBtn.disabled = !this.demoJson;

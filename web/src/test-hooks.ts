@@ -23,6 +23,8 @@ declare global {
       lastCancel: () => CancelTiming | null;
       memory: () => Promise<{ wasmBytes: number; geometries: number; textures: number }>;
       loadedAt: number;
+      /** Bodies whose disturbance move is marked in the view now. */
+      moveMarks: () => string[];
     };
   }
 }
@@ -40,5 +42,6 @@ export function installTestHooks(p: { state: PageState; view: View; charts: Char
     lastCancel: () => state.lastCancel,
     memory: async () => ({ ...(await client.call('memory', {})), ...view.renderer.info.memory }),
     loadedAt: 0,
+    moveMarks: () => view.moveMarks(),
   };
 }

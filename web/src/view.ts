@@ -7,6 +7,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { ArmSnapshot, BodySnapshot, WorldSnapshot } from 'logic-lfd';
+import type { ReachShading } from './reach-shading';
 import { addRoom, applyPose, bodyObject, disposeObject, isSoftwareRenderer, regionObjects } from './view-scene';
 
 export interface DropRequest {
@@ -17,13 +18,17 @@ export interface DropRequest {
 export interface ViewOptions {
   /** Called when the user releases a dragged block; resolves to a refusal message or null. */
   onDrop: (d: DropRequest) => Promise<string | null>;
-  /** Called when a drag starts (the page may pause the run meanwhile). */
+  /** Called when a drag starts (the page pauses the run meanwhile). */
   onDragStart?: (body: string) => void;
+  /** Called when a drag has ended, after its drop was accepted or refused (or it was cancelled). */
+  onDragEnd?: () => void;
   /** Shows a short message over the view (refused drops). */
   onNotice?: (text: string, kind: 'info' | 'error') => void;
 }
 
 const UP = new THREE.Vector3(0, 0, 1);
+/** How long a disturbance's move stays marked (ms). */
+const MOVE_MARK_MS = 3000;
 const Y = new THREE.Vector3(0, 1, 0);
 
 interface BodyEntry {
@@ -52,6 +57,8 @@ export class View {
   private readonly targets = new THREE.Group();
   private readonly trail: THREE.Line;
   private trailPoints: THREE.Vector3[] = [];
+  /** Loaded after the first frame (`loadExtras`): a drag before that shows no shading. */
+  private reach: ReachShading | null = null;
   private readonly raycaster = new THREE.Raycaster();
   private readonly pointer = new THREE.Vector2();
   private drag: { name: string; ghost: THREE.Mesh; target: THREE.Vector3 | null; halfZ: number; planeZ: number } | null =
@@ -117,6 +124,15 @@ export class View {
     this.resize();
   }
 
+  /** Loads what only a drag needs (the reach shading), in a chunk of its own. */
+  loadExtras(): void {
+    void import('./reach-shading').then(({ ReachShading }) => {
+      this.reach = new ReachShading();
+      this.scene.add(this.reach.group);
+      this.renderer.domElement.dataset.extras = 'loaded';
+    });
+  }
+
   /** Starts the render loop (renders only when something changed). */
   start(): void {
     if (this.rendering) return;
@@ -160,7 +176,8 @@ export class View {
     if (box.isEmpty()) return;
     const c = box.getCenter(new THREE.Vector3());
     const size = box.getSize(new THREE.Vector3()).length();
-    const d = Math.max(1.2, size * 1.2);
+    // A portrait view (a phone) needs more distance to show the same width.
+    const d = Math.max(1.2, size * 1.2) * Math.max(1, 1 / this.camera.aspect);
     this.controls.target.set(c.x, c.y, Math.max(0.05, c.z * 0.6));
     this.camera.position.set(c.x + d * 0.55, c.y - d * 0.8, c.z + d * 0.55);
     this.controls.update();
@@ -219,6 +236,9 @@ export class View {
   }
 
   private clearScene(): void {
+    // The mark's ghost borrows a block's geometry, which is freed with the block: drawn after
+    // that, the geometry would be uploaded again and never freed.
+    this.moveMark.group.visible = false;
     for (const e of this.bodies.values()) this.dropObject(e.object);
     this.bodies.clear();
     for (const a of this.arms) this.dropObject(a.group);
@@ -352,6 +372,8 @@ export class View {
     ghost.visible = false;
     this.scene.add(ghost);
     this.drag = { name, ghost, target: null, halfZ: entry.halfZ, planeZ: entry.object.position.z };
+    if (this.snapshot) this.reach?.show(this.snapshot, tableTop(this.snapshot));
+    this.renderer.domElement.dataset.reachShown = String(!!this.reach);
     this.opts.onDragStart?.(name);
     this.onPointerMove(e);
   }
@@ -389,7 +411,13 @@ export class View {
     }
     d.target = target;
     d.ghost.visible = !!target;
-    if (target) d.ghost.position.copy(target);
+    if (target) {
+      d.ghost.position.copy(target);
+      // Red outside every arm's ring (a hook may still pull a block in from beyond).
+      const reachable = (this.reach?.covers(target.x, target.y) ?? true) || !!this.snapshot?.bodies.some((b) => b.kind === 'hook');
+      (d.ghost.material as THREE.MeshStandardMaterial).color.set(reachable ? 0xffffff : 0xe5484d);
+      this.renderer.domElement.dataset.dropReachable = String(reachable);
+    }
     const obj = this.bodies.get(d.name)?.object;
     if (obj && target) obj.position.set(target.x, target.y, target.z + 0.04);
     this.dirty = true;
@@ -400,14 +428,20 @@ export class View {
     if (!d) return;
     this.renderer.domElement.releasePointerCapture(e.pointerId);
     this.drag = null;
+    this.reach?.hide();
+    this.renderer.domElement.dataset.reachShown = 'false';
     this.dropGhost(d.ghost);
     this.controls.enabled = true;
     this.renderer.domElement.style.cursor = '';
-    if (d.target) {
-      const refusal = await this.opts.onDrop({ body: d.name, position: [d.target.x, d.target.y, d.target.z] });
-      if (refusal) this.opts.onNotice?.(`Drop refused: ${refusal}`, 'error');
+    try {
+      if (d.target) {
+        const refusal = await this.opts.onDrop({ body: d.name, position: [d.target.x, d.target.y, d.target.z] });
+        if (refusal) this.opts.onNotice?.(`Drop refused: ${refusal}`, 'error');
+      }
+    } finally {
+      if (this.snapshot) this.update(this.snapshot);
+      this.opts.onDragEnd?.();
     }
-    if (this.snapshot) this.update(this.snapshot);
   }
 
   /** The drag ghost borrows the block's geometry: only its own material is freed. */
@@ -419,9 +453,53 @@ export class View {
   private cancelDrag(): void {
     if (!this.drag) return;
     this.dropGhost(this.drag.ghost);
+    this.reach?.hide();
+    this.renderer.domElement.dataset.reachShown = 'false';
     this.drag = null;
     this.controls.enabled = true;
     if (this.snapshot) this.update(this.snapshot);
+    this.opts.onDragEnd?.();
+  }
+
+  /** Marks a disturbance's move of `body` for a few seconds: a yellow ghost where it was and a
+   * line to where it is. One mark at a time, its objects reused (nothing to leak). */
+  markMove(body: string, from: [number, number, number]): void {
+    const e = this.bodies.get(body);
+    const src = e?.object.children.find((c): c is THREE.Mesh => c instanceof THREE.Mesh);
+    if (!e || !src) return;
+    const m = this.moveMark;
+    m.ghost.geometry = src.geometry;
+    m.ghost.position.set(...from);
+    m.ghost.quaternion.copy(e.object.quaternion);
+    const pos = m.line.geometry.getAttribute('position') as THREE.BufferAttribute;
+    pos.setXYZ(0, ...from);
+    pos.setXYZ(1, e.object.position.x, e.object.position.y, e.object.position.z);
+    pos.needsUpdate = true;
+    m.group.name = `moved:${body}`;
+    m.group.visible = true;
+    this.dirty = true;
+    clearTimeout(m.timer);
+    m.timer = window.setTimeout(() => {
+      m.group.visible = false;
+      this.dirty = true;
+    }, MOVE_MARK_MS);
+  }
+
+  private readonly moveMark = (() => {
+    const ghost = new THREE.Mesh(undefined, new THREE.MeshBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.35, depthWrite: false }));
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6), 3));
+    const line = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: 0xffb224 }));
+    line.frustumCulled = false;
+    const group = new THREE.Group().add(ghost, line);
+    group.visible = false;
+    this.scene.add(group);
+    return { group, ghost, line, timer: 0 };
+  })();
+
+  /** The bodies whose disturbance move is marked now. */
+  moveMarks(): string[] {
+    return this.moveMark.group.visible ? [this.moveMark.group.name.slice('moved:'.length)] : [];
   }
 
   /** Projects a body's centre to client coordinates (for tests and tooltips). */
@@ -441,4 +519,10 @@ export class View {
     const r = this.renderer.domElement.getBoundingClientRect();
     return { x: r.left + ((v.x + 1) / 2) * r.width, y: r.top + ((1 - v.y) / 2) * r.height };
   }
+}
+
+/** The height of the highest table top in `s` (m; 0 without tables). */
+function tableTop(s: WorldSnapshot): number {
+  const tops = s.bodies.filter((b) => b.kind === 'table' && b.shape.type === 'cuboid').map((b) => b.pose.position[2] + (b.shape.type === 'cuboid' ? b.shape.half_extents[2] : 0));
+  return tops.length ? Math.max(...tops) : 0;
 }

@@ -7,7 +7,7 @@
  */
 import init, * as lfd from 'logic-lfd-page';
 import type { Frame } from 'logic-lfd';
-import type { Api, ApiKind, FromWorker, ToWorker } from './protocol';
+import type { Api, ApiKind, FromWorker, Level, ToWorker } from './protocol';
 import { teachHandlers, teachLastPanic, teachMemoryBytes, teachModule } from './teach-worker';
 
 const post = (m: FromWorker) => (self as unknown as Worker).postMessage(m);
@@ -109,7 +109,12 @@ const handlers: Handlers = {
   inject: ({ level }) => {
     const s = need();
     const i = s.inject(level);
-    return { message: i.description, frame: s.frame() };
+    return { message: i.description, frame: s.frame(), moved: i.moved.map(([b]) => b) };
+  },
+  levels: () => {
+    const s = need();
+    const why = (l: Level) => s.canInject(l) ?? null;
+    return { l1: why('l1'), l2: why('l2'), l3: why('l3'), l4: why('l4') };
   },
   reset: ({ seed }) => {
     stop();

@@ -7,7 +7,8 @@
 //! (world snapshot, status line, plan and the step being executed, the demonstration and
 //! L_0..L_N, S_C, and the facts added and removed since the previous step). [`Session::frame`]
 //! returns it again without stepping. [`Session::perturb`], [`Session::inject`] and
-//! [`Session::cancel`] act between steps and are logged with their tick.
+//! [`Session::cancel`] act between steps and are logged with their tick; a drag or an injection
+//! after the episode ended (done or failed) opens it again, so the loop stays reactive.
 //!
 //! Per tick (paper Algorithm 1, with the executor of [`super::exec`]; file `tick.rs`):
 //!
@@ -269,17 +270,36 @@ impl Session {
         &self.controller
     }
 
-    /// Moves a block as a user drag does (refused with a reason if impossible).
+    /// Moves a block as a user drag does (refused with a reason if impossible, or if no arm
+    /// could work the block where it would lie: [`crate::sim::reach::handleable`]).
     pub fn perturb(&mut self, body: &str, position: [f64; 3]) -> Result<PerturbOutcome, Refused> {
-        let out = self
-            .world
-            .move_block(body, Vector3::new(position[0], position[1], position[2]))?;
+        let mut trial = self.world.clone();
+        let out = trial.move_block(body, Vector3::new(position[0], position[1], position[2]))?;
+        crate::sim::reach::handleable(&trial, body).map_err(|_| Refused {
+            body: body.to_string(),
+            reason: if trial.hook_names().is_empty() {
+                "no arm could grasp it there (beyond every arm's reach)".into()
+            } else {
+                "no arm could grasp it there, nor pull it in with the hook".into()
+            },
+        })?;
+        self.world = trial;
         self.events.push(EpisodeEvent::Perturb {
             tick: self.tick,
             body: body.to_string(),
             position,
         });
+        self.reopen();
         Ok(out)
+    }
+
+    /// A disturbance after the episode ended opens it again: the loop observes the new scene and
+    /// plans on (a finished tower knocked over is rebuilt; a failure the user fixed is retried
+    /// with a fresh failure count).
+    fn reopen(&mut self) {
+        if self.outcome.take().is_some() {
+            self.failures_in_a_row = 0;
+        }
     }
 
     /// Drops the current plan; the loop replans on the next step.
@@ -310,34 +330,47 @@ impl Session {
     /// Injects a disturbance of level `l1`..`l4` now (seeded by the session's seed and the
     /// number of injections so far); what it did, in words and data.
     pub fn inject(&mut self, level: &str) -> Result<Injection, SessionError> {
-        let Some(parsed) = Level::parse(level) else {
-            return Err(SessionError::Json(format!(
-                "unknown disturbance level {:?} (l1..l4)",
-                level.to_ascii_lowercase()
-            )));
-        };
-        let n = self.injections;
-        let seed = mix(self.options.seed, INJECT_SEED_BASE + n);
-        let during = self.exec.as_ref().map(|e| e.action.clone());
-        let moving = self.moving();
-        let mut inj = match (parsed, moving) {
-            // While the arm moves, L1 acts on that motion: the approached body or the hand.
-            (Level::L1, Some(m)) => {
-                super::disturb::inject_during_motion(&mut self.world, &self.trace, &m, seed)
-            }
-            _ => {
-                let busy: Vec<usize> = self.exec.iter().map(ActionExec::arm).collect();
-                super::disturb::inject(&mut self.world, parsed, &self.trace, &busy, seed)
-            }
-        }
-        .map_err(SessionError::Json)?;
-        inj.during = during;
+        let mut world = self.world.clone();
+        let mut inj = self.injection_on(&mut world, level)?;
+        self.world = world;
+        inj.during = self.exec.as_ref().map(|e| e.action.clone());
         self.injections += 1;
         self.events.push(EpisodeEvent::Inject {
             tick: self.tick,
             level: level.to_string(),
             description: inj.description.clone(),
         });
+        self.reopen();
         Ok(inj)
+    }
+
+    /// Whether [`Session::inject`] of `level` would apply now (`Err` says why not), without
+    /// changing anything: the same injection tried on a copy of the world.
+    pub fn can_inject(&self, level: &str) -> Result<(), SessionError> {
+        self.injection_on(&mut self.world.clone(), level)
+            .map(|_| ())
+    }
+
+    /// The injection of `level` that [`Session::inject`] makes now, applied to `world` (the
+    /// session's world or a copy of it).
+    fn injection_on(&self, world: &mut World, level: &str) -> Result<Injection, SessionError> {
+        let Some(parsed) = Level::parse(level) else {
+            return Err(SessionError::Json(format!(
+                "unknown disturbance level {:?} (l1..l4)",
+                level.to_ascii_lowercase()
+            )));
+        };
+        let seed = mix(self.options.seed, INJECT_SEED_BASE + self.injections);
+        match (parsed, self.moving()) {
+            // While the arm moves, L1 acts on that motion: the approached body or the hand.
+            (Level::L1, Some(m)) => {
+                super::disturb::inject_during_motion(world, &self.trace, &m, seed)
+            }
+            _ => {
+                let busy: Vec<usize> = self.exec.iter().map(ActionExec::arm).collect();
+                super::disturb::inject(world, parsed, &self.trace, &busy, seed)
+            }
+        }
+        .map_err(SessionError::Json)
     }
 }

@@ -278,6 +278,17 @@ impl WasmSession {
         to_js(&out)
     }
 
+    /// Why `inject(level)` would be refused now, or `undefined` when it would apply; changes
+    /// nothing (the page enables its L1–L4 buttons with it).
+    #[wasm_bindgen(js_name = canInject)]
+    pub fn can_inject(
+        &self,
+        #[wasm_bindgen(unchecked_param_type = "\"l1\" | \"l2\" | \"l3\" | \"l4\"")] level: JsValue,
+    ) -> Result<Option<String>, JsValue> {
+        let level = string_arg("Session.canInject", "level", &level)?;
+        Ok(self.inner.can_inject(&level).err().map(|e| e.to_string()))
+    }
+
     /// Restarts from the initial scene with another seed.
     pub fn reset(
         &mut self,

@@ -124,10 +124,14 @@ impl Session {
                 .last()
                 .map(|a| a.action.clone())
                 .unwrap_or_default();
+            // The record says "failed: why"; the reason says "(action) failed: why" once.
             let why = self
                 .actions
                 .last()
-                .map(|a| a.outcome.clone())
+                .map(|a| {
+                    let o = a.outcome.as_str();
+                    o.strip_prefix("failed: ").unwrap_or(o).to_string()
+                })
                 .unwrap_or_default();
             self.outcome = Some(Err(FailReason::ActionFailed { action, why }));
         }

@@ -1,0 +1,160 @@
+/**
+ * The Compare tab (a chunk of its own, loaded when the tab first opens): runs the same episode —
+ * benchmark, blocks, seed, and one scripted disturbance (level and time) — with Linear, RLDS,
+ * TAMP and Logic-LfD in both modes, one after another in a worker of its own (the Run's session
+ * is untouched), and ends with a table: success, simulated execution time, replans, planning time
+ * and the reason of a failure.
+ */
+import type { Frame, SessionOptions } from 'logic-lfd';
+import { WorkerClient } from './client';
+import { button, el, select } from './dom';
+import { METHOD_NOTES, MODE_NOTES, noteOf } from './explain';
+import type { Level } from './protocol';
+import { LEVELS, type Method, type Mode } from './state';
+
+/** The runs of a comparison: method, mode, and the row's name. */
+export const RUNS: [Method, Mode, string][] = [
+  ['linear', 'paper', 'Linear'],
+  ['rlds', 'paper', 'RLDS'],
+  ['tamp', 'paper', 'TAMP'],
+  ['logic-lfd', 'paper', 'Logic-LfD (paper)'],
+  ['logic-lfd', 'prioritised', 'Logic-LfD (prioritised)'],
+];
+
+/** Simulated seconds per request while an episode runs to its end. */
+const CHUNK_S = 2;
+/** An episode still running after this much simulated time is stopped (s; the core's own budget
+ * ends episodes at 240 s). */
+const MAX_SIM_S = 300;
+
+/** One row of the results table. */
+export interface CompareResult {
+  name: string;
+  success: boolean;
+  /** Simulated seconds until done or failed. */
+  timeS: number;
+  replans: number;
+  /** Wall time of all replans (ms). */
+  planningMs: number;
+  /** The status line at the end (the failure's reason). */
+  message: string;
+  /** What the scripted disturbance did (or why it could not be applied). */
+  disturbance: string;
+}
+
+/** The scenario a comparison runs. */
+export interface CompareScript {
+  options: Pick<SessionOptions, 'benchmark' | 'seed' | 'blocks'>;
+  level: Level;
+  /** When the disturbance is injected (simulated s). */
+  at: number;
+}
+
+const finished = (f: Frame) => f.status.kind === 'done' || f.status.kind === 'failed';
+
+/** Runs one method on the script in `client`'s worker. */
+async function runOne(client: WorkerClient, script: CompareScript, method: Method, mode: Mode, name: string): Promise<CompareResult> {
+  const options: SessionOptions = { ...script.options, method, mode };
+  let f = await client.call('open', { options });
+  if (script.at > 0) f = await client.call('step', { dt: script.at });
+  let disturbance: string;
+  if (finished(f)) disturbance = `not injected: the episode ended before ${script.at} s`;
+  else {
+    try {
+      disturbance = (await client.call('inject', { level: script.level })).message;
+    } catch (e) {
+      disturbance = `not injected: ${(e as Error).message}`;
+    }
+  }
+  while (!finished(f) && f.t < MAX_SIM_S) f = await client.call('step', { dt: CHUNK_S });
+  const log = JSON.parse(await client.call('episode', {})) as { replans: { time_ms: number }[] };
+  return {
+    name,
+    success: f.status.kind === 'done',
+    timeS: f.t,
+    replans: f.replans,
+    planningMs: log.replans.reduce((a, r) => a + r.time_ms, 0),
+    message: finished(f) ? f.status.message : `stopped after ${MAX_SIM_S} s of simulated time`,
+    disturbance,
+  };
+}
+
+export class ComparePanel {
+  readonly root: HTMLElement;
+  private readonly levelSel = select('compare-level', 'Disturbance level', LEVELS, 'l3');
+  private readonly atIn = el('input', { id: 'compare-at', type: 'number', min: '0', step: '0.1', value: '0.5', 'aria-label': 'Inject at (simulated seconds)', title: 'Inject at (simulated seconds)' });
+  private readonly runBtn = button('compare-run', 'Run every method on the same seed and disturbance', '▶ Compare', 'primary');
+  private readonly body = el('tbody', {});
+  private readonly note = el('p', { id: 'compare-note', class: 'muted small' });
+  private client: WorkerClient | null = null;
+
+  constructor(private readonly scenario: () => CompareScript['options']) {
+    this.root = el(
+      'div',
+      { class: 'compare' },
+      el('p', { class: 'muted' }, 'The same seed and the same scripted disturbance for every method, run one after another in the background (the Run keeps its own episode).'),
+      el('div', { class: 'compare-row' }, el('label', {}, 'inject ', this.levelSel), el('label', {}, 'at ', this.atIn, ' s'), this.runBtn),
+      this.note,
+      el(
+        'table',
+        { id: 'compare-table', class: 'compare-table' },
+        el('thead', {}, el('tr', {}, ...['Method', 'Result', 'Time (s)', 'Replans', 'Planning (ms)', 'Reason'].map((h) => el('th', {}, h)))),
+        this.body,
+      ),
+    );
+    this.runBtn.onclick = () => void this.run();
+    this.showRows([]);
+  }
+
+  /** Runs the comparison on the Run's benchmark, blocks and seed; resolves to the table's rows. */
+  async run(): Promise<CompareResult[]> {
+    const script: CompareScript = {
+      options: this.scenario(),
+      level: this.levelSel.value as Level,
+      at: Math.max(0, Number(this.atIn.value) || 0),
+    };
+    this.runBtn.disabled = true;
+    this.client?.terminate('a new comparison started');
+    const client = (this.client = new WorkerClient(() => {}));
+    const results: CompareResult[] = [];
+    const o = script.options;
+    this.note.textContent = `${o.benchmark.toUpperCase()}${o.blocks ? ` · ${o.blocks} blocks` : ''} · seed ${o.seed} · ${script.level.toUpperCase()} at ${script.at} s`;
+    try {
+      await client.ready;
+      for (const [method, mode, name] of RUNS) {
+        this.showRows(results, name);
+        results.push(await runOne(client, script, method, mode, name));
+      }
+      this.showRows(results);
+      this.root.dataset.done = 'true';
+    } catch (e) {
+      this.note.textContent = `The comparison stopped: ${(e as Error).message}`;
+    } finally {
+      client.terminate('done');
+      if (this.client === client) this.client = null;
+      this.runBtn.disabled = false;
+    }
+    return results;
+  }
+
+  private showRows(results: CompareResult[], running?: string): void {
+    delete this.root.dataset.done;
+    const rows = RUNS.map(([method, mode, name]) => {
+      const r = results.find((x) => x.name === name);
+      const tip = method === 'logic-lfd' ? `${noteOf(METHOD_NOTES, method)} Mode: ${noteOf(MODE_NOTES, mode)}` : noteOf(METHOD_NOTES, method);
+      const head = el('th', { title: tip }, name);
+      if (!r) return el('tr', { class: 'pending' }, head, el('td', { colspan: '5', class: 'muted' }, name === running ? 'running…' : '—'));
+      return el(
+        'tr',
+        { class: r.success ? 'ok' : 'fail', 'data-method': name },
+        head,
+        el('td', {}, r.success ? '✓ success' : '✗ failed'),
+        el('td', {}, r.timeS.toFixed(1)),
+        el('td', {}, String(r.replans)),
+        el('td', {}, r.planningMs.toFixed(1)),
+        el('td', { class: 'reason', title: r.disturbance }, r.success ? '' : r.message),
+      );
+    });
+    this.body.replaceChildren(...rows);
+  }
+}
