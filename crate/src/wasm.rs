@@ -14,6 +14,8 @@ use crate::plan::Clock;
 use wasm_bindgen::prelude::*;
 
 mod args;
+#[cfg(feature = "wasm")]
+mod bench;
 mod logic_lfd;
 mod pddl;
 #[cfg(feature = "wasm")]
