@@ -7,8 +7,10 @@
 // --pkg), each timing inside its own build with its own clock, best of N after one warm-up run.
 // The rows' digests (plan costs, expansions, facts) must agree, so both sides did the same work.
 // Then one row per planning problem for the whole `plan()` call from JavaScript (options and the
-// outcome object cross the boundary), and the gzipped sizes of the wasm modules and of the page's
-// first load (web/dist, measured as tests/e2e/bench.mjs does, when the page is built).
+// outcome object cross the boundary), the page benchmark's replans through the JavaScript
+// `Session` of the page's first-load module and of the npm package, and the gzipped sizes of the
+// wasm modules and of the page's first load (web/dist, measured as tests/e2e/bench.mjs does, when
+// the page is built).
 import { execFileSync } from 'node:child_process';
 import { existsSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -94,6 +96,51 @@ if (calls.length) {
       if (!r.ok) throw new Error(`${id}: ${r.message}`);
     });
     console.log(`| ${n.label} | ${fmt(n.best_ms)} | ${fmt(ms)} | ${(ms / n.best_ms).toFixed(2)}× |`);
+  }
+}
+
+// The page benchmark's scenario through the JavaScript `Session` of the page's first-load module
+// (pkg/page, what the page's worker runs) and of the npm package: each replan's best time over the
+// passes (one warm-up pass first), as the frames' `lastReplan.timeMs` report it; the median.
+async function sessionReplans(mod) {
+  const pass = () => {
+    const times = [];
+    for (const seed of [1, 2, 3]) {
+      const s = new mod.Session({ benchmark: 'b1', method: 'logic-lfd', mode: 'paper', seed });
+      const inject = [[1, 'l3'], [4, 'l4'], [7, 'l3']];
+      let f = s.frame();
+      let last = null;
+      while (!['done', 'failed'].includes(f.status.kind)) {
+        if (inject.length && f.t > inject[0][0]) s.inject(inject.shift()[1]);
+        f = s.step(1 / 60);
+        const r = f.lastReplan;
+        if (r && r.tick !== last) {
+          last = r.tick;
+          times.push(r.timeMs);
+        }
+      }
+      s.free();
+    }
+    return times;
+  };
+  const best = pass();
+  const t0 = performance.now();
+  for (let i = 0; i < RUNS && (i < 3 || performance.now() - t0 < BUDGET * 1e3); i++) {
+    pass().forEach((ms, k) => (best[k] = Math.min(best[k], ms)));
+  }
+  const s = [...best].sort((a, b) => a - b);
+  return { median: s[s.length >> 1], n: s.length };
+}
+const pageRow = native.find((r) => r.id === 'page-replans-b1');
+const pageJs = join(root, 'pkg/page/logic_lfd.js');
+if (pageRow && existsSync(pageJs)) {
+  const page = await import(new URL(`file://${pageJs}`).href);
+  page.initSync({ module: readFileSync(join(root, 'pkg/page/logic_lfd_bg.wasm')) });
+  console.log('\n| the page benchmark\'s B1 replans through `Session` (median of each replan\'s best) | native row | module | module / native |');
+  console.log('|---|---:|---:|---:|');
+  for (const [what, mod] of [["page's first-load module (pkg/page)", page], ['npm package (pkg/node)', lfd]]) {
+    const r = await sessionReplans(mod);
+    console.log(`| ${what}, ${r.n} replans | ${fmt(pageRow.best_ms)} | ${fmt(r.median)} | ${(r.median / pageRow.best_ms).toFixed(2)}× |`);
   }
 }
 

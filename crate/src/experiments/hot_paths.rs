@@ -5,7 +5,8 @@
 //! Rows: parse + ground + search on IPC problems (A* + LM-cut, lazy GBFS + h_FF), one Logic-LfD
 //! replan (A* + h_max, as the reactive loop) per state from seeded disturbed states of B1/B2/B3,
 //! the LQT-CP pipeline (T = 100, D = 3, jerk, K = 10 RBF: weights, F, gains, one rollout), one
-//! B3 world step with the scene graph, one IK solve. Every row runs once to warm up, then
+//! B3 world step with the scene graph, one IK solve, and the replans of the page benchmark's
+//! scenario ([`page_replans`]). Every other row runs once to warm up, then
 //! repeats its batch at least [`RowParams::min_runs`] and at most [`RowParams::runs`] times
 //! (fewer once [`RowParams::budget_secs`] is spent) and keeps the best; the caller's clock
 //! times it. Each row also reports a digest of the work done (plan lengths, expansions, facts),
@@ -13,8 +14,8 @@
 
 use crate::lfd::control::ControlParams;
 use crate::lfd::model::DomainModel;
-use crate::lfd::session::demo_actions;
-use crate::lfd::{DemoTrace, LogicLfd, Mode, TaskBuilder};
+use crate::lfd::session::{demo_actions, Session, SessionOptions, SkillKind};
+use crate::lfd::{DemoTrace, LogicLfd, Method, Mode, TaskBuilder};
 use crate::lqt::task::{build_reference, Target, TargetRole, Tracking};
 use crate::lqt::{full_pipeline, Basis, LqtConfig};
 use crate::plan::{self, Algorithm, Clock, HeuristicKind, NoClock, SearchConfig, SearchOutcome};
@@ -118,7 +119,81 @@ pub fn run_rows(
     for row in rows(inputs, &selected)? {
         out.push(time_row(row, params, clock)?);
     }
+    if selected("page-replans-b1") {
+        out.push(page_replans(params, clock)?);
+    }
     Ok(out)
+}
+
+/// Disturbances of the page benchmark (tests/e2e/bench.mjs): (simulated time, level).
+const PAGE_DISTURBANCES: [(f64, &str); 3] = [(1.0, "l3"), (4.0, "l4"), (7.0, "l3")];
+/// Seeds of the page benchmark's runs.
+const PAGE_SEEDS: [u64; 3] = [1, 2, 3];
+
+/// The page benchmark's B1 scenario (seeds 1–3; L3 after 1 s, L4 after 4 s, L3 after 7 s of
+/// simulated time): every replan's time as the loop logs it (search + binding), each replan's
+/// best over the runs (one warm-up pass first), and their median as the row's time.
+fn page_replans(params: &RowParams, clock: &dyn Clock) -> Result<RowTiming, String> {
+    let pass = || -> Result<Vec<(f64, String)>, String> {
+        let mut out = Vec::new();
+        for seed in PAGE_SEEDS {
+            let mut s = Session::new(SessionOptions {
+                benchmark: Benchmark::B1,
+                method: Method::LogicLfd,
+                mode: Mode::Paper,
+                seed,
+                skill: SkillKind::Lqt,
+                blocks: None,
+            })
+            .map_err(|e| e.to_string())?;
+            let mut pending = PAGE_DISTURBANCES.iter().peekable();
+            while s.outcome().is_none() {
+                if let Some(&&(t, level)) = pending.peek() {
+                    if s.world().time() > t {
+                        s.inject(level).map_err(|e| e.to_string())?;
+                        pending.next();
+                    }
+                }
+                s.tick_once(clock);
+            }
+            out.extend(
+                s.controller()
+                    .replans()
+                    .iter()
+                    .map(|r| (r.time_ms, format!("{}", r.plan.len()))),
+            );
+        }
+        Ok(out)
+    };
+    let first = pass()?;
+    let digest = first.iter().map(|(_, n)| n.as_str()).collect::<Vec<_>>();
+    let mut best: Vec<f64> = vec![f64::INFINITY; first.len()];
+    let started = clock.now_secs();
+    let mut runs = 0;
+    while runs < params.runs.max(1)
+        && (runs < params.min_runs || clock.now_secs() - started < params.budget_secs)
+    {
+        let p = pass()?;
+        if p.iter().map(|(_, n)| n.as_str()).ne(digest.iter().copied()) {
+            return Err("page-replans-b1: the episodes changed between runs".into());
+        }
+        for (b, (ms, _)) in best.iter_mut().zip(&p) {
+            *b = b.min(*ms);
+        }
+        runs += 1;
+    }
+    best.sort_by(f64::total_cmp);
+    Ok(RowTiming {
+        id: "page-replans-b1".into(),
+        label: format!(
+            "the page benchmark's {} B1 replans (search + binding), median of each one's best",
+            best.len()
+        ),
+        best_ms: best.get(best.len() / 2).copied().unwrap_or(f64::NAN),
+        per_batch: 1,
+        runs,
+        digest: format!("{} replans, plan lengths {}", best.len(), digest.join(" ")),
+    })
 }
 
 fn time_row(mut row: Row, params: &RowParams, clock: &dyn Clock) -> Result<RowTiming, String> {
