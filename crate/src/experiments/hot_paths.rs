@@ -446,11 +446,10 @@ fn sim_row() -> Row {
     }
 }
 
-/// Top grasps over the table from the ready pose (the criterion benchmark's targets).
-fn ik_row() -> Row {
-    let base = Isometry3::identity();
-    let params = IkParams::default();
-    let targets: Vec<Isometry3<f64>> = (0..IK_TARGETS)
+/// The IK row's targets: top grasps over the table in front of an arm at the origin, all
+/// reachable from the ready pose (also the criterion benchmark's).
+pub fn ik_targets() -> Vec<Isometry3<f64>> {
+    (0..IK_TARGETS)
         .map(|i| {
             let r = 0.35 + 0.3 * ((i * 37 % 64) as f64 / 64.0);
             let a = -1.2 + 2.4 * ((i * 11 % 64) as f64 / 64.0);
@@ -463,7 +462,14 @@ fn ik_row() -> Row {
                 panda::down_orientation(a + 0.3 * ((i % 5) as f64 - 2.0)),
             )
         })
-        .collect();
+        .collect()
+}
+
+/// Top grasps over the table from the ready pose.
+fn ik_row() -> Row {
+    let base = Isometry3::identity();
+    let params = IkParams::default();
+    let targets = ik_targets();
     Row {
         id: "ik-solve".into(),
         label: "IK solve, top grasp from the ready pose".into(),
