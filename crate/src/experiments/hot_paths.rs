@@ -6,7 +6,7 @@
 //! replan (A* + h_max, as the reactive loop) per state from seeded disturbed states of B1/B2/B3,
 //! the LQT-CP pipeline (T = 100, D = 3, jerk, K = 10 RBF: weights, F, gains, one rollout), one
 //! B3 world step with the scene graph, one IK solve, and the replans of the page benchmark's
-//! scenario ([`page_replans`]). Every other row runs once to warm up, then
+//! scenario (`page_replans`). Every other row runs once to warm up, then
 //! repeats its batch at least [`RowParams::min_runs`] and at most [`RowParams::runs`] times
 //! (fewer once [`RowParams::budget_secs`] is spent) and keeps the best; the caller's clock
 //! times it. Each row also reports a digest of the work done (plan lengths, expansions, facts),
