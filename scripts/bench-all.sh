@@ -5,7 +5,7 @@
 #   bash scripts/bench-all.sh [OUT] [--quick] [--no-web]     (npm run bench:all)
 #
 # --quick runs every experiment small (a smoke run: minutes, numbers not for quoting).
-# --no-web skips the two node/Chromium timings (they need the wasm package and Chromium).
+# --no-web skips the node/Chromium timings (they need the wasm package and Chromium).
 # Not included: Fast Downward comparisons (need `up-fast-downward`, see docs/reproduction.md)
 # and criterion (`cargo bench`), whose numbers are machine-specific micro-benchmarks.
 set -euo pipefail
@@ -25,9 +25,9 @@ done
 mkdir -p "$OUT"
 
 if [ "$QUICK" = 1 ]; then
-  TASKS=4 TRIALS=1 SCALE_BLOCKS=4,6 SCALE_TASKS=2 SOAK=10 LFD_COUNT=10 PAGE_RUNS=1
+  TASKS=4 TRIALS=1 SCALE_BLOCKS=4,6 SCALE_TASKS=2 SOAK=10 LFD_COUNT=10 PAGE_RUNS=1 WASM_RUNS=1
 else
-  TASKS=100 TRIALS=10 SCALE_BLOCKS=4,6,8,10,12 SCALE_TASKS=30 SOAK=300 LFD_COUNT=200 PAGE_RUNS=3
+  TASKS=100 TRIALS=10 SCALE_BLOCKS=4,6,8,10,12 SCALE_TASKS=30 SOAK=300 LFD_COUNT=200 PAGE_RUNS=3 WASM_RUNS=5
 fi
 
 cargo build --release --locked -q -p logic-lfd --bin logic-lfd
@@ -85,6 +85,8 @@ if [ "$WEB" = 1 ]; then
   run lfd-domains.md "Logic-LfD against planning from scratch on PDDL domains, native and wasm" -- \
     node tests/node/bench-lfd.mjs --count $LFD_COUNT --seed 1
   npm run -s build:web > /dev/null
+  run wasm.md "native against wasm on the hot paths (same code, same inputs), module and page sizes" -- \
+    node tests/node/bench-wasm.mjs --runs $WASM_RUNS
   run page.md "the page in Chromium: first load, tick, replanning" -- \
     node tests/e2e/bench.mjs --runs $PAGE_RUNS
 fi

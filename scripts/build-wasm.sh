@@ -1,16 +1,18 @@
 #!/usr/bin/env bash
-# Builds the npm package `logic-lfd` into pkg/: the crate for wasm32 (size-optimised profile),
-# wasm-bindgen for the web (`init()` then use) and for node (CommonJS, ready on require),
-# wasm-opt -Oz from the npm `binaryen` package (Debian's binaryen 108 emits broken modules).
+# Builds the npm package `logic-lfd` into pkg/: the crate for wasm32 (speed-optimised profile
+# wasm-speed, wasm-opt -O3), wasm-bindgen for the web (`init()` then use) and for node (CommonJS,
+# ready on require), wasm-opt from the npm `binaryen` package (Debian's binaryen 108 emits broken
+# modules).
 # Also builds pkg/page/ (not part of the npm package) for the page: logic_lfd.js, its first-load
 # module (feature `wasm-core`: the API without Teach mode, Session.replay and the npm-only lqt,
-# validate and runEpisode), and logic_lfd_teach.js, the full module under its own name, which the
-# page loads only when it needs one of those (Teach mode).
+# validate and runEpisode; size-optimised profile wasm-release, then wasm-opt -O3, for the first-load
+# target), and logic_lfd_teach.js, the full module under its own name (the npm package's build),
+# which the page loads only when it needs one of those (Teach mode).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 TARGET_DIR="${CARGO_TARGET_DIR:-target}"
-WASM="$TARGET_DIR/wasm32-unknown-unknown/wasm-release/logic_lfd.wasm"
+wasm_of() { echo "$TARGET_DIR/wasm32-unknown-unknown/$1/logic_lfd.wasm"; }
 OUT=pkg
 
 want="$(grep -A1 '^name = "wasm-bindgen"$' Cargo.lock | sed -n 's/^version = "\(.*\)"/\1/p' | head -1)"
@@ -26,36 +28,38 @@ fi
 
 # Keep the target_features section for wasm-bindgen; wasm-opt strips names afterwards.
 build() {
-  echo "== cargo build (wasm32, profile wasm-release, features $1)"
-  CARGO_PROFILE_WASM_RELEASE_STRIP=false cargo build --target wasm32-unknown-unknown --profile wasm-release --features "$1" -p logic-lfd --lib --locked
+  echo "== cargo build (wasm32, profile $1, features $2)"
+  CARGO_PROFILE_WASM_RELEASE_STRIP=false CARGO_PROFILE_WASM_SPEED_STRIP=false \
+    cargo build --target wasm32-unknown-unknown --profile "$1" --features "$2" -p logic-lfd --lib --locked
 }
 FEATURES=(--enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext
   --enable-mutable-globals --enable-reference-types --enable-multivalue)
 wasm_opt() {
   local file="$1"
   shift
-  echo "== wasm-opt -Oz${*:+ $*} $file"
-  node_modules/.bin/wasm-opt -Oz "$@" --strip-debug --strip-producers "${FEATURES[@]}" "$file" -o "$file"
+  echo "== wasm-opt $* $file"
+  node_modules/.bin/wasm-opt "$@" --strip-debug --strip-producers "${FEATURES[@]}" "$file" -o "$file"
 }
 
 rm -rf "$OUT"
 mkdir -p "$OUT/web" "$OUT/node" "$OUT/page"
 
-build wasm-core
+build wasm-release wasm-core
 echo "== wasm-bindgen $have (page)"
-wasm-bindgen "$WASM" --target web --out-dir "$OUT/page" --out-name logic_lfd
-# --converge (repeat until no gain) takes twice as long and saves ~1.7 KB gzipped: only for the
-# module of the page's first load, whose size has a target (README).
-wasm_opt "$OUT/page/logic_lfd_bg.wasm" --converge
+wasm-bindgen "$(wasm_of wasm-release)" --target web --out-dir "$OUT/page" --out-name logic_lfd
+# -O3 on the size-built module: 1.3–1.5× faster than -Oz on the hot paths for ~3 KB gzipped more
+# (docs/performance.md).
+wasm_opt "$OUT/page/logic_lfd_bg.wasm" -O3
 
-build wasm
+build wasm-speed wasm
+WASM="$(wasm_of wasm-speed)"
 echo "== wasm-bindgen $have"
 wasm-bindgen "$WASM" --target web --out-dir "$OUT/web" --out-name logic_lfd
 wasm-bindgen "$WASM" --target nodejs --out-dir "$OUT/node" --out-name logic_lfd
 wasm-bindgen "$WASM" --target web --out-dir "$OUT/page" --out-name logic_lfd_teach
-wasm_opt "$OUT/web/logic_lfd_bg.wasm"
+wasm_opt "$OUT/web/logic_lfd_bg.wasm" -O3
 cp "$OUT/web/logic_lfd_bg.wasm" "$OUT/node/logic_lfd_bg.wasm"
-wasm_opt "$OUT/page/logic_lfd_teach_bg.wasm"
+wasm_opt "$OUT/page/logic_lfd_teach_bg.wasm" -O3
 
 # The node build is CommonJS (ready as soon as it is required); index.mjs gives ESM importers the
 # same shape as the web build (a default `init()` that resolves at once), so code runs unchanged.

@@ -7,11 +7,12 @@
 #![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use logic_lfd::experiments::hot_paths;
 use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::generate::tower_task;
 use logic_lfd::sim::panda::{self, IkParams};
 use logic_lfd::sim::{GripperCommand, SceneGraph};
-use nalgebra::{Isometry3, Translation3};
+use nalgebra::Isometry3;
 use std::hint::black_box;
 
 fn step_and_scene_graph(c: &mut Criterion) {
@@ -39,21 +40,7 @@ fn step_and_scene_graph(c: &mut Criterion) {
 fn ik_solve(c: &mut Criterion) {
     let base = Isometry3::identity();
     let params = IkParams::default();
-    // Top grasps over the table in front of the arm (all reachable).
-    let targets: Vec<Isometry3<f64>> = (0..64)
-        .map(|i| {
-            let r = 0.35 + 0.3 * ((i * 37 % 64) as f64 / 64.0);
-            let a = -1.2 + 2.4 * ((i * 11 % 64) as f64 / 64.0);
-            Isometry3::from_parts(
-                Translation3::new(
-                    r * libm::cos(a),
-                    r * libm::sin(a),
-                    0.03 + 0.1 * ((i % 3) as f64),
-                ),
-                panda::down_orientation(a + 0.3 * ((i % 5) as f64 - 2.0)),
-            )
-        })
-        .collect();
+    let targets = hot_paths::ik_targets();
     let mut i = 0;
     c.bench_function("ik solve (top grasp from ready)", |bch| {
         bch.iter(|| {

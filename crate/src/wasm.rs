@@ -1,4 +1,5 @@
-//! WebAssembly bindings (feature `wasm`): the only module that touches `wasm-bindgen`.
+//! WebAssembly bindings (feature `wasm`): the only module that touches `wasm-bindgen`, `js-sys`
+//! and `web-sys`.
 //!
 //! Everything crosses the boundary as plain JSON-compatible data (serde through JSON text and
 //! `JSON.parse` / `JSON.stringify`, so that one serde_json (de)serialiser serves every type;
@@ -14,6 +15,8 @@ use crate::plan::Clock;
 use wasm_bindgen::prelude::*;
 
 mod args;
+#[cfg(feature = "wasm")]
+mod bench;
 mod logic_lfd;
 mod pddl;
 #[cfg(feature = "wasm")]
@@ -27,18 +30,19 @@ pub use pddl::Validation;
 pub use pddl::{BenchmarkInfo, Diagnostic, PlanFailed, PlanFound, PlanOptions, PlanOutcome};
 pub use session::WasmSession;
 
-#[wasm_bindgen]
-extern "C" {
-    /// `performance.now()` (ms): exists in windows, workers and node ≥ 16.
-    #[wasm_bindgen(js_namespace = performance, js_name = now)]
-    fn performance_now() -> f64;
+thread_local! {
+    /// The global `performance` object (windows, workers and node ≥ 16 have one), read once.
+    static PERFORMANCE: Option<web_sys::Performance> =
+        js_sys::Reflect::get(&js_sys::global(), &JsValue::from_str("performance"))
+            .ok()
+            .filter(JsValue::is_object)
+            .map(JsCast::unchecked_into);
 }
 
-#[wasm_bindgen]
-extern "C" {
-    /// `console.error(message)`.
-    #[wasm_bindgen(js_namespace = console, js_name = error)]
-    fn console_error(message: &str);
+/// `performance.now()` (ms); 0 where the global has no `performance` (time limits then never
+/// trigger and reported times are 0, as with `NoClock`).
+fn performance_now() -> f64 {
+    PERFORMANCE.with(|p| p.as_ref().map_or(0.0, web_sys::Performance::now))
 }
 
 /// The message of the last panic (a bug: user input never panics), for [`last_panic`].
@@ -50,7 +54,7 @@ static LAST_PANIC: std::sync::Mutex<String> = std::sync::Mutex::new(String::new(
 pub fn start() {
     std::panic::set_hook(Box::new(|info| {
         let message = format!("logic-lfd panicked: {info}");
-        console_error(&message);
+        web_sys::console::error_1(&JsValue::from_str(&message));
         if let Ok(mut last) = LAST_PANIC.lock() {
             *last = message;
         }
@@ -120,16 +124,10 @@ fn js_err(e: impl std::fmt::Display) -> JsError {
     JsError::new(&e.to_string())
 }
 
-#[wasm_bindgen]
-extern "C" {
-    /// `JSON.parse(text)`.
-    #[wasm_bindgen(js_namespace = JSON, js_name = parse, catch)]
-    fn json_parse(text: &str) -> Result<JsValue, JsValue>;
-
-    /// `JSON.stringify(value)`: `None` for `undefined`, a function or a symbol; throws for a
-    /// BigInt or a cycle.
-    #[wasm_bindgen(js_namespace = JSON, js_name = stringify, catch)]
-    fn json_stringify(value: &JsValue) -> Result<Option<String>, JsValue>;
+/// `JSON.stringify(value)`: `None` for `undefined`, a function or a symbol; `Err` for a BigInt
+/// or a cycle.
+fn json_stringify(value: &JsValue) -> Result<Option<String>, JsValue> {
+    js_sys::JSON::stringify(value).map(|s| JsValue::from(s).as_string())
 }
 
 /// Reads plain data from JS through its JSON text, so that one deserialiser (serde_json's, which
@@ -158,7 +156,7 @@ fn json_message(e: &serde_json::Error) -> String {
 /// numbers; a non-finite one would come out as `null`, as in the CLI's JSON.
 fn to_js<T: serde::Serialize>(v: &T) -> Result<JsValue, JsValue> {
     let text = serde_json::to_string(v).map_err(js_err)?;
-    json_parse(&text).map_err(|_| js_err("JSON.parse failed").into())
+    js_sys::JSON::parse(&text).map_err(|_| js_err("JSON.parse failed").into())
 }
 
 /// Solves one LQT-CP case (the contract of `docs/formats.md`, as `logic-lfd lqt CASE.json`).

@@ -10,10 +10,8 @@
 //     Cancel takes to stop that search.
 // Usage: node tests/e2e/bench.mjs [--benchmark b1] [--runs 3] [--blocks N]
 // (--blocks: the benchmark's generated N-block tower task instead of its template.)
-import { readdir, readFile } from 'node:fs/promises';
-import { gzipSync } from 'node:zlib';
-import { join } from 'node:path';
 import { bigBlocks, dist, ipcBlocks, launch, openPage, serve } from './harness.mjs';
+import { pageSizes } from './page-size.mjs';
 
 const arg = (k, d) => {
   const i = process.argv.indexOf(`--${k}`);
@@ -26,33 +24,7 @@ if (blocks !== undefined && !/^\d+$/.test(blocks)) throw new Error(`--blocks mus
 // A taller tower takes longer to build: the run's time limit grows with it.
 const doneTimeout = 120000 * Math.max(1, Number(blocks ?? 4) / 4);
 
-async function sizes() {
-  const files = [];
-  async function walk(d) {
-    for (const e of await readdir(d, { withFileTypes: true })) {
-      const p = join(d, e.name);
-      if (e.isDirectory()) await walk(p);
-      else files.push(p);
-    }
-  }
-  await walk(dist);
-  let raw = 0;
-  let gz = 0;
-  let lazyGz = 0;
-  const rows = [];
-  for (const f of files) {
-    const b = await readFile(f);
-    const g = gzipSync(b, { level: 9 }).length;
-    rows.push({ file: f.slice(dist.length + 1), raw: b.length, gz: g });
-    raw += b.length;
-    gz += g;
-    // The PDDL editor (CodeMirror), the charts (uPlot, its JS and CSS) and Teach mode (its panel,
-    // and the full wasm module with the recorder) are separate chunks fetched when their tab
-    // first opens.
-    if (/\/(editor-[^/]*\.js|uPlot[^/]*\.(js|css)|teach-[^/]*\.js|logic_lfd_teach[^/]*\.(js|wasm)|docs\/[^/]*\.md)$/.test(f)) lazyGz += g;
-  }
-  return { raw, gz, lazyGz, rows };
-}
+const sizes = () => pageSizes(dist);
 
 const pct = (xs, p) => {
   const s = [...xs].sort((a, b) => a - b);

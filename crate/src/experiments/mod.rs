@@ -17,6 +17,7 @@
 pub mod episode;
 pub mod fig4;
 pub mod fuzz;
+pub mod hot_paths;
 pub mod scaling;
 pub mod soak;
 pub mod table2_motion;

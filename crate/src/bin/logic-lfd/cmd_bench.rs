@@ -34,6 +34,8 @@ enum Which {
     Scaling(ScalingArgs),
     /// The paper's Fig. 4: LQT-CP against the DMP, picking B2's hook and pulling its block.
     Fig4(Fig4Args),
+    /// The hot paths of `npm run bench:wasm`, timed natively (best of N after a warm-up).
+    WasmRows(crate::cmd_bench_rows::Args),
 }
 
 /// Arguments of `bench fig4`.
@@ -163,6 +165,7 @@ pub fn run(args: Args) -> ExitCode {
         Which::Table2(a) => crate::cmd_tables::run_table2(a),
         Which::Scaling(a) => scaling(a),
         Which::Fig4(a) => fig4(a),
+        Which::WasmRows(a) => crate::cmd_bench_rows::run(a),
     }
 }
 

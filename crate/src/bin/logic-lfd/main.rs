@@ -4,6 +4,7 @@
 //! Errors go to stderr as `file:line:col: message`; `--json` output goes to stdout.
 
 mod cmd_bench;
+mod cmd_bench_rows;
 mod cmd_demo;
 mod cmd_fuzz;
 mod cmd_lfd;
