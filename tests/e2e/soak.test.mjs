@@ -173,7 +173,7 @@ test(`page soak: ${CYCLES} perturb-and-replan cycles, memory flat after ${WARMUP
     if (text == null) {
       // A real click on the L-button, its notice, and the loop running on.
       const level = `l${(i % 5) + (i % 5 === 4 ? -3 : 1)}`;
-      text = await act(page, () => page.click(`#inject-${level}`));
+      text = await act(page, () => page.click(`#inject-${level}`, { force: true }));
       const tick = (await currentFrame(page)).tick;
       const h = await page.waitForFunction(
         (tick) => {

@@ -75,9 +75,9 @@ describe('disturbance buttons', () => {
     await page.click('#play');
     await page.waitForFunction(() => !window.lfd.frame()?.world.arms.some((a) => a.holding), null, { timeout: 60000, polling: 20 });
     await page.click('#play');
-    await page.waitForSelector('#inject-l1[aria-disabled="false"]', { timeout: 10000 });
+    await page.waitForSelector('#inject-l1[aria-disabled="false"]', { timeout: 30000 });
     await page.click('#inject-l1');
-    await page.waitForFunction(() => window.lfd.moveMarks().length === 1, null, { timeout: 10000, polling: 20 });
+    await page.waitForFunction(() => window.lfd.moveMarks().length === 1, null, { timeout: 30000, polling: 20 });
     await page.screenshot({ path: join(screenshots, 'ux-l1-mark-1440.png') });
     assert.deepEqual(errors, []);
     await page.close();
