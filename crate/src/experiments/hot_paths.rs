@@ -13,15 +13,14 @@
 //! so two builds can be checked to have done the same work.
 
 use crate::lfd::control::ControlParams;
-use crate::lfd::model::DomainModel;
-use crate::lfd::session::{demo_actions, Session, SessionOptions, SkillKind};
-use crate::lfd::{DemoTrace, LogicLfd, Method, Mode, TaskBuilder};
+use crate::lfd::session::{Session, SessionOptions, SkillKind};
+use crate::lfd::{LogicLfd, Method, Mode};
 use crate::lqt::task::{build_reference, Target, TargetRole, Tracking};
 use crate::lqt::{full_pipeline, Basis, LqtConfig};
 use crate::plan::{self, Algorithm, Clock, HeuristicKind, NoClock, SearchConfig, SearchOutcome};
 use crate::sim::benchmark::Benchmark;
 use crate::sim::panda::{self, IkParams};
-use crate::sim::{GripperCommand, SceneGraph, World};
+use crate::sim::{GripperCommand, SceneGraph};
 use nalgebra::{DMatrix, Isometry3, Translation3};
 use serde::{Deserialize, Serialize};
 
@@ -310,28 +309,7 @@ fn plan_row(id: &str, name: &str, domain: &str, problem: &str, config: &SearchCo
 
 /// One replan per disturbed state of the benchmark's template task (the reactive loop's search).
 fn replan_row(id: String, b: Benchmark) -> Result<Row, String> {
-    let files = b.sources().map_err(|e| e.to_string())?;
-    let motions = b.motions();
-    let world = World::from_json(&files.scene)
-        .map_err(|e| e.to_string())?
-        .with_motions(motions.clone());
-    let model = DomainModel::new(
-        &files.domain,
-        "domain.pddl",
-        &files.problem,
-        "problem.pddl",
-        &motions.scene_predicates(),
-    )
-    .map_err(|e| e.to_string())?;
-    let objects: Vec<(String, String)> = SceneGraph::objects(&world)
-        .into_iter()
-        .map(|o| (o.name, o.kind))
-        .collect();
-    let template = model
-        .build(&objects, &SceneGraph::from_world(&world).to_strings())
-        .map_err(|e| e.to_string())?;
-    let actions = demo_actions(&files.demo).map_err(|e| e.to_string())?;
-    let trace = DemoTrace::derive(&template, &actions).map_err(|e| e.to_string())?;
+    let (template, trace) = super::tasks::template_task_for(b, None).map_err(|e| e.to_string())?;
     let lfd = LogicLfd::from_task(template, trace);
     let states: Vec<_> = lfd
         .perturb(DISTURBED_STATES, DISTURBANCE_SEED, DISTURBANCE_STEPS)

@@ -12,6 +12,7 @@ use crate::lfd::demo::DemoTrace;
 use crate::lfd::disturb::{self, Level};
 use crate::lfd::session::{demo_actions, mix, sources_for, SessionError};
 use crate::lfd::TaskBuilder as _;
+use crate::plan::Task;
 use crate::sim::benchmark::Benchmark;
 use crate::sim::{SceneGraph, World};
 
@@ -27,6 +28,15 @@ pub fn demo_trace(b: Benchmark) -> Result<DemoTrace, SessionError> {
 /// [`demo_trace`] of the benchmark's generated tower task with `blocks` blocks (`None`: the
 /// template task).
 pub fn demo_trace_for(b: Benchmark, blocks: Option<usize>) -> Result<DemoTrace, SessionError> {
+    Ok(template_task_for(b, blocks)?.1)
+}
+
+/// The benchmark's task as the scene graph states its scene (template, or the generated tower
+/// with `blocks` blocks), with the trace L_0..L_N of its demonstration on that task.
+pub fn template_task_for(
+    b: Benchmark,
+    blocks: Option<usize>,
+) -> Result<(Task, DemoTrace), SessionError> {
     let files = sources_for(b, blocks)?;
     let template = World::from_json(&files.scene)?.with_motions(b.motions());
     let model = crate::lfd::model::DomainModel::new(
@@ -41,7 +51,8 @@ pub fn demo_trace_for(b: Benchmark, blocks: Option<usize>) -> Result<DemoTrace, 
         .map(|o| (o.name, o.kind))
         .collect();
     let task = model.build(&objects, &SceneGraph::from_world(&template).to_strings())?;
-    Ok(DemoTrace::derive(&task, &demo_actions(&files.demo)?)?)
+    let trace = DemoTrace::derive(&task, &demo_actions(&files.demo)?)?;
+    Ok((task, trace))
 }
 
 /// The initial world (as scene JSON) of a Table I task.
