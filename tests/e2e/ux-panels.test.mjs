@@ -67,17 +67,22 @@ describe('disturbance buttons', () => {
     if (grey) {
       const level = await grey.getAttribute('data-level');
       assert.match(await grey.getAttribute('title'), /not now: /);
-      await grey.click();
+      // aria-disabled makes Playwright wait for "enabled"; the press itself is what is tested.
+      await grey.click({ force: true });
       await page.waitForSelector('#notice.error:not([hidden])');
       assert.match(await page.textContent('#notice'), new RegExp(`^${level.toUpperCase()} refused: `));
     }
-    // L1 applies on a free block once the hand is empty, and its few centimetres are marked.
+    // L1 applies once the hand is empty; what it moved (a block, or the moving arm's hand) is
+    // marked, since a few centimetres are easy to miss.
     await page.click('#play');
     await page.waitForFunction(() => !window.lfd.frame()?.world.arms.some((a) => a.holding), null, { timeout: 60000, polling: 20 });
     await page.click('#play');
     await page.waitForSelector('#inject-l1[aria-disabled="false"]', { timeout: 30000 });
     await page.click('#inject-l1');
     await page.waitForFunction(() => window.lfd.moveMarks().length === 1, null, { timeout: 30000, polling: 20 });
+    const [mark] = await page.evaluate(() => window.lfd.moveMarks());
+    const said = await page.textContent('#notice');
+    assert.match(mark, /pushed the hand of (\w+)/.test(said) ? new RegExp(`^pushed:${said.match(/hand of (\w+)/)[1]}$`) : /^moved:[a-z]\w*$/, `${mark} for "${said}"`);
     await page.screenshot({ path: join(screenshots, 'ux-l1-mark-1440.png') });
     assert.deepEqual(errors, []);
     await page.close();

@@ -29,6 +29,8 @@ export interface InjectOutcome {
   frame: Frame;
   /** The bodies it moved. */
   moved: string[];
+  /** A push of an arm's hand (L1 while the arm moves): where its tool centre was and went. */
+  push?: { arm: string; from: Vec3; to: Vec3 };
 }
 
 /** Every request the page can make: its arguments and the value its reply carries. */

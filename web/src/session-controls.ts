@@ -198,6 +198,7 @@ export class SessionControls {
         const from = before?.find((b) => b.name === name)?.pose.position;
         if (from) this.p.view.markMove(name, from);
       }
+      if (r.push && !r.moved.length) this.p.view.markPush(r.push.arm, r.push.from, r.push.to);
       this.p.renderer.render(r.frame);
       if (!this.p.state.playing) await this.play();
     } catch (e) {

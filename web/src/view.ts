@@ -467,15 +467,27 @@ export class View {
     const e = this.bodies.get(body);
     const src = e?.object.children.find((c): c is THREE.Mesh => c instanceof THREE.Mesh);
     if (!e || !src) return;
+    this.showMark(`moved:${body}`, src.geometry, e.object.quaternion, from, [e.object.position.x, e.object.position.y, e.object.position.z]);
+  }
+
+  /** Marks a push of an arm's hand (L1 while it moves, nothing else displaced) the same way: a
+   * ghost ball where the hand was and a line to where the push left it. */
+  markPush(arm: string, from: [number, number, number], to: [number, number, number]): void {
+    this.showMark(`pushed:${arm}`, this.pushGeometry, new THREE.Quaternion(), from, to);
+  }
+
+  private readonly pushGeometry = new THREE.SphereGeometry(0.02, 16, 12);
+
+  private showMark(name: string, geometry: THREE.BufferGeometry, rotation: THREE.Quaternion, from: [number, number, number], to: [number, number, number]): void {
     const m = this.moveMark;
-    m.ghost.geometry = src.geometry;
+    m.ghost.geometry = geometry;
     m.ghost.position.set(...from);
-    m.ghost.quaternion.copy(e.object.quaternion);
+    m.ghost.quaternion.copy(rotation);
     const pos = m.line.geometry.getAttribute('position') as THREE.BufferAttribute;
     pos.setXYZ(0, ...from);
-    pos.setXYZ(1, e.object.position.x, e.object.position.y, e.object.position.z);
+    pos.setXYZ(1, ...to);
     pos.needsUpdate = true;
-    m.group.name = `moved:${body}`;
+    m.group.name = name;
     m.group.visible = true;
     this.dirty = true;
     clearTimeout(m.timer);
@@ -486,20 +498,22 @@ export class View {
   }
 
   private readonly moveMark = (() => {
-    const ghost = new THREE.Mesh(undefined, new THREE.MeshBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.35, depthWrite: false }));
+    // Drawn over everything: the place a hand was pushed from is inside the hand itself.
+    const ghost = new THREE.Mesh(undefined, new THREE.MeshBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.45, depthWrite: false, depthTest: false }));
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(6), 3));
-    const line = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: 0xffb224 }));
+    const line = new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: 0xffb224, depthTest: false }));
     line.frustumCulled = false;
+    ghost.renderOrder = line.renderOrder = 10;
     const group = new THREE.Group().add(ghost, line);
     group.visible = false;
     this.scene.add(group);
     return { group, ghost, line, timer: 0 };
   })();
 
-  /** The bodies whose disturbance move is marked now. */
+  /** The disturbance marked now: `moved:<body>` or `pushed:<arm>` (at most one). */
   moveMarks(): string[] {
-    return this.moveMark.group.visible ? [this.moveMark.group.name.slice('moved:'.length)] : [];
+    return this.moveMark.group.visible ? [this.moveMark.group.name] : [];
   }
 
   /** Projects a body's centre to client coordinates (for tests and tooltips). */

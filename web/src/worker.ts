@@ -109,7 +109,8 @@ const handlers: Handlers = {
   inject: ({ level }) => {
     const s = need();
     const i = s.inject(level);
-    return { message: i.description, frame: s.frame(), moved: i.moved.map(([b]) => b) };
+    const push = i.push && { arm: i.push.arm, from: i.push.from, to: i.push.to };
+    return { message: i.description, frame: s.frame(), moved: i.moved.map(([b]) => b), push };
   },
   levels: () => {
     const s = need();
