@@ -14,7 +14,12 @@ that range, when logic-lfd proves a dead end FD solves, or when a proved optimal
 (expansions are reported, not checked).
 
     python3 scripts/compare-fd.py [DIR ...] [--time-limit S] [--random N] [--seed S] [--json]
-                                  [--h0-only] [--renumberings K]
+                                  [--h0-only] [--renumberings K] [--stop-after N]
+
+Problems run in natural order (probBLOCKS-9-0 before probBLOCKS-10-0), so that with
+--stop-after N a domain's remaining problems are skipped, and reported as skipped, once N in a
+row were solved by neither planner: IPC problems grow with their number, and the skipped ones
+would each cost both time limits for nothing.
 
 --h0-only compares the initial LM-cut values alone (both planners stop after the first state):
 seconds per problem instead of the time limit.
@@ -267,6 +272,44 @@ def random_strips(rng, n_facts, n_ops):
     return "\n".join(dom), prob
 
 
+def natural_key(path):
+    """Sort key that orders the numbers in a name by value (p9 before p10)."""
+    return [int(t) if t.isdigit() else t for t in re.split(r"(\d+)", os.path.basename(path))]
+
+
+def family(name):
+    """The domain a case belongs to: the part of its name before the first `/`."""
+    return name.split("/", 1)[0]
+
+
+def domain_table(rows):
+    """Per domain: solved by each, equal optimal costs, expansions within ±20 %, speeds."""
+    print("| domain | problems | skipped | solved FD | solved logic-lfd | same optimal cost "
+          "| expansions within ±20 % | expansions/s FD, median | expansions/s logic-lfd, median |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for fam in dict.fromkeys(family(r["problem"]) for r in rows):
+        rs = [r for r in rows if family(r["problem"]) == fam]
+        both = [r for r in rs if r["fd"]["solved"] and r["ours"].get("solved")]
+        rates = [(r["fd"]["expanded"] / r["fd"]["search_s"],
+                  r["ours"]["expanded"] / r["ours"]["search_s"])
+                 for r in both if min(r["fd"]["expanded"], r["ours"]["expanded"]) >= 1000
+                 and r["fd"].get("search_s") and r["ours"].get("search_s")]
+        med = lambda xs: f"{statistics.median(xs):,.0f}".replace(",", " ") if xs else "—"
+        print(f"| {fam} | {len(rs)} | {sum(bool(r.get('skipped')) for r in rs)} | "
+              f"{sum(r['fd']['solved'] for r in rs)} | "
+              f"{sum(bool(r['ours'].get('solved')) for r in rs)} | "
+              f"{sum(r['fd']['cost'] == r['ours']['cost'] for r in both)} of {len(both)} | "
+              f"{sum(within_20(r) for r in both)} of {len(both)} | "
+              f"{med([f for f, _ in rates])} | {med([o for _, o in rates])} |")
+
+
+def within_20(r):
+    return abs(r["ours"]["expanded"] - r["fd"]["expanded"]) <= 0.2 * max(r["fd"]["expanded"], 1)
+
+
+UNRUN = {"initial_h": None, "dead_end": False, "cost": None, "expanded": None, "solved": False}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("dirs", nargs="*")
@@ -282,6 +325,9 @@ def main():
     ap.add_argument("--renumberings", type=int, default=40,
                     help="where initial values differ, FD's values over this many renumberings "
                          "of its SAS+ variables (0: none)")
+    ap.add_argument("--stop-after", type=int, default=0,
+                    help="skip a domain's remaining problems once this many in a row were solved "
+                         "by neither planner (0: never)")
     a = ap.parse_args()
     dirs = a.dirs or sorted(d for d in glob.glob(os.path.join(ROOT, "..", "shared", "ipc", "*"))
                             if os.path.isdir(d))
@@ -291,7 +337,7 @@ def main():
     cases = []
     for d in dirs:
         domain = os.path.join(d, "domain.pddl")
-        for prob in sorted(glob.glob(os.path.join(d, "*.pddl"))):
+        for prob in sorted(glob.glob(os.path.join(d, "*.pddl")), key=natural_key):
             if os.path.basename(prob) != "domain.pddl":
                 cases.append((f"{os.path.basename(os.path.normpath(d))}/{os.path.basename(prob)}",
                               domain, prob))
@@ -313,7 +359,12 @@ def main():
     if a.satisficing:
         return satisficing_report(py, script, ours_bin, cases, a)
     rows, h_diff, below, above, cost_diff, dead_wrong = [], [], [], [], [], []
+    misses = {}
     for name, domain, prob in cases:
+        if a.stop_after and misses.get(family(name), 0) >= a.stop_after:
+            rows.append({"problem": name, "fd": dict(UNRUN), "ours": dict(UNRUN),
+                         "skipped": True})
+            continue
         fd = run_fd(py, script, domain, prob, a.time_limit, a.h0_only)
         us = run_ours(ours_bin, domain, prob, a.time_limit, a.h0_only)
         fd_h, our_h = (None if fd["dead_end"] else fd["initial_h"]), us.get("initial_h")
@@ -334,6 +385,8 @@ def main():
         if fd["solved"] and us.get("solved") and fd["cost"] != us["cost"]:
             cost_diff.append(name)
         rows.append(row)
+        unsolved = not a.h0_only and not fd["solved"] and not us.get("solved")
+        misses[family(name)] = misses.get(family(name), 0) + 1 if unsolved else 0
         print(f"{name}: h0 FD {fd_h} {row.get('fd_renumbered_h0', '')} ours {our_h}; cost FD "
               f"{fd['cost']} ours {us.get('cost')}; expanded FD {fd['expanded']} ours "
               f"{us.get('expanded')}", file=sys.stderr)
@@ -361,9 +414,8 @@ def main():
         "initial_h_above_fd_renumbered_range": above,
         "dead_end_but_fd_solved": dead_wrong,
         "cost_differs": cost_diff,
-        "expansions_within_20_percent": sum(
-            abs(r["ours"]["expanded"] - r["fd"]["expanded"]) <= 0.2 * max(r["fd"]["expanded"], 1)
-            for r in both),
+        "expansions_within_20_percent": sum(within_20(r) for r in both),
+        "skipped": [r["problem"] for r in rows if r.get("skipped")],
         "both_solved": len(both),
         "expansions_per_s_median": {
             "fd": statistics.median(f for f, _ in rates) if rates else None,
@@ -380,6 +432,8 @@ def main():
         print("|---|---:|---|---:|---:|---:|---:|---:|")
         cell = lambda v: "—" if v is None else str(v)
         for r in rows:
+            if r.get("skipped"):
+                continue
             fd, us = r["fd"], r["ours"]
             vals = r.get("fd_renumbered_h0")
             span = f"{min(vals)}–{max(vals)}" if vals else ""
@@ -387,8 +441,11 @@ def main():
                   f"{span} | {cell(us.get('initial_h'))} | {cell(fd['cost'])} | "
                   f"{cell(us.get('cost'))} | {cell(fd['expanded'])} | {cell(us.get('expanded'))} |")
         print()
+        domain_table(rows)
+        print()
         sm = summary
-        print(f"{sm['problems']} problems, {a.time_limit:g} s each: FD solved {sm['fd_solved']}, "
+        print(f"{sm['problems']} problems ({len(sm['skipped'])} skipped after {a.stop_after} "
+              f"unsolved in a row), {a.time_limit:g} s each: FD solved {sm['fd_solved']}, "
               f"logic-lfd {sm['ours_solved']} (FD only: {sm['solved_by_fd_only']}). Initial LM-cut "
               f"values: equal {sm['initial_h_equal']}, ours higher {sm['initial_h_ours_higher']}, "
               f"lower {sm['initial_h_ours_lower']}, sums FD {sm['initial_h_sum']['fd']} ours "
