@@ -6,7 +6,8 @@
 //! replan (A* + h_max, as the reactive loop) per state from seeded disturbed states of B1/B2/B3,
 //! the LQT-CP pipeline (T = 100, D = 3, jerk, K = 10 RBF: weights, F, gains, one rollout), one
 //! B3 world step with the scene graph, one IK solve, and the replans of the page benchmark's
-//! scenario (`page_replans`). Every other row runs once to warm up, then
+//! scenario (`page_replans`). Every row runs [`RowParams::warmup`] times untimed first (the first
+//! run also gives the digest; a JIT-compiled target tiers up its hot code during these), then
 //! repeats its batch at least [`RowParams::min_runs`] and at most [`RowParams::runs`] times
 //! (fewer once [`RowParams::budget_secs`] is spent) and keeps the best; the caller's clock
 //! times it. Each row also reports a digest of the work done (plan lengths, expansions, facts),
@@ -59,7 +60,9 @@ pub struct RowInputs {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(rename_all = "camelCase", default)]
 pub struct RowParams {
-    /// Timed runs at most (after one warm-up run).
+    /// Untimed warm-up runs before the timed ones (at least one: it gives the digest).
+    pub warmup: usize,
+    /// Timed runs at most (after the warm-up runs).
     pub runs: usize,
     /// Timed runs at least, whatever the budget.
     pub min_runs: usize,
@@ -72,6 +75,7 @@ pub struct RowParams {
 impl Default for RowParams {
     fn default() -> Self {
         RowParams {
+            warmup: 1,
             runs: 10,
             min_runs: 3,
             budget_secs: 5.0,
@@ -131,7 +135,7 @@ const PAGE_SEEDS: [u64; 3] = [1, 2, 3];
 
 /// The page benchmark's B1 scenario (seeds 1–3; L3 after 1 s, L4 after 4 s, L3 after 7 s of
 /// simulated time): every replan's time as the loop logs it (search + binding), each replan's
-/// best over the runs (one warm-up pass first), and their median as the row's time.
+/// best over the runs (after the warm-up passes), and their median as the row's time.
 fn page_replans(params: &RowParams, clock: &dyn Clock) -> Result<RowTiming, String> {
     let pass = || -> Result<Vec<(f64, String)>, String> {
         let mut out = Vec::new();
@@ -166,6 +170,15 @@ fn page_replans(params: &RowParams, clock: &dyn Clock) -> Result<RowTiming, Stri
     };
     let first = pass()?;
     let digest = first.iter().map(|(_, n)| n.as_str()).collect::<Vec<_>>();
+    for _ in 1..params.warmup {
+        if pass()?
+            .iter()
+            .map(|(_, n)| n.as_str())
+            .ne(digest.iter().copied())
+        {
+            return Err("page-replans-b1: the episodes changed between runs".into());
+        }
+    }
     let mut best: Vec<f64> = vec![f64::INFINITY; first.len()];
     let started = clock.now_secs();
     let mut runs = 0;
@@ -198,6 +211,12 @@ fn page_replans(params: &RowParams, clock: &dyn Clock) -> Result<RowTiming, Stri
 fn time_row(mut row: Row, params: &RowParams, clock: &dyn Clock) -> Result<RowTiming, String> {
     let fail = |e: String| format!("{}: {e}", row.id);
     let digest = (row.batch)().map_err(fail)?;
+    for _ in 1..params.warmup {
+        let d = (row.batch)().map_err(fail)?;
+        if d != digest {
+            return Err(fail(format!("work changed between runs: {digest} / {d}")));
+        }
+    }
     let started = clock.now_secs();
     let mut best = f64::INFINITY;
     let mut runs = 0;

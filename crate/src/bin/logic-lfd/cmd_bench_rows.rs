@@ -1,4 +1,4 @@
-//! `logic-lfd bench wasm-rows [--ipc DIR] [--logistics NAME] [--runs N] [--only ID,…] [--json]`:
+//! `logic-lfd bench wasm-rows [--ipc DIR] [--logistics NAME] [--warmup N] [--runs N] [--only ID,…] [--json]`:
 //! the native side of `npm run bench:wasm` — the hot-path rows of
 //! `logic_lfd::experiments::hot_paths`, best of N after a warm-up, on the wall clock.
 
@@ -19,7 +19,10 @@ pub struct Args {
     /// The logistics problem of the lazy GBFS row (a file of `logistics00/`, without `.pddl`).
     #[arg(long, default_value = "probLOGISTICS-10-0")]
     logistics: String,
-    /// Timed runs per row at most (after one warm-up; at least 3).
+    /// Untimed warm-up runs per row before the timed ones (at least 1).
+    #[arg(long, default_value_t = 1)]
+    warmup: usize,
+    /// Timed runs per row at most (after the warm-up; at least 3).
     #[arg(long, default_value_t = 10)]
     runs: usize,
     /// Seconds per row after which no further run starts (once 3 are done).
@@ -52,6 +55,7 @@ fn inputs(a: &Args) -> Result<RowInputs, String> {
 /// Runs the subcommand.
 pub fn run(a: Args) -> ExitCode {
     let params = RowParams {
+        warmup: a.warmup.max(1),
         runs: a.runs.max(1),
         budget_secs: a.budget,
         only: a.only.clone(),
