@@ -67,6 +67,7 @@
 
 pub mod benchmark;
 pub mod demo;
+mod fast_math;
 pub mod generate;
 pub mod geometry;
 pub mod motions;

@@ -30,6 +30,9 @@ use nalgebra::{
 };
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
+use std::sync::OnceLock;
+
+use super::fast_math::{norm3, sincos_table};
 
 /// Number of joints.
 pub const DOF: usize = 7;
@@ -105,14 +108,25 @@ impl Frame {
     }
 }
 
-/// Modified DH transform `Rot_x(α) Trans_x(a) Rot_z(θ) Trans_z(d)`.
-fn dh(a: f64, d: f64, alpha: f64, theta: f64) -> Frame {
-    let (st, ct) = libm::sincos(theta);
-    let (sa, ca) = libm::sincos(alpha);
+/// Modified DH transform `Rot_x(α) Trans_x(a) Rot_z(θ) Trans_z(d)` from `(sin α, cos α)` and
+/// `(sin θ, cos θ)`.
+fn dh((a, d): (f64, f64), (sa, ca): (f64, f64), (st, ct): (f64, f64)) -> Frame {
     Frame {
         r: Matrix3::new(ct, -st, 0.0, st * ca, ct * ca, -sa, st * sa, ct * sa, ca),
         p: Vector3::new(a, -sa * d, ca * d),
     }
+}
+
+/// `libm::sincos` of the constant angles of the chain: the twists α of joints 1..7, then 0 (the
+/// flange and TCP offsets) and −π/4 (the hand).
+fn chain_trig() -> &'static [(f64, f64); DOF + 2] {
+    static CELL: OnceLock<[(f64, f64); DOF + 2]> = OnceLock::new();
+    let mut angles = [0.0; DOF + 2];
+    for i in 0..DOF {
+        angles[i] = DH[i].2;
+    }
+    angles[DOF + 1] = -std::f64::consts::FRAC_PI_4;
+    sincos_table(&CELL, &angles)
 }
 
 /// All frames of one arm configuration, world coordinates.
@@ -126,15 +140,17 @@ pub(crate) struct ArmFrames {
 
 /// Forward kinematics of every frame.
 pub(crate) fn forward_frames(base: &Isometry3<f64>, q: &[f64; DOF]) -> ArmFrames {
+    let trig = chain_trig();
+    let zero = trig[DOF];
     let mut frames = [Frame::identity(); 10];
     frames[0] = Frame::from_iso(base);
     for i in 0..DOF {
-        let (a, d, alpha) = DH[i];
-        frames[i + 1] = frames[i].mul(&dh(a, d, alpha, q[i]));
+        let (a, d, _) = DH[i];
+        frames[i + 1] = frames[i].mul(&dh((a, d), trig[i], libm::sincos(q[i])));
     }
-    frames[8] = frames[7].mul(&dh(0.0, FLANGE_D, 0.0, 0.0));
-    frames[9] = frames[8].mul(&dh(0.0, 0.0, 0.0, -std::f64::consts::FRAC_PI_4));
-    let tcp = frames[9].mul(&dh(0.0, TCP_OFFSET, 0.0, 0.0));
+    frames[8] = frames[7].mul(&dh((0.0, FLANGE_D), zero, zero));
+    frames[9] = frames[8].mul(&dh((0.0, 0.0), zero, trig[DOF + 1]));
+    let tcp = frames[9].mul(&dh((0.0, TCP_OFFSET), zero, zero));
     ArmFrames { frames, tcp }
 }
 
@@ -169,7 +185,7 @@ fn rotation_error(target: &Matrix3<f64>, current: &Matrix3<f64>) -> Vector3<f64>
         m[(0, 2)] - m[(2, 0)],
         m[(1, 0)] - m[(0, 1)],
     ) * 0.5;
-    let s = v.norm();
+    let s = norm3(&v);
     let c = 0.5 * (m.trace() - 1.0);
     if s < SMALL_ROTATION {
         if c > 0.0 {
@@ -281,7 +297,7 @@ fn dls_attempt(
         let f = forward_frames(base, &q);
         let ep = target.p - f.tcp.p;
         let er = rotation_error(&target.r, &f.tcp.r);
-        let (np, nr) = (ep.norm(), er.norm());
+        let (np, nr) = (norm3(&ep), norm3(&er));
         let score = np + ORIENTATION_WEIGHT * nr;
         if score < best_score {
             best_score = score;
@@ -337,8 +353,8 @@ fn dls_attempt(
         }
     }
     let f = forward_frames(base, &q);
-    let np = (target.p - f.tcp.p).norm();
-    let nr = rotation_error(&target.r, &f.tcp.r).norm();
+    let np = norm3(&(target.p - f.tcp.p));
+    let nr = norm3(&rotation_error(&target.r, &f.tcp.r));
     if np + ORIENTATION_WEIGHT * nr < best_score {
         best = (q, np, nr);
     }

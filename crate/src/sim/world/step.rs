@@ -3,6 +3,7 @@
 //! and the held body carried along.
 
 use super::{Body, GripperCommand, SimError, World, DEPTH_EPSILON, LINK_TOLERANCE};
+use crate::sim::fast_math::norm3;
 use crate::sim::panda::{self, DOF};
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Point3, Vector3};
@@ -295,7 +296,7 @@ impl World {
         } else {
             let target = a.target?;
             let current = a.tcp();
-            let pos_err = (target.translation.vector - current.translation.vector).norm();
+            let pos_err = norm3(&(target.translation.vector - current.translation.vector));
             let rot_err = (target.rotation * current.rotation.inverse()).angle();
             if pos_err < TCP_TARGET_REACHED && rot_err < TCP_TARGET_TURNED {
                 return None;
