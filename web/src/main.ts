@@ -30,7 +30,7 @@ const view = new View(ui.stage.root, {
   onNotice: (t, k) => status.notice(t, k),
 });
 const charts = new Charts(ui.chartsPanel);
-const renderer = new FrameRenderer(state, { view, charts, chartsPanel: ui.chartsPanel, status, run: new RunPanel(ui.run) });
+const renderer = new FrameRenderer(state, { view, charts, chartsPanel: ui.chartsPanel, status, run: new RunPanel(ui.run, () => state.options.mode) });
 const session: SessionControls = new SessionControls({ state, ui, client, view, renderer, status, tabs: () => tabs });
 const tabs = new Tabs({ state, ui, client, view, charts, renderer, status, playback: session });
 session.wire();

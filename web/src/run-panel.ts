@@ -9,6 +9,9 @@ import type { Frame, Replan } from 'logic-lfd';
 const MAX_REPLANS_SHOWN = 6;
 import { demoStateItem, el, factChips } from './dom';
 import type { RunLists } from './layout';
+import type { Mode } from './state';
+
+type WhyJoin = typeof import('./why-join');
 
 /** The last change of the facts: kept on screen until the next one. */
 interface FactChange {
@@ -24,8 +27,15 @@ export class RunPanel {
   private lastStep: number | null = null;
   /** The episode's replans so far (the frame carries the last one only). */
   private replans: Replan[] = [];
+  /** The tick of the replan whose "why L_k?" panel is open. */
+  private whyOpen: number | null = null;
+  /** The panel's chunk, once loaded. */
+  private why: WhyJoin | null = null;
 
-  constructor(private readonly ui: RunLists) {}
+  constructor(
+    private readonly ui: RunLists,
+    private readonly mode: () => Mode = () => 'paper',
+  ) {}
 
   /** Forgets what was drawn, so the next frame redraws the lists. */
   invalidate(): void {
@@ -38,6 +48,7 @@ export class RunPanel {
     this.lastChange = null;
     this.lastStep = null;
     this.replans = [];
+    this.whyOpen = null;
   }
 
   show(f: Frame): void {
@@ -89,16 +100,37 @@ export class RunPanel {
     this.ui.factsDiff.replaceChildren(
       ...(c ? [el('span', { class: 'muted small' }, `last change at ${c.t.toFixed(1)} s:`), ...factChips(c.added, c.removed)] : []),
     );
-    // Every replan of the episode, newest first: why, how long, which L_k it joined.
+    this.showReplans();
+  }
+
+  /** Every replan of the episode, newest first: why, how long, which L_k it joined, and for
+   * Logic-LfD a "why L_k?" button opening the candidates its search weighed. */
+  private showReplans(): void {
     this.ui.replanInfo.replaceChildren(
-      ...[...this.replans].reverse().slice(0, MAX_REPLANS_SHOWN).map((r, i) =>
-        el(
-          'div',
-          { class: i === 0 ? 'replan last' : 'replan' },
-          `${i === 0 ? 'Last replan' : 'Replan'} at tick ${r.tick}: ${r.reason} — ${r.timeMs.toFixed(2)} ms${r.k != null ? `, joined the demo at L${r.k} (${r.newActions} new actions)` : ''}${r.fallback ? ', no skeleton joining the demo bound: planned to G from scratch (TAMP fallback)' : ''}`,
-        ),
-      ),
+      ...[...this.replans]
+        .reverse()
+        .slice(0, MAX_REPLANS_SHOWN)
+        .flatMap((r, i) => {
+          const joined = r.k != null ? `L${r.k}` : r.alternatives?.some((a) => a.status === 'joined') ? 'G' : null;
+          const line = el(
+            'div',
+            { class: i === 0 ? 'replan last' : 'replan' },
+            `${i === 0 ? 'Last replan' : 'Replan'} at tick ${r.tick}: ${r.reason} — ${r.timeMs.toFixed(2)} ms${joined ? `, joined ${joined} (${r.newActions} new actions)` : ''}${r.fallback ? ', no skeleton joining the demo bound: planned to G from scratch (TAMP fallback)' : ''}`,
+          );
+          if (!joined || !r.alternatives?.length) return [line];
+          const open = this.whyOpen === r.tick;
+          const btn = el('button', { class: 'why-btn link', type: 'button', 'aria-expanded': String(open) }, `why ${joined}?`);
+          btn.addEventListener('click', () => void this.toggleWhy(r.tick));
+          line.append(' ', btn);
+          return open && this.why ? [line, this.why.whyJoinPanel(r, this.mode())] : [line];
+        }),
     );
+  }
+
+  private async toggleWhy(tick: number): Promise<void> {
+    this.whyOpen = this.whyOpen === tick ? null : tick;
+    if (this.whyOpen != null && !this.why) this.why = await import('./why-join');
+    this.showReplans();
   }
 }
 

@@ -53,6 +53,8 @@ struct Planned {
     expanded: u64,
     /// Planned from scratch after Logic-LfD's skeletons failed.
     fallback: bool,
+    /// Logic-LfD's candidates L_k with their costs (empty for the other methods).
+    alternatives: Vec<crate::lfd::alternatives::Alternative>,
 }
 
 /// The task-level controller of one episode.
@@ -361,6 +363,7 @@ impl Controller {
                 bindings,
                 expanded,
                 fallback,
+                alternatives,
             }) => {
                 self.install(&s, ops, k);
                 self.bindings = bindings;
@@ -374,6 +377,7 @@ impl Controller {
                     bind_ms,
                     expanded,
                     fallback,
+                    alternatives,
                 });
                 if self.plan.is_empty() {
                     return Decision::Done;
@@ -460,6 +464,7 @@ impl Controller {
                         bindings,
                         expanded,
                         fallback: false,
+                        alternatives: p.alternatives,
                     })
                 }
                 Err(failure) if failure.action < p.prefix_len => {
@@ -524,6 +529,7 @@ impl Controller {
             bindings,
             expanded,
             fallback: false,
+            alternatives: vec![],
         })
     }
 }

@@ -25,6 +25,7 @@ use crate::plan::{
     State, Task,
 };
 
+use super::alternatives::{self, Alternative};
 use super::demo::MultiGoalSpec;
 use super::LfdError;
 
@@ -87,6 +88,9 @@ pub struct LfdPlan {
     pub cost: u64,
     /// The multi-goal search's statistics (all zero when no search ran).
     pub stats: SearchStats,
+    /// Every candidate L_k (and G) with what the search found for it (empty when the goal
+    /// already held).
+    pub alternatives: Vec<Alternative>,
 }
 
 impl LfdPlan {
@@ -119,6 +123,7 @@ impl LfdPlan {
             prefix_len,
             source,
             stats,
+            alternatives: vec![],
         }
     }
 }
@@ -190,14 +195,16 @@ pub fn plan_logic_lfd_avoiding(
     }
     if let Some(k) = logic_in(spec, s).filter(|&k| k >= first_k) {
         if let Some(ops) = merge_suffix(task, spec, s, &[], k) {
-            return Ok(LfdPlan::new(
+            let mut plan = LfdPlan::new(
                 task,
                 ops,
                 Some(k),
                 0,
                 PlanSource::LogicIn,
                 SearchStats::default(),
-            ));
+            );
+            plan.alternatives = alternatives::after_logic_in(spec, k);
+            return Ok(plan);
         }
     }
     let search_mode = match mode {
@@ -239,14 +246,20 @@ pub fn plan_logic_lfd_avoiding(
         }
     };
     let ops = merge_suffix(task, spec, s, &prefix, k).ok_or(LfdError::MergeFailed { k })?;
-    Ok(LfdPlan::new(
+    let prefix_cost = prefix
+        .iter()
+        .map(|&o| u64::from(task.operators[o].cost))
+        .sum();
+    let mut plan = LfdPlan::new(
         task,
         ops,
         (k <= spec.len()).then_some(k),
         prefix.len(),
         PlanSource::MultiGoal,
         found.stats,
-    ))
+    );
+    plan.alternatives = alternatives::after_search(spec, &goals, &found.reached, k, prefix_cost);
+    Ok(plan)
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@
 //! * [`symbolic`]: [`LogicLfd`], the method on any PDDL domain (text in, merged plans out);
 //! * the reactive loop and the session (see their modules).
 
+pub mod alternatives;
 pub mod control;
 pub mod demo;
 pub mod disturb;
@@ -16,13 +17,13 @@ pub mod session;
 pub mod skill;
 pub mod symbolic;
 #[cfg(test)]
-#[cfg(test)]
 pub(crate) mod testing;
 
 use serde::{Deserialize, Serialize};
 
 use crate::pddl::PddlError;
 
+pub use alternatives::{Alternative, AlternativeStatus};
 pub use control::TaskBuilder;
 pub use demo::{DemoTrace, MultiGoalSpec};
 pub use logic::{logic_in, merge_suffix, plan_logic_lfd, LfdPlan, Mode, PlanSource};

@@ -44,6 +44,10 @@ pub struct MultiGoalResult {
     pub total_cost: Option<u64>,
     /// Statistics.
     pub stats: SearchStats,
+    /// Per goal, the cost of the cheapest path to a state satisfying it that the search found
+    /// (`None`: the search stopped before meeting one). Real paths, so never below the optimum;
+    /// the returned goal's entry is its plan's cost in the optimal configurations.
+    pub reached: Vec<Option<u64>>,
 }
 
 impl MultiGoalResult {
@@ -85,6 +89,7 @@ pub fn search_multi_goal(
         start,
         goals,
         mode == MultiGoalMode::Prioritised,
+        true,
         config,
         clock,
     );
@@ -97,5 +102,6 @@ pub fn search_multi_goal(
         goal_index: r.goal_index,
         total_cost,
         stats: r.stats,
+        reached: r.reached,
     }
 }

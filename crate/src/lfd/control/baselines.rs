@@ -28,6 +28,7 @@ impl Controller {
                 bind_ms: 0.0,
                 expanded: 0,
                 fallback: false,
+                alternatives: vec![],
             });
         }
         if self.cursor < self.plan.len() {
@@ -72,6 +73,7 @@ impl Controller {
                     bindings: vec![],
                     expanded: 0,
                     fallback: false,
+                    alternatives: vec![],
                 });
             }
         }

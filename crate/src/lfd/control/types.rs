@@ -85,6 +85,10 @@ pub struct Replan {
     /// scratch instead (the TAMP fallback, [`ControlParams::tamp_fallback`]).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub fallback: bool,
+    /// Logic-LfD: every candidate L_k with the prefix, suffix and total cost its search found,
+    /// the joined one marked (empty for the other methods and the TAMP fallback).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub alternatives: Vec<crate::lfd::alternatives::Alternative>,
 }
 
 /// What the controller asks the executor to do.

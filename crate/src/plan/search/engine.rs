@@ -16,6 +16,9 @@ pub(crate) struct RunResult {
     pub outcome: SearchOutcome,
     pub goal_index: Option<usize>,
     pub stats: SearchStats,
+    /// Per goal, the cheapest `g` of a state the search registered that satisfies it (`None`:
+    /// never met); empty unless asked for.
+    pub reached: Vec<Option<u64>>,
 }
 
 const NONE: u32 = u32::MAX;
@@ -71,6 +74,7 @@ pub(crate) fn run(
     start: &State,
     goals: &[Goal],
     prioritised: bool,
+    record_reached: bool,
     config: &SearchConfig,
     clock: &dyn Clock,
 ) -> RunResult {
@@ -118,6 +122,11 @@ pub(crate) fn run(
         words_buf: Vec::new(),
         child_buf: Vec::new(),
         goal_index: None,
+        reached: if record_reached {
+            vec![u64::MAX; goals.len()]
+        } else {
+            vec![]
+        },
     };
     let outcome = match algorithm {
         Algorithm::Bfs => e.bfs(start.words()),
@@ -136,6 +145,11 @@ pub(crate) fn run(
         outcome,
         goal_index: e.goal_index,
         stats: e.stats,
+        reached: e
+            .reached
+            .iter()
+            .map(|&g| (g != u64::MAX).then_some(g))
+            .collect(),
     }
 }
 
@@ -159,13 +173,31 @@ struct Engine<'a> {
     words_buf: Vec<u64>,
     child_buf: Vec<u64>,
     goal_index: Option<usize>,
+    /// Per goal, the cheapest `g` met so far (`u64::MAX`: never); empty when not recorded.
+    reached: Vec<u64>,
 }
 
 impl Engine<'_> {
+    /// Notes `g` for every goal `words` satisfies (only when recording what was reached).
+    fn note_reached(&mut self, words: &[u64], g: u64) {
+        for (k, goal) in self.goals.iter().enumerate().take(self.reached.len()) {
+            if g < self.reached[k]
+                && goal.alternatives.iter().any(|c| {
+                    c.pos.iter().all(|&f| has(words, f)) && !c.neg.iter().any(|&f| has(words, f))
+                })
+            {
+                self.reached[k] = g;
+            }
+        }
+    }
+
     /// Registers a state (if new, with its parent link and `g`).
     fn register(&mut self, words: &[u64], parent: u32, op: u32, g: u64) -> (u32, bool) {
         let (id, new) = self.space.insert(words);
         if new {
+            if !self.reached.is_empty() {
+                self.note_reached(words, g);
+            }
             self.parent.push(parent);
             self.op.push(op);
             self.g.push(g);
@@ -365,6 +397,9 @@ impl Engine<'_> {
                     }
                 } else if !greedy && self.status[tu] != DEAD && ng < self.g[tu] {
                     self.g[tu] = ng;
+                    if !self.reached.is_empty() {
+                        self.note_reached(&child, ng);
+                    }
                     self.parent[tu] = id;
                     self.op[tu] = o;
                     if self.status[tu] == CLOSED {

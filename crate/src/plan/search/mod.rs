@@ -279,6 +279,7 @@ pub fn search_from(
         start,
         std::slice::from_ref(&task.goal),
         false,
+        false,
         config,
         clock,
     );

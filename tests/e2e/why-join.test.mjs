@@ -1,0 +1,66 @@
+// Browser test of the Run tab's "why L_k?" panel: after an L3 disturbance on B1 the replan line
+// says which L_k it joined, and the panel (a lazy chunk) lists the candidates with the costs the
+// replan's search found and the mode's reason.
+import { describe, test } from 'node:test';
+import assert from 'node:assert/strict';
+import { join } from 'node:path';
+import { openApp, screenshots, useBrowser } from './harness.mjs';
+
+const ctx = useBrowser({ withScreenshots: true });
+
+/** Injects L3 (retrying while the injector finds no move now) and returns a tick before it. */
+async function injectL3(page) {
+  for (let attempt = 0; attempt < 10; attempt++) {
+    const before = await page.evaluate(() => window.lfd.frame().tick);
+    await page.click('#inject-l3', { force: true });
+    await page.waitForSelector('#notice:not([hidden])', { timeout: 10000 });
+    const text = await page.textContent('#notice');
+    if (!/refused|cannot/i.test(text)) return before;
+    await page.evaluate(() => document.getElementById('notice').setAttribute('hidden', ''));
+    await page.waitForTimeout(200);
+  }
+  throw new Error('L3 was refused ten times');
+}
+
+describe('why L_k', () => {
+  for (const [mode, width, height] of [['paper', 1440, 900], ['prioritised', 390, 844]]) {
+    test(`${mode}: a replan after L3 shows the L_k it joined and why, with the candidates' costs (${width}x${height})`, async () => {
+      const { page, errors } = await openApp(ctx.browser, ctx.server, `?benchmark=b1&seed=3&mode=${mode}`, { width, height });
+      await page.waitForFunction(() => (window.lfd.frame()?.tick ?? 0) > 150, null, { timeout: 30000, polling: 50 });
+      const at = await injectL3(page);
+      // The replan that searched (a new prefix): its record carries the candidates.
+      const r = await page.waitForFunction(
+        (t) => {
+          const r = window.lfd.frame().lastReplan;
+          return r && r.tick >= t && r.alternatives.some((a) => a.status === 'joined' && a.prefix > 0) && r;
+        },
+        at,
+        { timeout: 30000, polling: 20 },
+      ).then((h) => h.jsonValue());
+      if (await page.getAttribute('#play', 'aria-pressed') === 'true') await page.click('#play');
+      const joined = r.k == null ? 'G' : `L${r.k}`;
+      const line = page.locator('#replan-info .replan', { hasText: `at tick ${r.tick}:` }).first();
+      assert.match(await line.textContent(), new RegExp(`joined ${joined} \\(`));
+      await line.locator('.why-btn').click();
+      const panel = page.locator('#replan-info .why-join');
+      await panel.waitFor();
+      const rows = await panel.locator('tbody tr').evaluateAll((trs) => trs.map((tr) => [...tr.cells].map((c) => c.textContent)));
+      assert.equal(rows.length, r.alternatives.length);
+      const numbered = rows.filter((c) => /^\d+$/.test(c[3]));
+      // Paper mode stops at the first L_k reached: the others are marked, not given numbers;
+      // prioritised mode weighs several.
+      if (mode === 'paper') assert.ok(rows.some((c) => c[4] === 'not reached (search stopped)'), JSON.stringify(rows));
+      const atLeast = mode === 'paper' ? 1 : 2;
+      assert.ok(numbered.length >= atLeast, `only ${numbered.length} candidates with numbers: ${JSON.stringify(rows)}`);
+      for (const c of numbered) assert.equal(+c[1] + +c[2], +c[3], `prefix + demo left = total: ${c}`);
+      const mine = rows.find((c) => c[4] === 'joined');
+      assert.equal(mine[0], joined);
+      const sentence = await panel.locator('.why-sentence').textContent();
+      assert.match(sentence, mode === 'paper' ? /^Paper: .*first state satisfying any/ : /^Prioritised: .*least total/);
+      if (mode === 'prioritised') assert.equal(+mine[3], Math.min(...numbered.map((c) => +c[3])));
+      await page.screenshot({ path: join(screenshots, `why-join-${mode}-${width}.png`) });
+      assert.deepEqual(errors, []);
+      await page.close();
+    });
+  }
+});
