@@ -103,7 +103,7 @@ describe('timeline', () => {
     await page.click('#play');
     await page.waitForFunction(() => document.querySelector('#play')?.getAttribute('aria-pressed') === 'false');
     await page.waitForTimeout(100);
-    const end = await page.evaluate(() => ({ v: window.lfd.viewing(), value: Number(document.querySelector('#timeline-range').value) }));
+    const end = await page.evaluate(() => ({ v: window.lfd.viewing(), value: Number(/** @type {HTMLInputElement} */ (document.querySelector('#timeline-range')).value) }));
     assert.ok(Math.abs(end.value - end.v.end) < 0.011, JSON.stringify(end));
     const now = await positions(page);
     for (const n of moved) {

@@ -142,7 +142,8 @@ export class Charts {
     const range = (): [number, number] => {
       const marks = this.history.marks;
       const end = Math.max(this.lastT, this.history.end, marks[marks.length - 1]?.t ?? 0, 1);
-      return [0, end * 1.03];
+      // A margin at both ends: the first and the last point are drawn whole.
+      return [-end * 0.015, end * 1.03];
     };
     const marks = () => this.history.marks;
     this.replanChart = chart(
