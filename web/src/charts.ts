@@ -23,7 +23,8 @@ const axis = { stroke: '#8b949e', grid: { stroke: '#21262d', width: 1 }, ticks: 
 
 /** A y range with room above and below, so the highest and lowest points are drawn whole. */
 function padded(_u: uPlot, min: number, max: number): [number, number] {
-  const pad = Math.max((max - min) * 0.08, 1e-3);
+  // A single value (one replan) still gets a readable scale around it.
+  const pad = Math.max((max - min) * 0.08, Math.abs(max) * 0.05, 1e-3);
   return [min - pad, max + pad];
 }
 
