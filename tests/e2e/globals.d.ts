@@ -15,6 +15,10 @@ declare global {
       memory: () => Promise<{ wasmBytes: number; geometries: number; textures: number }>;
       loadedAt: number;
       moveMarks: () => string[];
+      marks: () => { kind: string; t: number; text: string; ms?: number }[];
+      chartMarks: () => { kind: string; t: number; text: string }[][];
+      viewing: () => { t: number | null; end: number };
+      bodyPosition: (body: string) => [number, number, number] | null;
     };
   }
 }

@@ -5,6 +5,7 @@
  */
 import type { Frame } from 'logic-lfd';
 import type { Charts } from './charts';
+import type { History } from './history';
 import type { RunPanel } from './run-panel';
 import type { PageState } from './state';
 import type { StatusBar } from './status-bar';
@@ -15,7 +16,7 @@ export class FrameRenderer {
 
   constructor(
     private readonly state: PageState,
-    private readonly parts: { view: View; charts: Charts; chartsPanel: HTMLElement; status: StatusBar; run: RunPanel },
+    private readonly parts: { view: View; charts: Charts; history: History; chartsPanel: HTMLElement; status: StatusBar; run: RunPanel },
   ) {}
 
   /** Whether a frame waits to be drawn. */
@@ -29,6 +30,7 @@ export class FrameRenderer {
   render(f: Frame): void {
     this.state.frame = f;
     this.onFrame(f);
+    this.parts.history.push(f);
     this.parts.charts.push(f);
     if (this.pendingFrame === null) requestAnimationFrame(() => this.flush());
     this.pendingFrame = f;
@@ -36,6 +38,7 @@ export class FrameRenderer {
 
   /** Empties the charts and the end-effector trail (a new episode begins). */
   clearHistory(): void {
+    this.parts.history.reset();
     this.parts.charts.reset();
     this.parts.view.clearTrail();
   }
@@ -58,8 +61,9 @@ export class FrameRenderer {
     const f = this.pendingFrame;
     this.pendingFrame = null;
     if (!f) return;
-    const { view, charts, chartsPanel, status, run } = this.parts;
-    view.update(f.world, f.ee);
+    const { view, charts, chartsPanel, status, run, history } = this.parts;
+    // Scrubbed back: the view keeps showing the past moment until Play returns to live.
+    if (history.viewing === null) view.update(f.world, f.ee);
     if (!chartsPanel.hidden) charts.draw();
     status.showFrame(f, this.state);
     run.show(f);

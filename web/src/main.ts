@@ -7,6 +7,7 @@ import './style.css';
 import { Charts } from './charts';
 import { WorkerClient } from './client';
 import { FrameRenderer } from './frame-renderer';
+import { History } from './history';
 import { buildLayout } from './layout';
 import { RunPanel } from './run-panel';
 import { SessionControls } from './session-controls';
@@ -20,6 +21,7 @@ import { View } from './view';
 const state = initialState(location.search);
 const ui = buildLayout(state);
 const status = new StatusBar(ui.stage);
+const history = new History();
 
 // Every part below is made before the first event can reach it; the closures only forward.
 const client = new WorkerClient((m) => session.onPush(m));
@@ -28,15 +30,25 @@ const view = new View(ui.stage.root, {
   onDragStart: () => void session.guard(() => session.dragStart()),
   onDragEnd: () => void session.guard(() => session.dragEnd()),
   onNotice: (t, k) => status.notice(t, k),
+  dragRefusal: () => (history.viewing === null ? null : 'Viewing an earlier moment: press Play to return to live, then drag the block.'),
 });
-const charts = new Charts(ui.chartsPanel);
-const renderer = new FrameRenderer(state, { view, charts, chartsPanel: ui.chartsPanel, status, run: new RunPanel(ui.run, () => state.options.mode) });
-const session: SessionControls = new SessionControls({ state, ui, client, view, renderer, status, tabs: () => tabs });
+const charts = new Charts(ui.chartsPanel, history);
+const renderer = new FrameRenderer(state, { view, charts, history, chartsPanel: ui.chartsPanel, status, run: new RunPanel(ui.run, () => state.options.mode) });
+const session: SessionControls = new SessionControls({ state, ui, client, view, renderer, history, status, tabs: () => tabs });
 const tabs = new Tabs({ state, ui, client, view, charts, renderer, status, playback: session });
 session.wire();
 renderer.onFrame = (f) => session.refreshLevels(f);
 installShortcuts({ help: ui.help, session, tabs, controls: ui.controls, stage: ui.stage });
-installTestHooks({ state, view, charts, tabs, client });
+installTestHooks({ state, view, charts, history, tabs, client });
+
+// The view follows the timeline: a recorded moment while scrubbed back, the live frame after.
+let shown: number | null = null;
+history.listen(() => {
+  if (history.viewing === shown) return;
+  shown = history.viewing;
+  const m = shown === null ? state.frame : history.at(shown);
+  if (m) view.update(m.world, m.ee, shown === null);
+});
 
 client.ready.then(
   async (v) => {
@@ -48,6 +60,9 @@ client.ready.then(
     // Not needed for the first frame: fetched once the page is interactive.
     void import('./explain').then(({ explainSelects }) => explainSelects(ui.controls.methodSel, ui.controls.modeSel));
     view.loadExtras();
+    void import('./timeline').then(
+      ({ Timeline }) => new Timeline(ui.stage.root, { history, pause: () => void session.guard(() => session.pause()), togglePlay: () => void session.togglePlay() }),
+    );
     void import('./guide').then(({ FirstVisitHint }) => session.setHint(new FirstVisitHint(ui.stage.root)));
   },
   (e: Error) => status.fail(e.message),

@@ -9,6 +9,7 @@ import type { WorkerClient } from './client';
 import { downloadJson, guard } from './dom';
 import type { FirstVisitHint } from './guide';
 import type { FrameRenderer } from './frame-renderer';
+import type { History } from './history';
 import { setBlockChoices, type Layout } from './layout';
 import type { FromWorker, Level } from './protocol';
 import { BENCHMARKS, blocksFor, parseSeed, recordStep, updateUrl, type Benchmark, type Method, type Mode, type PageState } from './state';
@@ -21,6 +22,8 @@ export interface SessionParts {
   client: WorkerClient;
   view: View;
   renderer: FrameRenderer;
+  /** Recorded frames and markers (the timeline scrubs through them). */
+  history: History;
   status: StatusBar;
   /** The side tabs (made after the controls: they need the playback). */
   tabs: () => Tabs;
@@ -59,6 +62,8 @@ export class SessionControls {
   }
 
   async play(): Promise<void> {
+    // Play first returns a view scrubbed back to the live session.
+    if (this.p.history.viewing !== null) this.p.history.view(null);
     const f = this.p.state.frame;
     if (this.p.tabs().teach?.active) {
       this.p.status.notice('Teach mode owns the view: run the taught task, or open the Run tab to play.', 'info');
@@ -190,9 +195,12 @@ export class SessionControls {
 
   async inject(level: Level): Promise<void> {
     try {
-      const before = this.p.state.frame?.world.bodies;
+      const was = this.p.state.frame;
+      const before = was?.world.bodies;
       const r = await this.p.client.call('inject', { level });
       this.p.status.notice(withLevel(level, r.message), 'info');
+      this.p.history.view(null);
+      this.p.history.mark(level, withLevel(level, r.message), was, r.frame);
       // Small moves (L1's few centimetres) are easy to miss: mark where each body was.
       for (const name of r.moved) {
         const from = before?.find((b) => b.name === name)?.pose.position;
@@ -219,10 +227,12 @@ export class SessionControls {
   async drop(d: DropRequest): Promise<string | null> {
     const teach = this.p.tabs().teach;
     if (teach?.active) return teach.drop(d);
-    const ended = this.p.state.frame?.status.kind === 'done';
+    const was = this.p.state.frame;
+    const ended = was?.status.kind === 'done';
     const r = await this.p.client.call('perturb', { body: d.body, position: d.position });
     if (!r.ok) return r.reason;
     this.p.status.notice(r.message || `Moved ${d.body}`, 'info');
+    this.p.history.mark('drag', `drag: ${r.message || `moved ${d.body}`}`, was, r.frame);
     this.p.renderer.render(r.frame);
     // A finished run reopens on a drag and goes on at once; a failed one waits for Play.
     if (ended) this.p.state.resumeAfterDrag = true;

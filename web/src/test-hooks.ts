@@ -6,6 +6,7 @@
 import type { Frame } from 'logic-lfd';
 import type { Charts } from './charts';
 import type { WorkerClient } from './client';
+import type { History, Mark } from './history';
 import type { CancelTiming, PageState } from './state';
 import type { Tabs } from './tabs';
 import type { View } from './view';
@@ -25,12 +26,20 @@ declare global {
       loadedAt: number;
       /** Bodies whose disturbance move is marked in the view now. */
       moveMarks: () => string[];
+      /** The disturbance and replan markers of the episode (the timeline's and the charts'). */
+      marks: () => Mark[];
+      /** The markers each chart drew last: [replanning chart, trajectory chart]. */
+      chartMarks: () => [Mark[], Mark[]];
+      /** The simulated time the view shows when scrubbed back (null: live), and the latest. */
+      viewing: () => { t: number | null; end: number };
+      /** Where the 3-D view draws `body` now (world coordinates). */
+      bodyPosition: (body: string) => [number, number, number] | null;
     };
   }
 }
 
-export function installTestHooks(p: { state: PageState; view: View; charts: Charts; tabs: Tabs; client: WorkerClient }): void {
-  const { state, view, charts, tabs, client } = p;
+export function installTestHooks(p: { state: PageState; view: View; charts: Charts; history: History; tabs: Tabs; client: WorkerClient }): void {
+  const { state, view, charts, history, tabs, client } = p;
   window.lfd = {
     frame: () => state.frame,
     screenPosition: (b) => view.screenPosition(b),
@@ -43,5 +52,9 @@ export function installTestHooks(p: { state: PageState; view: View; charts: Char
     memory: async () => ({ ...(await client.call('memory', {})), ...view.renderer.info.memory }),
     loadedAt: 0,
     moveMarks: () => view.moveMarks(),
+    marks: () => history.marks.map((m) => ({ ...m })),
+    chartMarks: () => charts.drawnMarks(),
+    viewing: () => ({ t: history.viewing, end: history.end }),
+    bodyPosition: (b) => view.bodyPosition(b),
   };
 }

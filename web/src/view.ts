@@ -24,6 +24,8 @@ export interface ViewOptions {
   onDragEnd?: () => void;
   /** Shows a short message over the view (refused drops). */
   onNotice?: (text: string, kind: 'info' | 'error') => void;
+  /** Why no block may be dragged now (null: it may). */
+  dragRefusal?: () => string | null;
 }
 
 const UP = new THREE.Vector3(0, 0, 1);
@@ -183,8 +185,9 @@ export class View {
     this.controls.update();
   }
 
-  /** Draws a snapshot (creating meshes the first time a body appears). */
-  update(s: WorldSnapshot, ee?: { arm: number; pos: number[]; target: number[] }[]): void {
+  /** Draws a snapshot (creating meshes the first time a body appears); `trail: false` leaves the
+   * end-effector trail as it is (a past moment shown from the timeline). */
+  update(s: WorldSnapshot, ee?: { arm: number; pos: number[]; target: number[] }[], trail = true): void {
     const fresh = s.name !== this.sceneName;
     if (fresh) {
       this.clearScene();
@@ -224,7 +227,7 @@ export class View {
     if (fresh) this.drawRegions(s);
     s.arms.forEach((a, i) => this.updateArm(i, a));
     while (this.arms.length > s.arms.length) this.dropObject(this.arms.pop()!.group);
-    this.updateTargets(ee ?? []);
+    this.updateTargets(ee ?? [], trail);
     if (fresh) this.frameCamera(s);
     this.dirty = true;
   }
@@ -321,14 +324,14 @@ export class View {
     this.targetMaterial,
   ]);
 
-  private updateTargets(ee: { arm: number; pos: number[]; target: number[] }[]): void {
+  private updateTargets(ee: { arm: number; pos: number[]; target: number[] }[], trail: boolean): void {
     while (this.targets.children.length < ee.length) this.targets.add(new THREE.Mesh(this.targetGeometry, this.targetMaterial));
     this.targets.children.forEach((m, i) => {
       const p = ee[i];
       m.visible = !!p;
       if (!p) return;
       m.position.set(p.target[0], p.target[1], p.target[2]);
-      if (p.arm === 0) {
+      if (p.arm === 0 && trail) {
         const v = new THREE.Vector3(p.pos[0], p.pos[1], p.pos[2]);
         const last = this.trailPoints[this.trailPoints.length - 1];
         if (!last || last.distanceTo(v) > 0.004) {
@@ -361,6 +364,11 @@ export class View {
     this.setPointer(e);
     const name = this.pickBlock();
     if (!name) return;
+    const refusal = this.opts.dragRefusal?.();
+    if (refusal) {
+      this.opts.onNotice?.(refusal, 'info');
+      return;
+    }
     const entry = this.bodies.get(name)!;
     this.controls.enabled = false;
     this.renderer.domElement.setPointerCapture(e.pointerId);
@@ -514,6 +522,12 @@ export class View {
   /** The disturbance marked now: `moved:<body>` or `pushed:<arm>` (at most one). */
   moveMarks(): string[] {
     return this.moveMark.group.visible ? [this.moveMark.group.name] : [];
+  }
+
+  /** Where `body` is drawn now (world coordinates), or null if it is not in the scene. */
+  bodyPosition(body: string): [number, number, number] | null {
+    const p = this.bodies.get(body)?.object.position;
+    return p ? [p.x, p.y, p.z] : null;
   }
 
   /** Projects a body's centre to client coordinates (for tests and tooltips). */
