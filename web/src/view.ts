@@ -481,14 +481,15 @@ export class View {
   /** Marks a push of an arm's hand (L1 while it moves, nothing else displaced) the same way: a
    * ghost ball where the hand was and a line to where the push left it. */
   markPush(arm: string, from: [number, number, number], to: [number, number, number]): void {
-    this.showMark(`pushed:${arm}`, this.pushGeometry, new THREE.Quaternion(), from, to);
+    // The targets' sphere, scaled to a 2 cm ball: a geometry of its own would be uploaded the first
+    // time a hand is pushed, which the page soak's memory check would read as a leak.
+    this.showMark(`pushed:${arm}`, this.targetGeometry, new THREE.Quaternion(), from, to, 0.02 / 0.012);
   }
 
-  private readonly pushGeometry = new THREE.SphereGeometry(0.02, 16, 12);
-
-  private showMark(name: string, geometry: THREE.BufferGeometry, rotation: THREE.Quaternion, from: [number, number, number], to: [number, number, number]): void {
+  private showMark(name: string, geometry: THREE.BufferGeometry, rotation: THREE.Quaternion, from: [number, number, number], to: [number, number, number], scale = 1): void {
     const m = this.moveMark;
     m.ghost.geometry = geometry;
+    m.ghost.scale.setScalar(scale);
     m.ghost.position.set(...from);
     m.ghost.quaternion.copy(rotation);
     const pos = m.line.geometry.getAttribute('position') as THREE.BufferAttribute;
