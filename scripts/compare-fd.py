@@ -282,13 +282,18 @@ def family(name):
     return name.split("/", 1)[0]
 
 
+def by_domain(rows):
+    """The rows grouped by domain, in the order the domains first appear."""
+    for fam in dict.fromkeys(family(r["problem"]) for r in rows):
+        yield fam, [r for r in rows if family(r["problem"]) == fam]
+
+
 def domain_table(rows):
     """Per domain: solved by each, equal optimal costs, expansions within ±20 %, speeds."""
     print("| domain | problems | skipped | solved FD | solved logic-lfd | same optimal cost "
           "| expansions within ±20 % | expansions/s FD, median | expansions/s logic-lfd, median |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for fam in dict.fromkeys(family(r["problem"]) for r in rows):
-        rs = [r for r in rows if family(r["problem"]) == fam]
+    for fam, rs in by_domain(rows):
         both = [r for r in rs if r["fd"]["solved"] and r["ours"].get("solved")]
         rates = [(r["fd"]["expanded"] / r["fd"]["search_s"],
                   r["ours"]["expanded"] / r["ours"]["search_s"])
@@ -462,13 +467,13 @@ def main():
               f"{sm['expansions_per_s_median']['ours']} ({len(rates)} problems).")
     return 1 if below or cost_diff or dead_wrong else 0
 
+
 def satisficing_domain_table(rows):
     """Per domain: solved by each, median plan-cost and wall-time ratios where both solve."""
     print("| domain | problems | solved lama-first | solved logic-lfd | plan cost ours / FD, "
           "median | wall time FD / ours, median |")
     print("|---|---:|---:|---:|---:|---:|")
-    for fam in dict.fromkeys(family(r["problem"]) for r in rows):
-        rs = [r for r in rows if family(r["problem"]) == fam]
+    for fam, rs in by_domain(rows):
         both = [r for r in rs if r["fd"]["solved"] and r["ours"].get("solved") and r["fd"]["cost"]]
         med = lambda xs, fmt: fmt.format(statistics.median(xs)) if xs else "—"
         print(f"| {fam} | {len(rs)} | {sum(r['fd']['solved'] for r in rs)} | "
