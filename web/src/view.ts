@@ -235,6 +235,17 @@ export class View {
   /** Removes an object from the scene and frees what only it uses. */
   private dropObject(o: THREE.Object3D): void {
     o.removeFromParent();
+    // The mark's ghost may borrow this object's geometry: drawn once more after the dispose,
+    // the geometry would be uploaded again and never freed.
+    const ghost = this.moveMark.ghost;
+    let borrowed = false;
+    o.traverse((c) => {
+      if (c instanceof THREE.Mesh && c.geometry === ghost.geometry) borrowed = true;
+    });
+    if (borrowed) {
+      this.moveMark.group.visible = false;
+      ghost.geometry = this.targetGeometry;
+    }
     disposeObject(o, this.shared);
   }
 
