@@ -98,7 +98,8 @@ export class ComparePanel {
       el(
         'table',
         { id: 'compare-table', class: 'compare-table' },
-        el('thead', {}, el('tr', {}, ...['Method', 'Result', 'Time (s)', 'Replans', 'Planning (ms)', 'Reason'].map((h) => el('th', {}, h)))),
+        // Soft hyphens: the narrow figure columns break their headers instead of overlapping.
+        el('thead', {}, el('tr', {}, ...['Method', 'Result', 'Time (s)', 'Re\u00adplans', 'Plan\u00adning (ms)', 'Reason'].map((h) => el('th', {}, h)))),
         this.body,
       ),
     );
