@@ -132,7 +132,7 @@ mod tests {
     use crate::lfd::logic::PlanSource;
     use crate::lfd::session::{Session, SessionOptions};
     use crate::lfd::{LogicLfd, Method, Mode};
-    use crate::plan::{self, replay, MultiGoalMode, NoClock, State, Task};
+    use crate::plan::{self, replay, MultiGoalMode, NoClock, State};
     use crate::sim::benchmark::Benchmark;
 
     fn lfd_of(benchmark: Benchmark) -> LogicLfd {
@@ -147,10 +147,6 @@ mod tests {
         .unwrap();
         let c = session.controller();
         LogicLfd::from_task(c.task().clone(), c.trace().clone())
-    }
-
-    fn cost(task: &Task, ops: &[usize]) -> u64 {
-        ops.iter().map(|&o| u64::from(task.operators[o].cost)).sum()
     }
 
     /// The optimal cost from `s` to a state satisfying goal `i`, by a search of its own.
@@ -189,7 +185,7 @@ mod tests {
         assert_eq!(joined.len(), 1, "{mode:?}");
         let j = joined[0];
         assert_eq!(j.k, p.k, "{mode:?}: the joined candidate is the plan's L_k");
-        assert_eq!(j.prefix, Some(cost(task, &p.ops[..p.prefix_len])));
+        assert_eq!(j.prefix, Some(task.cost_of(&p.ops[..p.prefix_len])));
         assert_eq!(
             j.total,
             Some(p.cost),
@@ -198,7 +194,7 @@ mod tests {
         let optima: Vec<Option<u64>> = (0..spec.goals.len()).map(|i| optimum(lfd, s, i)).collect();
         for a in &p.alternatives {
             let i = goal_of(a);
-            let suffix = spec.suffix(i).map(|ops| cost(task, &ops));
+            let suffix = spec.suffix(i).map(|ops| task.cost_of(&ops));
             if a.status != AlternativeStatus::NotSearched {
                 assert_eq!(Some(a.suffix), suffix, "c_k of L{i}");
             }

@@ -117,7 +117,7 @@ impl LfdPlan {
                 .iter()
                 .map(|&o| task.operators[o].name.clone())
                 .collect(),
-            cost: ops.iter().map(|&o| u64::from(task.operators[o].cost)).sum(),
+            cost: task.cost_of(&ops),
             ops,
             k,
             prefix_len,
@@ -246,10 +246,7 @@ pub fn plan_logic_lfd_avoiding(
         }
     };
     let ops = merge_suffix(task, spec, s, &prefix, k).ok_or(LfdError::MergeFailed { k })?;
-    let prefix_cost = prefix
-        .iter()
-        .map(|&o| u64::from(task.operators[o].cost))
-        .sum();
+    let prefix_cost = task.cost_of(&prefix);
     let mut plan = LfdPlan::new(
         task,
         ops,

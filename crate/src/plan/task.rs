@@ -189,6 +189,11 @@ pub struct Task {
 }
 
 impl Task {
+    /// The summed cost of the operators `ops`.
+    pub fn cost_of(&self, ops: &[usize]) -> u64 {
+        ops.iter().map(|&o| u64::from(self.operators[o].cost)).sum()
+    }
+
     /// Builds a task and its fact-name index.
     pub fn new(
         facts: Vec<String>,

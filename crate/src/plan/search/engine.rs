@@ -22,6 +22,13 @@ pub(crate) struct RunResult {
 }
 
 const NONE: u32 = u32::MAX;
+
+/// Whether `goal` holds in the packed state `words` (one of its alternatives does).
+fn goal_holds(goal: &Goal, words: &[u64]) -> bool {
+    goal.alternatives
+        .iter()
+        .any(|c| c.pos.iter().all(|&f| has(words, f)) && !c.neg.iter().any(|&f| has(words, f)))
+}
 const OPEN: u8 = 0;
 const CLOSED: u8 = 1;
 const DEAD: u8 = 2;
@@ -181,11 +188,7 @@ impl Engine<'_> {
     /// Notes `g` for every goal `words` satisfies (only when recording what was reached).
     fn note_reached(&mut self, words: &[u64], g: u64) {
         for (k, goal) in self.goals.iter().enumerate().take(self.reached.len()) {
-            if g < self.reached[k]
-                && goal.alternatives.iter().any(|c| {
-                    c.pos.iter().all(|&f| has(words, f)) && !c.neg.iter().any(|&f| has(words, f))
-                })
-            {
+            if g < self.reached[k] && goal_holds(goal, words) {
                 self.reached[k] = g;
             }
         }
@@ -228,10 +231,7 @@ impl Engine<'_> {
             if best.is_some_and(|(_, c)| goal.terminal_cost >= c) {
                 continue;
             }
-            let holds = goal.alternatives.iter().any(|c| {
-                c.pos.iter().all(|&f| has(words, f)) && !c.neg.iter().any(|&f| has(words, f))
-            });
-            if holds {
+            if goal_holds(goal, words) {
                 best = Some((k, goal.terminal_cost));
             }
         }
@@ -264,10 +264,7 @@ impl Engine<'_> {
             cur = self.parent[cur as usize];
         }
         ops.reverse();
-        let cost = ops
-            .iter()
-            .map(|&o| self.task.operators[o].cost as u64)
-            .sum();
+        let cost = self.task.cost_of(&ops);
         self.goal_index = Some(goal);
         SearchOutcome::Plan(Plan {
             operators: ops,
