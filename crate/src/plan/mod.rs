@@ -18,12 +18,14 @@ mod clock;
 mod heuristic;
 mod multigoal;
 mod regress;
+mod relevance;
 mod search;
 
 pub use clock::{Clock, NoClock};
 pub use heuristic::{HeuristicEvaluator, HeuristicKind, UnknownName};
 pub use multigoal::{search_multi_goal, MultiGoalMode, MultiGoalResult};
 pub use regress::{reaches_goal, regress};
+pub use relevance::{relevant_part, Relevance};
 pub use search::{
     search, search_from, Algorithm, Budget, Plan, SearchConfig, SearchOutcome, SearchResult,
     SearchStats,

@@ -9,6 +9,7 @@ mod edge_cases;
 mod ipc;
 mod random_tasks;
 mod regression;
+mod relevance;
 
 pub use brute_force::{brute_force_cost, brute_force_length, reachable};
 pub use cases::{random_blocksworld, random_goal, random_task};

@@ -12,8 +12,8 @@ use std::time::Instant;
 
 use logic_lfd::pddl::{parse_domain, parse_problem, read_source, Domain, Problem};
 use logic_lfd::plan::{
-    ground, search, Algorithm, Clock, HeuristicEvaluator, HeuristicKind, SearchConfig,
-    SearchOutcome, SearchResult, SearchStats, Task,
+    ground, relevant_part, search, Algorithm, Clock, HeuristicEvaluator, HeuristicKind,
+    SearchConfig, SearchOutcome, SearchResult, SearchStats, Task,
 };
 
 use crate::exit;
@@ -199,6 +199,18 @@ fn json(task: &Task, config: &SearchConfig, r: &SearchResult, total: f64) -> ser
         )
         .value(&task.init),
     });
+    // What the search ran on: the facts and operators the goal depends on (`relevant_part`).
+    let rel = relevant_part(task);
+    j["facts"] = task.facts.len().into();
+    j["operators"] = task.operators.len().into();
+    j["relevant_facts"] = rel
+        .as_ref()
+        .map_or(task.facts.len(), |r| r.facts.len())
+        .into();
+    j["relevant_operators"] = rel
+        .as_ref()
+        .map_or(task.operators.len(), |r| r.operators.len())
+        .into();
     if let SearchOutcome::BudgetExhausted { which } = &r.outcome {
         j["budget"] = serde_json::Value::from(which.to_string());
     }

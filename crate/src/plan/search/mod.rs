@@ -35,6 +35,7 @@ mod succ;
 
 use crate::plan::clock::Clock;
 use crate::plan::heuristic::{HeuristicKind, UnknownName};
+use crate::plan::relevance::relevant_part;
 use crate::plan::{State, Task};
 use std::fmt;
 use std::str::FromStr;
@@ -251,6 +252,10 @@ pub struct SearchResult {
 
 /// Searches `task` from its initial state to its goal (its terminal cost plays no role).
 ///
+/// The search runs on the task's relevant part ([`crate::plan::relevant_part`]): facts and
+/// operators the goal never depends on are left out, so the statistics count states of that part;
+/// the plan's operators are indices into `task`.
+///
 /// ```
 /// use logic_lfd::plan::{search, Algorithm, Condition, Goal, HeuristicKind, NoClock, Operator,
 ///     SearchConfig, State, Task};
@@ -274,6 +279,19 @@ pub fn search_from(
     config: &SearchConfig,
     clock: &dyn Clock,
 ) -> SearchResult {
+    // Facts the goal never depends on only split states; search the relevant part instead (its
+    // plans are plans of `task`, at the same optimal cost: see `relevant_part`).
+    let Some(rel) = relevant_part(task) else {
+        return run_one(task, start, config, clock);
+    };
+    let mut r = run_one(&rel.task, &rel.project(start), config, clock);
+    if let SearchOutcome::Plan(p) = &mut r.outcome {
+        p.operators = rel.lift(&p.operators);
+    }
+    r
+}
+
+fn run_one(task: &Task, start: &State, config: &SearchConfig, clock: &dyn Clock) -> SearchResult {
     let r = run(
         task,
         start,
