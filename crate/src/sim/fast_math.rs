@@ -6,7 +6,7 @@
 //! hence bit-identical to `libm::sqrt`; the helpers here use it in exactly nalgebra's operation
 //! order. The DH twist angles are constants, so their sines and cosines are computed once.
 
-use nalgebra::Vector3;
+use nalgebra::{SMatrix, SVector, Vector3};
 use std::sync::OnceLock;
 
 /// `‖v‖` in nalgebra's order (`0 + (x² + y² + z²)`, then the square root), with the hardware
@@ -23,6 +23,63 @@ pub(crate) fn sincos_table<const N: usize>(
     angles: &[f64; N],
 ) -> &'static [(f64, f64); N] {
     cell.get_or_init(|| angles.map(libm::sincos))
+}
+
+/// Cholesky factorisation of a small symmetric positive-definite matrix with the bits of
+/// nalgebra's `cholesky()` and `solve` (same operation order), the square roots in hardware.
+/// Only the lower triangle is read; `N ≤ 8` (nalgebra's dot products stay sequential there).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Cholesky<const N: usize> {
+    /// The factor `L` in the lower triangle (the upper one holds the input's leftovers).
+    l: SMatrix<f64, N, N>,
+}
+
+impl<const N: usize> Cholesky<N> {
+    /// Factorises `m`; `None` where nalgebra's gives `None` (a zero, negative or NaN pivot).
+    pub(crate) fn new(mut m: SMatrix<f64, N, N>) -> Option<Self> {
+        debug_assert!(N <= 8);
+        for j in 0..N {
+            for k in 0..j {
+                // nalgebra: col_j[j..] = (−L_jk)·col_k[j..] + col_j[j..] (an axpy).
+                let factor = -m[(j, k)];
+                for r in j..N {
+                    m[(r, j)] = factor * m[(r, k)] + m[(r, j)];
+                }
+            }
+            let diag = m[(j, j)];
+            // `try_sqrt` refuses zero, negatives and NaN.
+            if diag == 0.0 || diag.is_nan() || diag < 0.0 {
+                return None;
+            }
+            let denom = diag.sqrt();
+            m[(j, j)] = denom;
+            for r in j + 1..N {
+                m[(r, j)] /= denom;
+            }
+        }
+        Some(Cholesky { l: m })
+    }
+
+    /// `x` with `L Lᵀ x = b`: forward substitution (axpy form), then back substitution (dot form).
+    pub(crate) fn solve(&self, b: &SVector<f64, N>) -> SVector<f64, N> {
+        let l = &self.l;
+        let mut x = *b;
+        for i in 0..N {
+            let coeff = x[i] / l[(i, i)];
+            x[i] = coeff;
+            for r in i + 1..N {
+                x[r] = -coeff * l[(r, i)] + x[r];
+            }
+        }
+        for i in (0..N).rev() {
+            let mut dot = 0.0;
+            for r in i + 1..N {
+                dot += l[(r, i)] * x[r];
+            }
+            x[i] = (x[i] - dot) / l[(i, i)];
+        }
+        x
+    }
 }
 
 #[cfg(test)]
@@ -45,6 +102,42 @@ mod tests {
         }
         let zero = Vector3::new(-0.0, 0.0, -0.0);
         assert_eq!(norm3(&zero).to_bits(), zero.norm().to_bits());
+    }
+
+    #[test]
+    fn cholesky_has_the_bits_of_nalgebras() {
+        use nalgebra::{Matrix6, Matrix6x1, SMatrix, Vector6};
+        let mut rng = Pcg64Mcg::seed_from_u64(5);
+        let mut refused = 0;
+        for k in 0..20_000 {
+            let scale = [1e-6, 1e-2, 1.0, 1e3][k % 4];
+            let j = SMatrix::<f64, 6, 7>::from_fn(|_, _| rng.random_range(-1.0..1.0) * scale);
+            let mut m: Matrix6<f64> = j * j.transpose();
+            // Some damped (positive definite), some rank-deficient or indefinite.
+            match k % 5 {
+                0 => m[(2, 2)] = -m[(2, 2)],
+                1 => m.row_mut(3).fill(0.0),
+                _ => m += Matrix6::identity() * [1e-4, 1e-12, 0.0][k % 3],
+            }
+            let b = Vector6::from_fn(|_, _| rng.random_range(-1.0..1.0));
+            let ours = Cholesky::new(m);
+            match m.cholesky() {
+                None => {
+                    assert!(ours.is_none(), "{m}");
+                    refused += 1;
+                }
+                Some(c) => {
+                    let ours = ours.expect("nalgebra factorises it");
+                    let (x, y): (Matrix6x1<f64>, Vector6<f64>) = (c.solve(&b), ours.solve(&b));
+                    for (p, q) in x.iter().zip(y.iter()) {
+                        assert_eq!(p.to_bits(), q.to_bits(), "{m}\n{b}");
+                    }
+                }
+            }
+        }
+        assert!(refused > 1000 && refused < 15_000, "{refused} refused");
+        let nan = Matrix6::from_element(f64::NAN);
+        assert!(nan.cholesky().is_none() && Cholesky::new(nan).is_none());
     }
 
     #[test]
