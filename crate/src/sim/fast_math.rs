@@ -6,7 +6,7 @@
 //! hence bit-identical to `libm::sqrt`; the helpers here use it in exactly nalgebra's operation
 //! order. The DH twist angles are constants, so their sines and cosines are computed once.
 
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::{Matrix3, Quaternion, SMatrix, SVector, UnitQuaternion, Vector3};
 use std::sync::OnceLock;
 
 /// `‖v‖` in nalgebra's order (`0 + (x² + y² + z²)`, then the square root), with the hardware
@@ -15,6 +15,46 @@ use std::sync::OnceLock;
 pub(crate) fn norm3(v: &Vector3<f64>) -> f64 {
     let sq = 0.0 + (v.x * v.x + v.y * v.y + v.z * v.z);
     sq.sqrt()
+}
+
+/// `UnitQuaternion::from_rotation_matrix` of a rotation matrix `m`, same branches and operation
+/// order, with the hardware square root.
+pub(crate) fn quaternion_of(m: &Matrix3<f64>) -> UnitQuaternion<f64> {
+    let tr = m[(0, 0)] + m[(1, 1)] + m[(2, 2)];
+    let q = if tr > 0.0 {
+        let denom = (tr + 1.0).sqrt() * 2.0;
+        Quaternion::new(
+            0.25 * denom,
+            (m[(2, 1)] - m[(1, 2)]) / denom,
+            (m[(0, 2)] - m[(2, 0)]) / denom,
+            (m[(1, 0)] - m[(0, 1)]) / denom,
+        )
+    } else if m[(0, 0)] > m[(1, 1)] && m[(0, 0)] > m[(2, 2)] {
+        let denom = (1.0 + m[(0, 0)] - m[(1, 1)] - m[(2, 2)]).sqrt() * 2.0;
+        Quaternion::new(
+            (m[(2, 1)] - m[(1, 2)]) / denom,
+            0.25 * denom,
+            (m[(0, 1)] + m[(1, 0)]) / denom,
+            (m[(0, 2)] + m[(2, 0)]) / denom,
+        )
+    } else if m[(1, 1)] > m[(2, 2)] {
+        let denom = (1.0 + m[(1, 1)] - m[(0, 0)] - m[(2, 2)]).sqrt() * 2.0;
+        Quaternion::new(
+            (m[(0, 2)] - m[(2, 0)]) / denom,
+            (m[(0, 1)] + m[(1, 0)]) / denom,
+            0.25 * denom,
+            (m[(1, 2)] + m[(2, 1)]) / denom,
+        )
+    } else {
+        let denom = (1.0 + m[(2, 2)] - m[(0, 0)] - m[(1, 1)]).sqrt() * 2.0;
+        Quaternion::new(
+            (m[(1, 0)] - m[(0, 1)]) / denom,
+            (m[(0, 2)] + m[(2, 0)]) / denom,
+            (m[(1, 2)] + m[(2, 1)]) / denom,
+            0.25 * denom,
+        )
+    };
+    UnitQuaternion::new_unchecked(q)
 }
 
 /// `libm::sincos` of each angle, computed on first use (same bits as calling it every time).
@@ -40,10 +80,10 @@ impl<const N: usize> Cholesky<N> {
         debug_assert!(N <= 8);
         for j in 0..N {
             for k in 0..j {
-                // nalgebra: col_j[j..] = (−L_jk)·col_k[j..] + col_j[j..] (an axpy).
+                // nalgebra: col_j[j..] = (−L_jk)·col_k[j..] + col_j[j..] (an axpy; + commutes).
                 let factor = -m[(j, k)];
                 for r in j..N {
-                    m[(r, j)] = factor * m[(r, k)] + m[(r, j)];
+                    m[(r, j)] += factor * m[(r, k)];
                 }
             }
             let diag = m[(j, j)];
@@ -68,7 +108,7 @@ impl<const N: usize> Cholesky<N> {
             let coeff = x[i] / l[(i, i)];
             x[i] = coeff;
             for r in i + 1..N {
-                x[r] = -coeff * l[(r, i)] + x[r];
+                x[r] += -coeff * l[(r, i)];
             }
         }
         for i in (0..N).rev() {
@@ -138,6 +178,43 @@ mod tests {
         assert!(refused > 1000 && refused < 15_000, "{refused} refused");
         let nan = Matrix6::from_element(f64::NAN);
         assert!(nan.cholesky().is_none() && Cholesky::new(nan).is_none());
+    }
+
+    #[test]
+    fn quaternion_of_has_the_bits_of_nalgebras() {
+        use nalgebra::{Rotation3, Unit};
+        let mut rng = Pcg64Mcg::seed_from_u64(7);
+        let mut branches = [0; 4];
+        for k in 0..40_000 {
+            // Random axes and angles, many near π so that every branch (trace ≤ 0) is taken.
+            let axis = Unit::new_normalize(Vector3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            ));
+            let angle = if k % 2 == 0 {
+                rng.random_range(-3.2..3.2)
+            } else {
+                std::f64::consts::PI - rng.random_range(0.0..0.5)
+            };
+            let m = *Rotation3::from_axis_angle(&axis, angle).matrix();
+            let ours = quaternion_of(&m);
+            let theirs = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(m));
+            for (p, q) in ours.coords.iter().zip(theirs.coords.iter()) {
+                assert_eq!(p.to_bits(), q.to_bits(), "{m}");
+            }
+            let tr = m.trace();
+            branches[if tr > 0.0 {
+                0
+            } else if m[(0, 0)] > m[(1, 1)] && m[(0, 0)] > m[(2, 2)] {
+                1
+            } else if m[(1, 1)] > m[(2, 2)] {
+                2
+            } else {
+                3
+            }] += 1;
+        }
+        assert!(branches.iter().all(|&b| b > 1000), "{branches:?}");
     }
 
     #[test]

@@ -32,7 +32,7 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use std::sync::OnceLock;
 
-use super::fast_math::{norm3, sincos_table, Cholesky};
+use super::fast_math::{norm3, quaternion_of, sincos_table, Cholesky};
 
 /// Number of joints.
 pub const DOF: usize = 7;
@@ -100,11 +100,7 @@ impl Frame {
         }
     }
     pub(crate) fn to_iso(self) -> Isometry3<f64> {
-        let rot = nalgebra::Rotation3::from_matrix_unchecked(self.r);
-        Isometry3::from_parts(
-            Translation3::from(self.p),
-            UnitQuaternion::from_rotation_matrix(&rot),
-        )
+        Isometry3::from_parts(Translation3::from(self.p), quaternion_of(&self.r))
     }
 }
 
