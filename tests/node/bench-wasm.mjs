@@ -1,12 +1,19 @@
 // Native against wasm on the hot paths, side by side in one run (not a test: `npm run bench:wasm
-// -- [--warmup W] [--runs N] [--budget S] [--only id,…] [--pkg DIR] [--logistics NAME]`).
+// -- [--warmup W] [--warmup-secs S] [--runs N] [--budget S] [--only id,…] [--pkg DIR]
+// [--logistics NAME] [--tiering]`).
 //
 // Both sides run the same Rust code on the same inputs (crate/src/experiments/hot_paths.rs): the
 // native side through `logic-lfd bench wasm-rows --json` (env LOGIC_LFD_BIN, else
 // target/release/logic-lfd), the wasm side through the npm package's `benchRows` (pkg/node, or
-// --pkg), each timing inside its own build with its own clock, best of N after W untimed warm-up runs
-// (default 2: V8 compiles wasm with its baseline tier first and tiers hot functions up while they
-// run, so a single cold run still times partly unoptimised code).
+// --pkg), each timing inside its own build with its own clock: the best of N runs (default 100;
+// fewer once the row has spent --budget seconds, default 3; at least 3) after at least W untimed
+// warm-up runs (default 2) and at least S seconds of them.
+// The wasm side runs V8's optimising compiler from the first call (`--no-liftoff`), so the rows
+// compare compiled code with compiled code, as a page or server reaches once its hot code has
+// tiered up. With --tiering, V8 keeps its default: baseline code first, a hot function compiled
+// again by the optimising tier in the background after it has run a while (S defaults to 1 s
+// there; a row of a few microseconds still times baseline code after a handful of runs, and on a
+// loaded machine the background compiles can lag by seconds).
 // The rows' digests (plan costs, expansions, facts) must agree, so both sides did the same work.
 // Then one row per planning problem for the whole `plan()` call from JavaScript (options and the
 // outcome object cross the boundary), the page benchmark's replans through the JavaScript
@@ -14,6 +21,7 @@
 // wasm modules and of the page's first load (web/dist, measured as tests/e2e/bench.mjs does, when
 // the page is built).
 import { execFileSync } from 'node:child_process';
+import v8 from 'node:v8';
 import { existsSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -25,9 +33,14 @@ const arg = (name, d) => {
   const i = process.argv.indexOf(`--${name}`);
   return i > 0 ? process.argv[i + 1] : d;
 };
+const TIERING = process.argv.includes('--tiering');
+// Before any wasm module is compiled (the modules are imported below).
+if (!TIERING) v8.setFlagsFromString('--no-liftoff');
 const WARMUP = Math.max(1, Number(arg('warmup', 2)));
-const RUNS = Number(arg('runs', 5));
-const BUDGET = Number(arg('budget', 20));
+const WARMUP_SECS = Math.max(0, Number(arg('warmup-secs', TIERING ? 1 : 0)));
+// Many short runs: on a shared machine a run often loses its core for a while, on both sides.
+const RUNS = Number(arg('runs', 100));
+const BUDGET = Number(arg('budget', 3));
 const ONLY = arg('only', '');
 const PKG = arg('pkg', join(root, 'pkg/node'));
 const LOGISTICS = arg('logistics', 'probLOGISTICS-10-0');
@@ -47,15 +60,16 @@ const only = ONLY ? ONLY.split(',') : [];
 
 const bin = process.env.LOGIC_LFD_BIN || join(root, 'target/release/logic-lfd');
 if (!existsSync(bin)) throw new Error(`${bin} missing: cargo build --release -p logic-lfd --bin logic-lfd`);
-const nativeArgs = ['bench', 'wasm-rows', '--ipc', IPC, '--logistics', LOGISTICS, '--warmup', String(WARMUP), '--runs', String(RUNS), '--budget', String(BUDGET), '--json'];
+const nativeArgs = ['bench', 'wasm-rows', '--ipc', IPC, '--logistics', LOGISTICS, '--warmup', String(WARMUP), '--warmup-secs', String(WARMUP_SECS), '--runs', String(RUNS), '--budget', String(BUDGET), '--json'];
 if (only.length) nativeArgs.push('--only', only.join(','));
 process.stderr.write('bench:wasm: native rows…\n');
 const native = JSON.parse(execFileSync(bin, nativeArgs, { encoding: 'utf8', maxBuffer: 1 << 26 }));
 process.stderr.write('bench:wasm: wasm rows…\n');
-const wasm = lfd.benchRows(inputs, { warmup: WARMUP, runs: RUNS, budgetSecs: BUDGET, only });
+const wasm = lfd.benchRows(inputs, { warmup: WARMUP, warmupSecs: WARMUP_SECS, runs: RUNS, budgetSecs: BUDGET, only });
 
 const fmt = (ms) => (ms >= 100 ? `${(ms / 1e3).toFixed(2)} s` : ms >= 0.1 ? `${ms.toFixed(2)} ms` : `${(ms * 1e3).toFixed(1)} µs`);
-console.log(`logic-lfd ${lfd.version()}: native (${bin.replace(root, '')}) against wasm (${PKG.replace(root, '')}, node ${process.version}), best of ≤ ${RUNS} after ${WARMUP} warm-up run${WARMUP > 1 ? 's' : ''}\n`);
+const tier = TIERING ? "V8's default tiering" : 'optimising tier from the first call';
+console.log(`logic-lfd ${lfd.version()}: native (${bin.replace(root, '')}) against wasm (${PKG.replace(root, '')}, node ${process.version}, ${tier}), best of ≤ ${RUNS} after ≥ ${WARMUP} warm-up run${WARMUP > 1 ? 's' : ''} and ≥ ${WARMUP_SECS} s of them\n`);
 console.log('| work | native | wasm (node) | wasm / native |');
 console.log('|---|---:|---:|---:|');
 const ratios = [];
@@ -71,9 +85,14 @@ const geo = Math.exp(ratios.reduce((a, r) => a + Math.log(r), 0) / ratios.length
 console.log(`| geometric mean | | | ${geo.toFixed(2)}× |`);
 
 // The whole `plan()` call from JavaScript (parse + ground + search + the outcome object), the
-// same discipline: WARMUP warm-up runs, best of RUNS (fewer once BUDGET seconds are spent, at least 3).
+// same discipline: WARMUP warm-up runs and WARMUP_SECS of them, best of RUNS (fewer once BUDGET
+// seconds are spent, at least 3).
+function warmUp(f) {
+  const t0 = performance.now();
+  for (let i = 0; i < WARMUP || performance.now() - t0 < WARMUP_SECS * 1e3; i++) f();
+}
 function bestOf(f) {
-  for (let i = 0; i < WARMUP; i++) f();
+  warmUp(f);
   const t0 = performance.now();
   let best = Infinity;
   for (let i = 0; i < RUNS && (i < 3 || performance.now() - t0 < BUDGET * 1e3); i++) {
@@ -128,8 +147,9 @@ async function sessionReplans(mod) {
     }
     return times;
   };
+  const t0w = performance.now();
   const best = pass();
-  for (let i = 1; i < WARMUP; i++) pass();
+  for (let i = 1; i < WARMUP || performance.now() - t0w < WARMUP_SECS * 1e3; i++) pass();
   const t0 = performance.now();
   for (let i = 0; i < RUNS && (i < 3 || performance.now() - t0 < BUDGET * 1e3); i++) {
     pass().forEach((ms, k) => (best[k] = Math.min(best[k], ms)));

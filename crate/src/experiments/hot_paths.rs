@@ -6,8 +6,10 @@
 //! replan (A* + h_max, as the reactive loop) per state from seeded disturbed states of B1/B2/B3,
 //! the LQT-CP pipeline (T = 100, D = 3, jerk, K = 10 RBF: weights, F, gains, one rollout), one
 //! B3 world step with the scene graph, one IK solve, and the replans of the page benchmark's
-//! scenario (`page_replans`). Every row runs [`RowParams::warmup`] times untimed first (the first
-//! run also gives the digest; a JIT-compiled target tiers up its hot code during these), then
+//! scenario (`page_replans`). Every row runs untimed first, [`RowParams::warmup`] times and for at
+//! least [`RowParams::warmup_secs`] (the first run also gives the digest; a JIT-compiled target
+//! tiers up its hot code during these: V8 runs wasm in its baseline tier first and compiles a hot
+//! function with its optimising tier only after it has run a while, in the background), then
 //! repeats its batch at least [`RowParams::min_runs`] and at most [`RowParams::runs`] times
 //! (fewer once [`RowParams::budget_secs`] is spent) and keeps the best; the caller's clock
 //! times it. Each row also reports a digest of the work done (plan lengths, expansions, facts),
@@ -62,6 +64,9 @@ pub struct RowInputs {
 pub struct RowParams {
     /// Untimed warm-up runs before the timed ones (at least one: it gives the digest).
     pub warmup: usize,
+    /// Warm-up goes on until this much time is spent too (s): a row of a few microseconds runs
+    /// thousands of times before V8 has compiled its hot code with the optimising tier.
+    pub warmup_secs: f64,
     /// Timed runs at most (after the warm-up runs).
     pub runs: usize,
     /// Timed runs at least, whatever the budget.
@@ -76,6 +81,7 @@ impl Default for RowParams {
     fn default() -> Self {
         RowParams {
             warmup: 1,
+            warmup_secs: 0.0,
             runs: 10,
             min_runs: 3,
             budget_secs: 5.0,
@@ -168,9 +174,12 @@ fn page_replans(params: &RowParams, clock: &dyn Clock) -> Result<RowTiming, Stri
         }
         Ok(out)
     };
+    let warm_from = clock.now_secs();
     let first = pass()?;
     let digest = first.iter().map(|(_, n)| n.as_str()).collect::<Vec<_>>();
-    for _ in 1..params.warmup {
+    let mut warm = 1;
+    while warm < params.warmup || clock.now_secs() - warm_from < params.warmup_secs {
+        warm += 1;
         if pass()?
             .iter()
             .map(|(_, n)| n.as_str())
@@ -210,8 +219,11 @@ fn page_replans(params: &RowParams, clock: &dyn Clock) -> Result<RowTiming, Stri
 
 fn time_row(mut row: Row, params: &RowParams, clock: &dyn Clock) -> Result<RowTiming, String> {
     let fail = |e: String| format!("{}: {e}", row.id);
+    let warm_from = clock.now_secs();
     let digest = (row.batch)().map_err(fail)?;
-    for _ in 1..params.warmup {
+    let mut warm = 1;
+    while warm < params.warmup || clock.now_secs() - warm_from < params.warmup_secs {
+        warm += 1;
         let d = (row.batch)().map_err(fail)?;
         if d != digest {
             return Err(fail(format!("work changed between runs: {digest} / {d}")));

@@ -32,7 +32,7 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use std::sync::OnceLock;
 
-use super::fast_math::{norm3, sincos_table};
+use super::fast_math::{norm3, quaternion_of, sincos_table, Cholesky};
 
 /// Number of joints.
 pub const DOF: usize = 7;
@@ -100,11 +100,7 @@ impl Frame {
         }
     }
     pub(crate) fn to_iso(self) -> Isometry3<f64> {
-        let rot = nalgebra::Rotation3::from_matrix_unchecked(self.r);
-        Isometry3::from_parts(
-            Translation3::from(self.p),
-            UnitQuaternion::from_rotation_matrix(&rot),
-        )
+        Isometry3::from_parts(Translation3::from(self.p), quaternion_of(&self.r))
     }
 }
 
@@ -319,7 +315,7 @@ fn dls_attempt(
                 j.column_mut(i).fill(0.0);
             }
             let jjt: Matrix6<f64> = j * j.transpose() + Matrix6::identity() * lambda2;
-            let Some(chol) = jjt.cholesky() else {
+            let Some(chol) = Cholesky::new(jjt) else {
                 break None;
             };
             let y: Matrix6x1<f64> = chol.solve(&e);

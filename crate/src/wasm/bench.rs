@@ -8,8 +8,8 @@ use crate::experiments::hot_paths::{run_rows, RowInputs, RowParams};
 use wasm_bindgen::prelude::*;
 
 /// Times the hot-path rows: `inputs` holds the IPC texts (`blocksDomain`, `blocks8`, `blocks9`,
-/// `logisticsDomain`, `logistics`, `logisticsName`); `params` optionally `warmup`, `runs`, `minRuns`,
-/// `budgetSecs` and `only` (row-id fragments). Returns the rows (`id`, `label`, `best_ms`,
+/// `logisticsDomain`, `logistics`, `logisticsName`); `params` optionally `warmup`, `warmupSecs`, `runs`,
+/// `minRuns`, `budgetSecs` and `only` (row-id fragments). Returns the rows (`id`, `label`, `best_ms`,
 /// `per_batch`, `runs`, `digest`); rejects with a message on bad input.
 #[wasm_bindgen(js_name = benchRows, unchecked_return_type = "BenchRow[]")]
 pub fn bench_rows(
@@ -35,8 +35,8 @@ export interface BenchRowInputs {
   blocksDomain: string; blocks8: string; blocks9: string;
   logisticsDomain: string; logistics: string; logisticsName: string;
 }
-/** How many times each row of `benchRows` runs (defaults 1, 10, 3, 5 s, all rows). */
-export interface BenchRowParams { warmup?: number; runs?: number; minRuns?: number; budgetSecs?: number; only?: string[]; }
+/** How many times each row of `benchRows` runs (defaults 1, 0 s, 10, 3, 5 s, all rows). */
+export interface BenchRowParams { warmup?: number; warmupSecs?: number; runs?: number; minRuns?: number; budgetSecs?: number; only?: string[]; }
 /** One timed row: best time of one unit of work (ms) and a digest of the work done. */
 export interface BenchRow { id: string; label: string; best_ms: number; per_batch: number; runs: number; digest: string; }
 "#;

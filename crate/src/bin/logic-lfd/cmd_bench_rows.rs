@@ -1,5 +1,5 @@
-//! `logic-lfd bench wasm-rows [--ipc DIR] [--logistics NAME] [--warmup N] [--runs N] [--only ID,…] [--json]`:
-//! the native side of `npm run bench:wasm` — the hot-path rows of
+//! `logic-lfd bench wasm-rows [--ipc DIR] [--logistics NAME] [--warmup N] [--warmup-secs S]
+//! [--runs N] [--only ID,…] [--json]`: the native side of `npm run bench:wasm` — the hot-path rows of
 //! `logic_lfd::experiments::hot_paths`, best of N after a warm-up, on the wall clock.
 
 use std::path::PathBuf;
@@ -22,6 +22,9 @@ pub struct Args {
     /// Untimed warm-up runs per row before the timed ones (at least 1).
     #[arg(long, default_value_t = 1)]
     warmup: usize,
+    /// Seconds of warm-up per row at least (more runs than `--warmup` where one is short).
+    #[arg(long, default_value_t = 0.0)]
+    warmup_secs: f64,
     /// Timed runs per row at most (after the warm-up; at least 3).
     #[arg(long, default_value_t = 10)]
     runs: usize,
@@ -56,6 +59,7 @@ fn inputs(a: &Args) -> Result<RowInputs, String> {
 pub fn run(a: Args) -> ExitCode {
     let params = RowParams {
         warmup: a.warmup.max(1),
+        warmup_secs: a.warmup_secs,
         runs: a.runs.max(1),
         budget_secs: a.budget,
         only: a.only.clone(),

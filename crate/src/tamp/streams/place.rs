@@ -31,6 +31,17 @@ impl Surface {
     }
 }
 
+/// Sorts `spots` by their distance to `(x, y)`, nearest first (stable): each distance computed
+/// once, not at every comparison (`libm::hypot` is a software square root in wasm).
+fn sort_nearest_first(spots: &mut Vec<Spot>, x: f64, y: f64) {
+    let mut keyed: Vec<(f64, Spot)> = spots
+        .drain(..)
+        .map(|s| (libm::hypot(s.at.x - x, s.at.y - y), s))
+        .collect();
+    keyed.sort_by(|a, b| a.0.total_cmp(&b.0));
+    spots.extend(keyed.into_iter().map(|(_, s)| s));
+}
+
 /// A candidate resting spot for a body put down on a surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Spot {
@@ -319,10 +330,7 @@ impl StreamBinder<'_> {
             .get(&body)
             .map(|p| p.translation.vector)
             .unwrap_or_default();
-        drawn.sort_by(|a, b| {
-            libm::hypot(a.at.x - at.x, a.at.y - at.y)
-                .total_cmp(&libm::hypot(b.at.x - at.x, b.at.y - at.y))
-        });
+        sort_nearest_first(&mut drawn, at.x, at.y);
         // On a small surface (a shelf) random spots waste room a later body needs: its spots
         // on a lattice at the packing pitch come first, nearest first.
         let pitch = 2.0 * h.x.max(h.y) + self.params.clearance + LATTICE_GAP;
@@ -350,10 +358,7 @@ impl StreamBinder<'_> {
                 }
             }
         }
-        lattice.sort_by(|a, b| {
-            libm::hypot(a.at.x - at.x, a.at.y - at.y)
-                .total_cmp(&libm::hypot(b.at.x - at.x, b.at.y - at.y))
-        });
+        sort_nearest_first(&mut lattice, at.x, at.y);
         for (k, c) in lattice.iter_mut().enumerate() {
             c.sample = self.params.placement_samples + 1 + k;
         }
