@@ -118,7 +118,7 @@ mod tests {
     #[test]
     fn malformed_json_names_where_it_stopped() {
         let e = from_str::<Demo>("{\"steps\": [{\"pose\": [1, 2,]}]}").unwrap_err();
-        assert_eq!(e.path, "steps[0].pose[2]");
+        assert_eq!(e.path, "steps[0].pose");
         assert_eq!((e.line, e.column), (1, 27));
         let e = from_str::<Demo>("{\"steps\": []} x").unwrap_err();
         assert_eq!(e.to_string(), "trailing characters at line 1 column 15");
@@ -126,7 +126,10 @@ mod tests {
 
     #[test]
     fn a_scene_error_names_the_body_field() {
-        let scene = crate::sim::benchmark::Benchmark::B1.sources().unwrap().scene;
+        let scene = crate::sim::benchmark::Benchmark::B1
+            .sources()
+            .unwrap()
+            .scene;
         let mut s: serde_json::Value = serde_json::from_str(&scene).unwrap();
         s["bodies"][2]["pose"]["position"][1] = serde_json::json!("x");
         let e = world_from_json(&serde_json::to_string_pretty(&s).unwrap()).unwrap_err();
