@@ -10,6 +10,7 @@ mod layers;
 mod levels;
 mod lfd;
 mod lfd_cli;
+mod load_errors;
 mod lqt;
 mod multigoal;
 mod pddl;

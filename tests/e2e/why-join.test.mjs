@@ -8,8 +8,11 @@ import { openApp, screenshots, useBrowser } from './harness.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 
-/** Injects L3 (retrying while the injector finds no move now) and returns a tick before it. */
+/** Steps the paused run to tick 160 and injects L3 there (stepping 0.1 s more while the
+ * injector finds no move now); returns the tick of the injection. The time is the same on every
+ * run: a wall-clock one would give each run another state, and another replan to check. */
 async function injectL3(page) {
+  while ((await page.evaluate(() => window.lfd.frame().tick)) < 160) await page.click('#step');
   for (let attempt = 0; attempt < 10; attempt++) {
     const before = await page.evaluate(() => window.lfd.frame().tick);
     await page.click('#inject-l3', { force: true });
@@ -17,7 +20,7 @@ async function injectL3(page) {
     const text = await page.textContent('#notice');
     if (!/refused|cannot/i.test(text)) return before;
     await page.evaluate(() => document.getElementById('notice').setAttribute('hidden', ''));
-    await page.waitForTimeout(200);
+    await page.click('#step');
   }
   throw new Error('L3 was refused ten times');
 }
@@ -25,8 +28,7 @@ async function injectL3(page) {
 describe('why L_k', () => {
   for (const [mode, width, height] of [['paper', 1440, 900], ['prioritised', 390, 844]]) {
     test(`${mode}: a replan after L3 shows the L_k it joined and why, with the candidates' costs (${width}x${height})`, async () => {
-      const { page, errors } = await openApp(ctx.browser, ctx.server, `?benchmark=b1&seed=3&mode=${mode}`, { width, height });
-      await page.waitForFunction(() => (window.lfd.frame()?.tick ?? 0) > 150, null, { timeout: 30000, polling: 50 });
+      const { page, errors } = await openApp(ctx.browser, ctx.server, `?benchmark=b1&seed=3&mode=${mode}&autoplay=0`, { width, height });
       const at = await injectL3(page);
       // The replan that searched (a new prefix): its record carries the candidates.
       const r = await page.waitForFunction(
@@ -59,6 +61,15 @@ describe('why L_k', () => {
       assert.match(sentence, mode === 'paper' ? /^Paper: .*first state satisfying any/ : /^Prioritised: .*least total/);
       if (mode === 'prioritised') assert.equal(+mine[3], Math.min(...numbered.map((c) => +c[3])));
       await page.screenshot({ path: join(screenshots, `why-join-${mode}-${width}.png`) });
+      // The Run tab lists every replan, newest first — also one whose frames were drawn over by
+      // a later replan's within one animation frame (the timeline's markers see every frame).
+      const listed = await page.$$eval('#replan-info .replan', (ls) => ls.map((l) => Number(/at tick (\d+):/.exec(l.textContent)[1])));
+      const marked = await page.evaluate(() => {
+        const dt = window.lfd.frame().world.dt;
+        return [...new Set(window.lfd.marks().filter((m) => m.kind === 'replan').map((m) => Math.round(m.t / dt)))].reverse();
+      });
+      assert.deepEqual(listed, marked.slice(0, listed.length));
+      assert.equal(listed.length, Math.min(6, marked.length));
       assert.deepEqual(errors, []);
       await page.close();
     });

@@ -1,7 +1,7 @@
 /**
  * The Compare tab (a chunk of its own, loaded when the tab first opens): runs the same episode —
- * benchmark, blocks, seed, and one scripted disturbance (level and time) — with Linear, RLDS,
- * TAMP and Logic-LfD in both modes, one after another in a worker of its own (the Run's session
+ * benchmark, blocks, seed, and one scripted disturbance (level and time) or the Run's recorded
+ * drags, injections and cancels at their times — with Linear, RLDS, TAMP and Logic-LfD in both modes, one after another in a worker of its own (the Run's session
  * is untouched), and ends with a table: success, simulated execution time, replans, planning time
  * and the reason of a failure.
  */
@@ -9,6 +9,7 @@ import type { Frame, SessionOptions } from 'logic-lfd';
 import { WorkerClient } from './client';
 import { button, el, select } from './dom';
 import { METHOD_NOTES, MODE_NOTES, noteOf } from './explain';
+import { applyAll, type Disturbance, eventLabel, type Recorded, recordedDisturbances, recordedOf, scriptedDisturbance } from './compare-recorded';
 import type { Level } from './protocol';
 import { LEVELS, type Method, type Mode } from './state';
 
@@ -38,34 +39,30 @@ export interface CompareResult {
   planningMs: number;
   /** The status line at the end (the failure's reason). */
   message: string;
-  /** What the scripted disturbance did (or why it could not be applied). */
+  /** What the disturbances did (or why they could not be applied). */
   disturbance: string;
 }
 
 /** The scenario a comparison runs. */
 export interface CompareScript {
-  options: Pick<SessionOptions, 'benchmark' | 'seed' | 'blocks'>;
-  level: Level;
-  /** When the disturbance is injected (simulated s). */
-  at: number;
+  options: Pick<SessionOptions, 'benchmark' | 'seed' | 'blocks' | 'skill'>;
+  /** The starting world (scene JSON); the benchmark's template scene if absent. */
+  scene?: string;
+  /** Applied in order, each at its tick. */
+  disturbances: Disturbance[];
 }
+
+/** Where a comparison's disturbances come from. */
+type Source = 'scripted' | 'recorded';
 
 const finished = (f: Frame) => f.status.kind === 'done' || f.status.kind === 'failed';
 
 /** Runs one method on the script in `client`'s worker. */
 async function runOne(client: WorkerClient, script: CompareScript, method: Method, mode: Mode, name: string): Promise<CompareResult> {
   const options: SessionOptions = { ...script.options, method, mode };
-  let f = await client.call('open', { options });
-  if (script.at > 0) f = await client.call('step', { dt: script.at });
-  let disturbance: string;
-  if (finished(f)) disturbance = `not injected: the episode ended before ${script.at} s`;
-  else {
-    try {
-      disturbance = (await client.call('inject', { level: script.level })).message;
-    } catch (e) {
-      disturbance = `not injected: ${(e as Error).message}`;
-    }
-  }
+  const opened = await client.call('open', script.scene === undefined ? { options } : { options, scene: script.scene });
+  const applied = await applyAll(client, opened, script.disturbances);
+  let f = applied.frame;
   while (!finished(f) && f.t < MAX_SIM_S) f = await client.call('step', { dt: CHUNK_S });
   const log = JSON.parse(await client.call('episode', {})) as { replans: { time_ms: number }[] };
   return {
@@ -75,25 +72,46 @@ async function runOne(client: WorkerClient, script: CompareScript, method: Metho
     replans: f.replans,
     planningMs: log.replans.reduce((a, r) => a + r.time_ms, 0),
     message: finished(f) ? f.status.message : `stopped after ${MAX_SIM_S} s of simulated time`,
-    disturbance,
+    disturbance: applied.notes.join('; '),
   };
+}
+
+/** What a comparison needs of the page: the Run's benchmark, blocks and seed, and its episode log. */
+export interface CompareHost {
+  scenario(): CompareScript['options'];
+  /** The Run's episode log (`Session.episodeJson()`). */
+  episode(): Promise<string>;
 }
 
 export class ComparePanel {
   readonly root: HTMLElement;
+  private readonly sourceSel = select<Source>(
+    'compare-source',
+    'Which disturbances every method meets',
+    [
+      ['scripted', 'a scripted disturbance'],
+      ['recorded', 'the Run’s recorded disturbances'],
+    ],
+    'scripted',
+  );
   private readonly levelSel = select('compare-level', 'Disturbance level', LEVELS, 'l3');
   private readonly atIn = el('input', { id: 'compare-at', type: 'number', min: '0', step: '0.1', value: '0.5', 'aria-label': 'Inject at (simulated seconds)', title: 'Inject at (simulated seconds)' });
-  private readonly runBtn = button('compare-run', 'Run every method on the same seed and disturbance', '▶ Compare', 'primary');
+  private readonly scripted = el('span', { class: 'compare-scripted' }, el('label', {}, 'inject ', this.levelSel), el('label', {}, 'at ', this.atIn, ' s'));
+  /** Why the recorded disturbances cannot be chosen (shown while they cannot). */
+  private readonly why = el('p', { id: 'compare-source-why', class: 'muted small', hidden: '' });
+  private readonly runBtn = button('compare-run', 'Run every method on the same seed and disturbances', '▶ Compare', 'primary');
   private readonly body = el('tbody', {});
   private readonly note = el('p', { id: 'compare-note', class: 'muted small' });
   private client: WorkerClient | null = null;
+  private recorded: Recorded | string = '';
 
-  constructor(private readonly scenario: () => CompareScript['options']) {
+  constructor(private readonly host: CompareHost) {
     this.root = el(
       'div',
       { class: 'compare' },
-      el('p', { class: 'muted' }, 'The same seed and the same scripted disturbance for every method, run one after another in the background (the Run keeps its own episode).'),
-      el('div', { class: 'compare-row' }, el('label', {}, 'inject ', this.levelSel), el('label', {}, 'at ', this.atIn, ' s'), this.runBtn),
+      el('p', { class: 'muted' }, 'The same seed and the same disturbances for every method, run one after another in the background (the Run keeps its own episode).'),
+      el('div', { class: 'compare-row' }, this.sourceSel, this.scripted, this.runBtn),
+      this.why,
       this.note,
       el(
         'table',
@@ -104,22 +122,67 @@ export class ComparePanel {
       ),
     );
     this.runBtn.onclick = () => void this.run();
+    this.sourceSel.onchange = () => this.showSource();
+    // The Run may have recorded more since: look again before the list opens.
+    this.sourceSel.onfocus = () => void this.refresh();
     this.showRows([]);
+    this.showSource();
   }
 
-  /** Runs the comparison on the Run's benchmark, blocks and seed; resolves to the table's rows. */
+  /** Reads the Run's episode again: the recorded disturbances, or why there are none. */
+  async refresh(): Promise<void> {
+    try {
+      this.recorded = recordedOf(await this.host.episode());
+    } catch (e) {
+      this.recorded = `The Run has no episode to replay (${(e as Error).message}).`;
+    }
+    this.showSource();
+  }
+
+  private showSource(): void {
+    const reason = typeof this.recorded === 'string' ? this.recorded || 'Reading the Run’s episode…' : null;
+    const option = this.sourceSel.querySelector<HTMLOptionElement>('option[value="recorded"]')!;
+    option.disabled = reason !== null;
+    if (reason !== null && this.sourceSel.value === 'recorded') this.sourceSel.value = 'scripted';
+    this.why.textContent = reason ?? '';
+    this.why.hidden = reason === null;
+    this.scripted.hidden = this.sourceSel.value === 'recorded';
+  }
+
+  /** The script of the chosen source (null: the recorded disturbances are gone). */
+  private async script(): Promise<CompareScript | null> {
+    if (this.sourceSel.value === 'recorded') {
+      await this.refresh();
+      const r = this.recorded;
+      if (typeof r === 'string') return null;
+      return { options: r.options, scene: r.scene, disturbances: recordedDisturbances(r) };
+    }
+    const level = this.levelSel.value as Level;
+    const at = Math.max(0, Number(this.atIn.value) || 0);
+    return { options: this.host.scenario(), disturbances: [scriptedDisturbance(level, at)] };
+  }
+
+  /** The comparison's one-line description: the scenario and its disturbances. */
+  private describe(script: CompareScript): string {
+    const o = script.options;
+    const head = `${o.benchmark.toUpperCase()}${o.blocks ? ` · ${o.blocks} blocks` : ''} · seed ${o.seed}`;
+    const r = this.recorded;
+    if (this.sourceSel.value === 'recorded' && typeof r !== 'string') return `${head} · the Run’s recorded disturbances: ${r.events.map((e) => eventLabel(e, r.dt)).join(', ')}`;
+    return `${head} · ${this.levelSel.value.toUpperCase()} at ${Math.max(0, Number(this.atIn.value) || 0)} s`;
+  }
+
+  /** Runs the comparison with the chosen disturbances; resolves to the table's rows. */
   async run(): Promise<CompareResult[]> {
-    const script: CompareScript = {
-      options: this.scenario(),
-      level: this.levelSel.value as Level,
-      at: Math.max(0, Number(this.atIn.value) || 0),
-    };
     this.runBtn.disabled = true;
     this.client?.terminate('a new comparison started');
-    const client = (this.client = new WorkerClient(() => {}));
     const results: CompareResult[] = [];
-    const o = script.options;
-    this.note.textContent = `${o.benchmark.toUpperCase()}${o.blocks ? ` · ${o.blocks} blocks` : ''} · seed ${o.seed} · ${script.level.toUpperCase()} at ${script.at} s`;
+    const script = await this.script();
+    if (!script) {
+      this.runBtn.disabled = false;
+      return results;
+    }
+    const client = (this.client = new WorkerClient(() => {}));
+    this.note.textContent = this.describe(script);
     try {
       await client.ready;
       for (const [method, mode, name] of RUNS) {

@@ -32,6 +32,7 @@ export class FrameRenderer {
     this.onFrame(f);
     this.parts.history.push(f);
     this.parts.charts.push(f);
+    this.parts.run.record(f);
     if (this.pendingFrame === null) requestAnimationFrame(() => this.flush());
     this.pendingFrame = f;
   }

@@ -51,11 +51,18 @@ export class RunPanel {
     this.whyOpen = null;
   }
 
-  show(f: Frame): void {
+  /** Notes what frame `f` changed (its replan, its facts' change, its step). Called with every
+   * frame: `show` draws only the latest of an animation frame, and a replan or change carried by
+   * a frame drawn over would be lost. */
+  record(f: Frame): void {
     if (f.factsAdded.length || f.factsRemoved.length) this.lastChange = { added: f.factsAdded, removed: f.factsRemoved, t: f.t };
     if (f.executing != null) this.lastStep = f.executing;
     const r = f.lastReplan;
     if (r && this.replans[this.replans.length - 1]?.tick !== r.tick) this.replans.push(r);
+  }
+
+  /** Draws frame `f` (after `record`). */
+  show(f: Frame): void {
     const key = JSON.stringify([f.plan, f.executing, f.demo.length, f.matchedK, f.facts, f.lastReplan?.tick, f.status.kind, this.lastChange?.t]);
     if (key === this.lastKey) return;
     this.lastKey = key;

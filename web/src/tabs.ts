@@ -6,6 +6,7 @@
 import type { Frame } from 'logic-lfd';
 import type { Charts } from './charts';
 import { SearchRunner, type WorkerClient } from './client';
+import type { ComparePanel } from './compare';
 import type { EditorPanel } from './editor';
 import type { FrameRenderer } from './frame-renderer';
 import type { Layout } from './layout';
@@ -39,7 +40,7 @@ export class Tabs {
   teach: TeachPanel | null = null;
   private teachPromise: Promise<TeachPanel> | null = null;
   private editorPromise: Promise<EditorPanel> | null = null;
-  private comparePromise: Promise<void> | null = null;
+  private comparePromise: Promise<ComparePanel> | null = null;
   /** The PDDL tab's texts per benchmark (domain, problem, demonstration). */
   private readonly edits = new Map<string, [string, string, string]>();
   private readonly search = new SearchRunner();
@@ -67,7 +68,7 @@ export class Tabs {
     if (id !== 'teach') renderer.redraw();
     if (id === 'pddl') void this.loadEditor();
     if (id === 'charts') charts.draw();
-    if (id === 'compare') void this.loadCompare();
+    if (id === 'compare') void this.loadCompare().then((c) => c.refresh());
   }
 
   /** Loads the benchmark's PDDL into the editor, unless it holds it already. */
@@ -95,11 +96,17 @@ export class Tabs {
   }
 
   /** Loads the Compare view's chunk and mounts it (once). */
-  private loadCompare(): Promise<void> {
+  private loadCompare(): Promise<ComparePanel> {
     this.comparePromise ??= import('./compare').then(({ ComparePanel }) => {
-      const o = this.p.state.options;
-      const c = new ComparePanel(() => ({ benchmark: o.benchmark, seed: o.seed, ...(o.blocks != null ? { blocks: o.blocks } : {}) }));
+      const c = new ComparePanel({
+        scenario: () => {
+          const o = this.p.state.options;
+          return { benchmark: o.benchmark, seed: o.seed, ...(o.blocks != null ? { blocks: o.blocks } : {}) };
+        },
+        episode: () => this.p.client.call('episode', {}),
+      });
       this.p.ui.compareSlot.append(c.root);
+      return c;
     });
     return this.comparePromise;
   }

@@ -62,12 +62,13 @@ export function checkedGoal(list: HTMLElement): string[] {
   return [...list.querySelectorAll('input')].filter((b) => b.checked).map((b) => (b.getAttribute('aria-label') ?? '').replace(/^goal fact /, ''));
 }
 
-/** A refused edit: what kind of refusal and when, the message, the fact change it would make. */
-export function errorContent(e: TeachError): HTMLElement[] {
+/** A refused edit (or load): what kind of refusal and when, the message, the fact change it
+ * would make, and what was kept. */
+export function errorContent(e: TeachError, kept = 'Nothing was recorded from this edit.'): HTMLElement[] {
   return [
     el('strong', {}, `${ERROR_TITLES[e.kind]}${e.t != null ? ` at t = ${e.t.toFixed(2)} s` : ''}`),
     el('div', { class: 'teach-error-msg' }, e.message),
     el('div', { class: 'facts-diff' }, ...factChips(e.added, e.removed)),
-    el('div', { class: 'muted small' }, 'Nothing was recorded from this edit.'),
+    el('div', { class: 'muted small' }, kept),
   ];
 }

@@ -295,7 +295,8 @@ export class TeachPanel {
     try {
       this.info = await this.host.client.call('teachInfo', { demoJson: text });
     } catch (e) {
-      this.showError({ kind: 'input', message: `${file.name}: ${(e as Error).message}`, added: [], removed: [] });
+      const kept = this.info ? 'Nothing was loaded: the demonstration listed below is unchanged.' : 'Nothing was loaded.';
+      this.showError({ kind: 'input', message: `${file.name}: ${(e as Error).message}`, added: [], removed: [] }, kept);
       return;
     }
     this.demoJson = text;
@@ -405,8 +406,8 @@ export class TeachPanel {
     );
   }
 
-  private showError(e: TeachError): void {
-    this.ui.errorBox.replaceChildren(...errorContent(e));
+  private showError(e: TeachError, kept?: string): void {
+    this.ui.errorBox.replaceChildren(...errorContent(e, kept));
     this.ui.errorBox.hidden = false;
   }
 

@@ -196,20 +196,30 @@ fn print_summary(spec: &EpisodeSpec, r: &EpisodeReport) {
     println!("simulated execution time: {:.2} s", r.execution_s);
 }
 
+/// The `--json` report as `replay` reads it: its episode log.
+#[derive(serde::Deserialize)]
+struct Report {
+    log: EpisodeLog,
+}
+
 fn replay(path: &PathBuf) -> ExitCode {
     let text = match std::fs::read_to_string(path) {
         Ok(t) => t,
         Err(e) => return bad(format!("{}: {e}", path.display())),
     };
-    // Accept the whole `--json` report or the bare log.
-    let value: serde_json::Value = match serde_json::from_str(&text) {
+    // Accept the whole `--json` report or the bare log; errors name the JSON path and position.
+    let value: serde_json::Value = match logic_lfd::json_input::from_str(&text) {
         Ok(v) => v,
         Err(e) => return bad(format!("{}: {e}", path.display())),
     };
-    let log_value = value.get("log").cloned().unwrap_or(value);
-    let log: EpisodeLog = match serde_json::from_value(log_value) {
+    let log = if value.get("log").is_some() {
+        logic_lfd::json_input::from_str::<Report>(&text).map(|r| r.log)
+    } else {
+        logic_lfd::json_input::from_str::<EpisodeLog>(&text)
+    };
+    let log = match log {
         Ok(l) => l,
-        Err(e) => return bad(format!("{}: log: {e}", path.display())),
+        Err(e) => return bad(format!("{}: {e}", path.display())),
     };
     let log_text = serde_json::to_string(&log).unwrap_or_default();
     let replayed = match Session::replay(&log_text) {

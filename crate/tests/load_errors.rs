@@ -1,0 +1,125 @@
+//! Load errors of the JSON documents a user hands in (scenes, taught demonstrations, episode
+//! logs) name the JSON path of the value at fault, what was expected, and its line and column —
+//! in the library (what the page shows) and in the CLI.
+
+use std::process::Command;
+
+use logic_lfd::lfd::session::{Session, SessionOptions};
+use logic_lfd::recorder::synth::Edit;
+use logic_lfd::recorder::{taught, Recorder};
+use logic_lfd::sim::benchmark::Benchmark;
+use serde_json::json;
+
+/// `text` pretty-printed with `value` set at `pointer`, and the 1-based line and column where
+/// the value starts.
+fn with_value_at(text: &str, pointer: &str, value: serde_json::Value) -> (String, usize, usize) {
+    let mut v: serde_json::Value = serde_json::from_str(text).unwrap();
+    *v.pointer_mut(pointer).unwrap() = value.clone();
+    let out = serde_json::to_string_pretty(&v).unwrap();
+    let needle = value.to_string();
+    let (i, line) = out
+        .lines()
+        .enumerate()
+        .find(|(_, l)| l.contains(&needle))
+        .unwrap();
+    // serde_json reports the column of the value's last character.
+    let column = line.find(&needle).unwrap() + needle.len();
+    (out, i + 1, column)
+}
+
+fn b1_options() -> SessionOptions {
+    serde_json::from_value(json!({ "benchmark": "b1", "seed": 1 })).unwrap()
+}
+
+#[test]
+fn a_scene_with_a_wrong_type_deep_inside_names_its_path() {
+    let scene = Benchmark::B1.sources().unwrap().scene;
+    let (bad, line, column) = with_value_at(&scene, "/bodies/2/pose/position/1", json!("x"));
+    let e = Session::from_scene(b1_options(), &bad, None)
+        .err()
+        .unwrap()
+        .to_string();
+    assert_eq!(
+        e,
+        format!(
+            "scene: bodies[2].pose.position[1]: invalid type: string \"x\", expected f64 at line {line} column {column}"
+        )
+    );
+}
+
+#[test]
+fn a_taught_demo_with_a_wrong_type_deep_inside_names_its_path() {
+    let mut rec = Recorder::for_benchmark(Benchmark::B1).unwrap();
+    rec.push(&Edit::Drag {
+        body: "c".into(),
+        onto: Some("d".into()),
+        position: None,
+        yaw: None,
+        arm: None,
+    })
+    .unwrap();
+    let json = serde_json::to_string(&rec.finish().unwrap().demo).unwrap();
+    let (bad, line, column) = with_value_at(&json, "/scene/bodies/3/pose/position/0", json!(true));
+    let e = taught::load(&bad).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        format!(
+            "scene.bodies[3].pose.position[0]: invalid type: boolean `true`, expected f64 at line {line} column {column}"
+        )
+    );
+}
+
+#[test]
+fn an_episode_log_with_a_wrong_type_names_its_path() {
+    let mut s = Session::new(b1_options()).unwrap();
+    s.cancel();
+    let log = s.episode_json();
+    let (bad, line, column) = with_value_at(&log, "/scene/bodies/2/pose/position/1", json!("x"));
+    let e = Session::replay(&bad).err().unwrap().to_string();
+    assert_eq!(
+        e,
+        format!(
+            "episode: scene.bodies[2].pose.position[1]: invalid type: string \"x\", expected f64 at line {line} column {column}"
+        )
+    );
+    // An event is read whole before its tag says its kind: the path stops at the event.
+    let (bad, _, _) = with_value_at(&log, "/events/0/tick", json!("soon"));
+    let e = Session::replay(&bad).err().unwrap().to_string();
+    assert!(
+        e.starts_with("episode: events[0]: invalid type: string \"soon\", expected u64 at line "),
+        "{e}"
+    );
+}
+
+#[test]
+fn the_cli_prints_the_file_the_path_and_the_position() {
+    let scene = Benchmark::B1.sources().unwrap().scene;
+    let (bad, line, column) = with_value_at(&scene, "/bodies/2/pose/position/1", json!("x"));
+    let dir = std::env::temp_dir().join(format!("logic-lfd-load-errors-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("bad-scene.json");
+    std::fs::write(&file, bad).unwrap();
+    let want = format!(
+        "{}: bodies[2].pose.position[1]: invalid type: string \"x\", expected f64 at line {line} column {column}",
+        file.display()
+    );
+    let out = Command::new(env!("CARGO_BIN_EXE_logic-lfd"))
+        .args(["scene", "check"])
+        .arg(&file)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(String::from_utf8_lossy(&out.stderr).trim(), want);
+    let out = Command::new(env!("CARGO_BIN_EXE_logic-lfd"))
+        .args(["run", "--benchmark", "b1", "--scene"])
+        .arg(&file)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains(&want.replacen(": bodies", ": scene: bodies", 1)),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
