@@ -32,11 +32,13 @@ export interface SpeedUpState {
   reason: string;
 }
 
-/** Throw-away episodes run to warm the full module up: each disturbs B1 three times. */
-const WARM_EPISODES = 8;
-const WARM_LEVELS = ['l3', 'l4', 'l3'] as const;
-/** Simulated seconds stepped per slice: enough for the replan a disturbance triggers. */
-const WARM_STEP_S = 0.05;
+/** Throw-away episodes run to warm the full module up: each disturbs B1 at several moments of its
+ * task, as a user does, so the replans and the motions after them both get hot. */
+const WARM_EPISODES = 6;
+const WARM_LEVELS = ['l3', 'l4', 'l3', 'l2'] as const;
+/** Simulated seconds between two disturbances, stepped in slices of `WARM_SLICE_S`. */
+const WARM_GAP_S = 0.6;
+const WARM_SLICE_S = 0.1;
 
 const state: SpeedUpState = { stage: 'idle', warmReplans: 0, moved: 0, reason: '' };
 let full: FullModule | null = null;
@@ -87,13 +89,15 @@ function* warmUp(m: FullModule): Generator<void> {
   for (let i = 0; i < WARM_EPISODES; i++) {
     const s = new m.Session({ benchmark: 'b1', method: 'logic-lfd', mode: 'paper', seed: 1000 + i });
     try {
-      let replans = s.step(WARM_STEP_S).replans;
-      yield;
-      for (const level of WARM_LEVELS) {
-        if (s.canInject(level) === undefined) s.inject(level);
-        yield;
-        replans = s.step(WARM_STEP_S).replans;
-        yield;
+      let replans = 0;
+      for (const level of [null, ...WARM_LEVELS]) {
+        if (level && s.canInject(level) === undefined) s.inject(level);
+        for (let t = 0; t < WARM_GAP_S; t += WARM_SLICE_S) {
+          yield;
+          const f = s.step(WARM_SLICE_S);
+          replans = f.replans;
+          if (f.status.kind === 'done' || f.status.kind === 'failed') break;
+        }
       }
       state.warmReplans += replans;
     } finally {
