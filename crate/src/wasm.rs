@@ -6,10 +6,11 @@
 //! TypeScript declarations from `tsify` or hand-written custom sections); every fallible call
 //! returns a rejected value carrying a message instead of panicking.
 //!
-//! Feature `wasm-core` builds the page's first-load module: everything but Teach mode
-//! (`Teacher`, taught tasks), `Session.replay` and the npm-only `lqt`, `validate` and
-//! `runEpisode`; `wasm` adds them (the npm package, and the module the page loads when Teach mode
-//! opens).
+//! Feature `wasm-core` builds the page's first-load module: the closed-loop `Session` and
+//! `benchmark`, without Teach mode (`Teacher`, taught tasks), `Session.replay`, the PDDL tab's
+//! `plan`, `check`, `logicLfd` and `logicLfdPerturb`, and the npm-only `lqt`, `validate` and
+//! `runEpisode`; `wasm` adds them (the npm package, and the module the page loads after its first
+//! frame).
 
 use crate::plan::Clock;
 use wasm_bindgen::prelude::*;
@@ -17,7 +18,10 @@ use wasm_bindgen::prelude::*;
 mod args;
 #[cfg(feature = "wasm")]
 mod bench;
+mod benchmark_info;
+#[cfg(feature = "wasm")]
 mod logic_lfd;
+#[cfg(feature = "wasm")]
 mod pddl;
 #[cfg(feature = "wasm")]
 pub mod reliability;
@@ -25,9 +29,9 @@ mod session;
 #[cfg(feature = "wasm")]
 mod teach;
 
+pub use benchmark_info::BenchmarkInfo;
 #[cfg(feature = "wasm")]
-pub use pddl::Validation;
-pub use pddl::{BenchmarkInfo, Diagnostic, PlanFailed, PlanFound, PlanOptions, PlanOutcome};
+pub use pddl::{Diagnostic, PlanFailed, PlanFound, PlanOptions, PlanOutcome, Validation};
 pub use session::WasmSession;
 
 thread_local! {

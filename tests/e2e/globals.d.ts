@@ -19,6 +19,7 @@ declare global {
       chartMarks: () => { kind: string; t: number; text: string }[][];
       viewing: () => { t: number | null; end: number };
       bodyPosition: (body: string) => [number, number, number] | null;
+      speedUp: () => Promise<{ stage: string; warmReplans: number; moved: number; reason: string }>;
     };
   }
 }

@@ -57,6 +57,8 @@ client.ready.then(
     await session.open();
     window.lfd.loadedAt = performance.now();
     ui.app.dataset.ready = 'true';
+    // The first frame is drawn: the worker now fetches the full-speed module and moves onto it.
+    void client.call('speedUp', {});
     // Not needed for the first frame: fetched once the page is interactive.
     void import('./explain').then(({ explainSelects }) => explainSelects(ui.controls.methodSel, ui.controls.modeSel));
     view.loadExtras();

@@ -15,6 +15,7 @@ import type {
   PlanOutcome,
   SessionOptions,
 } from 'logic-lfd';
+import type { SpeedUpState } from './speed-up';
 import type { TeachApi } from './teach-protocol';
 
 export type Level = 'l1' | 'l2' | 'l3' | 'l4';
@@ -59,6 +60,9 @@ export interface Api extends TeachApi {
   /** The worker's wasm linear memory (bytes; it grows, never shrinks), for the page soak test. */
   memory: { args: Record<string, never>; result: { wasmBytes: number } };
   scene: { args: Record<string, never>; result: string };
+  /** Fetch the full-speed module and move the session onto it (starts it; answers at once). */
+  speedUp: { args: Record<string, never>; result: null };
+  speedUpState: { args: Record<string, never>; result: SpeedUpState };
 }
 
 export type ApiKind = keyof Api;

@@ -85,7 +85,16 @@ export class RunPanel {
       }),
     );
     if (!f.plan.length) list.append(el('li', { class: 'muted empty' }, 'no plan yet'));
-    list.querySelector('.current')?.scrollIntoView({ block: 'nearest' });
+    // Scroll the panel only: scrollIntoView also scrolls the window when the page is taller than
+    // it, which moves the controls away from under the pointer while the plan advances.
+    const cur = list.querySelector<HTMLElement>('.current');
+    const box = cur?.closest<HTMLElement>('.panel');
+    if (cur && box) {
+      const c = cur.getBoundingClientRect();
+      const b = box.getBoundingClientRect();
+      if (c.top < b.top) box.scrollTop -= b.top - c.top;
+      else if (c.bottom > b.bottom) box.scrollTop += c.bottom - b.bottom;
+    }
   }
 
   private showDemo(f: Frame): void {

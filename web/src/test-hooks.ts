@@ -1,12 +1,13 @@
 /**
  * `window.lfd`: read-only views of the page's state for the browser tests and the benchmark script
  * (the current frame, where a body is on screen, step and render timings, replans, the last
- * cancel, memory), and a way to put PDDL into the editor.
+ * cancel, memory, the move onto the full-speed module), and a way to put PDDL into the editor.
  */
 import type { Frame } from 'logic-lfd';
 import type { Charts } from './charts';
 import type { WorkerClient } from './client';
 import type { History, Mark } from './history';
+import type { SpeedUpState } from './speed-up';
 import type { CancelTiming, PageState } from './state';
 import type { Tabs } from './tabs';
 import type { View } from './view';
@@ -34,6 +35,8 @@ declare global {
       viewing: () => { t: number | null; end: number };
       /** Where the 3-D view draws `body` now (world coordinates). */
       bodyPosition: (body: string) => [number, number, number] | null;
+      /** Whether the worker's session runs on the full-speed module yet (speed-up.ts). */
+      speedUp: () => Promise<SpeedUpState>;
     };
   }
 }
@@ -56,5 +59,6 @@ export function installTestHooks(p: { state: PageState; view: View; charts: Char
     chartMarks: () => charts.drawnMarks(),
     viewing: () => ({ t: history.viewing, end: history.end }),
     bodyPosition: (b) => view.bodyPosition(b),
+    speedUp: () => client.call('speedUpState', {}),
   };
 }

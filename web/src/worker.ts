@@ -1,18 +1,21 @@
 /**
  * The Web Worker that owns the wasm module and the closed-loop Session: planning and simulation
  * never run on the page's thread, so the page never freezes. It plays the session in real time
- * (scaled by `speed`) and pushes a frame after every tick. Its module is the page build without
- * Teach mode and `Session.replay` ('logic-lfd-page'); teach-worker.ts fetches the full one when
- * one of those is needed.
+ * (scaled by `speed`) and pushes a frame after every tick. Its first module is the page's
+ * size-built first load ('logic-lfd-page': the Session and `benchmark`); teach-worker.ts fetches
+ * the full one (built for speed) when Teach mode, `Session.replay` or the PDDL tab's calls need
+ * it, and speed-up.ts moves the session onto it after the first frame.
  */
 import init, * as lfd from 'logic-lfd-page';
 import type { Frame } from 'logic-lfd';
 import type { Api, ApiKind, FromWorker, Level, ToWorker } from './protocol';
 import { teachHandlers, teachLastPanic, teachMemoryBytes, teachModule } from './teach-worker';
+import { type FullSession, fullModule, speedUp, speedUpState } from './speed-up';
 
 const post = (m: FromWorker) => (self as unknown as Worker).postMessage(m);
 
-let session: lfd.Session | null = null;
+/** The live session: on the first-load module until speed-up.ts moves it onto the full one. */
+let session: lfd.Session | FullSession | null = null;
 let wasmMemory: WebAssembly.Memory | null = null;
 let playing = false;
 let speed = 1;
@@ -23,12 +26,12 @@ const TICK_MS = 1000 / 60;
 /** Never advance more than this much simulated time in one tick (s), so a stalled tab catches up gently. */
 const MAX_DT = 0.1;
 
-function need(): lfd.Session {
+function need(): lfd.Session | FullSession {
   if (!session) throw new Error('no session: choose a benchmark first');
   return session;
 }
 
-function replace(s: lfd.Session): Frame {
+function replace(s: lfd.Session | FullSession): Frame {
   stop();
   session?.free();
   session = s;
@@ -66,13 +69,28 @@ type Handlers = { [K in ApiKind]: (args: Api[K]['args']) => Api[K]['result'] | P
 
 const handlers: Handlers = {
   version: () => lfd.version(),
-  plan: ({ domain, problem, options }) => lfd.plan(domain, problem, options),
-  check: ({ domain, problem }) => lfd.check(domain, problem),
-  logicLfd: ({ input }) => lfd.logicLfd(input),
-  logicLfdPerturb: ({ input }) => lfd.logicLfdPerturb(input),
+  // The PDDL tab's calls live in the full module (the tab opens after the first load).
+  plan: async ({ domain, problem, options }) => (await teachModule()).plan(domain, problem, options),
+  check: async ({ domain, problem }) => (await teachModule()).check(domain, problem),
+  logicLfd: async ({ input }) => (await teachModule()).logicLfd(input),
+  logicLfdPerturb: async ({ input }) => (await teachModule()).logicLfdPerturb(input),
   benchmark: ({ id }) => lfd.benchmark(id),
-  open: ({ options, scene }) =>
-    replace(scene === undefined ? new lfd.Session(options) : lfd.Session.fromScene(options, scene)),
+  open: ({ options, scene }) => {
+    const m = fullModule() ?? lfd;
+    return replace(scene === undefined ? new m.Session(options) : m.Session.fromScene(options, scene));
+  },
+  speedUp: () => {
+    speedUp(
+      () => session,
+      (s) => {
+        // Same episode, same frame: the loop keeps playing on the new session.
+        session?.free();
+        session = s;
+      },
+    );
+    return null;
+  },
+  speedUpState: () => speedUpState(),
   replay: async ({ episode }) => replace((await teachModule()).Session.replay(episode)),
   play: ({ speed: s }) => {
     need();

@@ -43,6 +43,7 @@ pub(crate) fn type_name(v: &JsValue) -> String {
 }
 
 /// The type of a JSON value as its JS counterpart's `typeof` (`null` and `array` named apart).
+#[cfg(feature = "wasm")]
 pub(crate) fn json_type_name(v: &serde_json::Value) -> &'static str {
     match v {
         serde_json::Value::Null => "null",

@@ -1,5 +1,6 @@
-//! The PDDL bindings: `plan`, `check`, `validate` and `benchmark`. Bad PDDL is reported as data
-//! with `line:col` diagnostics; a parameter of the wrong JS type throws a `TypeError`.
+//! The PDDL bindings: `plan`, `check` and `validate` (feature `wasm`: the page's PDDL tab calls
+//! them, after its first load). Bad PDDL is reported as data with `line:col` diagnostics; a
+//! parameter of the wrong JS type throws a `TypeError`.
 
 use super::args::{object_arg, optional_string_arg, string_arg, StringArg};
 use super::{from_js, js_err, to_js, PerformanceClock};
@@ -311,51 +312,7 @@ pub fn check(
     to_js(&diags)
 }
 
-/// A benchmark's initial scene and PDDL files (see [`benchmark()`]).
-#[derive(Debug, Serialize, Tsify)]
-pub struct BenchmarkInfo {
-    /// `b1`, `b2` or `b3`.
-    pub id: &'static str,
-    /// The directory name, e.g. `b1-tower`.
-    pub name: &'static str,
-    /// The initial world, as the page draws it.
-    #[tsify(type = "WorldSnapshot")]
-    pub scene: crate::sim::snapshot::WorldSnapshot,
-    /// `domains/<name>/domain.pddl`.
-    pub domain: &'static str,
-    /// `domains/<name>/problem.pddl`.
-    pub problem: &'static str,
-    /// The demonstration's actions (`domains/<name>/demo.json`) as an IPC plan, one a line.
-    #[serde(rename = "demoPlan")]
-    pub demo_plan: String,
-}
-
-/// One of the paper's benchmarks (`b1` tower, `b2` workspace reach, `b3` two arms): its initial
-/// scene and its PDDL domain and problem. Rejects an unknown id.
-#[wasm_bindgen(unchecked_return_type = "BenchmarkInfo")]
-pub fn benchmark(
-    #[wasm_bindgen(unchecked_param_type = "\"b1\" | \"b2\" | \"b3\"")] id: JsValue,
-) -> Result<JsValue, JsValue> {
-    use crate::sim::benchmark::Benchmark;
-    let id = string_arg("benchmark", "id", &id)?;
-    let b = Benchmark::parse(&id)
-        .ok_or_else(|| js_err(format!("unknown benchmark `{id}` (expected b1, b2 or b3)")))?;
-    to_js(&BenchmarkInfo {
-        id: b.as_str(),
-        name: b.dir_name(),
-        scene: b.scene_snapshot(),
-        domain: b.domain_pddl(),
-        problem: b.problem_pddl(),
-        demo_plan: crate::lfd::session::demo_actions(b.demo_json())
-            .map_err(js_err)?
-            .iter()
-            .map(|a| format!("{a}\n"))
-            .collect(),
-    })
-}
-
 /// The verdict of [`validate()`].
-#[cfg(feature = "wasm")]
 #[derive(Debug, Serialize, Tsify)]
 #[serde(rename_all = "camelCase")]
 pub struct Validation {
@@ -379,7 +336,6 @@ pub struct Validation {
 /// Replays a plan (IPC format, one `(action arg …)` per line, `;` comments) on a problem and
 /// says whether it is valid, or the first failing step and why. Bad PDDL or a malformed plan is
 /// reported with `line:col` diagnostics, not thrown.
-#[cfg(feature = "wasm")]
 #[wasm_bindgen(unchecked_return_type = "Validation")]
 pub fn validate(
     #[wasm_bindgen(unchecked_param_type = "string")] domain: JsValue,

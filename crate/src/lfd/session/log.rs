@@ -201,6 +201,8 @@ impl Session {
                 break;
             }
         }
+        // The next `step` reports the facts that change after the replayed end, not since the start.
+        s.prev_facts = facts_of(&s.world);
         Ok(s)
     }
 }

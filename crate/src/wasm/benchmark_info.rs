@@ -1,0 +1,50 @@
+//! `benchmark`: a benchmark's initial scene and PDDL files, which the page reads on its first load.
+
+use super::args::string_arg;
+use super::{js_err, to_js};
+use serde::Serialize;
+use tsify::Tsify;
+use wasm_bindgen::prelude::*;
+
+/// A benchmark's initial scene and PDDL files (see [`benchmark()`]).
+#[derive(Debug, Serialize, Tsify)]
+pub struct BenchmarkInfo {
+    /// `b1`, `b2` or `b3`.
+    pub id: &'static str,
+    /// The directory name, e.g. `b1-tower`.
+    pub name: &'static str,
+    /// The initial world, as the page draws it.
+    #[tsify(type = "WorldSnapshot")]
+    pub scene: crate::sim::snapshot::WorldSnapshot,
+    /// `domains/<name>/domain.pddl`.
+    pub domain: &'static str,
+    /// `domains/<name>/problem.pddl`.
+    pub problem: &'static str,
+    /// The demonstration's actions (`domains/<name>/demo.json`) as an IPC plan, one a line.
+    #[serde(rename = "demoPlan")]
+    pub demo_plan: String,
+}
+
+/// One of the paper's benchmarks (`b1` tower, `b2` workspace reach, `b3` two arms): its initial
+/// scene and its PDDL domain and problem. Rejects an unknown id.
+#[wasm_bindgen(unchecked_return_type = "BenchmarkInfo")]
+pub fn benchmark(
+    #[wasm_bindgen(unchecked_param_type = "\"b1\" | \"b2\" | \"b3\"")] id: JsValue,
+) -> Result<JsValue, JsValue> {
+    use crate::sim::benchmark::Benchmark;
+    let id = string_arg("benchmark", "id", &id)?;
+    let b = Benchmark::parse(&id)
+        .ok_or_else(|| js_err(format!("unknown benchmark `{id}` (expected b1, b2 or b3)")))?;
+    to_js(&BenchmarkInfo {
+        id: b.as_str(),
+        name: b.dir_name(),
+        scene: b.scene_snapshot(),
+        domain: b.domain_pddl(),
+        problem: b.problem_pddl(),
+        demo_plan: crate::lfd::session::demo_actions(b.demo_json())
+            .map_err(js_err)?
+            .iter()
+            .map(|a| format!("{a}\n"))
+            .collect(),
+    })
+}
