@@ -4,7 +4,7 @@
 import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
-import { currentFrame, openApp, screenshots, useBrowser } from './harness.mjs';
+import { compareRows, currentFrame, openApp, screenshots, useBrowser } from './harness.mjs';
 import { dragBody, dropPoint } from './ux-helpers.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
@@ -42,15 +42,7 @@ describe('compare on the recorded disturbances', () => {
 
     const label = `drag a at ${drag.t.toFixed(2)} s`;
     assert.match(await page.textContent('#compare-note'), new RegExp(`B1 · seed 1 · the Run’s recorded disturbances: ${label}$`));
-    const rows = await page.$$eval('#compare-table tbody tr', (trs) =>
-      trs.map((tr) => ({
-        name: tr.querySelector('th')?.textContent,
-        result: tr.children[1]?.textContent,
-        replans: Number(tr.children[3]?.textContent),
-        reason: tr.querySelector('.reason')?.textContent ?? '',
-        disturbance: tr.querySelector('.reason')?.getAttribute('title') ?? '',
-      })),
-    );
+    const rows = await compareRows(page);
     assert.equal(rows.length, 5);
     for (const r of rows) assert.ok(r.disturbance.startsWith(`${label}: `), `${r.name}: ${r.disturbance}`);
     for (const n of ['Logic-LfD (paper)', 'Logic-LfD (prioritised)']) {

@@ -3,7 +3,7 @@
 import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
-import { currentFrame, openApp, screenshots, useBrowser } from './harness.mjs';
+import { compareRows, currentFrame, openApp, screenshots, useBrowser } from './harness.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 
@@ -17,15 +17,7 @@ describe('compare methods', () => {
     await page.fill('#compare-at', '0.5');
     await page.click('#compare-run');
     await page.waitForSelector('.compare[data-done="true"]', { timeout: 240000 });
-    const rows = await page.$$eval('#compare-table tbody tr', (trs) =>
-      trs.map((tr) => ({
-        name: tr.querySelector('th')?.textContent,
-        result: tr.children[1]?.textContent,
-        replans: Number(tr.children[3]?.textContent),
-        reason: tr.querySelector('.reason')?.textContent ?? '',
-        disturbance: tr.querySelector('.reason')?.getAttribute('title') ?? '',
-      })),
-    );
+    const rows = await compareRows(page);
     const row = (n) => rows.find((r) => r.name === n);
     for (const n of ['Logic-LfD (paper)', 'Logic-LfD (prioritised)', 'TAMP']) {
       assert.match(row(n).result, /success/, `${n}: ${row(n).reason}`);

@@ -168,3 +168,16 @@ export async function typeIntoEditor(page, domain, problem) {
   const head = domain.slice(0, 200).replace(/\s+/g, ' ').trim().slice(0, 40);
   await page.waitForFunction(([sel, h]) => document.querySelector(sel)?.textContent.replace(/\s+/g, ' ').includes(h), [visible, head]);
 }
+
+/** The Compare tab's results table, one object per method row. */
+export async function compareRows(page) {
+  return page.$$eval('#compare-table tbody tr', (trs) =>
+    trs.map((tr) => ({
+      name: tr.querySelector('th')?.textContent,
+      result: tr.children[1]?.textContent,
+      replans: Number(tr.children[3]?.textContent),
+      reason: tr.querySelector('.reason')?.textContent ?? '',
+      disturbance: tr.querySelector('.reason')?.getAttribute('title') ?? '',
+    })),
+  );
+}

@@ -170,17 +170,6 @@ pub fn relevant_part(task: &Task) -> Option<Relevance> {
 mod tests {
     use super::*;
 
-    fn op(name: &str, pre: &[FactId], add: &[FactId], del: &[FactId]) -> Operator {
-        Operator {
-            name: name.into(),
-            pre: pre.to_vec(),
-            pre_neg: vec![],
-            add: add.to_vec(),
-            del: del.to_vec(),
-            cost: 1,
-        }
-    }
-
     /// Facts: 0 (at a), 1 (at b), 2 (light on), 3 (light off), 4 (key), 5 (door open).
     fn task() -> Task {
         let facts = [
@@ -192,11 +181,11 @@ mod tests {
             "(door open)",
         ];
         let ops = vec![
-            op("(go a b)", &[0, 5], &[1], &[0]),
-            op("(switch on)", &[3], &[2], &[3]),
-            op("(switch off)", &[2], &[3], &[2]),
-            op("(open)", &[4], &[5], &[]),
-            op("(go b a)", &[1], &[0], &[1]),
+            Operator::unit("(go a b)", &[0, 5], &[1], &[0]),
+            Operator::unit("(switch on)", &[3], &[2], &[3]),
+            Operator::unit("(switch off)", &[2], &[3], &[2]),
+            Operator::unit("(open)", &[4], &[5], &[]),
+            Operator::unit("(go b a)", &[1], &[0], &[1]),
         ];
         let goal = Goal {
             alternatives: vec![Condition {

@@ -170,6 +170,21 @@ impl Operator {
     }
 }
 
+#[cfg(test)]
+impl Operator {
+    /// A unit-cost operator without negative preconditions, for unit tests.
+    pub(crate) fn unit(name: &str, pre: &[FactId], add: &[FactId], del: &[FactId]) -> Self {
+        Operator {
+            name: name.into(),
+            pre: pre.to_vec(),
+            pre_neg: vec![],
+            add: add.to_vec(),
+            del: del.to_vec(),
+            cost: 1,
+        }
+    }
+}
+
 /// A grounded planning task.
 #[derive(Clone, Debug, Default)]
 pub struct Task {

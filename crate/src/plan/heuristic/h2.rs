@@ -130,17 +130,6 @@ mod tests {
     use super::*;
     use crate::plan::{Condition, Goal, Operator};
 
-    fn op(name: &str, pre: &[u32], add: &[u32], del: &[u32]) -> Operator {
-        Operator {
-            name: name.into(),
-            pre: pre.to_vec(),
-            pre_neg: vec![],
-            add: add.to_vec(),
-            del: del.to_vec(),
-            cost: 1,
-        }
-    }
-
     /// One gripper, one block: `holding` and `clear` never hold together, so "stack the block
     /// on itself" (needs both) never fires, while the relaxation would apply it.
     #[test]
@@ -148,10 +137,10 @@ mod tests {
         // 0 = ontable, 1 = clear, 2 = holding, 3 = handempty, 4 = on-itself
         let facts = ["ontable", "clear", "holding", "handempty", "on-itself"];
         let ops = vec![
-            op("pick", &[0, 1, 3], &[2], &[0, 1, 3]),
-            op("put", &[2], &[0, 1, 3], &[2]),
-            op("stack-self", &[2, 1], &[4, 3], &[2, 1]),
-            op("unstack-self", &[4, 3], &[2, 1], &[4, 3]),
+            Operator::unit("pick", &[0, 1, 3], &[2], &[0, 1, 3]),
+            Operator::unit("put", &[2], &[0, 1, 3], &[2]),
+            Operator::unit("stack-self", &[2, 1], &[4, 3], &[2, 1]),
+            Operator::unit("unstack-self", &[4, 3], &[2, 1], &[4, 3]),
         ];
         let task = Task::new(
             facts.iter().map(|s| s.to_string()).collect(),
