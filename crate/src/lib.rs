@@ -20,7 +20,6 @@
 #![warn(missing_docs)]
 
 pub mod experiments;
-pub mod json_input;
 pub mod lfd;
 pub mod lqt;
 pub mod pddl;

@@ -140,7 +140,7 @@ impl Session {
             Ok(m) => SessionError::Motions(m),
             Err(pddl) => SessionError::Lfd(super::LfdError::Model(pddl)),
         })?);
-        let world = crate::json_input::world_from_json(scene_json.unwrap_or(&files.scene))?;
+        let world = crate::sim::json_input::world_from_json(scene_json.unwrap_or(&files.scene))?;
         let world = World::from_snapshot(&world.snapshot())?.with_motions(Arc::clone(&motions));
         motions
             .check_arms(world.arm_names().len())

@@ -72,7 +72,7 @@ fn refused(m: impl Into<String>) -> RecorderError {
 /// Parses a taught `demo.json` (errors name the key path of a wrong value with its line and
 /// column, or the line and column of malformed JSON).
 pub fn parse(demo_json: &str) -> Result<TaughtDemo, RecorderError> {
-    let v: serde_json::Value = crate::json_input::from_str(demo_json).map_err(json_input)?;
+    let v: serde_json::Value = crate::sim::json_input::from_str(demo_json).map_err(json_input)?;
     for key in ["actions", "scene", "goal", "initial_facts"] {
         if v.get(key).is_none() {
             return Err(RecorderError::Input {
@@ -87,11 +87,11 @@ pub fn parse(demo_json: &str) -> Result<TaughtDemo, RecorderError> {
             });
         }
     }
-    crate::json_input::from_str(demo_json).map_err(json_input)
+    crate::sim::json_input::from_str(demo_json).map_err(json_input)
 }
 
 /// A JSON error as an input error: the path of the value at fault (or the line and column).
-fn json_input(e: crate::json_input::JsonError) -> RecorderError {
+fn json_input(e: crate::sim::json_input::JsonError) -> RecorderError {
     let (path, message) = e.into_parts();
     RecorderError::Input { path, message }
 }
@@ -321,7 +321,7 @@ pub fn session(demo_json: &str, options: &TaughtRunOptions) -> Result<Session, R
         (None, false) => None,
     };
     if let Some(s) = &scene {
-        let w = crate::json_input::world_from_json(s).map_err(|e| RecorderError::Input {
+        let w = crate::sim::json_input::world_from_json(s).map_err(|e| RecorderError::Input {
             path: format!("scene.{}", e.path),
             message: e.message,
         })?;

@@ -70,6 +70,7 @@ pub mod demo;
 mod fast_math;
 pub mod generate;
 pub mod geometry;
+pub mod json_input;
 pub mod motions;
 pub mod panda;
 pub mod reach;

@@ -253,7 +253,7 @@ impl Teacher {
         let snapshot = match scene {
             None => b.scene_snapshot(),
             Some(text) => {
-                let w = crate::json_input::world_from_json(&text)
+                let w = crate::sim::json_input::world_from_json(&text)
                     .map_err(js_err)?
                     .with_motions(b.motions());
                 if w.name() != b.dir_name() {

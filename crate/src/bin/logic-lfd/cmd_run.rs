@@ -208,14 +208,14 @@ fn replay(path: &PathBuf) -> ExitCode {
         Err(e) => return bad(format!("{}: {e}", path.display())),
     };
     // Accept the whole `--json` report or the bare log; errors name the JSON path and position.
-    let value: serde_json::Value = match logic_lfd::json_input::from_str(&text) {
+    let value: serde_json::Value = match logic_lfd::sim::json_input::from_str(&text) {
         Ok(v) => v,
         Err(e) => return bad(format!("{}: {e}", path.display())),
     };
     let log = if value.get("log").is_some() {
-        logic_lfd::json_input::from_str::<Report>(&text).map(|r| r.log)
+        logic_lfd::sim::json_input::from_str::<Report>(&text).map(|r| r.log)
     } else {
-        logic_lfd::json_input::from_str::<EpisodeLog>(&text)
+        logic_lfd::sim::json_input::from_str::<EpisodeLog>(&text)
     };
     let log = match log {
         Ok(l) => l,

@@ -76,7 +76,7 @@ fn load(path: &Path) -> Result<World, ExitCode> {
         eprintln!("{file}: cannot read: {e}");
         ExitCode::from(exit::BAD_INPUT)
     })?;
-    let world = logic_lfd::json_input::world_from_json(&text).map_err(|e| {
+    let world = logic_lfd::sim::json_input::world_from_json(&text).map_err(|e| {
         eprintln!("{file}: {e}");
         ExitCode::from(exit::BAD_INPUT)
     })?;

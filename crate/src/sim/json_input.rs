@@ -4,7 +4,7 @@
 
 use serde::de::DeserializeOwned;
 
-use crate::sim::{SceneError, World};
+use super::{SceneError, World};
 
 /// A JSON document that does not parse into the expected type.
 #[derive(Clone, Debug, PartialEq, Eq)]
