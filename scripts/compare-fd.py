@@ -15,11 +15,16 @@ that range, when logic-lfd proves a dead end FD solves, or when a proved optimal
 
     python3 scripts/compare-fd.py [DIR ...] [--time-limit S] [--random N] [--seed S] [--json]
                                   [--h0-only] [--renumberings K] [--stop-after N]
+                                  [--expansion-renumberings K]
 
 Problems run in natural order (probBLOCKS-9-0 before probBLOCKS-10-0), so that with
 --stop-after N a domain's remaining problems (not the random tasks) are skipped, and reported as skipped, once N in a
 row were solved by neither planner: IPC problems grow with their number, and the skipped ones
 would each cost both time limits for nothing.
+
+Expansions depend on that order too (A* meets other LM-cut values on the way). With
+--expansion-renumberings K, where the two counts differ by more than 20 %, FD solves the problem
+again over K renumberings, and the row shows FD's own spread of expansions.
 
 --h0-only compares the initial LM-cut values alone (both planners stop after the first state):
 seconds per problem instead of the time limit.
@@ -165,8 +170,9 @@ def renumber_sas(text, seed):
     return "\n".join(out)
 
 
-def fd_h0_range(py, script, domain, problem, count, limit):
-    """Fast Downward's initial LM-cut values over `count` renumberings of its SAS+ variables."""
+def fd_renumbered(py, script, domain, problem, count, limit, pattern, search):
+    """What `pattern` captures from Fast Downward's output, over `count` renumberings of its
+    SAS+ variables (one int per run that printed it)."""
     binary = os.path.join(os.path.dirname(script), "builds", "release", "bin", "downward")
     values = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -177,13 +183,28 @@ def fd_h0_range(py, script, domain, problem, count, limit):
             return values
         text = open(sas_path).read()
         for seed in range(count):
-            p = subprocess.run([binary, "--search", "astar(lmcut(), bound=0)"],
-                               input=renumber_sas(text, seed), cwd=tmp,
-                               capture_output=True, text=True, timeout=limit)
-            m = re.search(r"Initial heuristic value for lmcut: (\d+)", p.stdout)
+            try:
+                p = subprocess.run([binary, "--search", search],
+                                   input=renumber_sas(text, seed), cwd=tmp,
+                                   capture_output=True, text=True, timeout=limit)
+            except subprocess.TimeoutExpired:
+                continue
+            m = re.search(pattern, p.stdout)
             if m:
                 values.append(int(m.group(1)))
     return values
+
+
+def fd_h0_range(py, script, domain, problem, count, limit):
+    """Fast Downward's initial LM-cut values over `count` renumberings of its SAS+ variables."""
+    return fd_renumbered(py, script, domain, problem, count, limit,
+                         r"Initial heuristic value for lmcut: (\d+)", "astar(lmcut(), bound=0)")
+
+
+def fd_expanded_range(py, script, domain, problem, count, limit):
+    """Fast Downward's A* + LM-cut expansions over `count` renumberings of its SAS+ variables."""
+    return fd_renumbered(py, script, domain, problem, count, limit,
+                         r"Expanded (\d+) state", "astar(lmcut())")
 
 
 def cpu_limit(seconds):
@@ -330,11 +351,15 @@ def main():
     ap.add_argument("--renumberings", type=int, default=40,
                     help="where initial values differ, FD's values over this many renumberings "
                          "of its SAS+ variables (0: none)")
+    ap.add_argument("--expansion-renumberings", type=int, default=0,
+                    help="where expansions differ by more than 20 %%, FD's expansions over this "
+                         "many renumberings of its SAS+ variables (0: none)")
     ap.add_argument("--stop-after", type=int, default=0,
                     help="skip a domain's remaining problems once this many in a row were solved "
                          "by neither planner (0: never)")
     a = ap.parse_args()
-    dirs = a.dirs or sorted(d for d in glob.glob(os.path.join(ROOT, "..", "shared", "ipc", "*"))
+    # Absolute: Fast Downward runs in a temporary directory.
+    dirs = [os.path.abspath(d) for d in a.dirs] or sorted(d for d in glob.glob(os.path.join(ROOT, "..", "shared", "ipc", "*"))
                             if os.path.isdir(d))
     py = fd_python()
     script = fd_script(py)
@@ -393,11 +418,16 @@ def main():
                     above.append(name)
         if fd["solved"] and us.get("solved") and fd["cost"] != us["cost"]:
             cost_diff.append(name)
+        if a.expansion_renumberings > 0 and fd["solved"] and us.get("solved") \
+                and not within_20(row):
+            row["fd_renumbered_expanded"] = fd_expanded_range(
+                py, script, domain, prob, a.expansion_renumberings, a.time_limit)
         rows.append(row)
         unsolved = not a.h0_only and not fd["solved"] and not us.get("solved")
         misses[family(name)] = misses.get(family(name), 0) + 1 if unsolved else 0
         print(f"{name}: h0 FD {fd_h} {row.get('fd_renumbered_h0', '')} ours {our_h}; cost FD "
-              f"{fd['cost']} ours {us.get('cost')}; expanded FD {fd['expanded']} ours "
+              f"{fd['cost']} ours {us.get('cost')}; expanded FD {fd['expanded']} "
+              f"{row.get('fd_renumbered_expanded', '')} ours "
               f"{us.get('expanded')}", file=sys.stderr)
     both = [r for r in rows if r["fd"]["solved"] and r["ours"].get("solved")]
     paired_h = [(r["fd"]["initial_h"], r["ours"]["initial_h"]) for r in rows
