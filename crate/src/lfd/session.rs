@@ -145,7 +145,10 @@ impl Session {
         motions
             .check_arms(world.arm_names().len())
             .map_err(SessionError::Json)?;
-        let template = World::from_json(&files.scene)?.with_motions(Arc::clone(&motions));
+        // One JSON reader for scenes in the session: a second would add its own copy of the
+        // scene's deserialiser to the page's first-load module.
+        let template = crate::sim::json_input::world_from_json(&files.scene)?
+            .with_motions(Arc::clone(&motions));
         let model = DomainModel::new(
             &files.domain,
             &files.file("domain.pddl"),
