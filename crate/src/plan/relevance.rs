@@ -17,9 +17,11 @@
 //!
 //! Optimal costs are therefore equal, and a search over the relevant part never tells apart two
 //! states that differ only in irrelevant facts (which is where it saves expansions). The
-//! relaxation heuristics (h_max, h_add, h_FF, LM-cut) take the same value on a state and its
-//! projection, since the relaxed achievers of relevant facts are relevant operators.
+//! relaxation heuristics h_max, h_add and h_FF take the same value on a state and its projection,
+//! since the relaxed achievers of relevant facts are relevant operators; LM-cut stays admissible
+//! but may differ where its ties are broken by the order facts are met.
 
+use super::search::sanitize_goals;
 use super::task::{Condition, FactId, Goal, Operator, State, Task};
 
 /// The relevant part of a task and the way back to the task's own facts and operators.
@@ -60,13 +62,7 @@ impl Relevance {
 /// one makes its alternative unreachable, a negative one holds vacuously.
 pub fn relevant_part(task: &Task) -> Option<Relevance> {
     let n = task.facts.len();
-    let known = |f: &FactId| (*f as usize) < n;
-    let alternatives: Vec<&Condition> = task
-        .goal
-        .alternatives
-        .iter()
-        .filter(|c| c.pos.iter().all(known))
-        .collect();
+    let goal = sanitize_goals(n, std::slice::from_ref(&task.goal)).remove(0);
 
     // Operators by the facts they change, to walk from a fact to its achievers and deleters.
     let mut changers: Vec<Vec<u32>> = vec![Vec::new(); n];
@@ -88,8 +84,8 @@ pub fn relevant_part(task: &Task) -> Option<Relevance> {
             stack.push(f);
         }
     }
-    for c in &alternatives {
-        for &f in c.pos.iter().chain(&c.neg).filter(|f| known(f)) {
+    for c in &goal.alternatives {
+        for &f in c.pos.iter().chain(&c.neg) {
             mark(f, &mut fact_rel, &mut stack);
         }
     }
@@ -136,7 +132,8 @@ pub fn relevant_part(task: &Task) -> Option<Relevance> {
         })
         .collect();
     let goal = Goal {
-        alternatives: alternatives
+        alternatives: goal
+            .alternatives
             .iter()
             .map(|c| Condition {
                 pos: map(&c.pos),

@@ -47,7 +47,7 @@ struct Entry {
 
 /// Keeps only what the task knows: facts `≥ n` never hold, so alternatives needing one are
 /// dropped and negative literals on them are vacuous.
-fn sanitize_goals(n: usize, goals: &[Goal]) -> Vec<Goal> {
+pub(crate) fn sanitize_goals(n: usize, goals: &[Goal]) -> Vec<Goal> {
     goals
         .iter()
         .map(|g| Goal {

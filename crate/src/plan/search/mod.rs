@@ -40,7 +40,7 @@ use crate::plan::{State, Task};
 use std::fmt;
 use std::str::FromStr;
 
-pub(crate) use engine::run;
+pub(crate) use engine::{run, sanitize_goals};
 
 /// The search algorithm of a configuration.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
