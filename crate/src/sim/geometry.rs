@@ -93,9 +93,9 @@ pub(crate) fn hand_within(
     margin: f64,
 ) -> bool {
     let cap = hand_shape(tcp, margin);
-    boxes.iter().any(|(iso, c)| {
-        parry3d_f64::query::intersection_test(&Isometry3::identity(), &cap, iso, c).unwrap_or(true)
-    })
+    boxes
+        .iter()
+        .any(|(iso, c)| super::collide::intersects(&Isometry3::identity(), &cap, iso, c))
 }
 
 /// Clearance of a transit over the tops below it (m).
@@ -229,11 +229,8 @@ fn hand_depth(tcp: &Isometry3<f64>, boxes: &[(Isometry3<f64>, Cuboid)]) -> f64 {
     boxes
         .iter()
         .filter_map(|(iso, c)| {
-            match parry3d_f64::query::contact(&Isometry3::identity(), &cap, iso, c, 0.0) {
-                Ok(Some(k)) => Some((-k.dist).max(0.0)),
-                Ok(None) => None,
-                Err(_) => Some(f64::INFINITY),
-            }
+            super::collide::contact(&Isometry3::identity(), &cap, iso, c, 0.0)
+                .map(|k| (-k.dist).max(0.0))
         })
         .fold(0.0, f64::max)
 }

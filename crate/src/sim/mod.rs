@@ -66,6 +66,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod benchmark;
+pub mod collide;
 pub mod demo;
 mod fast_math;
 pub mod generate;

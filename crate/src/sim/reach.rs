@@ -7,8 +7,8 @@ use super::demo::{pull_hook_poses_turned, PULL_LIFT, PULL_TARGET_RADIUS, PULL_TU
 use super::geometry;
 use super::snapshot::BodyKind;
 use super::World;
+use crate::sim::collide;
 use nalgebra::{Isometry3, Translation3};
-use parry3d_f64::query;
 use parry3d_f64::shape::Cuboid;
 
 /// Height above a top grasp that the hand must reach too, to come down onto the block (m).
@@ -115,7 +115,7 @@ pub fn hook_can_pull(w: &World, arm: usize, hook: &str, x: &str) -> bool {
         parts.iter().any(|(iso, c)| {
             others
                 .iter()
-                .any(|(oi, oc)| query::intersection_test(iso, c, oi, oc).unwrap_or(true))
+                .any(|(oi, oc)| collide::intersects(iso, c, oi, oc))
         })
     };
     // Everything but the tables, the hook and x, shrunk by SLACK, a shelf by `shelf_slack`.

@@ -2,9 +2,9 @@
 //! ask of it: bounds, centroid, containment of a point, the top face under a point, and the
 //! penetration depth with another body.
 
+use crate::sim::collide;
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Point3, Vector3};
-use parry3d_f64::query;
 use parry3d_f64::shape::Cuboid;
 
 /// One body: a union of boxes at a pose.
@@ -95,7 +95,7 @@ impl Body {
         let mut depth: f64 = 0.0;
         for (ia, ca) in self.world_parts() {
             for (ib, cb) in other.world_parts() {
-                if let Ok(Some(c)) = query::contact(&ia, ca, &ib, cb, 0.0) {
+                if let Some(c) = collide::contact(&ia, ca, &ib, cb, 0.0) {
                     depth = depth.max(-c.dist);
                 }
             }

@@ -3,9 +3,10 @@
 
 use super::settle::Settle;
 use super::{World, WorldEvent};
+use crate::sim::collide;
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Vector3};
-use parry3d_f64::query;
+use parry3d_f64::query::ShapeCastOptions;
 
 /// A hook moving less than this horizontally in a step pushes nothing (m).
 const MIN_HOOK_STROKE: f64 = 1e-9;
@@ -46,14 +47,14 @@ impl World {
             for (hp, hc) in &self.bodies[hi].parts {
                 let hiso = before * hp;
                 for (bp, bc) in b.world_parts() {
-                    let opts = query::ShapeCastOptions {
+                    let opts = ShapeCastOptions {
                         max_time_of_impact: 1.0,
                         target_distance: 0.0,
                         stop_at_penetration: false,
                         compute_impact_geometry_on_penetration: false,
                     };
-                    if let Ok(Some(hit)) =
-                        query::cast_shapes(&hiso, &d, hc, &bp, &Vector3::zeros(), bc, opts)
+                    if let Some(hit) =
+                        collide::cast(&hiso, &d, hc, &bp, &Vector3::zeros(), bc, opts)
                     {
                         // Separating contacts at time 0 are discarded by parry
                         // (`stop_at_penetration: false`), so a hit is a blade driving into it.
@@ -108,7 +109,7 @@ impl World {
         let shift = Isometry3::translation(push.x, push.y, push.z);
         for (hiso, hc) in self.bodies[hi].world_parts() {
             for (biso, bc) in self.bodies[bi].world_parts() {
-                let Ok(Some(k)) = query::contact(&hiso, hc, &(shift * biso), bc, 0.0) else {
+                let Some(k) = collide::contact(&hiso, hc, &(shift * biso), bc, 0.0) else {
                     continue;
                 };
                 let n = k.normal1.into_inner();

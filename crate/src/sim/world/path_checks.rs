@@ -2,10 +2,10 @@
 //! moved along a straight joint-space line, would sweep through (without moving anything).
 
 use super::{Body, World, DEPTH_EPSILON, LINK_TOLERANCE};
+use crate::sim::collide;
 use crate::sim::panda::{self, DOF};
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Point3};
-use parry3d_f64::query;
 use parry3d_f64::shape::{Capsule, Cuboid};
 
 /// Bodies' boxes are shrunk by this before a path check (m), so that touching faces and resting
@@ -49,9 +49,7 @@ impl World {
             let cap = crate::sim::geometry::hand_shape(tcp, 0.0);
             others
                 .iter()
-                .filter(|(_, iso, c)| {
-                    query::intersection_test(&Isometry3::identity(), &cap, iso, c).unwrap_or(true)
-                })
+                .filter(|(_, iso, c)| collide::intersects(&Isometry3::identity(), &cap, iso, c))
                 .map(|(j, _, _)| *j)
                 .collect()
         };
@@ -100,9 +98,7 @@ impl World {
             for (pi, (p0, p1, r)) in caps.iter().enumerate().skip(1) {
                 let cap = Capsule::new(Point3::from(*p0), Point3::from(*p1), *r);
                 for (oi, (_, iso, c)) in others.iter().enumerate() {
-                    if query::intersection_test(&Isometry3::identity(), &cap, iso, c)
-                        .unwrap_or(true)
-                    {
+                    if collide::intersects(&Isometry3::identity(), &cap, iso, c) {
                         out.push((pi, oi));
                     }
                 }
@@ -111,7 +107,7 @@ impl World {
             for (li, (off, lc)) in load.iter().enumerate() {
                 let liso = tcp * off;
                 for (oi, (_, iso, c)) in others.iter().enumerate() {
-                    if query::intersection_test(&liso, lc, iso, c).unwrap_or(true) {
+                    if collide::intersects(&liso, lc, iso, c) {
                         out.push((caps.len() + li, oi));
                     }
                 }

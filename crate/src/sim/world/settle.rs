@@ -3,11 +3,12 @@
 //! there), the stack resting on a body, releases, and bodies lost to the floor.
 
 use super::{World, WorldEvent};
+use crate::sim::collide;
 use crate::sim::geometry::yaw_of;
 use crate::sim::motions::Relation;
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
-use parry3d_f64::query;
+use parry3d_f64::query::ShapeCastOptions;
 
 /// Where a released or moved body would come to rest.
 pub(super) enum Settle {
@@ -140,14 +141,14 @@ impl World {
             for (bp, bc) in &b.parts {
                 let biso = start * bp;
                 for (op, oc) in o.world_parts() {
-                    let opts = query::ShapeCastOptions {
+                    let opts = ShapeCastOptions {
                         max_time_of_impact: max_fall,
                         target_distance: 0.0,
                         stop_at_penetration: true,
                         compute_impact_geometry_on_penetration: false,
                     };
-                    if let Ok(Some(hit)) =
-                        query::cast_shapes(&biso, &down, bc, &op, &Vector3::zeros(), oc, opts)
+                    if let Some(hit) =
+                        collide::cast(&biso, &down, bc, &op, &Vector3::zeros(), oc, opts)
                     {
                         if best.is_none_or(|(t, _)| hit.time_of_impact < t) {
                             best = Some((hit.time_of_impact, j));

@@ -3,11 +3,11 @@
 //! and the held body carried along.
 
 use super::{Body, GripperCommand, SimError, World, DEPTH_EPSILON, LINK_TOLERANCE};
+use crate::sim::collide;
 use crate::sim::fast_math::norm3;
 use crate::sim::panda::{self, DOF};
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Point3, Vector3};
-use parry3d_f64::query;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -402,8 +402,7 @@ impl World {
                     continue;
                 }
                 for (iso, c) in body.world_parts() {
-                    if let Ok(Some(k)) = query::contact(&Isometry3::identity(), &cap, &iso, c, 0.0)
-                    {
+                    if let Some(k) = collide::contact(&Isometry3::identity(), &cap, &iso, c, 0.0) {
                         if -k.dist > best.0 {
                             best = (-k.dist, Some(j));
                         }

@@ -5,10 +5,10 @@
 use super::load::{check_color, check_name};
 use super::settle::Settle;
 use super::{Body, World};
+use crate::sim::collide;
 use crate::sim::geometry::yaw_of;
 use crate::sim::snapshot::BodyKind;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
-use parry3d_f64::query;
 use parry3d_f64::shape::Cuboid;
 use serde::{Deserialize, Serialize};
 
@@ -161,9 +161,7 @@ impl World {
         for ai in 0..self.arms.len() {
             for cap in self.arm_capsules(ai) {
                 for (iso, c) in self.bodies[bi].world_parts() {
-                    if query::intersection_test(&Isometry3::identity(), &cap, &iso, c)
-                        .unwrap_or(false)
-                    {
+                    if collide::intersects(&Isometry3::identity(), &cap, &iso, c) {
                         return Err(format!("it would hit the arm {}", self.arms[ai].name));
                     }
                 }

@@ -4,9 +4,9 @@
 
 use std::collections::BTreeMap;
 
+use crate::sim::collide::{self, Solid};
 use nalgebra::{Isometry3, Point3, Translation3, Vector3};
-use parry3d_f64::query;
-use parry3d_f64::shape::{Capsule, Cuboid, Shape};
+use parry3d_f64::shape::{Capsule, Cuboid};
 
 use super::obstacles::{box_aabb, overlaps, Obstacle};
 use super::{fmt_point, Geo, Predicted, StreamBinder};
@@ -127,7 +127,7 @@ enum PartShape {
 }
 
 impl PartShape {
-    fn as_shape(&self) -> &dyn Shape {
+    fn as_shape(&self) -> &dyn Solid {
         match self {
             PartShape::Capsule(c) => c,
             PartShape::Cuboid(c) => c,
@@ -555,17 +555,17 @@ fn line_samples(
 
 /// Whether shape `c` at `iso` hits obstacle `o`: overlaps it, or, when it started the path
 /// inside it, is now deeper than `allowed_depth`.
-fn hits(iso: &Isometry3<f64>, c: &dyn Shape, o: &Obstacle, allowed_depth: Option<f64>) -> bool {
+fn hits(iso: &Isometry3<f64>, c: &dyn Solid, o: &Obstacle, allowed_depth: Option<f64>) -> bool {
     match allowed_depth {
         Some(allowed) => depth_in(iso, c, o).is_some_and(|d| d > allowed),
-        None => query::intersection_test(iso, c, &o.iso, &o.shape).unwrap_or(true),
+        None => collide::intersects(iso, c, &o.iso, &o.shape),
     }
 }
 
 /// How deep shape `c` at `iso` is inside obstacle `o` (m), if they overlap.
-fn depth_in(iso: &Isometry3<f64>, c: &dyn Shape, o: &Obstacle) -> Option<f64> {
-    match query::contact(iso, c, &o.iso, &o.shape, 0.0) {
-        Ok(Some(k)) if k.dist < 0.0 => Some(-k.dist),
+fn depth_in(iso: &Isometry3<f64>, c: &dyn Solid, o: &Obstacle) -> Option<f64> {
+    match collide::contact(iso, c, &o.iso, &o.shape, 0.0) {
+        Some(k) if k.dist < 0.0 => Some(-k.dist),
         _ => None,
     }
 }

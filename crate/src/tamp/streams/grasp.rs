@@ -1,8 +1,8 @@
 //! The grasp stream: the executor's grasp of a body where the rolled-forward state has it, the
 //! approach, close and lift certified, and the body's lift checked for overhangs.
 
+use crate::sim::collide;
 use nalgebra::{Isometry3, Vector3};
-use parry3d_f64::query;
 use parry3d_f64::shape::Cuboid;
 
 use super::obstacles::{box_aabb, shrunk_by};
@@ -97,9 +97,9 @@ impl StreamBinder<'_> {
                     let (lo, _) = box_aabb(oiso, oc);
                     let other = shrunk_by(oc, slack);
                     lo.z > middle
-                        && swept.iter().any(|(iso, c)| {
-                            query::intersection_test(iso, c, oiso, &other).unwrap_or(true)
-                        })
+                        && swept
+                            .iter()
+                            .any(|(iso, c)| collide::intersects(iso, c, oiso, &other))
                 });
                 hit.then(|| name.clone())
             })

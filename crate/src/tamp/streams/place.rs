@@ -1,8 +1,8 @@
 //! The release streams: a body put down on a block or on a surface (table, shelf, region), its
 //! resting spots sampled and ordered, each spot and the release motion certified.
 
+use crate::sim::collide;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
-use parry3d_f64::query;
 use parry3d_f64::shape::Cuboid;
 use rand::Rng;
 
@@ -163,14 +163,14 @@ impl StreamBinder<'_> {
                 };
                 for (oiso, oc) in self.parts_at(name, p) {
                     let other = self.shrink(&oc);
-                    if query::intersection_test(&iso, test_shape, &oiso, &other).unwrap_or(true) {
+                    if collide::intersects(&iso, test_shape, &oiso, &other) {
                         return false;
                     }
                 }
             }
             for b in &self.fixed {
                 for (fiso, fc) in &b.parts {
-                    if query::intersection_test(&iso, &me, fiso, fc).unwrap_or(true) {
+                    if collide::intersects(&iso, &me, fiso, fc) {
                         return false;
                     }
                 }

@@ -1,8 +1,9 @@
 //! The pull stream: the hook's stroke (radial, then turned), where it leaves the pulled body
 //! (shape casts of the hook and of the pushed body), the stroke's motion certified.
 
+use crate::sim::collide;
 use nalgebra::{Isometry3, Translation3, Vector3};
-use parry3d_f64::query;
+use parry3d_f64::query::ShapeCastOptions;
 
 use super::obstacles::Obstacle;
 use super::{Geo, Held, StreamBinder, Transit};
@@ -58,7 +59,7 @@ impl StreamBinder<'_> {
         let tp = pulled * g.inverse();
         let d = pulled.translation.vector - contact.translation.vector;
         // When does the blade meet the block along the stroke?
-        let opts = query::ShapeCastOptions {
+        let opts = ShapeCastOptions {
             max_time_of_impact: 1.0,
             target_distance: 0.0,
             stop_at_penetration: false,
@@ -67,8 +68,8 @@ impl StreamBinder<'_> {
         let mut toi = f64::INFINITY;
         for (hiso, hc) in self.parts_at(&hook, &contact) {
             for (biso, bc) in self.parts_at(body, &bp) {
-                if let Ok(Some(hit)) =
-                    query::cast_shapes(&hiso, &d, &hc, &biso, &Vector3::zeros(), &bc, opts)
+                if let Some(hit) =
+                    collide::cast(&hiso, &d, &hc, &biso, &Vector3::zeros(), &bc, opts)
                 {
                     toi = toi.min(hit.time_of_impact);
                 }
@@ -101,7 +102,7 @@ impl StreamBinder<'_> {
                 let pressed = self.pressed(&bc, 0.0);
                 for o in &others {
                     let shape = if o.fixed { &pressed } else { &plain };
-                    if let Ok(Some(hit)) = query::cast_shapes(
+                    if let Some(hit) = collide::cast(
                         &biso,
                         &push,
                         shape,
