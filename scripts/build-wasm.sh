@@ -4,8 +4,9 @@
 # ready on require), wasm-opt from the npm `binaryen` package (Debian's binaryen 108 emits broken
 # modules).
 # Also builds pkg/page/ (not part of the npm package) for the page: logic_lfd.js, its first-load
-# module (feature `wasm-core`: the Session and `benchmark`, without Teach mode, Session.replay, the
-# PDDL tab's plan, check, logicLfd and logicLfdPerturb, and the npm-only lqt, validate and
+# module (feature `wasm-core` alone: the Session on B1's template task and `benchmark`, without
+# Teach mode, Session.replay, Session.fromScene, B2, B3, N-block tasks, JSON paths in load errors,
+# the PDDL tab's plan, check, logicLfd and logicLfdPerturb, and the npm-only lqt, validate and
 # runEpisode; size-optimised profile wasm-release, then wasm-opt -O3, for the first-load target),
 # and logic_lfd_teach.js, the full module under its own name (the npm package's build), which the
 # page's worker fetches after the first frame and moves its session onto (web/src/speed-up.ts).

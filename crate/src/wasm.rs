@@ -6,11 +6,12 @@
 //! TypeScript declarations from `tsify` or hand-written custom sections); every fallible call
 //! returns a rejected value carrying a message instead of panicking.
 //!
-//! Feature `wasm-core` builds the page's first-load module: the closed-loop `Session` and
-//! `benchmark`, without Teach mode (`Teacher`, taught tasks), `Session.replay`, the PDDL tab's
-//! `plan`, `check`, `logicLfd` and `logicLfdPerturb`, and the npm-only `lqt`, `validate` and
-//! `runEpisode`; `wasm` adds them (the npm package, and the module the page loads after its first
-//! frame).
+//! Feature `wasm-core` alone builds the page's first-load module (cfg `first_load`, set by
+//! `build.rs`): the closed-loop `Session` on B1's template task and `benchmark`, without Teach
+//! mode (`Teacher`, taught tasks), `Session.replay`, `Session.fromScene`, B2, B3, N-block tasks,
+//! JSON paths in load errors, the PDDL tab's `plan`, `check`, `logicLfd` and `logicLfdPerturb`,
+//! and the npm-only `lqt`, `validate` and `runEpisode`; `wasm` adds them (the npm package, and the
+//! module the page loads after its first frame).
 
 use crate::plan::Clock;
 use wasm_bindgen::prelude::*;

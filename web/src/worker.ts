@@ -2,12 +2,13 @@
  * The Web Worker that owns the wasm module and the closed-loop Session: planning and simulation
  * never run on the page's thread, so the page never freezes. It plays the session in real time
  * (scaled by `speed`) and pushes a frame after every tick. Its first module is the page's
- * size-built first load ('logic-lfd-page': the Session and `benchmark`); teach-worker.ts fetches
- * the full one (built for speed) when Teach mode, `Session.replay` or the PDDL tab's calls need
- * it, and speed-up.ts moves the session onto it after the first frame.
+ * size-built first load ('logic-lfd-page': the Session on B1's template task, and `benchmark`);
+ * teach-worker.ts fetches the full one (built for speed) when Teach mode, `Session.replay`, the
+ * PDDL tab's calls, a loaded scene, B2, B3 or an N-block task need it, and speed-up.ts moves the
+ * session onto it after the first frame.
  */
 import init, * as lfd from 'logic-lfd-page';
-import type { Frame } from 'logic-lfd';
+import type { Frame, SessionOptions } from 'logic-lfd';
 import type { Api, ApiKind, FromWorker, Level, ToWorker } from './protocol';
 import { teachHandlers, teachLastPanic, teachMemoryBytes, teachModule } from './teach-worker';
 import { type FullSession, fullModule, speedUp, speedUpState } from './speed-up';
@@ -65,6 +66,15 @@ function tick(): void {
   if (playing) timer = setTimeout(tick, Math.max(0, TICK_MS - (performance.now() - now)));
 }
 
+/**
+ * Whether the first-load module runs a session: it carries B1's template task only (B2's and B3's
+ * demonstrations and the generator of N-block tasks are left out to keep the first load small);
+ * the rest opens on the full module, fetched on demand if speed-up.ts has not fetched it yet.
+ */
+function firstLoadRuns(options: SessionOptions): boolean {
+  return options.benchmark === 'b1' && options.blocks == null;
+}
+
 type Handlers = { [K in ApiKind]: (args: Api[K]['args']) => Api[K]['result'] | Promise<Api[K]['result']> };
 
 const handlers: Handlers = {
@@ -74,10 +84,12 @@ const handlers: Handlers = {
   check: async ({ domain, problem }) => (await teachModule()).check(domain, problem),
   logicLfd: async ({ input }) => (await teachModule()).logicLfd(input),
   logicLfdPerturb: async ({ input }) => (await teachModule()).logicLfdPerturb(input),
-  benchmark: ({ id }) => lfd.benchmark(id),
-  open: ({ options, scene }) => {
-    const m = fullModule() ?? lfd;
-    return replace(scene === undefined ? new m.Session(options) : m.Session.fromScene(options, scene));
+  benchmark: async ({ id }) => (id === 'b1' ? (fullModule() ?? lfd) : await teachModule()).benchmark(id),
+  open: async ({ options, scene }) => {
+    // A loaded scene opens on the full module, whose errors name the JSON path at fault.
+    if (scene !== undefined) return replace((await teachModule()).Session.fromScene(options, scene));
+    const m = fullModule() ?? (firstLoadRuns(options) ? lfd : await teachModule());
+    return replace(new m.Session(options));
   },
   speedUp: () => {
     speedUp(

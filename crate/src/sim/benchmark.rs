@@ -93,12 +93,35 @@ impl Benchmark {
     }
 
     /// The demonstration (`domains/<dir>/demo.json`).
+    ///
+    /// The page's first-load wasm module (cfg `first_load`) embeds B1's only (B2's and B3's are
+    /// three quarters of its data) and returns `""` for the others, which
+    /// [`Benchmark::available`] refuses before anything reads them.
     pub fn demo_json(self) -> &'static str {
         match self {
             Benchmark::B1 => include_str!("../../../domains/b1-tower/demo.json"),
+            #[cfg(not(first_load))]
             Benchmark::B2 => include_str!("../../../domains/b2-workspace-reach/demo.json"),
+            #[cfg(not(first_load))]
             Benchmark::B3 => include_str!("../../../domains/b3-dual-arm/demo.json"),
+            #[cfg(first_load)]
+            Benchmark::B2 | Benchmark::B3 => "",
         }
+    }
+
+    /// Whether this build carries the benchmark's demonstration: always, except B2 and B3 in
+    /// the page's first-load wasm module (cfg `first_load`), where the error says so.
+    pub fn available(self) -> Result<(), SceneError> {
+        if cfg!(first_load) && self != Benchmark::B1 {
+            return Err(SceneError {
+                path: String::new(),
+                message: format!(
+                    "{} runs on the page's full module, not its first-load module",
+                    self.as_str()
+                ),
+            });
+        }
+        Ok(())
     }
 
     /// What the domain's actions do physically and how its predicates read the scene
@@ -144,6 +167,7 @@ impl Benchmark {
     /// The benchmark's files (embedded in the library), the scene as the JSON of
     /// [`Benchmark::scene_snapshot`].
     pub fn sources(self) -> Result<BenchmarkSources, SceneError> {
+        self.available()?;
         let scene = serde_json::to_string(&self.scene_snapshot()).map_err(|e| SceneError {
             path: "snapshot".into(),
             message: e.to_string(),

@@ -66,6 +66,7 @@ pub(crate) fn string_arg(func: &str, param: &str, v: &JsValue) -> Result<String,
 }
 
 /// `v` as a string when given (`undefined` and `null` read as absent), else a `TypeError`.
+#[cfg(not(first_load))]
 pub(crate) fn optional_string_arg(
     func: &str,
     param: &str,

@@ -35,6 +35,7 @@ pub fn benchmark(
     let id = string_arg("benchmark", "id", &id)?;
     let b = Benchmark::parse(&id)
         .ok_or_else(|| js_err(format!("unknown benchmark `{id}` (expected b1, b2 or b3)")))?;
+    b.available().map_err(|e| js_err(e.message))?;
     to_js(&BenchmarkInfo {
         id: b.as_str(),
         name: b.dir_name(),

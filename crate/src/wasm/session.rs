@@ -2,9 +2,7 @@
 //! workcell, stepped from JS. Its frames cross the boundary with camelCase names (the world
 //! snapshot inside keeps the scene file's names; the episode log keeps the CLI's).
 
-use super::args::{
-    number_arg, object_arg, optional_string_arg, string_arg, type_error, type_name, StringArg,
-};
+use super::args::{number_arg, object_arg, string_arg, type_error, type_name};
 use super::{from_js, js_err, seed_of, to_js, PerformanceClock};
 use crate::lfd::control::Replan;
 use crate::lfd::session::{EePoint, Frame, PerturbOutcome, Status};
@@ -189,16 +187,19 @@ impl WasmSession {
 
     /// A session on a benchmark's task in a different starting scene (a saved `WorldSnapshot`
     /// JSON), optionally with another demonstration (`demo.json` text).
+    // Not in the page's first-load module: the page loads files on the full module, whose errors
+    // name the JSON path of the value at fault.
+    #[cfg(not(first_load))]
     #[wasm_bindgen(js_name = fromScene)]
     pub fn from_scene(
         #[wasm_bindgen(unchecked_param_type = "SessionOptions")] options: JsValue,
         #[wasm_bindgen(unchecked_param_type = "string")] scene: JsValue,
-        demo: Option<StringArg>,
+        demo: Option<super::args::StringArg>,
     ) -> Result<WasmSession, JsValue> {
         const F: &str = "Session.fromScene";
         let o = session_options(F, &options)?;
         let scene = string_arg(F, "scene", &scene)?;
-        let demo = optional_string_arg(F, "demo", demo)?;
+        let demo = super::args::optional_string_arg(F, "demo", demo)?;
         let inner =
             crate::lfd::session::Session::from_scene(o, &scene, demo.as_deref()).map_err(js_err)?;
         Ok(WasmSession { inner })

@@ -57,7 +57,16 @@ pub fn sources_for(
 ) -> Result<crate::sim::benchmark::BenchmarkSources, SessionError> {
     Ok(match blocks {
         None => b.sources()?,
+        #[cfg(not(first_load))]
         Some(n) => crate::sim::generate::tower_task(b, n)?,
+        // Recording a generated task's demonstration needs the scripted expert, which the page's
+        // first-load module leaves out.
+        #[cfg(first_load)]
+        Some(_) => {
+            return Err(SessionError::Json(
+                "generated tasks run on the page's full module, not its first-load module".into(),
+            ))
+        }
     })
 }
 

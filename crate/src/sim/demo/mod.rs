@@ -228,9 +228,6 @@ pub fn from_json(text: &str) -> Result<Demonstration, DemoError> {
 
 /// The committed demonstration of a benchmark (`domains/<dir>/demo.json`).
 pub fn committed(b: Benchmark) -> Result<Demonstration, DemoError> {
-    from_json(match b {
-        Benchmark::B1 => include_str!("../../../../domains/b1-tower/demo.json"),
-        Benchmark::B2 => include_str!("../../../../domains/b2-workspace-reach/demo.json"),
-        Benchmark::B3 => include_str!("../../../../domains/b3-dual-arm/demo.json"),
-    })
+    b.available().map_err(|e| DemoError::Json(e.message))?;
+    from_json(b.demo_json())
 }

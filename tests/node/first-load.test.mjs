@@ -1,0 +1,66 @@
+// The page's first-load module (pkg/page/logic_lfd_bg.wasm, what the page's worker starts on):
+// it runs B1's template task exactly as the npm package does, and refuses, with a message, what it
+// leaves to the full module (B2, B3, N-block tasks, loaded scenes), which the worker then opens
+// there.
+import { describe, test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+
+const page = await import(new URL('../../pkg/page/logic_lfd.js', import.meta.url).href);
+page.initSync({ module: readFileSync(new URL('../../pkg/page/logic_lfd_bg.wasm', import.meta.url)) });
+const full = await import(new URL('../../pkg/node/index.mjs', import.meta.url).href);
+
+/** An episode with injected disturbances, its log with the wall-clock times zeroed. */
+function episode(mod, options) {
+  const s = new mod.Session(options);
+  try {
+    const inject = [[1, 'l3'], [4, 'l4'], [7, 'l2']];
+    let f = s.frame();
+    while (!['done', 'failed'].includes(f.status.kind)) {
+      if (inject.length && f.t > inject[0][0]) {
+        const level = inject.shift()[1];
+        if (s.canInject(level) === undefined) s.inject(level);
+      }
+      f = s.step(1 / 30);
+    }
+    const log = JSON.parse(s.episodeJson());
+    for (const r of log.replans) r.time_ms = r.bind_ms = 0;
+    return { status: f.status.kind, replans: f.replans, log: JSON.stringify(log) };
+  } finally {
+    s.free();
+  }
+}
+
+describe("the page's first-load module", () => {
+  for (const mode of ['paper', 'prioritised']) {
+    test(`runs B1 (${mode}) byte-identically to the npm package`, () => {
+      const options = { benchmark: 'b1', method: 'logic-lfd', mode, seed: 3 };
+      const a = episode(page, options);
+      const b = episode(full, options);
+      assert.equal(a.status, 'done');
+      assert.ok(a.replans >= 3, `${a.replans} replans`);
+      assert.equal(a.log, b.log);
+    });
+  }
+
+  test('refuses B2, B3 and N-block tasks with a message; the full module opens them', () => {
+    for (const options of [
+      { benchmark: 'b2', method: 'logic-lfd', mode: 'paper', seed: 1 },
+      { benchmark: 'b3', method: 'tamp', mode: 'paper', seed: 1 },
+      { benchmark: 'b1', method: 'logic-lfd', mode: 'paper', seed: 1, blocks: 5 },
+    ]) {
+      assert.throws(() => new page.Session(options), /on the page's full module, not its first-load module/);
+      const s = new full.Session(options);
+      assert.equal(s.frame().status.kind === 'failed', false);
+      s.free();
+    }
+    assert.throws(() => page.benchmark('b3'), /b3 runs on the page's full module/);
+    assert.equal(page.benchmark('b1').name, 'b1-tower');
+    assert.equal(full.benchmark('b3').name, 'b3-dual-arm');
+  });
+
+  test('leaves loaded scenes to the full module', () => {
+    assert.equal(page.Session.fromScene, undefined);
+    assert.equal(typeof full.Session.fromScene, 'function');
+  });
+});
