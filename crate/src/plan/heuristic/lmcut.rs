@@ -19,51 +19,117 @@
 //! Cost per round: after step 6 only costs on `L` decreased, so `h_max` is repaired
 //! incrementally (values only decrease; an operator's `pcf` is recomputed only when the value of
 //! its current `pcf` decreased). Fact marks (`V*`, `V⁰`) are epoch stamps, so no round clears an
-//! array of all facts; each operator is met at most once per round in step 5 (through its unique
-//! `pcf`), so `L` needs no duplicate check.
+//! array of all facts; marking `V*` meets every achiever of a zone fact, so it also stamps the
+//! operators with an effect in `V*` and step 5 tests one stamp instead of scanning add lists;
+//! each operator is met at most once per round in step 5 (through its unique `pcf`), so `L`
+//! needs no duplicate check. A fact's count of zero-cost achievers is kept up to date as costs
+//! reach 0, so the border test of step 4 needs no scan either.
 
 use super::relaxed::{BucketQueue, RelaxedTask, INF};
+
+/// Per-operator state of one evaluation, kept together so that the hot loops load one record.
+#[derive(Clone, Copy, Debug)]
+struct OpState {
+    /// Current cost `cost_i(o)`.
+    cost: u64,
+    /// `max_{q ∈ pre(o)} h_max(s, q)`.
+    pre_max: u64,
+    /// `pcf(o)`; `u32::MAX` while `o` is not relaxed-reachable.
+    pcf: u32,
+    /// Unsettled preconditions (0 = the operator is relaxed-reachable).
+    unsat: u32,
+    /// `== epoch` ⇔ some effect of `o` lies in `V*` in the current round.
+    zone: u32,
+}
+
+/// Per-fact marks of one round.
+#[derive(Clone, Copy, Debug, Default)]
+struct FactMarks {
+    /// `== epoch` ⇔ `p ∈ V*`.
+    zone: u32,
+    /// `== epoch` ⇔ `p ∈ V⁰`.
+    reached: u32,
+}
 
 /// Buffers for LM-cut.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct LmCut {
-    /// Current operator costs `cost_i`.
-    cost: Vec<u64>,
+    /// The task the templates below were built for: (address of `pre`, facts, operators).
+    built_for: (usize, usize, usize),
+    /// Operator states at the start of an evaluation (costs of the task, nothing reached).
+    ops_start: Vec<OpState>,
+    /// Number of zero-cost achievers of each fact under the costs of the task.
+    zero_start: Vec<u32>,
+    ops: Vec<OpState>,
+    /// Number of zero-cost achievers of each fact under `cost_i` (0 ⇔ a border fact of `V*`).
+    zero_achievers: Vec<u32>,
     /// `h_max(s, p)` under `cost_i`.
     fact_cost: Vec<u64>,
+    marks: Vec<FactMarks>,
     /// The facts of `s ∪ {⊤}`.
     init: Vec<u32>,
-    /// Unsettled preconditions (0 = the operator is relaxed-reachable).
-    unsat: Vec<u32>,
-    /// `max_{q ∈ pre(o)} h_max(s, q)`.
-    pre_max: Vec<u64>,
-    /// `pcf(o)`.
-    pcf: Vec<u32>,
     heap: BucketQueue,
-    /// `zone[p] == epoch` ⇔ `p ∈ V*` in the current round.
-    zone: Vec<u32>,
-    /// `reached[p] == epoch` ⇔ `p ∈ V⁰` in the current round.
-    reached: Vec<u32>,
     epoch: u32,
     stack: Vec<u32>,
     /// Depth-first marking of `V*`: (fact, next index into its achievers).
-    dfs: Vec<(u32, usize)>,
+    dfs: Vec<(u32, u32)>,
     cut: Vec<u32>,
 }
 
 impl LmCut {
-    /// Full h_max exploration from `s` under `self.cost`.
+    /// Builds the per-task templates once (the evaluator keeps one task for its lifetime).
+    fn prepare(&mut self, rt: &RelaxedTask) {
+        let key = (rt.pre.as_ptr() as usize, rt.num_facts(), rt.num_ops());
+        if self.built_for == key && !self.ops_start.is_empty() {
+            return;
+        }
+        self.built_for = key;
+        self.ops_start = (0..rt.num_ops())
+            .map(|o| OpState {
+                cost: rt.cost[o],
+                pre_max: 0,
+                pcf: u32::MAX,
+                unsat: rt.pre_start[o + 1] - rt.pre_start[o],
+                zone: 0,
+            })
+            .collect();
+        self.zero_start = (0..rt.num_facts() as u32)
+            .map(|f| {
+                rt.add_of(f)
+                    .iter()
+                    .filter(|&&a| rt.cost[a as usize] == 0)
+                    .count() as u32
+            })
+            .collect();
+        self.marks.clear();
+        self.marks.resize(rt.num_facts(), FactMarks::default());
+        self.epoch = 0;
+    }
+
+    /// Relaxes the add effects of operator `o` to `v`.
+    #[inline]
+    fn relax_adds(
+        fact_cost: &mut [u64],
+        heap: &mut BucketQueue,
+        rt: &RelaxedTask,
+        o: usize,
+        v: u64,
+    ) {
+        for &e in rt.add(o) {
+            let fc = &mut fact_cost[e as usize];
+            if v < *fc {
+                *fc = v;
+                heap.push(v, e);
+            }
+        }
+    }
+
+    /// Full h_max exploration from `s` under the costs of the task.
     fn hmax_full(&mut self, rt: &RelaxedTask, words: &[u64]) {
-        let nf = rt.num_facts();
         self.fact_cost.clear();
-        self.fact_cost.resize(nf, INF);
-        self.unsat.clear();
-        self.unsat
-            .extend(rt.pre_start.windows(2).map(|w| w[1] - w[0]));
-        self.pre_max.clear();
-        self.pre_max.resize(rt.num_ops(), 0);
-        self.pcf.clear();
-        self.pcf.resize(rt.num_ops(), u32::MAX);
+        self.fact_cost.resize(rt.num_facts(), INF);
+        self.ops.clone_from(&self.ops_start);
+        self.zero_achievers.clone_from(&self.zero_start);
         self.heap.clear();
         self.init.clear();
         for (i, &w) in words.iter().enumerate() {
@@ -87,18 +153,14 @@ impl LmCut {
             }
             for &o in rt.pre_of(f) {
                 let o = o as usize;
-                self.unsat[o] -= 1;
-                if self.unsat[o] == 0 {
+                let op = &mut self.ops[o];
+                op.unsat -= 1;
+                if op.unsat == 0 {
                     // Settled in increasing cost: `f` maximises the precondition costs.
-                    self.pre_max[o] = c;
-                    self.pcf[o] = f;
-                    let v = c.saturating_add(self.cost[o]);
-                    for &e in rt.add(o) {
-                        if v < self.fact_cost[e as usize] {
-                            self.fact_cost[e as usize] = v;
-                            self.heap.push(v, e);
-                        }
-                    }
+                    op.pre_max = c;
+                    op.pcf = f;
+                    let v = c.saturating_add(op.cost);
+                    Self::relax_adds(&mut self.fact_cost, &mut self.heap, rt, o, v);
                 }
             }
         }
@@ -110,13 +172,9 @@ impl LmCut {
         self.heap.clear();
         for &o in &self.cut {
             let o = o as usize;
-            let v = self.pre_max[o].saturating_add(self.cost[o]);
-            for &e in rt.add(o) {
-                if v < self.fact_cost[e as usize] {
-                    self.fact_cost[e as usize] = v;
-                    self.heap.push(v, e);
-                }
-            }
+            let op = &self.ops[o];
+            let v = op.pre_max.saturating_add(op.cost);
+            Self::relax_adds(&mut self.fact_cost, &mut self.heap, rt, o, v);
         }
         while let Some((c, f)) = self.heap.pop() {
             if c > self.fact_cost[f as usize] {
@@ -124,8 +182,10 @@ impl LmCut {
             }
             for &o in rt.pre_of(f) {
                 let o = o as usize;
-                // Unreached operators stay unreached; others only change through their pcf.
-                if self.pcf[o] != f || self.pre_max[o] <= c || self.unsat[o] != 0 {
+                let op = &mut self.ops[o];
+                // Unreached operators (pcf = MAX) stay unreached; others only change through
+                // their pcf.
+                if op.pcf != f || op.pre_max <= c {
                     continue;
                 }
                 let (mut best, mut arg) = (c, f);
@@ -136,35 +196,31 @@ impl LmCut {
                         arg = q;
                     }
                 }
-                self.pcf[o] = arg;
-                if best < self.pre_max[o] {
-                    self.pre_max[o] = best;
-                    let v = best.saturating_add(self.cost[o]);
-                    for &e in rt.add(o) {
-                        if v < self.fact_cost[e as usize] {
-                            self.fact_cost[e as usize] = v;
-                            self.heap.push(v, e);
-                        }
-                    }
+                op.pcf = arg;
+                if best < op.pre_max {
+                    op.pre_max = best;
+                    let v = best.saturating_add(op.cost);
+                    Self::relax_adds(&mut self.fact_cost, &mut self.heap, rt, o, v);
                 }
             }
         }
     }
 
     /// Starts a new round of marks (`V*`, `V⁰`), resetting the stamps on wrap-around.
-    fn next_epoch(&mut self, nf: usize) {
-        if self.zone.len() != nf || self.epoch == u32::MAX {
-            self.zone.clear();
-            self.zone.resize(nf, 0);
-            self.reached.clear();
-            self.reached.resize(nf, 0);
+    fn next_epoch(&mut self) {
+        if self.epoch == u32::MAX {
+            self.marks.fill(FactMarks::default());
+            for op in &mut self.ops {
+                op.zone = 0;
+            }
             self.epoch = 0;
         }
         self.epoch += 1;
     }
 
     /// Marks the goal zone `V*` (facts from which `G★` is reached through zero-cost operators'
-    /// pcf edges), depth first from `goal` in `add_of` order.
+    /// pcf edges), depth first from `goal` in `add_of` order, and every operator with an
+    /// effect in it (all achievers of each zone fact are met).
     ///
     /// On the way each zero-cost operator's pcf is re-chosen among its tied maximisers: first a
     /// precondition with no zero-cost achiever (the zone's border) or one already in the zone
@@ -172,90 +228,97 @@ impl LmCut {
     /// lies closer to the goal and later rounds find more landmarks. Any tied maximiser is a
     /// valid pcf, so the value stays admissible.
     fn mark_goal_zone(&mut self, rt: &RelaxedTask, goal: u32, ep: u32) {
-        self.zone[goal as usize] = ep;
+        self.marks[goal as usize].zone = ep;
         self.dfs.clear();
         self.dfs.push((goal, 0));
         while let Some(top) = self.dfs.last_mut() {
             let (e, i) = *top;
-            let achievers = rt.add_of(e);
-            let Some(&o) = achievers.get(i) else {
+            let Some(&o) = rt.add_of(e).get(i as usize) else {
                 self.dfs.pop();
                 continue;
             };
             top.1 += 1;
             let o = o as usize;
-            if self.cost[o] != 0 || self.unsat[o] != 0 {
+            let op = &mut self.ops[o];
+            op.zone = ep;
+            if op.cost != 0 || op.unsat != 0 {
                 continue;
             }
-            self.break_pcf_tie(rt, o, ep);
-            let p = self.pcf[o];
-            if self.zone[p as usize] != ep {
-                self.zone[p as usize] = ep;
+            let p = self.break_pcf_tie(rt, o, ep);
+            let m = &mut self.marks[p as usize];
+            if m.zone != ep {
+                m.zone = ep;
                 self.dfs.push((p, 0));
             }
         }
     }
 
-    /// Re-chooses `pcf(o)` among the preconditions of maximal h_max (see `mark_goal_zone`).
-    fn break_pcf_tie(&mut self, rt: &RelaxedTask, o: usize, ep: u32) {
+    /// Re-chooses `pcf(o)` among the preconditions of maximal h_max (see `mark_goal_zone`);
+    /// returns the pcf.
+    fn break_pcf_tie(&mut self, rt: &RelaxedTask, o: usize, ep: u32) -> u32 {
+        let op = &mut self.ops[o];
         for &q in rt.pre(o) {
-            if self.fact_cost[q as usize] != self.pre_max[o] {
+            let q_ = q as usize;
+            if self.fact_cost[q_] != op.pre_max {
                 continue;
             }
-            let border = rt.add_of(q).iter().all(|&a| self.cost[a as usize] != 0);
-            if border || self.zone[q as usize] == ep {
-                self.pcf[o] = q;
-                return;
+            if self.zero_achievers[q_] == 0 || self.marks[q_].zone == ep {
+                op.pcf = q;
+                return q;
+            }
+        }
+        op.pcf
+    }
+
+    /// `V⁰`: forward from `s ∪ {⊤}` along pcf edges; an operator with an effect in `V*` joins
+    /// the cut and is not followed. h_max(G★) > 0 keeps every fact of `s ∪ {⊤}` outside `V*`.
+    fn find_cut(&mut self, rt: &RelaxedTask, ep: u32) {
+        self.cut.clear();
+        self.stack.clear();
+        for &f in &self.init {
+            self.marks[f as usize].reached = ep;
+            self.stack.push(f);
+        }
+        while let Some(f) = self.stack.pop() {
+            for &o in rt.pre_of(f) {
+                let op = &self.ops[o as usize];
+                // An unreached operator has pcf = MAX.
+                if op.pcf != f {
+                    continue;
+                }
+                if op.zone == ep {
+                    self.cut.push(o);
+                    continue;
+                }
+                for &e in rt.add(o as usize) {
+                    let m = &mut self.marks[e as usize];
+                    if m.reached != ep {
+                        m.reached = ep;
+                        self.stack.push(e);
+                    }
+                }
             }
         }
     }
 
     /// LM-cut value of the packed state, `None` for a dead end (`h_max = ∞`).
     pub fn eval(&mut self, rt: &RelaxedTask, words: &[u64]) -> Option<u64> {
-        self.cost.clear();
-        self.cost.extend_from_slice(&rt.cost);
+        self.prepare(rt);
         let goal = rt.goal_fact();
-        let nf = rt.num_facts();
         let mut h: u64 = 0;
         self.hmax_full(rt, words);
         if self.fact_cost[goal as usize] == INF {
             return None;
         }
         while self.fact_cost[goal as usize] != 0 {
-            self.next_epoch(nf);
+            self.next_epoch();
             let ep = self.epoch;
             self.mark_goal_zone(rt, goal, ep);
-            // V⁰: forward from s ∪ {⊤}; an operator with an effect in V* joins the cut and
-            // is not followed. h_max(G★) > 0 keeps every fact of s ∪ {⊤} outside V*.
-            self.cut.clear();
-            self.stack.clear();
-            for &f in &self.init {
-                self.reached[f as usize] = ep;
-                self.stack.push(f);
-            }
-            while let Some(f) = self.stack.pop() {
-                for &o in rt.pre_of(f) {
-                    let o = o as usize;
-                    if self.pcf[o] != f || self.unsat[o] != 0 {
-                        continue;
-                    }
-                    let adds = rt.add(o);
-                    if adds.iter().any(|&e| self.zone[e as usize] == ep) {
-                        self.cut.push(o as u32);
-                        continue;
-                    }
-                    for &e in adds {
-                        if self.reached[e as usize] != ep {
-                            self.reached[e as usize] = ep;
-                            self.stack.push(e);
-                        }
-                    }
-                }
-            }
+            self.find_cut(rt, ep);
             let m = self
                 .cut
                 .iter()
-                .map(|&o| self.cost[o as usize])
+                .map(|&o| self.ops[o as usize].cost)
                 .min()
                 .unwrap_or(0);
             if m == 0 {
@@ -264,7 +327,13 @@ impl LmCut {
             }
             h = h.saturating_add(m);
             for &o in &self.cut {
-                self.cost[o as usize] -= m;
+                let op = &mut self.ops[o as usize];
+                op.cost -= m;
+                if op.cost == 0 {
+                    for &e in rt.add(o as usize) {
+                        self.zero_achievers[e as usize] += 1;
+                    }
+                }
             }
             self.hmax_incremental(rt);
         }
