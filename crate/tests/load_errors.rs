@@ -1,5 +1,5 @@
-//! Load errors of the JSON documents a user hands in (scenes, taught demonstrations, episode
-//! logs) name the JSON path of the value at fault, what was expected, and its line and column —
+//! Load errors of the JSON documents a user hands in (scenes, demonstrations, taught
+//! demonstrations, episode logs) name the JSON path of the value at fault, what was expected, and its line and column —
 //! in the library (what the page shows) and in the CLI.
 
 use std::process::Command;
@@ -82,13 +82,116 @@ fn an_episode_log_with_a_wrong_type_names_its_path() {
             "episode: scene.bodies[2].pose.position[1]: invalid type: string \"x\", expected f64 at line {line} column {column}"
         )
     );
-    // An event is read whole before its tag says its kind: the path stops at the event.
-    let (bad, _, _) = with_value_at(&log, "/events/0/tick", json!("soon"));
+    let (bad, line, column) = with_value_at(&log, "/events/0/tick", json!("soon"));
     let e = Session::replay(&bad).err().unwrap().to_string();
+    assert_eq!(
+        e,
+        format!(
+            "episode: events[0].tick: invalid type: string \"soon\", expected u64 at line {line} column {column}"
+        )
+    );
+}
+
+#[test]
+fn an_episode_event_with_a_bad_field_names_its_path_inside_the_event() {
+    let mut s = Session::new(b1_options()).unwrap();
+    let d = s.world().body_pose("d").unwrap().translation.vector;
+    s.perturb("a", [d.x, d.y, d.z + 0.1]).unwrap();
+    let log = s.episode_json();
+    // The log as written (tag first) and with its keys reordered (tag last) both replay.
+    Session::replay(&log).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&log).unwrap();
+    assert_eq!(v["events"][0]["event"], "perturb");
+    Session::replay(&serde_json::to_string_pretty(&v).unwrap()).unwrap();
+
+    let (bad, line, column) = with_value_at(&log, "/events/0/position/1", json!("ahead"));
+    let e = Session::replay(&bad).err().unwrap().to_string();
+    assert_eq!(
+        e,
+        format!(
+            "episode: events[0].position[1]: invalid type: string \"ahead\", expected f64 at line {line} column {column}"
+        )
+    );
+    let (bad, line, column) = with_value_at(&log, "/events/0/event", json!("shove"));
+    let e = Session::replay(&bad).err().unwrap().to_string();
+    assert_eq!(
+        e,
+        format!(
+            "episode: events[0].event: unknown variant `shove`, expected one of `perturb`, `inject`, `cancel` at line {line} column {column}"
+        )
+    );
+    let mut v = v;
+    v["events"][0].as_object_mut().unwrap().remove("body");
+    let e = Session::replay(&serde_json::to_string_pretty(&v).unwrap())
+        .err()
+        .unwrap()
+        .to_string();
     assert!(
-        e.starts_with("episode: events[0]: invalid type: string \"soon\", expected u64 at line "),
+        e.starts_with("episode: events[0]: missing field `body` at line "),
         "{e}"
     );
+}
+
+/// B1's demo.json with a string where a sample's coordinate belongs, and where it is.
+fn b1_demo_with_a_bad_sample() -> (String, usize, usize) {
+    let demo = Benchmark::B1.sources().unwrap().demo;
+    with_value_at(&demo, "/actions/2/samples/5/1", json!("x"))
+}
+
+#[test]
+fn a_demo_with_a_wrong_type_deep_inside_names_its_path() {
+    let files = Benchmark::B1.sources().unwrap();
+    let (bad, line, column) = b1_demo_with_a_bad_sample();
+    let e = Session::from_scene(b1_options(), &files.scene, Some(&bad))
+        .err()
+        .unwrap()
+        .to_string();
+    assert_eq!(
+        e,
+        format!(
+            "demo: actions[2].samples[5][1]: invalid type: string \"x\", expected f64 at line {line} column {column}"
+        )
+    );
+    // A demo without trajectories (the actions only) is still a demo.
+    let d: serde_json::Value = serde_json::from_str(&files.demo).unwrap();
+    let names: Vec<_> = d["actions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| a["action"].clone())
+        .collect();
+    let plain = json!({ "actions": names }).to_string();
+    let s = Session::from_scene(b1_options(), &files.scene, Some(&plain)).unwrap();
+    assert_eq!(s.frame().demo.len(), names.len());
+}
+
+#[test]
+fn the_cli_names_the_path_in_a_domain_directorys_demo() {
+    let files = Benchmark::B1.sources().unwrap();
+    let (bad, line, column) = b1_demo_with_a_bad_sample();
+    let dir =
+        std::env::temp_dir().join(format!("logic-lfd-load-errors-demo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in [
+        ("domain.pddl", &files.domain),
+        ("problem.pddl", &files.problem),
+        ("motions.json", &files.motions),
+        ("demo.json", &bad),
+    ] {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    let out = Command::new(env!("CARGO_BIN_EXE_logic-lfd"))
+        .args(["run", "--benchmark", "b1", "--domain"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    let want = format!(
+        "demo: actions[2].samples[5][1]: invalid type: string \"x\", expected f64 at line {line} column {column}"
+    );
+    assert!(stderr.contains(&want), "{stderr}");
 }
 
 #[test]

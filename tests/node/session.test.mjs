@@ -1,6 +1,7 @@
 // The closed loop through the npm package: a B1 episode, disturbances, drags, replay.
 import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
 
 const lfd = await import(new URL('../../pkg/node/index.mjs', import.meta.url).href);
 
@@ -19,6 +20,20 @@ function run(session, each = () => {}, maxSteps = 4000) {
 }
 
 const TOWER = ['(on a b)', '(on b c)', '(on c d)'];
+
+/** `value` pretty-printed with `x` set at the key path `keys`, and the line and column where the
+ * parser stops on it (the last character of the value, as serde_json reports). */
+function withValueAt(value, keys, x) {
+  const v = structuredClone(value);
+  let o = v;
+  for (const k of keys.slice(0, -1)) o = o[k];
+  o[keys[keys.length - 1]] = x;
+  const text = JSON.stringify(v, null, 2);
+  const needle = JSON.stringify(x);
+  const lines = text.split('\n');
+  const i = lines.findIndex((l) => l.includes(needle));
+  return { text, line: i + 1, column: lines[i].indexOf(needle) + needle.length };
+}
 
 describe('Session', () => {
   test('a B1 episode reaches success: the tower A on B on C on D stands', () => {
@@ -92,6 +107,29 @@ describe('Session', () => {
     // The session still works.
     assert.equal(s.step(0.1).tick, 10);
     s.free();
+  });
+
+  test('a demo with a wrong type deep inside is refused with its path and position', () => {
+    const o = { benchmark: 'b1', method: 'logic-lfd', mode: 'paper', seed: 1 };
+    const s = new lfd.Session(o);
+    const scene = s.sceneJson();
+    s.free();
+    const demo = JSON.parse(readFileSync(new URL('../../domains/b1-tower/demo.json', import.meta.url), 'utf8'));
+    const bad = withValueAt(demo, ['actions', 2, 'samples', 5, 1], 'x');
+    assert.throws(
+      () => lfd.Session.fromScene(o, scene, bad.text),
+      (e) => {
+        assert.equal(
+          e.message,
+          `demo: actions[2].samples[5][1]: invalid type: string "x", expected f64 at line ${bad.line} column ${bad.column}`,
+        );
+        return true;
+      },
+    );
+    // The same demo, well-formed, is accepted.
+    const good = lfd.Session.fromScene(o, scene, JSON.stringify(demo, null, 2));
+    assert.equal(good.frame().demo.length, demo.actions.length);
+    good.free();
   });
 
   test('frames are camelCase; the episode log keeps the CLI names', () => {

@@ -11,7 +11,7 @@ use super::{facts_of, BenchmarkSources, Session, SessionError, SessionOptions, S
 
 /// An external event of the episode, with the tick before which it happened.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "event", rename_all = "snake_case")]
+#[serde(tag = "event", rename_all = "snake_case", try_from = "EventFields")]
 pub enum EpisodeEvent {
     /// A user drag.
     Perturb {
@@ -36,6 +36,76 @@ pub enum EpisodeEvent {
         /// Tick.
         tick: u64,
     },
+}
+
+/// The kind of an event: its `event` tag.
+#[derive(Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum EventKind {
+    Perturb,
+    Inject,
+    Cancel,
+}
+
+/// An event as read: field by field, whatever its kind, so that a bad value inside an event is
+/// named by its path and position (`events[3].position[1]: … at line L column C`) — an internally
+/// tagged enum reads the event whole before its tag and loses both. A key has the same type in
+/// every kind; a key of another kind is checked and ignored.
+#[derive(Deserialize)]
+struct EventFields {
+    event: EventKind,
+    #[serde(default)]
+    tick: Given<u64>,
+    #[serde(default)]
+    body: Given<String>,
+    #[serde(default)]
+    position: Given<[f64; 3]>,
+    #[serde(default)]
+    level: Given<String>,
+    #[serde(default)]
+    description: Given<String>,
+}
+
+/// A key that may be absent (as `Option`, but `null` is not a value).
+struct Given<T>(Option<T>);
+
+impl<T> Default for Given<T> {
+    fn default() -> Self {
+        Given(None)
+    }
+}
+
+impl<'de, T: Deserialize<'de>> Deserialize<'de> for Given<T> {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        T::deserialize(d).map(|v| Given(Some(v)))
+    }
+}
+
+impl<T> Given<T> {
+    fn need(self, key: &str) -> Result<T, String> {
+        self.0.ok_or_else(|| format!("missing field `{key}`"))
+    }
+}
+
+impl TryFrom<EventFields> for EpisodeEvent {
+    type Error = String;
+
+    fn try_from(f: EventFields) -> Result<Self, String> {
+        let tick = f.tick.need("tick")?;
+        Ok(match f.event {
+            EventKind::Perturb => EpisodeEvent::Perturb {
+                tick,
+                body: f.body.need("body")?,
+                position: f.position.need("position")?,
+            },
+            EventKind::Inject => EpisodeEvent::Inject {
+                tick,
+                level: f.level.need("level")?,
+                description: f.description.need("description")?,
+            },
+            EventKind::Cancel => EpisodeEvent::Cancel { tick },
+        })
+    }
 }
 
 /// One executed (or interrupted) action.

@@ -115,14 +115,31 @@ impl Default for SessionParams {
 }
 
 /// The demonstrated action sequence of a `demo.json` (`actions`: strings, or objects with an
-/// `action` / `name` field).
+/// `action` / `name` field). A demo whose actions carry trajectories (`samples`) is read whole as
+/// a [`crate::sim::demo::Demonstration`]: a bad value anywhere in it, or malformed JSON, is refused
+/// with its path (`demo: actions[2].samples[5][1]: …`) rather than leaving its skills unlearned.
 pub fn demo_actions(demo_json: &str) -> Result<Vec<String>, SessionError> {
-    let v: serde_json::Value =
-        serde_json::from_str(demo_json).map_err(|e| SessionError::Json(format!("demo: {e}")))?;
+    let refused = |e: crate::sim::json_input::JsonError| SessionError::Json(format!("demo: {e}"));
+    let whole = match crate::sim::demo::parse(demo_json) {
+        Ok(d) => {
+            let normalize =
+                |a: &crate::sim::demo::DemoAction| crate::lfd::demo::normalize_action(&a.action);
+            return Ok(d.actions.iter().map(normalize).collect());
+        }
+        Err(e) => e,
+    };
+    // A demo without trajectories: its actions only. The page's first-load module reads JSON
+    // values with serde_json alone (no path tracking), so this reader adds no copy of it.
+    let Ok(v) = serde_json::from_str::<serde_json::Value>(demo_json) else {
+        return Err(refused(whole));
+    };
     let arr = v
         .get("actions")
         .and_then(|a| a.as_array())
         .ok_or_else(|| SessionError::Json("demo: actions: missing array".into()))?;
+    if arr.iter().any(|a| a.get("samples").is_some()) {
+        return Err(refused(whole));
+    }
     arr.iter()
         .enumerate()
         .map(|(i, a)| {

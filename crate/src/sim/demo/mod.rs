@@ -220,10 +220,16 @@ pub(crate) fn anchor_sample(
     ]
 }
 
-/// Parses a demo JSON text.
+/// Parses a demo JSON text; a value of the wrong type is named by its path and position
+/// (`actions[2].samples[5][1]: invalid type: …`, see [`super::json_input`]).
 pub fn from_json(text: &str) -> Result<Demonstration, DemoError> {
-    serde_json::from_str(text)
-        .map_err(|e| DemoError::Json(format!("line {} column {}: {e}", e.line(), e.column())))
+    parse(text).map_err(|e| DemoError::Json(e.to_string()))
+}
+
+/// [`from_json`] with the error's path and position apart. The only reader of demonstrations:
+/// a second one would add its own copy of the deserialiser to the page's first-load module.
+pub fn parse(text: &str) -> Result<Demonstration, super::json_input::JsonError> {
+    super::json_input::from_str(text)
 }
 
 /// The committed demonstration of a benchmark (`domains/<dir>/demo.json`).
