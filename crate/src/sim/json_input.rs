@@ -55,12 +55,19 @@ impl std::fmt::Display for JsonError {
 impl std::error::Error for JsonError {}
 
 /// Parses `text` as a `T`; an error names the path of the value at fault (see [`JsonError`]).
+///
+/// The page's first-load wasm module (cfg `first_load`) reads only the documents embedded in it
+/// (the page loads users' files on the full module), so there errors carry the line and column
+/// but no path: path tracking would add its own copy of every reader, 15 KB gzipped.
 pub fn from_str<T: DeserializeOwned>(text: &str) -> Result<T, JsonError> {
     let mut de = serde_json::Deserializer::from_str(text);
+    #[cfg(not(first_load))]
     let value = serde_path_to_error::deserialize(&mut de).map_err(|e| {
         let path = e.path().to_string();
         json_error(if path == "." { String::new() } else { path }, e.inner())
     })?;
+    #[cfg(first_load)]
+    let value = T::deserialize(&mut de).map_err(|e| json_error(String::new(), &e))?;
     // Anything but white space after the document is an error too.
     de.end().map_err(|e| json_error(String::new(), &e))?;
     Ok(value)
