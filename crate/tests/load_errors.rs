@@ -189,7 +189,8 @@ fn the_cli_names_the_path_in_a_domain_directorys_demo() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     let want = format!(
-        "demo: actions[2].samples[5][1]: invalid type: string \"x\", expected f64 at line {line} column {column}"
+        "{}: actions[2].samples[5][1]: invalid type: string \"x\", expected f64 at line {line} column {column}",
+        dir.join("demo.json").display()
     );
     assert!(stderr.contains(&want), "{stderr}");
 }

@@ -6,24 +6,11 @@ import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { currentFrame, openApp, screenshots, useBrowser } from './harness.mjs';
+import { withValueAt } from '../json-at.mjs';
 
 const lfd = await import(new URL('../../pkg/node/index.mjs', import.meta.url).href);
 
 const ctx = useBrowser({ withScreenshots: true });
-
-/** `value` pretty-printed with `x` set at the key path `keys`, and the line and column where the
- * parser stops on it (the last character of the value, as serde_json reports). */
-function withValueAt(value, keys, x) {
-  const v = structuredClone(value);
-  let o = v;
-  for (const k of keys.slice(0, -1)) o = o[k];
-  o[keys[keys.length - 1]] = x;
-  const text = JSON.stringify(v, null, 2);
-  const needle = JSON.stringify(x);
-  const lines = text.split('\n');
-  const i = lines.findIndex((l) => l.includes(needle));
-  return { text, line: i + 1, column: lines[i].indexOf(needle) + needle.length };
-}
 
 const file = (name, text) => ({ name, mimeType: 'application/json', buffer: Buffer.from(text) });
 

@@ -2,6 +2,7 @@
 import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
+import { withValueAt } from '../json-at.mjs';
 
 const lfd = await import(new URL('../../pkg/node/index.mjs', import.meta.url).href);
 
@@ -20,20 +21,6 @@ function run(session, each = () => {}, maxSteps = 4000) {
 }
 
 const TOWER = ['(on a b)', '(on b c)', '(on c d)'];
-
-/** `value` pretty-printed with `x` set at the key path `keys`, and the line and column where the
- * parser stops on it (the last character of the value, as serde_json reports). */
-function withValueAt(value, keys, x) {
-  const v = structuredClone(value);
-  let o = v;
-  for (const k of keys.slice(0, -1)) o = o[k];
-  o[keys[keys.length - 1]] = x;
-  const text = JSON.stringify(v, null, 2);
-  const needle = JSON.stringify(x);
-  const lines = text.split('\n');
-  const i = lines.findIndex((l) => l.includes(needle));
-  return { text, line: i + 1, column: lines[i].indexOf(needle) + needle.length };
-}
 
 describe('Session', () => {
   test('a B1 episode reaches success: the tower A on B on C on D stands', () => {
@@ -119,6 +106,7 @@ describe('Session', () => {
     assert.throws(
       () => lfd.Session.fromScene(o, scene, bad.text),
       (e) => {
+        assert.ok(e instanceof Error);
         assert.equal(
           e.message,
           `demo: actions[2].samples[5][1]: invalid type: string "x", expected f64 at line ${bad.line} column ${bad.column}`,

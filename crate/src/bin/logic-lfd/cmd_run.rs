@@ -131,6 +131,9 @@ pub fn run(args: Args) -> ExitCode {
     let report = match result {
         Ok(r) => r,
         Err(e) => {
+            if let Some(dir) = &args.domain {
+                return bad(in_domain_file(dir, &e.to_string()));
+            }
             let file = args
                 .scene
                 .as_ref()
@@ -148,6 +151,17 @@ pub fn run(args: Args) -> ExitCode {
         print_summary(&spec, &report);
     }
     ExitCode::from(exit::OK)
+}
+
+/// An error about a domain directory's demonstration or scene, named by its file
+/// (`demo: actions[2]…` → `DIR/demo.json: actions[2]…`).
+fn in_domain_file(dir: &std::path::Path, e: &str) -> String {
+    for (prefix, name) in [("demo: ", "demo.json"), ("scene: ", "scene.json")] {
+        if let Some(rest) = e.strip_prefix(prefix) {
+            return format!("{}: {rest}", dir.join(name).display());
+        }
+    }
+    e.to_string()
 }
 
 fn print_summary(spec: &EpisodeSpec, r: &EpisodeReport) {
