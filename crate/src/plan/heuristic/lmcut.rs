@@ -54,8 +54,6 @@ struct FactMarks {
 /// Buffers for LM-cut.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct LmCut {
-    /// The task the templates below were built for: (address of `pre`, facts, operators).
-    built_for: (usize, usize, usize),
     /// Operator states at the start of an evaluation (costs of the task, nothing reached).
     ops_start: Vec<OpState>,
     /// Number of zero-cost achievers of each fact under the costs of the task.
@@ -77,14 +75,10 @@ pub(crate) struct LmCut {
 }
 
 impl LmCut {
-    /// Builds the per-task templates once (the evaluator keeps one task for its lifetime).
-    fn prepare(&mut self, rt: &RelaxedTask) {
-        let key = (rt.pre.as_ptr() as usize, rt.num_facts(), rt.num_ops());
-        if self.built_for == key && !self.ops_start.is_empty() {
-            return;
-        }
-        self.built_for = key;
-        self.ops_start = (0..rt.num_ops())
+    /// Buffers for evaluations on `rt`, with its per-task templates (the evaluator keeps one task
+    /// for its lifetime).
+    pub(crate) fn new(rt: &RelaxedTask) -> LmCut {
+        let ops_start = (0..rt.num_ops())
             .map(|o| OpState {
                 cost: rt.cost[o],
                 pre_max: 0,
@@ -93,7 +87,7 @@ impl LmCut {
                 zone: 0,
             })
             .collect();
-        self.zero_start = (0..rt.num_facts() as u32)
+        let zero_start = (0..rt.num_facts() as u32)
             .map(|f| {
                 rt.add_of(f)
                     .iter()
@@ -101,9 +95,12 @@ impl LmCut {
                     .count() as u32
             })
             .collect();
-        self.marks.clear();
-        self.marks.resize(rt.num_facts(), FactMarks::default());
-        self.epoch = 0;
+        LmCut {
+            ops_start,
+            zero_start,
+            marks: vec![FactMarks::default(); rt.num_facts()],
+            ..LmCut::default()
+        }
     }
 
     /// Relaxes the add effects of operator `o` to `v`.
@@ -303,7 +300,7 @@ impl LmCut {
 
     /// LM-cut value of the packed state, `None` for a dead end (`h_max = ∞`).
     pub fn eval(&mut self, rt: &RelaxedTask, words: &[u64]) -> Option<u64> {
-        self.prepare(rt);
+        debug_assert_eq!(self.ops_start.len(), rt.num_ops(), "built for another task");
         let goal = rt.goal_fact();
         let mut h: u64 = 0;
         self.hmax_full(rt, words);

@@ -145,12 +145,17 @@ impl HeuristicEvaluator {
     }
 
     fn with_relaxed(rt: RelaxedTask, goals: &[Goal], kind: HeuristicKind) -> Self {
+        let lmcut = if kind == HeuristicKind::LmCut {
+            LmCut::new(&rt)
+        } else {
+            LmCut::default()
+        };
         HeuristicEvaluator {
             kind,
             marked: vec![false; rt.num_ops()],
             rt,
             ex: Exploration::default(),
-            lmcut: LmCut::default(),
+            lmcut,
             goals: goals.to_vec(),
             stack: Vec::new(),
             plan_ops: Vec::new(),
