@@ -71,8 +71,14 @@ function tick(): void {
  * demonstrations and the generator of N-block tasks are left out to keep the first load small);
  * the rest opens on the full module, fetched on demand if speed-up.ts has not fetched it yet.
  */
-function firstLoadRuns(options: SessionOptions): boolean {
+function firstLoadRuns(options: Pick<SessionOptions, 'benchmark' | 'blocks'>): boolean {
   return options.benchmark === 'b1' && options.blocks == null;
+}
+
+/** The module for a session or benchmark: the full one once it is ready, else the first-load one
+ * when that runs it, else the full one, fetched now. */
+async function moduleFor(options: Pick<SessionOptions, 'benchmark' | 'blocks'>) {
+  return fullModule() ?? (firstLoadRuns(options) ? lfd : await teachModule());
 }
 
 type Handlers = { [K in ApiKind]: (args: Api[K]['args']) => Api[K]['result'] | Promise<Api[K]['result']> };
@@ -84,12 +90,11 @@ const handlers: Handlers = {
   check: async ({ domain, problem }) => (await teachModule()).check(domain, problem),
   logicLfd: async ({ input }) => (await teachModule()).logicLfd(input),
   logicLfdPerturb: async ({ input }) => (await teachModule()).logicLfdPerturb(input),
-  benchmark: async ({ id }) => (id === 'b1' ? (fullModule() ?? lfd) : await teachModule()).benchmark(id),
+  benchmark: async ({ id }) => (await moduleFor({ benchmark: id })).benchmark(id),
   open: async ({ options, scene }) => {
     // A loaded scene opens on the full module, whose errors name the JSON path at fault.
     if (scene !== undefined) return replace((await teachModule()).Session.fromScene(options, scene));
-    const m = fullModule() ?? (firstLoadRuns(options) ? lfd : await teachModule());
-    return replace(new m.Session(options));
+    return replace(new (await moduleFor(options)).Session(options));
   },
   speedUp: () => {
     speedUp(
