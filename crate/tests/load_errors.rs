@@ -98,7 +98,7 @@ fn an_episode_event_with_a_bad_field_names_its_path_inside_the_event() {
     let d = s.world().body_pose("d").unwrap().translation.vector;
     s.perturb("a", [d.x, d.y, d.z + 0.1]).unwrap();
     let log = s.episode_json();
-    // The log as written (tag first) and with its keys reordered (tag last) both replay.
+    // The log as written (tag first) and with its keys sorted (tag no longer first) both replay.
     Session::replay(&log).unwrap();
     let v: serde_json::Value = serde_json::from_str(&log).unwrap();
     assert_eq!(v["events"][0]["event"], "perturb");
