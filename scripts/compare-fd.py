@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Compares logic-lfd's A* + LM-cut with Fast Downward's astar(lmcut()) problem by problem.
 
-For every problem of the IPC folders given (default: every folder of ../shared/ipc) and for
+For every problem of the IPC folders given (default: every folder of tests/data/ipc) and for
 seeded random STRIPS tasks, both planners run with the same time limit; the script prints the
 initial LM-cut value, the plan cost and the expansions of each, and ends with a summary.
 
@@ -359,7 +359,7 @@ def main():
                          "by neither planner (0: never)")
     a = ap.parse_args()
     # Absolute: Fast Downward runs in a temporary directory.
-    dirs = [os.path.abspath(d) for d in a.dirs] or sorted(d for d in glob.glob(os.path.join(ROOT, "..", "shared", "ipc", "*"))
+    dirs = [os.path.abspath(d) for d in a.dirs] or sorted(d for d in glob.glob(os.path.join(ROOT, "tests", "data", "ipc", "*"))
                             if os.path.isdir(d))
     py = fd_python()
     script = fd_script(py)

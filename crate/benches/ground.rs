@@ -6,7 +6,7 @@ use logic_lfd::pddl::{parse_domain, parse_problem};
 use logic_lfd::plan::ground;
 
 fn ipc(dir: &str, file: &str) -> (String, String) {
-    let base = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/ipc/");
+    let base = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/ipc/");
     let read = |f: &str| std::fs::read_to_string(format!("{base}{dir}/{f}")).unwrap();
     (read("domain.pddl"), read(file))
 }

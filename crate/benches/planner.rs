@@ -12,7 +12,7 @@ use logic_lfd::plan::{
 };
 use std::hint::black_box;
 
-const BLOCKS_DOMAIN: &str = include_str!("../../../shared/ipc/blocks/domain.pddl");
+const BLOCKS_DOMAIN: &str = include_str!("../../tests/data/ipc/blocks/domain.pddl");
 
 const TOWER_PROBLEM: &str = "(define (problem b1-tower) (:domain BLOCKS)
   (:objects a b c d)
@@ -101,7 +101,7 @@ fn ipc_blocks_gbfs(c: &mut Criterion) {
     let d_text = BLOCKS_DOMAIN;
     for name in ["probBLOCKS-10-0", "probBLOCKS-14-0", "probBLOCKS-17-0"] {
         let path = format!(
-            "{}/../../shared/ipc/blocks/{name}.pddl",
+            "{}/../tests/data/ipc/blocks/{name}.pddl",
             env!("CARGO_MANIFEST_DIR")
         );
         let p_text = std::fs::read_to_string(&path).expect("IPC problem");

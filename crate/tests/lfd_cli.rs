@@ -14,7 +14,7 @@ fn domain_dir(name: &str) -> PathBuf {
 }
 
 fn ipc(path: &str) -> PathBuf {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/ipc")).join(path)
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/ipc")).join(path)
 }
 
 fn temp_dir(tag: &str) -> PathBuf {

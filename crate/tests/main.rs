@@ -18,6 +18,7 @@ mod recorder;
 mod search;
 mod sim;
 mod soak;
+mod standalone;
 mod support;
 mod tables;
 mod tamp;

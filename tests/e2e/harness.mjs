@@ -117,8 +117,8 @@ export async function finish(page, timeout = 120000) {
   return currentFrame(page);
 }
 
-/** An IPC blocks-world file from the `shared` folder beside the checkout. */
-export const ipcBlocks = (f) => readFile(join(root, '..', 'shared', 'ipc', 'blocks', f), 'utf8');
+/** An IPC blocks-world file of the vendored benchmarks (`tests/data/ipc`). */
+export const ipcBlocks = (f) => readFile(join(root, 'tests', 'data', 'ipc', 'blocks', f), 'utf8');
 
 /** A blocks-world problem with `n` blocks in one tower, goal the reversed tower: blind BFS cannot finish. */
 export function bigBlocks(n) {

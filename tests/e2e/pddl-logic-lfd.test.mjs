@@ -9,7 +9,7 @@ import { openApp, screenshots, useBrowser } from './harness.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 
-const ipc = (f) => readFile(new URL(`../../../shared/ipc/blocks/${f}`, import.meta.url), 'utf8');
+const ipc = (f) => readFile(new URL(`../data/ipc/blocks/${f}`, import.meta.url), 'utf8');
 
 /** IPC blocks with `n` blocks in one tower, goal the reversed tower, and a demonstration that
  * unstacks everything and builds the goal: planning from scratch with blind BFS cannot finish. */

@@ -125,7 +125,7 @@ describe('security', () => {
 
   test('hostile names in the PDDL editor are shown as text in its diagnostics', async () => {
     const { page, errors, check } = await openGuarded('?benchmark=b1&autoplay=0');
-    const domain = await readFile(new URL('../../../shared/ipc/blocks/domain.pddl', import.meta.url), 'utf8');
+    const domain = await readFile(new URL('../data/ipc/blocks/domain.pddl', import.meta.url), 'utf8');
     for (const p of PAYLOADS.filter((x) => !/[\s()]/.test(x)).concat(['<img/src/onerror=window.__pwned=8>'])) {
       const problem = `(define (problem x) (:domain BLOCKS)\n (:objects ${p} b)\n (:init (handempty) (ontable b) (clear b))\n (:goal (clear b)))\n`;
       await page.evaluate(([d, q]) => window.lfd.setPddl(d, q), [domain, problem]);

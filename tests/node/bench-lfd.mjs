@@ -31,10 +31,10 @@ const ONLY = arg('domains', '');
 const DOMAINS = [
   { name: 'kitchen', dir: 'domains/kitchen', problem: 'problem.pddl', demo: 'demo.plan' },
   { name: 'delivery', dir: 'domains/delivery', problem: 'problem.pddl', demo: 'demo.plan' },
-  { name: 'blocks probBLOCKS-8-0', dir: '../shared/ipc/blocks', problem: 'probBLOCKS-8-0.pddl' },
-  { name: 'gripper prob05', dir: '../shared/ipc/gripper', problem: 'prob05.pddl' },
-  { name: 'logistics00 probLOGISTICS-6-0', dir: '../shared/ipc/logistics00', problem: 'probLOGISTICS-6-0.pddl' },
-  { name: 'depot-typed p03', dir: '../shared/ipc/depot-typed', problem: 'p03.pddl' },
+  { name: 'blocks probBLOCKS-8-0', dir: 'tests/data/ipc/blocks', problem: 'probBLOCKS-8-0.pddl' },
+  { name: 'gripper prob05', dir: 'tests/data/ipc/gripper', problem: 'prob05.pddl' },
+  { name: 'logistics00 probLOGISTICS-6-0', dir: 'tests/data/ipc/logistics00', problem: 'probLOGISTICS-6-0.pddl' },
+  { name: 'depot-typed p03', dir: 'tests/data/ipc/depot-typed', problem: 'p03.pddl' },
 ].filter((d) => !ONLY || ONLY.split(',').some((o) => d.name.includes(o)));
 
 const median = (xs) => {

@@ -12,7 +12,7 @@ const arg = (name, d) => {
   return i > 0 ? Number(process.argv[i + 1]) : d;
 };
 const RUNS = arg('runs', 50);
-const caseText = readFileSync(fileURLToPath(new URL('../../../shared/lqt-cp-example.json', import.meta.url)), 'utf8');
+const caseText = readFileSync(fileURLToPath(new URL('../data/lqt/lqt-cp-example.json', import.meta.url)), 'utf8');
 const example = JSON.parse(caseText);
 
 /** The example stretched: `dim` dimensions, `steps` steps, `nFct` RBFs; targets scaled in time. */

@@ -5,7 +5,7 @@ import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 
 const lfd = await import(new URL('../../pkg/node/index.mjs', import.meta.url).href);
-const caseText = readFileSync(fileURLToPath(new URL('../../../shared/lqt-cp-example.json', import.meta.url)), 'utf8');
+const caseText = readFileSync(fileURLToPath(new URL('../data/lqt/lqt-cp-example.json', import.meta.url)), 'utf8');
 const input = JSON.parse(caseText);
 
 test('the shared example solves with the documented shapes', () => {

@@ -5,7 +5,7 @@ import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 
 const lfd = await import(new URL('../../pkg/node/index.mjs', import.meta.url).href);
-const ipc = (p) => readFileSync(fileURLToPath(new URL(`../../../shared/ipc/${p}`, import.meta.url)), 'utf8');
+const ipc = (p) => readFileSync(fileURLToPath(new URL(`../data/ipc/${p}`, import.meta.url)), 'utf8');
 
 /** Replays a plan on the STRIPS blocks world by hand (independent of the planner's own states). */
 function replayBlocks(problem, plan) {

@@ -1,4 +1,4 @@
-//! Logic-LfD on domains that are not the robot's: every IPC domain of `../shared/ipc` and the
+//! Logic-LfD on domains that are not the robot's: every IPC domain of `tests/data/ipc` and the
 //! example domains of `domains/`, with a planner-found (IPC) or hand-written demonstration and
 //! seeded random perturbations of it.
 //!
@@ -22,7 +22,7 @@ use crate::search::brute_force_cost;
 
 fn ipc(path: &str) -> String {
     read(&format!(
-        "{}/../../shared/ipc/{path}",
+        "{}/../tests/data/ipc/{path}",
         env!("CARGO_MANIFEST_DIR")
     ))
 }

@@ -5,7 +5,7 @@ use logic_lfd::pddl::{parse_domain, parse_problem};
 use logic_lfd::plan::{ground, Task};
 
 pub(crate) fn ipc_dir() -> std::path::PathBuf {
-    std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/ipc"))
+    std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/ipc"))
 }
 
 #[allow(dead_code)]

@@ -11,7 +11,7 @@ use nalgebra::DMatrix;
 
 const EXAMPLE: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
-    "/../../shared/lqt-cp-example.json"
+    "/../tests/data/lqt/lqt-cp-example.json"
 );
 
 /// `max |got - exp| / max |exp|` (absolute when `exp` is zero).

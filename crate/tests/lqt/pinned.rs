@@ -1,4 +1,4 @@
-//! LQT-CP pinned to the contract (`shared/lqt-cp-io.md`) without the crate's own builders: a
+//! LQT-CP pinned to the contract (`docs/formats.md`) without the crate's own builders: a
 //! three-step case solved by hand with every matrix written out, φ of every basis against its
 //! formula on `s_j = j/(N-1)`, A/B of orders 1–3 against the closed forms, and the shared
 //! example against a dense solve transcribed here from the contract.

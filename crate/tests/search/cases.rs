@@ -198,7 +198,7 @@ pub fn random_goal(rng: &mut Pcg64Mcg, n: usize, terminal_cost: u64) -> Goal {
 
 /// The shared IPC benchmark folder.
 pub fn ipc(path: &str) -> std::path::PathBuf {
-    std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/ipc")).join(path)
+    std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/ipc")).join(path)
 }
 
 /// Parses and grounds an IPC problem.

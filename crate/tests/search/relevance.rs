@@ -134,8 +134,9 @@ fn relevant_part_keeps_every_optimum_and_heuristic_value() {
 
 #[test]
 fn logistics_packages_not_in_the_goal_are_left_out() {
-    let read =
-        |p: &str| std::fs::read_to_string(ipc(p)).expect("the IPC benchmarks are in ../shared");
+    let read = |p: &str| {
+        std::fs::read_to_string(ipc(p)).expect("the IPC benchmarks are in tests/data/ipc")
+    };
     let case = Case::from_text(
         &read("logistics00/domain.pddl"),
         &read("logistics00/probLOGISTICS-4-1.pddl"),

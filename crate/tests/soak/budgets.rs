@@ -31,7 +31,7 @@ impl Clock for SteppingClock {
 
 /// IPC blocksworld with 9 blocks: large enough that no configuration solves it in a few nodes.
 fn hard_task() -> Task {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/ipc/blocks");
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/data/ipc/blocks");
     let d = std::fs::read_to_string(format!("{dir}/domain.pddl")).unwrap();
     let p = std::fs::read_to_string(format!("{dir}/probBLOCKS-9-0.pddl")).unwrap();
     let d = parse_domain(&d, "domain.pddl").unwrap();

@@ -3,7 +3,7 @@
 //! and prints, per problem and configuration, the result, plan length, expansions and end-to-end
 //! time (parse + ground + search), then totals per configuration and domain.
 //!
-//! Defaults: every folder of `../shared/ipc`, configuration `lazy-gbfs:hff`, 60 s per problem.
+//! Defaults: every folder of `tests/data/ipc` (the vendored IPC benchmarks), configuration `lazy-gbfs:hff`, 60 s per problem.
 //! Every plan found is replayed on the grounded task; an invalid plan is reported and the command
 //! exits with 5. Run it in release.
 
@@ -137,7 +137,7 @@ fn scaling(a: ScalingArgs) -> ExitCode {
 /// Arguments of `bench planner`.
 #[derive(clap::Args)]
 pub struct PlannerArgs {
-    /// Benchmark folders, each with a `domain.pddl` and problem files (default: ../shared/ipc/*).
+    /// Benchmark folders, each with a `domain.pddl` and problem files (default: tests/data/ipc/*).
     dirs: Vec<PathBuf>,
     /// Comma-separated `algorithm:heuristic` pairs.
     #[arg(long, default_value = "lazy-gbfs:hff", value_delimiter = ',')]
@@ -218,13 +218,13 @@ fn parse_config(s: &str) -> Result<SearchConfig, String> {
     Ok(SearchConfig::new(a, h))
 }
 
-/// The folders of `../shared/ipc` (relative to the working directory, else to the workspace).
+/// The folders of `tests/data/ipc` (relative to the working directory, else to the workspace).
 fn default_dirs() -> Vec<PathBuf> {
-    let here = PathBuf::from("../shared/ipc");
+    let here = PathBuf::from("tests/data/ipc");
     let root = if here.is_dir() {
         here
     } else {
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/ipc")
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/ipc")
     };
     let mut v: Vec<PathBuf> = std::fs::read_dir(&root)
         .map(|rd| {
@@ -288,7 +288,7 @@ fn planner(args: PlannerArgs) -> ExitCode {
     };
     if dirs.is_empty() {
         eprintln!(
-            "bench planner: no benchmark folders (give DIR arguments or run next to ../shared/ipc)"
+            "bench planner: no benchmark folders: give DIR arguments, each with a domain.pddl and problems, or run in the repository (tests/data/ipc)"
         );
         return ExitCode::from(exit::BAD_INPUT);
     }

@@ -14,7 +14,7 @@ use crate::exit;
 #[derive(clap::Args)]
 pub struct Args {
     /// Folder of the IPC benchmarks (`blocks/`, `logistics00/`).
-    #[arg(long, default_value = "../shared/ipc")]
+    #[arg(long, default_value = "tests/data/ipc")]
     ipc: PathBuf,
     /// The logistics problem of the lazy GBFS row (a file of `logistics00/`, without `.pddl`).
     #[arg(long, default_value = "probLOGISTICS-10-0")]
