@@ -73,7 +73,11 @@ fn no_tracked_file_reads_a_folder_beside_the_checkout() {
             }
         }
     }
-    assert!(found.is_empty(), "reads outside the clone:\n{}", found.join("\n"));
+    assert!(
+        found.is_empty(),
+        "reads outside the clone:\n{}",
+        found.join("\n")
+    );
 }
 
 fn sha256(bytes: &[u8]) -> String {
@@ -104,5 +108,8 @@ fn vendored_lqt_example_matches_its_checksum() {
     let dir = repo_root().join("tests/data/lqt");
     let note = std::fs::read_to_string(dir.join("SOURCE.md")).unwrap();
     let bytes = std::fs::read(dir.join("lqt-cp-example.json")).unwrap();
-    assert!(note.contains(&sha256(&bytes)), "SOURCE.md names another checksum");
+    assert!(
+        note.contains(&sha256(&bytes)),
+        "SOURCE.md names another checksum"
+    );
 }

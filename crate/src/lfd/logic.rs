@@ -21,8 +21,8 @@
 use serde::{Deserialize, Serialize};
 
 use crate::plan::{
-    self, replay, BannedTask, Clock, MultiGoalMode, SearchConfig, SearchOutcome, SearchStats,
-    State, Task,
+    self, replay, BannedTask, Clock, MultiGoalMode, MultiGoalSearch, SearchConfig, SearchOutcome,
+    SearchStats, State, Task,
 };
 
 use super::alternatives::{self, Alternative};
@@ -167,6 +167,22 @@ pub fn plan_logic_lfd(
     plan_logic_lfd_avoiding(task, spec, s, mode, config, clock, None, 0)
 }
 
+/// The multi-goal search of `spec` over `task` in `mode`, compiled once to answer many states
+/// (pass it to [`plan_logic_lfd_prepared`]).
+///
+/// In prioritised mode G bounds the other goals (the suffix after L_k reaches it at cost c_k),
+/// so A* also takes the heuristic to G alone.
+pub fn prepare_search(task: &Task, spec: &MultiGoalSpec, mode: Mode) -> MultiGoalSearch {
+    MultiGoalSearch::new(task, &spec.goals, search_mode(mode)).with_lower_bound(spec.goal_index())
+}
+
+fn search_mode(mode: Mode) -> MultiGoalMode {
+    match mode {
+        Mode::Paper => MultiGoalMode::FirstReached,
+        Mode::Prioritised => MultiGoalMode::Prioritised,
+    }
+}
+
 /// [`plan_logic_lfd`] whose multi-goal search runs on `banned` if given (the task with operators banned
 /// at the states where their binding failed) and joins the demonstration at L_`first_k` or later
 /// only (an action a_j of the suffix could not be bound: `first_k` = j, so the search plans past
@@ -182,6 +198,38 @@ pub fn plan_logic_lfd_avoiding(
     clock: &dyn Clock,
     banned: Option<&BannedTask>,
     first_k: usize,
+) -> Result<LfdPlan, LfdError> {
+    plan_with(task, spec, s, mode, config, clock, banned, first_k, None)
+}
+
+/// [`plan_logic_lfd`] with a search from [`prepare_search`] (same task, spec and mode): nothing
+/// is compiled or built per call.
+pub fn plan_logic_lfd_prepared(
+    task: &Task,
+    spec: &MultiGoalSpec,
+    s: &State,
+    search: &MultiGoalSearch,
+    config: &SearchConfig,
+    clock: &dyn Clock,
+) -> Result<LfdPlan, LfdError> {
+    let mode = match search.mode() {
+        MultiGoalMode::FirstReached => Mode::Paper,
+        MultiGoalMode::Prioritised => Mode::Prioritised,
+    };
+    plan_with(task, spec, s, mode, config, clock, None, 0, Some(search))
+}
+
+#[allow(clippy::too_many_arguments)]
+fn plan_with(
+    task: &Task,
+    spec: &MultiGoalSpec,
+    s: &State,
+    mode: Mode,
+    config: &SearchConfig,
+    clock: &dyn Clock,
+    banned: Option<&BannedTask>,
+    first_k: usize,
+    prepared: Option<&MultiGoalSearch>,
 ) -> Result<LfdPlan, LfdError> {
     if task.goal.holds(s) {
         return Ok(LfdPlan::new(
@@ -207,10 +255,6 @@ pub fn plan_logic_lfd_avoiding(
             return Ok(plan);
         }
     }
-    let search_mode = match mode {
-        Mode::Paper => MultiGoalMode::FirstReached,
-        Mode::Prioritised => MultiGoalMode::Prioritised,
-    };
     let search_task = banned.map_or(task, |b| &b.task);
     let goals: std::borrow::Cow<[plan::Goal]> = if first_k == 0 {
         std::borrow::Cow::Borrowed(&spec.goals)
@@ -223,14 +267,11 @@ pub fn plan_logic_lfd_avoiding(
         std::borrow::Cow::Owned(g)
     };
     let lifted = banned.map(|b| b.lift(s));
-    let found = plan::search_multi_goal(
-        search_task,
-        lifted.as_ref().unwrap_or(s),
-        &goals,
-        search_mode,
-        config,
-        clock,
-    );
+    let start = lifted.as_ref().unwrap_or(s);
+    let found = match prepared {
+        Some(search) if banned.is_none() && first_k == 0 => search.run(start, config, clock),
+        _ => MultiGoalSearch::new(search_task, &goals, search_mode(mode)).run(start, config, clock),
+    };
     let (prefix, k) = match (&found.outcome, found.goal_index) {
         (SearchOutcome::Plan(p), Some(k)) => (
             banned.map_or_else(|| p.operators.clone(), |b| b.original(&p.operators)),

@@ -26,7 +26,10 @@ use crate::pddl::PddlError;
 pub use alternatives::{Alternative, AlternativeStatus};
 pub use control::TaskBuilder;
 pub use demo::{DemoTrace, MultiGoalSpec};
-pub use logic::{logic_in, merge_suffix, plan_logic_lfd, LfdPlan, Mode, PlanSource};
+pub use logic::{
+    logic_in, merge_suffix, plan_logic_lfd, plan_logic_lfd_prepared, prepare_search, LfdPlan, Mode,
+    PlanSource,
+};
 pub use symbolic::{LogicLfd, Perturbed};
 
 /// What went wrong in the Logic-LfD layer.

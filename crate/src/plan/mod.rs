@@ -23,7 +23,7 @@ mod search;
 
 pub use clock::{Clock, NoClock};
 pub use heuristic::{HeuristicEvaluator, HeuristicKind, UnknownName};
-pub use multigoal::{search_multi_goal, MultiGoalMode, MultiGoalResult};
+pub use multigoal::{search_multi_goal, MultiGoalMode, MultiGoalResult, MultiGoalSearch};
 pub use regress::{reaches_goal, regress};
 pub use relevance::{relevant_part, Relevance};
 pub use search::{

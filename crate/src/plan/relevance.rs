@@ -50,6 +50,11 @@ impl Relevance {
         )
     }
 
+    /// The id in the relevant part of fact `f` of the original task (`None`: irrelevant).
+    pub fn project_fact(&self, f: FactId) -> Option<FactId> {
+        self.renumber.get(f as usize).copied().flatten()
+    }
+
     /// The original operator indices of `ops`, a plan of the relevant part.
     pub fn lift(&self, ops: &[usize]) -> Vec<usize> {
         ops.iter().map(|&o| self.operators[o]).collect()

@@ -11,13 +11,13 @@ use crate::plan::{Condition, Goal, State, Task};
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, VecDeque};
 
-/// Result of one run: outcome, index of the goal reached, statistics.
+/// Result of one run: outcome, statistics and, for a compiled multi-goal task, what each goal's
+/// operator met.
 pub(crate) struct RunResult {
     pub outcome: SearchOutcome,
-    pub goal_index: Option<usize>,
     pub stats: SearchStats,
-    /// Per goal, the cheapest `g` of a state the search registered that satisfies it (`None`:
-    /// never met); empty unless asked for.
+    /// Per goal of [`Parts::goal_of_op`], the cheapest `g` of an expanded state in which its goal
+    /// operator applies (`None`: never); empty without goal operators.
     pub reached: Vec<Option<u64>>,
 }
 
@@ -41,8 +41,6 @@ struct Entry {
     seq: u64,
     node: u32,
     g: u64,
-    /// Goal index of a terminal entry, `NONE` for an ordinary one.
-    goal: u32,
 }
 
 /// Keeps only what the task knows: facts `≥ n` never hold, so alternatives needing one are
@@ -70,49 +68,74 @@ pub(crate) fn sanitize_goals(n: usize, goals: &[Goal]) -> Vec<Goal> {
         .collect()
 }
 
-/// Runs `config` from `start` until a state satisfying one of `goals` is reached.
-///
-/// With `prioritised`, plans minimise `cost + c_k` (optimal configurations) and the heuristic
-/// includes the terminal costs; otherwise all goals count as equal (`c_k` only breaks ties between
-/// goals holding in the same state) and `bfs` keeps its generation-time goal test. Prioritised
-/// `bfs` runs as `ucs` (breadth-first order ignores `c_k`).
+/// What a search runs on, built once and reused by every search of the same task.
+pub(crate) struct Parts<'a> {
+    /// The task; its goal is the goal (terminal cost ignored).
+    pub task: &'a Task,
+    /// Its successor generator.
+    pub succ: &'a SuccessorGenerator,
+    /// The heuristic bound to `task` and its goal.
+    pub heur: &'a mut HeuristicEvaluator,
+    /// Per operator, the goal whose goal operator it is (`u32::MAX`: an ordinary operator);
+    /// empty for a task without goal operators.
+    pub goal_of_op: &'a [u32],
+    /// Number of goals behind the goal operators.
+    pub num_goals: usize,
+    /// With `bfs`, `gbfs` and `lazy-gbfs`: a state in which one of these operators applies is a
+    /// goal state too (the search stops where a goal holds, not one step later).
+    pub goal_ops: &'a [u32],
+}
+
+/// Runs `config` from `start` on `task` alone: builds the successor generator and the heuristic
+/// (LM-cut pruned by h² reachability from `start`) for this one search.
 pub(crate) fn run(
     task: &Task,
     start: &State,
-    goals: &[Goal],
-    prioritised: bool,
-    record_reached: bool,
     config: &SearchConfig,
     clock: &dyn Clock,
 ) -> RunResult {
     let n = task.facts.len();
     let start = State::from_facts(n, start.facts().filter(|&f| (f as usize) < n));
-    let goals = sanitize_goals(n, goals);
-    let h_goals: Vec<Goal> = if prioritised {
-        goals.clone()
-    } else {
-        goals
-            .iter()
-            .map(|g| Goal {
-                alternatives: g.alternatives.clone(),
-                terminal_cost: 0,
-            })
-            .collect()
+    let mut goal = sanitize_goals(n, std::slice::from_ref(&task.goal));
+    goal[0].terminal_cost = 0;
+    let succ = SuccessorGenerator::new(task);
+    let mut heur = HeuristicEvaluator::for_search(task, &goal, search_heuristic(config), &start);
+    let parts = Parts {
+        task,
+        succ: &succ,
+        heur: &mut heur,
+        goal_of_op: &[],
+        num_goals: 0,
+        goal_ops: &[],
     };
-    let heuristic = if config.algorithm.uses_heuristic() {
+    run_on(parts, &start, config, clock)
+}
+
+/// The heuristic a configuration evaluates (`bfs` and `ucs` use none).
+pub(crate) fn search_heuristic(config: &SearchConfig) -> crate::plan::HeuristicKind {
+    if config.algorithm.uses_heuristic() {
         config.heuristic
     } else {
         crate::plan::HeuristicKind::Blind
-    };
-    let mut algorithm = config.algorithm;
-    if prioritised && algorithm == Algorithm::Bfs {
-        algorithm = Algorithm::Ucs;
     }
+}
+
+/// Runs `config` from `start` (a state of `parts.task`) until a state satisfying the task's goal
+/// is reached.
+pub(crate) fn run_on(
+    parts: Parts<'_>,
+    start: &State,
+    config: &SearchConfig,
+    clock: &dyn Clock,
+) -> RunResult {
+    let task = parts.task;
+    let n = task.facts.len();
+    let start = State::from_facts(n, start.facts().filter(|&f| (f as usize) < n));
+    let goal = sanitize_goals(n, std::slice::from_ref(&task.goal)).remove(0);
     let t0 = clock.now_secs();
     let mut e = Engine {
         task,
-        goals: &goals,
-        prioritised,
+        goal: &goal,
         config,
         clock,
         t0,
@@ -122,23 +145,23 @@ pub(crate) fn run(
         g: Vec::new(),
         h: Vec::new(),
         status: Vec::new(),
-        succ: SuccessorGenerator::new(task),
-        heur: HeuristicEvaluator::for_search(task, &h_goals, heuristic, &start),
+        succ: parts.succ,
+        heur: parts.heur,
         stats: SearchStats::default(),
         ops_buf: Vec::new(),
         words_buf: Vec::new(),
         child_buf: Vec::new(),
-        goal_index: None,
-        reached: if record_reached {
-            vec![u64::MAX; goals.len()]
-        } else {
-            vec![]
+        goal_of_op: parts.goal_of_op,
+        reached: vec![u64::MAX; parts.num_goals],
+        goal_ops: match config.algorithm {
+            Algorithm::Bfs | Algorithm::Gbfs | Algorithm::LazyGbfs => parts.goal_ops,
+            Algorithm::Ucs | Algorithm::Astar => &[],
         },
     };
-    let outcome = match algorithm {
+    let outcome = match config.algorithm {
         Algorithm::Bfs => e.bfs(start.words()),
         Algorithm::Ucs | Algorithm::Astar | Algorithm::Gbfs => {
-            e.best_first(start.words(), algorithm)
+            e.best_first(start.words(), config.algorithm)
         }
         Algorithm::LazyGbfs => e.lazy_gbfs(start.words()),
     };
@@ -150,7 +173,6 @@ pub(crate) fn run(
     }
     RunResult {
         outcome,
-        goal_index: e.goal_index,
         stats: e.stats,
         reached: e
             .reached
@@ -162,8 +184,7 @@ pub(crate) fn run(
 
 struct Engine<'a> {
     task: &'a Task,
-    goals: &'a [Goal],
-    prioritised: bool,
+    goal: &'a Goal,
     config: &'a SearchConfig,
     clock: &'a dyn Clock,
     t0: f64,
@@ -173,23 +194,31 @@ struct Engine<'a> {
     g: Vec<u64>,
     h: Vec<u64>,
     status: Vec<u8>,
-    succ: SuccessorGenerator,
-    heur: HeuristicEvaluator,
+    succ: &'a SuccessorGenerator,
+    heur: &'a mut HeuristicEvaluator,
     stats: SearchStats,
     ops_buf: Vec<u32>,
     words_buf: Vec<u64>,
     child_buf: Vec<u64>,
-    goal_index: Option<usize>,
-    /// Per goal, the cheapest `g` met so far (`u64::MAX`: never); empty when not recorded.
+    goal_of_op: &'a [u32],
+    /// Per goal, the cheapest `g` of an expanded state its goal operator applies in
+    /// (`u64::MAX`: never); empty without goal operators.
     reached: Vec<u64>,
+    /// Operators whose applicability makes a goal state (see [`Parts::goal_ops`]).
+    goal_ops: &'a [u32],
 }
 
 impl Engine<'_> {
-    /// Notes `g` for every goal `words` satisfies (only when recording what was reached).
-    fn note_reached(&mut self, words: &[u64], g: u64) {
-        for (k, goal) in self.goals.iter().enumerate().take(self.reached.len()) {
-            if g < self.reached[k] && goal_holds(goal, words) {
-                self.reached[k] = g;
+    /// Notes, for goal operators among `ops` (applicable in a state of cost `g`), that their
+    /// goal was met at `g`.
+    fn note_reached(&mut self, ops: &[u32], g: u64) {
+        if self.goal_of_op.is_empty() {
+            return;
+        }
+        for &o in ops {
+            let k = self.goal_of_op[o as usize];
+            if k != NONE && g < self.reached[k as usize] {
+                self.reached[k as usize] = g;
             }
         }
     }
@@ -198,9 +227,6 @@ impl Engine<'_> {
     fn register(&mut self, words: &[u64], parent: u32, op: u32, g: u64) -> (u32, bool) {
         let (id, new) = self.space.insert(words);
         if new {
-            if !self.reached.is_empty() {
-                self.note_reached(words, g);
-            }
             self.parent.push(parent);
             self.op.push(op);
             self.g.push(g);
@@ -224,18 +250,13 @@ impl Engine<'_> {
         None
     }
 
-    /// The goal holding in `words` with the smallest `(c_k, k)`, and the cost counted for it.
-    fn goal_at(&self, words: &[u64]) -> Option<(usize, u64)> {
-        let mut best: Option<(usize, u64)> = None;
-        for (k, goal) in self.goals.iter().enumerate() {
-            if best.is_some_and(|(_, c)| goal.terminal_cost >= c) {
-                continue;
-            }
-            if goal_holds(goal, words) {
-                best = Some((k, goal.terminal_cost));
-            }
-        }
-        best.map(|(k, c)| (k, if self.prioritised { c } else { 0 }))
+    /// Whether the goal holds in `words`, or one of the goal operators applies.
+    fn is_goal(&self, words: &[u64]) -> bool {
+        goal_holds(self.goal, words)
+            || self.goal_ops.iter().any(|&o| {
+                let op = &self.task.operators[o as usize];
+                op.pre.iter().all(|&f| has(words, f)) && !op.pre_neg.iter().any(|&f| has(words, f))
+            })
     }
 
     /// Writes the successor of `self.words_buf` by operator `o` into `self.child_buf`.
@@ -256,7 +277,7 @@ impl Engine<'_> {
         self.words_buf.extend_from_slice(self.space.get(id));
     }
 
-    fn plan_to(&mut self, id: u32, goal: usize) -> SearchOutcome {
+    fn plan_to(&mut self, id: u32) -> SearchOutcome {
         let mut ops = Vec::new();
         let mut cur = id;
         while self.parent[cur as usize] != NONE {
@@ -265,7 +286,6 @@ impl Engine<'_> {
         }
         ops.reverse();
         let cost = self.task.cost_of(&ops);
-        self.goal_index = Some(goal);
         SearchOutcome::Plan(Plan {
             operators: ops,
             cost,
@@ -274,8 +294,8 @@ impl Engine<'_> {
 
     fn bfs(&mut self, start: &[u64]) -> SearchOutcome {
         let (s, _) = self.register(start, NONE, NONE, 0);
-        if let Some((k, _)) = self.goal_at(start) {
-            return self.plan_to(s, k);
+        if self.is_goal(start) {
+            return self.plan_to(s);
         }
         let mut queue = VecDeque::from([s]);
         let mut ops = std::mem::take(&mut self.ops_buf);
@@ -287,17 +307,18 @@ impl Engine<'_> {
             self.load(id);
             self.succ.applicable_ops(&self.words_buf, &mut ops);
             let g = self.g[id as usize];
+            self.note_reached(&ops, g);
             for &o in &ops {
                 self.apply_into_child(o);
                 self.stats.generated += 1;
                 let cost = self.task.operators[o as usize].cost as u64;
                 let child = std::mem::take(&mut self.child_buf);
                 let (t, new) = self.register(&child, id, o, g + cost);
-                let goal = if new { self.goal_at(&child) } else { None };
+                let goal = new && self.is_goal(&child);
                 self.child_buf = child;
                 if new {
-                    if let Some((k, _)) = goal {
-                        return self.plan_to(t, k);
+                    if goal {
+                        return self.plan_to(t);
                     }
                     queue.push_back(t);
                 }
@@ -319,10 +340,8 @@ impl Engine<'_> {
             return SearchOutcome::Unsolvable;
         };
         self.h[s as usize] = h0;
-        if greedy {
-            if let Some((k, _)) = self.goal_at(start) {
-                return self.plan_to(s, k);
-            }
+        if greedy && self.is_goal(start) {
+            return self.plan_to(s);
         }
         let mut open = BinaryHeap::new();
         let mut seq = 0u64;
@@ -333,14 +352,10 @@ impl Engine<'_> {
             seq,
             node: s,
             g: 0,
-            goal: NONE,
         }));
         let mut ops = std::mem::take(&mut self.ops_buf);
         while let Some(Reverse(e)) = open.pop() {
             let id = e.node;
-            if e.goal != NONE {
-                return self.plan_to(id, e.goal as usize);
-            }
             if self.status[id as usize] != OPEN || e.g != self.g[id as usize] {
                 continue;
             }
@@ -349,26 +364,13 @@ impl Engine<'_> {
             }
             self.load(id);
             let g = e.g;
-            if !greedy {
-                if let Some((k, c)) = self.goal_at(&self.words_buf) {
-                    let total = g.saturating_add(c);
-                    if c == 0 || total <= e.k1 {
-                        return self.plan_to(id, k);
-                    }
-                    seq += 1;
-                    open.push(Reverse(Entry {
-                        k1: total,
-                        k2: 0,
-                        seq,
-                        node: id,
-                        g,
-                        goal: k as u32,
-                    }));
-                }
+            if !greedy && self.is_goal(&self.words_buf) {
+                return self.plan_to(id);
             }
             self.status[id as usize] = CLOSED;
             self.stats.expanded += 1;
             self.succ.applicable_ops(&self.words_buf, &mut ops);
+            self.note_reached(&ops, g);
             for &o in &ops {
                 self.apply_into_child(o);
                 self.stats.generated += 1;
@@ -383,20 +385,15 @@ impl Engine<'_> {
                         None => self.status[tu] = DEAD,
                         Some(h) => {
                             self.h[tu] = h;
-                            if greedy {
-                                if let Some((k, _)) = self.goal_at(&child) {
-                                    self.child_buf = child;
-                                    return self.plan_to(t, k);
-                                }
+                            if greedy && self.is_goal(&child) {
+                                self.child_buf = child;
+                                return self.plan_to(t);
                             }
                             push = true;
                         }
                     }
                 } else if !greedy && self.status[tu] != DEAD && ng < self.g[tu] {
                     self.g[tu] = ng;
-                    if !self.reached.is_empty() {
-                        self.note_reached(&child, ng);
-                    }
                     self.parent[tu] = id;
                     self.op[tu] = o;
                     if self.status[tu] == CLOSED {
@@ -415,7 +412,6 @@ impl Engine<'_> {
                         seq,
                         node: t,
                         g: self.g[tu],
-                        goal: NONE,
                     }));
                 }
             }
@@ -443,8 +439,8 @@ impl Engine<'_> {
             if let Some(id) = current.take() {
                 // Evaluate and expand `id` (already registered, parent set).
                 self.load(id);
-                if let Some((k, _)) = self.goal_at(&self.words_buf) {
-                    return self.plan_to(id, k);
+                if self.is_goal(&self.words_buf) {
+                    return self.plan_to(id);
                 }
                 if let Some(b) = self.budget() {
                     return SearchOutcome::BudgetExhausted { which: b };
@@ -466,6 +462,7 @@ impl Engine<'_> {
                             }
                         }
                         self.succ.applicable_ops(&self.words_buf, &mut ops);
+                        self.note_reached(&ops, self.g[id as usize]);
                         if use_pref {
                             pref.sort_unstable();
                             pref.dedup();

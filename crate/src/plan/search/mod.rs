@@ -2,9 +2,7 @@
 //! greedy best-first and lazy greedy best-first with preferred operators.
 //!
 //! Notation: `g(s)` cost of the best known path from the start to `s`, `h(s)` the heuristic,
-//! `f(s) = g(s) + h(s)`. The goal is a set of DNF goals `G_k` with terminal costs `c_k`; a plan
-//! `π` ending in a state of `G_k` costs `cost(π) + c_k` (one goal with `c = 0` for ordinary
-//! planning, see [`crate::plan::search_multi_goal`] for the multi-goal modes).
+//! `f(s) = g(s) + h(s)`.
 //!
 //! * `bfs`: FIFO queue, goal test at generation; optimal in plan length.
 //! * `ucs`: best-first on `g`, goal test at expansion; optimal in cost.
@@ -21,10 +19,9 @@
 //! operator index. States whose heuristic is `∞` (no goal reachable even in the delete
 //! relaxation) are pruned, which is safe, so an exhausted open list proves unsolvability.
 //!
-//! Multi-goal goal handling with terminal costs (`c > 0`) in UCS/A*: when an expanded state
-//! satisfies goals, the cheapest `c_k` is taken; if `g + c_k` does not exceed the popped key the
-//! plan is returned, otherwise a *terminal entry* with key `g + c_k` is queued (the artificial goal
-//! operator of cost `c_k`), and the search returns when a terminal entry is dequeued.
+//! Every search has one goal (a DNF condition). Several goals with terminal costs are compiled
+//! into one by [`crate::plan::MultiGoalSearch`] (a goal operator per goal), so the loops here
+//! know nothing of them.
 //!
 //! Budgets: `max_nodes` bounds expansions, `time_limit_secs` is measured with the caller's
 //! [`Clock`] (checked before each expansion); the library never reads the system time.
@@ -40,7 +37,8 @@ use crate::plan::{State, Task};
 use std::fmt;
 use std::str::FromStr;
 
-pub(crate) use engine::{run, sanitize_goals};
+pub(crate) use engine::{run_on, sanitize_goals, search_heuristic, Parts};
+pub(crate) use succ::SuccessorGenerator;
 
 /// The search algorithm of a configuration.
 #[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
@@ -292,15 +290,7 @@ pub fn search_from(
 }
 
 fn run_one(task: &Task, start: &State, config: &SearchConfig, clock: &dyn Clock) -> SearchResult {
-    let r = run(
-        task,
-        start,
-        std::slice::from_ref(&task.goal),
-        false,
-        false,
-        config,
-        clock,
-    );
+    let r = engine::run(task, start, config, clock);
     SearchResult {
         outcome: r.outcome,
         stats: r.stats,
