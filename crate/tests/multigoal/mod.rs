@@ -7,7 +7,7 @@ use crate::search::{
 };
 use logic_lfd::plan::{
     search, search_multi_goal, Algorithm, Goal, HeuristicKind, MultiGoalMode, MultiGoalResult,
-    NoClock, SearchConfig, SearchOutcome, State, Task,
+    MultiGoalSearch, NoClock, SearchConfig, SearchOutcome, State, Task,
 };
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
@@ -225,6 +225,40 @@ fn unreachable_goals_are_unsolvable() {
                 &NoClock,
             );
             assert_eq!(r.outcome, SearchOutcome::Unsolvable, "{alg} {h} {mode:?}");
+        }
+    }
+}
+
+#[test]
+fn a_compiled_search_answers_many_starts_as_fresh_searches_do() {
+    // One `MultiGoalSearch` reused from many starts (its heuristic templates kept between runs)
+    // returns what a search compiled for each start returns, and with the last demonstration
+    // state as lower bound prioritised A* still meets the brute-force optimum.
+    for seed in 0..4 {
+        let task = random_blocksworld(5, 80 + seed).task;
+        let (_, goals) = demo_goals(&task);
+        let last = goals.len() - 1;
+        let (all, _) = crate::search::reachable(&task, &task.init);
+        let mut rng = Pcg64Mcg::seed_from_u64(seed);
+        for mode in [MultiGoalMode::FirstReached, MultiGoalMode::Prioritised] {
+            let plain = MultiGoalSearch::new(&task, &goals, mode);
+            let bounded = MultiGoalSearch::new(&task, &goals, mode).with_lower_bound(last);
+            for _ in 0..6 {
+                let start = all[rng.random_range(0..all.len())].clone();
+                for (alg, h) in OPTIMAL.into_iter().chain(SATISFICING) {
+                    let cfg = SearchConfig::new(alg, h);
+                    let fresh = search_multi_goal(&task, &start, &goals, mode, &cfg, &NoClock);
+                    let again = plain.run(&start, &cfg, &NoClock);
+                    assert_eq!(again.outcome, fresh.outcome, "{alg} {h} {mode:?}");
+                    assert_eq!(again.goal_index, fresh.goal_index);
+                    check(&task, &start, &goals, &again);
+                    let b = bounded.run(&start, &cfg, &NoClock);
+                    let total = check(&task, &start, &goals, &b);
+                    if mode == MultiGoalMode::Prioritised && cfg.is_optimal() {
+                        assert_eq!(total, brute_force_cost(&task, &start, &goals), "{alg} {h}");
+                    }
+                }
+            }
         }
     }
 }
