@@ -27,7 +27,7 @@ pub use alternatives::{Alternative, AlternativeStatus};
 pub use control::TaskBuilder;
 pub use demo::{DemoTrace, MultiGoalSpec};
 pub use logic::{logic_in, merge_suffix, plan_logic_lfd, LfdPlan, Mode, PlanSource};
-pub use symbolic::{LogicLfd, Perturbed};
+pub use symbolic::{LogicLfd, Observed, Perturbed};
 
 /// What went wrong in the Logic-LfD layer.
 #[derive(Debug, thiserror::Error)]
