@@ -24,13 +24,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         lfd.demo_states().len() - 1
     );
     let now = lfd.state_in("disturbed.facts", &read("disturbed.facts")?)?;
-    match lfd.logic_in(&now) {
+    match now.logic_in() {
         Some(k) => println!("LogicIn: L_{k} ⊆ S_C, the rest of the demonstration applies"),
         None => println!("LogicIn: no demonstration state holds, one multi-goal search"),
     }
     let config = SearchConfig::new(Algorithm::Astar, HeuristicKind::LmCut);
     for mode in [Mode::Paper, Mode::Prioritised] {
-        let plan = lfd.replan(&now, mode, &config, &NoClock)?;
+        let plan = now.replan(mode, &config, &NoClock)?;
         let joins = plan
             .k
             .map_or("G directly".to_string(), |k| format!("L_{k}"));
@@ -47,7 +47,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             println!("  {tag} {action}");
         }
         // The lifted validator replays the merged plan from S_C, independently of grounding.
-        assert!(lfd.validate(&now, &plan.names)?.is_valid());
+        assert!(now.validate(&plan.names)?.is_valid());
     }
     Ok(())
 }

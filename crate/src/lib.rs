@@ -40,7 +40,7 @@ pub mod wasm;
 /// # let _ = cfg;
 /// ```
 pub mod prelude {
-    pub use crate::lfd::{LfdError, LfdPlan, LogicLfd, Mode, Perturbed, PlanSource};
+    pub use crate::lfd::{LfdError, LfdPlan, LogicLfd, Mode, Observed, Perturbed, PlanSource};
     pub use crate::plan::{
         Algorithm, Clock, HeuristicKind, NoClock, SearchConfig, SearchOutcome, SearchStats, State,
         ValidationReport,

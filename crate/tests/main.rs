@@ -13,6 +13,7 @@ mod lfd_cli;
 mod load_errors;
 mod lqt;
 mod multigoal;
+mod observed_states;
 mod pddl;
 mod recorder;
 mod search;

@@ -30,7 +30,7 @@ pub use logic::{
     logic_in, merge_suffix, plan_logic_lfd, plan_logic_lfd_prepared, prepare_search, LfdPlan, Mode,
     PlanSource,
 };
-pub use symbolic::{LogicLfd, Perturbed};
+pub use symbolic::{LogicLfd, Observed, Perturbed};
 
 /// What went wrong in the Logic-LfD layer.
 #[derive(Debug, thiserror::Error)]

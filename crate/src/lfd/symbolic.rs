@@ -11,7 +11,7 @@ use std::sync::OnceLock;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
-use crate::pddl::{self, Domain, PddlError, Problem};
+use crate::pddl::{self, Domain, Problem};
 use crate::plan::{
     self, parse_plan, replay, validate, validate_names, BannedTask, Clock, MultiGoalSearch,
     Outcome, SearchConfig, SearchResult, State, Task, ValidationReport,
@@ -21,11 +21,15 @@ use super::demo::{DemoTrace, MultiGoalSpec};
 use super::logic::{plan_logic_lfd_avoiding, plan_logic_lfd_prepared, LfdPlan, Mode};
 use super::LfdError;
 
+mod observed;
+
+pub use observed::Observed;
+
 /// Symbolic Logic-LfD: one demonstration of a PDDL task turned into the multi-goal
 /// specification L_0 … L_N, G, and replanning from any state to the best L_k it can reach.
 ///
 /// - [`LogicLfd::new`] reads a domain, a problem and the demonstration as an IPC plan file;
-/// - [`LogicLfd::state`] / [`LogicLfd::state_after`] read a state (atoms, or a plan prefix);
+/// - [`LogicLfd::state`] / [`LogicLfd::state_after`] read a state (any atoms, or a plan prefix);
 /// - [`LogicLfd::logic_in`] is LogicIn, [`LogicLfd::replan`] the multi-goal search merged with
 ///   the demonstration's suffix; [`LogicLfd::validate`] replays a plan on the lifted domain.
 ///
@@ -44,17 +48,17 @@ use super::LfdError;
 /// assert_eq!(lfd.demo_states().len(), 5); // L_0 … L_4
 /// // Someone carried the robot to r3 and it switched r3 on; r2 is still dark.
 /// let s = lfd.state("(at r3)\n(lit r3)").unwrap();
-/// assert_eq!(lfd.logic_in(&s), None); // no L_k ⊆ S_C
+/// assert_eq!(s.logic_in(), None); // no L_k ⊆ S_C
 /// let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::LmCut);
 /// // The paper's mode: the first demonstration state reached, then the rest of the demo.
-/// let r = lfd.replan(&s, Mode::Paper, &cfg, &NoClock).unwrap();
+/// let r = s.replan(Mode::Paper, &cfg, &NoClock).unwrap();
 /// assert_eq!((r.k, r.prefix()), (Some(1), &["(go r3 r2)".to_string()][..]));
 /// assert_eq!(r.suffix(), ["(switch-on r2)", "(go r2 r3)", "(switch-on r3)"]);
 /// // Prioritised: the cheapest prefix + demo left; here going to G directly (k = None).
-/// let p = lfd.replan(&s, Mode::Prioritised, &cfg, &NoClock).unwrap();
+/// let p = s.replan(Mode::Prioritised, &cfg, &NoClock).unwrap();
 /// assert_eq!((p.k, p.cost), (None, 2));
-/// assert!(lfd.validate(&s, &p.names).unwrap().is_valid());
-/// assert!(lfd.validate(&s, &r.names).unwrap().is_valid());
+/// assert!(s.validate(&p.names).unwrap().is_valid());
+/// assert!(s.validate(&r.names).unwrap().is_valid());
 /// ```
 #[derive(Clone, Debug)]
 pub struct LogicLfd {
@@ -194,62 +198,32 @@ impl LogicLfd {
         super::demo::state_names(&self.task, s)
     }
 
-    /// Reads a state written as PDDL atoms (one a line or space-separated; `;` comments), with
-    /// or without the problem's static facts. Locations refer to a file `state`.
+    /// Reads a state written as PDDL atoms (one a line or space-separated; `;` comments). Any
+    /// set of atoms over the problem's objects and the domain's predicates is a state: facts no
+    /// action adds and static facts that differ from the problem's `:init` are kept (see
+    /// [`Observed`]). Locations refer to a file `state`.
     ///
     /// # Errors
-    /// [`LfdError::Input`] naming the atom, at `line:col`: an undeclared predicate or object, a
-    /// wrong arity or type, a static fact the problem does not make true (a state cannot change
-    /// it), or a fluent no action reachable from the problem's initial state can make true.
-    pub fn state(&self, facts: &str) -> Result<State, LfdError> {
+    /// [`LfdError::Input`] naming the atom, at `line:col`: an undeclared predicate or object, or
+    /// a wrong arity or type; [`LfdError::Model`] when the problem cannot be grounded again from
+    /// the observed atoms.
+    pub fn state(&self, facts: &str) -> Result<Observed<'_>, LfdError> {
         self.state_in("state", facts)
     }
 
     /// [`LogicLfd::state`] with the file name used in error locations.
-    pub fn state_in(&self, file: &str, facts: &str) -> Result<State, LfdError> {
+    pub fn state_in(&self, file: &str, facts: &str) -> Result<Observed<'_>, LfdError> {
         let located = match self.source.as_deref() {
             Some((d, p)) => p.read_facts(d, facts, file)?,
             None => unlocated_facts(facts, file)?,
         };
-        let statics: BTreeSet<&str> = self.task.static_facts.iter().map(String::as_str).collect();
-        let fluent_preds: BTreeSet<&str> = self
-            .task
-            .facts
-            .iter()
-            .map(|f| plan::fact_args(f).0)
-            .collect();
-        let mut s = self.task.empty_state();
-        for f in located {
-            if let Some(id) = self.task.fact_id(&f.name) {
-                s.insert(id);
-                continue;
-            }
-            if statics.contains(f.name.as_str()) {
-                continue;
-            }
-            let message = if fluent_preds.contains(plan::fact_args(&f.name).0) {
-                format!(
-                    "`{}` can never hold in this problem: no action reachable from its initial \
-                     state adds it",
-                    f.name
-                )
-            } else {
-                format!(
-                    "`{}` contradicts the problem: `{}` is static (no action changes it) and \
-                     this atom is not in the problem's `:init`",
-                    f.name,
-                    plan::fact_args(&f.name).0
-                )
-            };
-            return Err(PddlError {
-                file: file.to_string(),
-                line: f.line,
-                col: f.col,
-                message,
-            }
-            .into());
-        }
-        Ok(s)
+        observed::observe(self, file, located)
+    }
+
+    /// A state of this instance's task (e.g. [`LogicLfd::state_after`]'s, or the initial
+    /// state) as an [`Observed`] state.
+    pub fn observed(&self, state: State) -> Observed<'_> {
+        Observed::known(self, state)
     }
 
     /// The state reached from the problem's initial state by a plan prefix (one `(action args)` a
@@ -484,18 +458,20 @@ mod tests {
         let lfd = LogicLfd::new(DOMAIN, PROBLEM, DEMO).unwrap();
         // b was chopped early: L_0 ⊆ S_C, but a_3 (chop b) cannot apply any more, so LogicIn
         // does not match L_0 and the search joins where the rest of the demo still applies.
-        let s = lfd.state("(chopped b)").unwrap();
-        assert_eq!(lfd.logic_in(&s), None);
+        let observed = lfd.state("(chopped b)").unwrap();
+        assert!(!observed.is_regrounded(), "known fluents keep the task");
+        let s = observed.state();
+        assert_eq!(lfd.logic_in(s), None);
         let cfg = SearchConfig::new(Algorithm::Astar, HeuristicKind::LmCut);
         for mode in [Mode::Paper, Mode::Prioritised] {
-            let r = lfd.replan(&s, mode, &cfg, &NoClock).unwrap();
+            let r = lfd.replan(s, mode, &cfg, &NoClock).unwrap();
             assert_eq!(r.k, Some(3), "{mode:?}");
             assert_eq!(r.names, ["(chop a)", "(serve a)", "(serve b)"]);
-            assert!(lfd.validate(&s, &r.names).unwrap().is_valid());
+            assert!(lfd.validate(s, &r.names).unwrap().is_valid());
         }
         // The reactive loop's instance (built from a grounded task) has the same goals.
         let plain = LogicLfd::from_task(lfd.task().clone(), lfd.trace().clone());
-        let r = plain.replan(&s, Mode::Paper, &cfg, &NoClock).unwrap();
+        let r = plain.replan(s, Mode::Paper, &cfg, &NoClock).unwrap();
         assert_eq!(r.k, Some(3));
     }
 }

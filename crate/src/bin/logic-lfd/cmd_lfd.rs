@@ -17,7 +17,9 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use logic_lfd::pddl::read_source;
-use logic_lfd::prelude::{Clock, LfdError, LfdPlan, LogicLfd, Mode, PlanSource, SearchConfig};
+use logic_lfd::prelude::{
+    Clock, LfdError, LfdPlan, LogicLfd, Mode, Observed, PlanSource, SearchConfig,
+};
 
 use crate::cmd_lfd_perturb::{self, StudyArgs};
 use crate::cmd_plan::{cost_kind, stats_line, SearchArgs, WallClock};
@@ -94,21 +96,21 @@ pub fn status_name(r: &Result<LfdPlan, LfdError>) -> &'static str {
     }
 }
 
-/// S_C and what it was read from.
-struct Current {
-    state: logic_lfd::prelude::State,
+/// S_C (with the instance it is a state of) and what it was read from.
+struct Current<'a> {
+    observed: Observed<'a>,
     origin: String,
 }
 
-fn current_state(lfd: &LogicLfd, args: &Args) -> Result<Current, String> {
+fn current_state<'a>(lfd: &'a LogicLfd, args: &Args) -> Result<Current<'a>, String> {
     let read = |p: &Path| read_source(p).map_err(|e| e.to_string());
     let file = |p: &Path| p.display().to_string();
     if let Some(path) = &args.state {
-        let state = lfd
+        let observed = lfd
             .state_in(&file(path), &read(path)?)
             .map_err(|e| e.to_string())?;
         Ok(Current {
-            state,
+            observed,
             origin: file(path),
         })
     } else if let Some(path) = &args.after {
@@ -116,12 +118,12 @@ fn current_state(lfd: &LogicLfd, args: &Args) -> Result<Current, String> {
             .state_after(&file(path), &read(path)?)
             .map_err(|e| e.to_string())?;
         Ok(Current {
-            state,
+            observed: lfd.observed(state),
             origin: format!("after {}", file(path)),
         })
     } else {
         Ok(Current {
-            state: lfd.task().init.clone(),
+            observed: lfd.observed(lfd.task().init.clone()),
             origin: "the problem's initial state".into(),
         })
     }
@@ -152,11 +154,12 @@ pub fn run(args: Args) -> ExitCode {
         Ok(c) => c,
         Err(e) => return bad_input(&e),
     };
-    let logic_in = lfd.logic_in(&current.state);
-    let result = lfd.replan(&current.state, args.mode, &config, &clock);
+    let observed = &current.observed;
+    let logic_in = observed.logic_in();
+    let result = observed.replan(args.mode, &config, &clock);
     let total = clock.now_secs();
     let report = match &result {
-        Ok(p) => match lfd.validate(&current.state, &p.names) {
+        Ok(p) => match observed.validate(&p.names) {
             Ok(r) => Some(r),
             Err(e) => return bad_input(&e.to_string()),
         },
@@ -198,7 +201,7 @@ fn bad_input(message: &str) -> ExitCode {
 /// One Logic-LfD call and what it was called on, as printed.
 struct Run<'a> {
     lfd: &'a LogicLfd,
-    current: &'a Current,
+    current: &'a Current<'a>,
     logic_in: Option<usize>,
     result: &'a Result<LfdPlan, LfdError>,
     valid: Option<bool>,
@@ -240,8 +243,11 @@ fn print_text(run: &Run, mode: Mode, config: &SearchConfig) {
             }
         }
     }
-    let names = lfd.names(&run.current.state);
+    let names = run.current.observed.names();
     println!("; S_C ({}): {}", run.current.origin, atoms(&names));
+    if run.current.observed.is_regrounded() {
+        println!("; S_C holds facts the problem's task cannot: re-grounded with S_C as its :init");
+    }
     match run.logic_in {
         Some(k) => println!("; LogicIn: L_{k} ⊆ S_C"),
         None => println!("; LogicIn: no L_k ⊆ S_C that the rest of the demonstration runs from"),
@@ -301,7 +307,8 @@ fn json(run: &Run, mode: Mode, config: &SearchConfig, total: f64) -> serde_json:
         "status": status_name(run.result),
         "demo_states": demo_states,
         "demo_actions": lfd.demo_actions(),
-        "state": lfd.names(&run.current.state),
+        "state": run.current.observed.names(),
+        "regrounded": run.current.observed.is_regrounded(),
         "logic_in": run.logic_in,
         "k": plan.and_then(|p| p.k),
         "source": plan.map(|p| p.source),
