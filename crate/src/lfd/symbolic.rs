@@ -18,7 +18,7 @@ use crate::plan::{
 };
 
 use super::demo::{DemoTrace, MultiGoalSpec};
-use super::logic::{plan_logic_lfd_avoiding, plan_logic_lfd_prepared, LfdPlan, Mode};
+use super::logic::{plan_logic_lfd_avoiding, plan_logic_lfd_prepared, LfdPlan, Mode, PlanSource};
 use super::LfdError;
 
 mod observed;
@@ -282,7 +282,18 @@ impl LogicLfd {
         // Among plans of equal cost the paper plan follows the demonstration longest (the
         // prioritised search may tie-break towards G), and with a satisficing search it may
         // even be cheaper: prioritised mode returns it unless its own plan is strictly cheaper.
+        // With an optimal search, where the paper plan costs no more than LM-cut's lower bound on
+        // planning to G it is optimal and the (as costly as optimal planning) prioritised
+        // search is skipped; a satisficing search is cheaper than that bound.
         let paper = run(Mode::Paper);
+        if let Ok(p) = &paper {
+            let search = self.search(Mode::Prioritised);
+            if p.source != PlanSource::MultiGoal
+                || (config.is_optimal() && search.lower_bound(s).is_some_and(|lb| p.cost <= lb))
+            {
+                return paper;
+            }
+        }
         let mut best = run(Mode::Prioritised)?;
         if let Ok(p) = paper {
             let searched = p.stats.expanded;

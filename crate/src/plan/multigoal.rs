@@ -217,10 +217,12 @@ impl MultiGoalSearch {
     ///
     /// Then every plan to a goal `k` followed by that plan reaches `G_j`, so the prioritised
     /// optimum from `s` is at least the cost of reaching `G_j` alone, and A* in prioritised mode
-    /// evaluates its heuristic to `G_j` alone, which is admissible for the prioritised objective
-    /// and rarely below the compiled heuristic (whose minimum over goals includes `G_j` at cost
-    /// 0). Other modes and algorithms ignore the declaration, and so does an index out of range
-    /// or a goal with a terminal cost.
+    /// takes the larger of its heuristic and the heuristic to `G_j` alone (both admissible for
+    /// the prioritised objective): the compiled heuristic's minimum over the goals includes `G_j`
+    /// at cost 0, so it is never above the heuristic to `G_j`, but near a demonstration state it
+    /// carries that state's terminal cost and breaks the ties of A* towards it. Other modes and
+    /// algorithms ignore the declaration, and so does an index out of range or a goal with a
+    /// terminal cost.
     pub fn with_lower_bound(mut self, j: usize) -> Self {
         let Some(goal) = self.goals.get(j).filter(|g| g.terminal_cost == 0) else {
             return self;
@@ -259,6 +261,35 @@ impl MultiGoalSearch {
         self.mode
     }
 
+    /// An admissible lower bound on the prioritised optimum from `start`: LM-cut to the goal of
+    /// [`MultiGoalSearch::with_lower_bound`] (`None` without one; `Some(u64::MAX)` when that goal
+    /// is unreachable even in the delete relaxation).
+    pub fn lower_bound(&self, start: &State) -> Option<u64> {
+        let goal = self.bound.as_ref()?;
+        let task = self.searched();
+        let kind = HeuristicKind::LmCut;
+        let mut heur = self
+            .evaluators
+            .take(kind, true)
+            .unwrap_or_else(|| HeuristicEvaluator::new(task, std::slice::from_ref(goal), kind));
+        let v = heur.value(&self.project(start)).unwrap_or(u64::MAX);
+        self.evaluators.put(heur, true);
+        Some(v)
+    }
+
+    /// `start` (a state of the original task) as a state of the searched task.
+    fn project(&self, start: &State) -> State {
+        let n = self.num_facts;
+        let start = State::from_facts(
+            self.compiled.facts.len(),
+            start.facts().filter(|&f| (f as usize) < n),
+        );
+        match &self.rel {
+            Some(r) => r.project(&start),
+            None => start,
+        }
+    }
+
     fn searched(&self) -> &Task {
         self.rel.as_ref().map_or(&self.compiled, |r| &r.task)
     }
@@ -280,16 +311,19 @@ impl MultiGoalSearch {
             .map_or_else(|| start.clone(), |r| r.project(&start));
         let kind = search_heuristic(&config);
         let task = self.searched();
-        // With a bound, A* evaluates the heuristic to the bounding goal alone: it is admissible
-        // here and rarely below the compiled one (whose minimum includes that goal at cost 0).
-        let on_bound = self.bound.is_some() && config.algorithm == Algorithm::Astar;
-        let mut heur = self.evaluators.take(kind, on_bound).unwrap_or_else(|| {
-            let goal = match &self.bound {
-                Some(b) if on_bound => b,
-                _ => &task.goal,
-            };
-            HeuristicEvaluator::new(task, std::slice::from_ref(goal), kind)
+        let mut heur = self.evaluators.take(kind, false).unwrap_or_else(|| {
+            HeuristicEvaluator::new(task, std::slice::from_ref(&task.goal), kind)
         });
+        // With a bound, A* takes the larger of the compiled heuristic (whose minimum over the
+        // goals guides towards the demonstration) and the heuristic to the bounding goal.
+        let mut bound = match (&self.bound, config.algorithm) {
+            (Some(goal), Algorithm::Astar) => {
+                Some(self.evaluators.take(kind, true).unwrap_or_else(|| {
+                    HeuristicEvaluator::new(task, std::slice::from_ref(goal), kind)
+                }))
+            }
+            _ => None,
+        };
         let r = run_on(
             Parts {
                 task,
@@ -297,13 +331,17 @@ impl MultiGoalSearch {
                 heur: &mut heur,
                 goal_of_op: &self.goal_of_op,
                 num_goals: self.goals.len(),
+                bound: bound.as_mut(),
                 goal_ops: &self.goal_ops,
             },
             &searched_start,
             &config,
             clock,
         );
-        self.evaluators.put(heur, on_bound);
+        self.evaluators.put(heur, false);
+        if let Some(b) = bound {
+            self.evaluators.put(b, true);
+        }
         let mut stats = r.stats;
         let mut reached = r.reached;
         let (outcome, goal_index, total_cost) = match r.outcome {
@@ -319,7 +357,11 @@ impl MultiGoalSearch {
                 }
                 debug_assert!(ops.iter().all(|&o| o < self.num_ops));
                 let cost = self.compiled.cost_of(&ops);
-                let mut end = start;
+                let n = self.num_facts;
+                let mut end = State::from_facts(
+                    self.compiled.facts.len(),
+                    start.facts().filter(|&f| (f as usize) < n),
+                );
                 for &o in &ops {
                     end = self.compiled.operators[o].apply(&end);
                 }

@@ -81,6 +81,8 @@ pub(crate) struct Parts<'a> {
     pub goal_of_op: &'a [u32],
     /// Number of goals behind the goal operators.
     pub num_goals: usize,
+    /// With A*: a second heuristic, also admissible for the task; the larger value is taken.
+    pub bound: Option<&'a mut HeuristicEvaluator>,
     /// With `bfs`, `gbfs` and `lazy-gbfs`: a state in which one of these operators applies is a
     /// goal state too (the search stops where a goal holds, not one step later).
     pub goal_ops: &'a [u32],
@@ -106,6 +108,7 @@ pub(crate) fn run(
         heur: &mut heur,
         goal_of_op: &[],
         num_goals: 0,
+        bound: None,
         goal_ops: &[],
     };
     run_on(parts, &start, config, clock)
@@ -153,6 +156,10 @@ pub(crate) fn run_on(
         child_buf: Vec::new(),
         goal_of_op: parts.goal_of_op,
         reached: vec![u64::MAX; parts.num_goals],
+        bound: match config.algorithm {
+            Algorithm::Astar => parts.bound,
+            _ => None,
+        },
         goal_ops: match config.algorithm {
             Algorithm::Bfs | Algorithm::Gbfs | Algorithm::LazyGbfs => parts.goal_ops,
             Algorithm::Ucs | Algorithm::Astar => &[],
@@ -206,6 +213,8 @@ struct Engine<'a> {
     reached: Vec<u64>,
     /// Operators whose applicability makes a goal state (see [`Parts::goal_ops`]).
     goal_ops: &'a [u32],
+    /// A second admissible heuristic (see [`Parts::bound`]).
+    bound: Option<&'a mut HeuristicEvaluator>,
 }
 
 impl Engine<'_> {
@@ -248,6 +257,16 @@ impl Engine<'_> {
             }
         }
         None
+    }
+
+    /// `h` of a packed state for the best-first searches: the larger of the heuristic and the
+    /// bound, `None` when either proves a dead end.
+    fn h_of(&mut self, words: &[u64]) -> Option<u64> {
+        let h = self.heur.eval(words, None)?;
+        match self.bound.as_deref_mut() {
+            Some(b) => Some(h.max(b.eval(words, None)?)),
+            None => Some(h),
+        }
     }
 
     /// Whether the goal holds in `words`, or one of the goal operators applies.
@@ -336,7 +355,7 @@ impl Engine<'_> {
         let greedy = alg == Algorithm::Gbfs;
         let (s, _) = self.register(start, NONE, NONE, 0);
         self.stats.evaluated += 1;
-        let Some(h0) = self.heur.eval(start, None) else {
+        let Some(h0) = self.h_of(start) else {
             return SearchOutcome::Unsolvable;
         };
         self.h[s as usize] = h0;
@@ -381,7 +400,7 @@ impl Engine<'_> {
                 let mut push = false;
                 if new {
                     self.stats.evaluated += 1;
-                    match self.heur.eval(&child, None) {
+                    match self.h_of(&child) {
                         None => self.status[tu] = DEAD,
                         Some(h) => {
                             self.h[tu] = h;
