@@ -1,5 +1,6 @@
-//! Reading the input object of `logicLfd` and `logicLfdPerturb`: the texts (a non-string throws
-//! a `TypeError` naming the key), the options (a bad one is an `options` error), the file names.
+//! Reading the inputs of `logicLfd`, `logicLfdPerturb` and the `LogicLfd` class: the texts (a
+//! non-string throws a `TypeError` naming the key), the options (a bad one is an `options`
+//! error), the file names.
 
 use serde_json::{Map, Value};
 use wasm_bindgen::prelude::*;
@@ -240,5 +241,18 @@ pub(super) const LFD_KEYS: [&str; 12] = [
     "maxExpanded",
     "timeLimitMs",
     "files",
+    "compare",
+];
+
+/// The keys of the `LogicLfd` class's constructor input.
+pub(super) const SETUP_KEYS: [&str; 4] = ["domain", "problem", "demo", "files"];
+
+/// The keys of `LogicLfd.replan`'s options.
+pub(super) const REPLAN_KEYS: [&str; 6] = [
+    "mode",
+    "search",
+    "heuristic",
+    "maxExpanded",
+    "timeLimitMs",
     "compare",
 ];
