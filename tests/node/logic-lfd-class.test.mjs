@@ -9,6 +9,8 @@ import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 
 const lfd = await import(new URL('../../pkg/node/index.mjs', import.meta.url).href);
+/** What the class throws for bad input. */
+const located = (e) => /** @type {import('logic-lfd').LogicLfdError} */ (e);
 const read = (p) => readFileSync(fileURLToPath(new URL(`../../domains/${p}`, import.meta.url)), 'utf8');
 
 const DOMAINS = ['kitchen', 'delivery'].map((name) => ({
@@ -106,9 +108,9 @@ describe('LogicLfd', () => {
     assert.equal(stable(out), stable(lfd.logicLfd({ ...d.setup, files, state })));
     assert.throws(
       () => c.logicIn(state),
-      (e) => e instanceof Error && e.message === out.message && e.kind === 'state' && e.diagnostics[0].line === 2,
+      (e) => e instanceof Error && e.message === out.message && located(e).kind === 'state' && located(e).diagnostics[0].line === 2,
     );
-    assert.throws(() => c.validate(state, []), (e) => e.diagnostics[0].col === col);
+    assert.throws(() => c.validate(state, []), (e) => located(e).diagnostics[0].col === col);
     const bad = c.replan(d.disturbed, { search: 'dfs' });
     assert.deepEqual([bad.ok, bad.kind, bad.diagnostics[0].source], [false, 'options', 'options']);
     assert.equal(stable(bad), stable(lfd.logicLfd({ ...d.setup, state: d.disturbed, search: 'dfs' })));
@@ -122,7 +124,8 @@ describe('LogicLfd', () => {
     const thrown = (setup, kind, source, file, line) =>
       assert.throws(
         () => new lfd.LogicLfd(setup),
-        (e) => {
+        (thrown) => {
+          const e = located(thrown);
           assert.ok(e instanceof Error);
           assert.equal(e.kind, kind, e.message);
           const g = e.diagnostics[0];
@@ -176,4 +179,28 @@ describe('LogicLfd', () => {
     assert.throws(() => a.demo.actions.push('(x)'), TypeError);
     c.free();
   });
+});
+
+test("the package README's LogicLfd example runs and prints what it says", () => {
+  const md = readFileSync(fileURLToPath(new URL('../../npm/README.md', import.meta.url)), 'utf8');
+  const section = md.slice(md.indexOf('## Logic-LfD on your own domain'));
+  const [courier, example] = [...section.matchAll(/```js\n([\s\S]*?)```/g)].map((m) => m[1].replace(/^import .*$/m, '').replace('await init();', ''));
+  const logged = [];
+  const console = { log: (...a) => logged.push(a), error: (...a) => logged.push(['error', ...a]) };
+  // The class example goes on with the courier task of the first one.
+  const code = `${courier}\nconsole.log('--');\n${example}`;
+  new Function('logicLfd', 'logicLfdPerturb', 'LogicLfd', 'console', code)(lfd.logicLfd, lfd.logicLfdPerturb, lfd.LogicLfd, console);
+  const mine = logged.slice(logged.findIndex((l) => l[0] === '--') + 1);
+  assert.deepEqual(mine.slice(0, 4), [
+    [7],
+    [4],
+    [4, ['(load p2 mill)', '(drive mill farm)', '(deliver p2 farm)']],
+    [true],
+  ]);
+  assert.equal(mine[4][0], 'unsolvable');
+  assert.match(mine[4][1], /no action can make the goal literal\(s\) \(delivered p2\) true/);
+  assert.equal(mine.length, 5);
+  // The comments say what each line prints.
+  assert.match(example, /\/\/ 7: L_0 … L_6/);
+  assert.match(example, /\/\/ 4 \[ '\(load p2 mill\)', '\(drive mill farm\)', '\(deliver p2 farm\)' \]/);
 });

@@ -455,11 +455,19 @@ mod tests {
         let fast = p.with_ground_init(&d, &facts).unwrap();
         assert_eq!(fast.init.len(), 2);
         let read = p.with_init(&d, &facts).unwrap();
-        let text = |q: &Problem| q.init.iter().map(|a| d.atom_text(a, &[])).collect::<Vec<_>>();
+        let text = |q: &Problem| {
+            q.init
+                .iter()
+                .map(|a| d.atom_text(a, &[]))
+                .collect::<Vec<_>>()
+        };
         assert_eq!(text(&fast), text(&read));
         // Not the grounder's spelling, a mistyped or unknown argument: read, and located.
         assert_eq!(
-            text(&p.with_ground_init(&d, &["( OPEN  r1 )".to_string()]).unwrap()),
+            text(
+                &p.with_ground_init(&d, &["( OPEN  r1 )".to_string()])
+                    .unwrap()
+            ),
             ["(open r1)"]
         );
         for bad in ["(open b1)", "(open r3)", "(in b1)"] {

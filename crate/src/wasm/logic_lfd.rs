@@ -18,8 +18,8 @@ mod query;
 
 use diagnostics::{location_message, options_diag, Diag};
 use input::{
-    count_option, files_option, known_keys, object_fields, optional_text, search_options, text,
-    LFD_KEYS,
+    count_option, files_option, known_keys, object_fields, optional_text, search_options, texts,
+    Texts, FILE_KEYS, LFD_KEYS,
 };
 use query::{answer, prepare, Current, Fixed, LfdResult};
 
@@ -73,6 +73,11 @@ export interface LogicLfdDiagnostic {
   /** 1-based line and column (0/0 when the message is not about a place). */
   line: number; col: number;
   message: string;
+}
+/** What the `LogicLfd` class throws for bad input: `message` is `file:line:col: message`. */
+export interface LogicLfdError extends Error {
+  kind: 'parse' | 'demo' | 'state' | 'options';
+  diagnostics: LogicLfdDiagnostic[];
 }
 /** The demonstration as Logic-LfD reads it. */
 export interface LogicLfdDemo {
@@ -173,9 +178,7 @@ pub fn logic_lfd(
 ) -> Result<JsValue, JsValue> {
     const F: &str = "logicLfd";
     let m = object_fields(F, &input)?;
-    let domain = text(F, &m, "domain")?;
-    let problem = text(F, &m, "problem")?;
-    let demo = text(F, &m, "demo")?;
+    let texts = texts(F, &m)?;
     let current = match (
         optional_text(F, &m, "state")?,
         optional_text(F, &m, "after")?,
@@ -190,13 +193,13 @@ pub fn logic_lfd(
         (None, None) => Current::Init,
     };
     let options = known_keys(&m, &LFD_KEYS, "input")
-        .and_then(|()| files_option(&m, &["domain", "problem", "demo", "state"]))
+        .and_then(|()| files_option(&m, &FILE_KEYS))
         .and_then(|f| Ok((f, search_options(&m)?)));
     let (files, o) = match options {
         Ok(x) => x,
         Err(e) => return to_js(&LfdResult::options_failure(e)),
     };
-    match prepare(&files, &domain, &problem, &demo) {
+    match prepare(&files, &texts) {
         Ok(lfd) => to_js(&answer(&lfd, &files, current, &o).with(&Fixed::of(&lfd))),
         Err((kind, d)) => to_js(&LfdResult::input_failure(kind, d)),
     }
@@ -216,13 +219,11 @@ pub fn logic_lfd_perturb(
 ) -> Result<JsValue, JsValue> {
     const F: &str = "logicLfdPerturb";
     let m = object_fields(F, &input)?;
-    let domain = text(F, &m, "domain")?;
-    let problem = text(F, &m, "problem")?;
-    let demo = text(F, &m, "demo")?;
-    to_js(&perturb_impl(&m, &domain, &problem, &demo))
+    let texts = texts(F, &m)?;
+    to_js(&perturb_impl(&m, &texts))
 }
 
-fn perturb_impl(m: &Map<String, Value>, domain: &str, problem: &str, demo: &str) -> PerturbResult {
+fn perturb_impl(m: &Map<String, Value>, texts: &Texts) -> PerturbResult {
     let options = known_keys(m, &PERTURB_KEYS, "input").and_then(|()| {
         let files = files_option(m, &["domain", "problem", "demo"])?;
         let count = count_option(m, "count")?.ok_or("`count` is required")?;
@@ -240,7 +241,7 @@ fn perturb_impl(m: &Map<String, Value>, domain: &str, problem: &str, demo: &str)
             }
         }
     };
-    match prepare(&files, domain, problem, demo) {
+    match prepare(&files, texts) {
         Ok(lfd) => PerturbResult {
             ok: true,
             message: String::new(),

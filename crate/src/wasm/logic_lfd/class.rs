@@ -13,7 +13,8 @@ use super::super::pddl::Validation;
 use super::super::{from_js, to_js};
 use super::diagnostics::{located_error, options_diag};
 use super::input::{
-    files_option, known_keys, object_fields, search_options, text, Files, REPLAN_KEYS, SETUP_KEYS,
+    files_option, known_keys, object_fields, search_options, texts, Files, FILE_KEYS, REPLAN_KEYS,
+    SETUP_KEYS,
 };
 use super::query::{answer, prepare, Current, Fixed, LfdResult};
 use crate::lfd::{LogicLfd, Observed};
@@ -127,14 +128,11 @@ impl LogicLfdClass {
     ) -> Result<LogicLfdClass, JsValue> {
         const F: &str = "LogicLfd";
         let m = object_fields(F, &input)?;
-        let domain = text(F, &m, "domain")?;
-        let problem = text(F, &m, "problem")?;
-        let demo = text(F, &m, "demo")?;
+        let texts = texts(F, &m)?;
         let files = known_keys(&m, &SETUP_KEYS, "input")
-            .and_then(|()| files_option(&m, &["domain", "problem", "demo", "state"]))
+            .and_then(|()| files_option(&m, &FILE_KEYS))
             .map_err(|e| located_error("options", options_diag(e)))?;
-        let lfd =
-            prepare(&files, &domain, &problem, &demo).map_err(|(k, d)| located_error(k, d))?;
+        let lfd = prepare(&files, &texts).map_err(|(k, d)| located_error(k, d))?;
         let fixed = Fixed::of(&lfd);
         let task = Task {
             demo: frozen(&fixed.demo)?,

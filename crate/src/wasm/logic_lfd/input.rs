@@ -73,6 +73,23 @@ pub(super) fn text(func: &str, m: &Map<String, Value>, key: &str) -> Result<Stri
     }
 }
 
+/// The domain, problem and demonstration texts of an input.
+pub(super) struct Texts {
+    pub(super) domain: String,
+    pub(super) problem: String,
+    pub(super) demo: String,
+}
+
+/// The input's `domain`, `problem` and `demo`: strings, or a `TypeError` naming the first that
+/// is not.
+pub(super) fn texts(func: &str, m: &Map<String, Value>) -> Result<Texts, JsValue> {
+    Ok(Texts {
+        domain: text(func, m, "domain")?,
+        problem: text(func, m, "problem")?,
+        demo: text(func, m, "demo")?,
+    })
+}
+
 /// An optional text field (`null` reads as absent): a string, or a `TypeError` naming it.
 pub(super) fn optional_text(
     func: &str,
@@ -256,3 +273,6 @@ pub(super) const REPLAN_KEYS: [&str; 6] = [
     "timeLimitMs",
     "compare",
 ];
+
+/// The keys of the `files` option of `logicLfd` and the `LogicLfd` class.
+pub(super) const FILE_KEYS: [&str; 4] = ["domain", "problem", "demo", "state"];

@@ -5,7 +5,7 @@ use serde::Serialize;
 
 use super::super::PerformanceClock;
 use super::diagnostics::{input_error, location_message, options_diag, Diag};
-use super::input::{Files, Options};
+use super::input::{Files, Options, Texts};
 use crate::lfd::{LfdError, LfdPlan, LogicLfd, Observed, PlanSource};
 use crate::plan::{Clock, SearchConfig, SearchOutcome, SearchStats};
 
@@ -162,16 +162,11 @@ impl Current {
 }
 
 /// Reads the domain, the problem and the demonstration, or says why not (a result to return).
-pub(super) fn prepare(
-    files: &Files,
-    domain: &str,
-    problem: &str,
-    demo: &str,
-) -> Result<LogicLfd, (&'static str, Diag)> {
+pub(super) fn prepare(files: &Files, t: &Texts) -> Result<LogicLfd, (&'static str, Diag)> {
     LogicLfd::named(
-        (&files.domain, domain),
-        (&files.problem, problem),
-        (&files.demo, demo),
+        (&files.domain, &t.domain),
+        (&files.problem, &t.problem),
+        (&files.demo, &t.demo),
     )
     .map_err(|e| input_error(&e, files, "problem"))
 }
