@@ -143,8 +143,9 @@ describe('LogicLfd', () => {
     assert.throws(() => new lfd.LogicLfd('x'), (e) => e instanceof TypeError && /LogicLfd: input must be an object/.test(e.message));
     assert.throws(() => new lfd.LogicLfd({ ...d.setup, demo: 3 }), (e) => e instanceof TypeError && /input.demo must be a string/.test(e.message));
     const c = new lfd.LogicLfd(d.setup);
-    assert.throws(() => c.replan(42), (e) => e instanceof TypeError && /replan: state must be/.test(e.message));
-    assert.throws(() => c.replan(['(hand-empty chef)', 1]), TypeError);
+    assert.throws(() => c.replan(42), (e) => e instanceof TypeError && /replan: state must be a string or an array of strings, null or undefined, got number/.test(e.message));
+    assert.throws(() => c.replan(['(hand-empty chef)', 1]), /got an array holding a number/);
+    assert.throws(() => c.validate(null, 5), (e) => e instanceof TypeError && /validate: plan must be a string or an array of strings, got number/.test(e.message));
     assert.throws(() => c.replan(null, 'astar'), (e) => e instanceof TypeError && /options must be an object/.test(e.message));
     c.free();
   });

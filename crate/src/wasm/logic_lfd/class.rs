@@ -55,49 +55,38 @@ struct Task {
 
 /// The state parameter: atoms text, an array of atoms (one a line), or nothing for `:init`.
 fn current(func: &str, state: Option<StateArg>) -> Result<Current, JsValue> {
-    let state = match state.map(JsValue::from) {
-        Some(v) if !v.is_undefined() && !v.is_null() => v,
-        _ => return Ok(Current::Init),
-    };
-    let state = &state;
-    if let Some(text) = state.as_string() {
-        return Ok(Current::Atoms(text));
+    match state.map(JsValue::from) {
+        Some(v) if !v.is_undefined() && !v.is_null() => {
+            text_or_lines(func, "state", "an array of strings, null or undefined", &v)
+                .map(Current::Atoms)
+        }
+        _ => Ok(Current::Init),
     }
-    let not_atoms = |got: &str| {
+}
+
+/// A string, or an array of strings joined one a line; else a `TypeError` saying `param` must
+/// be a string or `others`.
+fn text_or_lines(func: &str, param: &str, others: &str, v: &JsValue) -> Result<String, JsValue> {
+    if let Some(text) = v.as_string() {
+        return Ok(text);
+    }
+    let wrong = |got: &str| {
         type_error(&format!(
-            "{func}: state must be a string, an array of strings, null or undefined, got {got}"
+            "{func}: {param} must be a string or {others}, got {got}"
         ))
     };
-    if !state.is_array() {
-        return Err(not_atoms(&type_name(state)));
+    if !v.is_array() {
+        return Err(wrong(&type_name(v)));
     }
-    let atoms: Vec<serde_json::Value> = from_js(state).map_err(|e| not_atoms(&e))?;
-    let lines: Result<Vec<&str>, JsValue> = atoms
+    let items: Vec<serde_json::Value> = from_js(v).map_err(|e| wrong(&e))?;
+    let lines = items
         .iter()
         .map(|a| {
             a.as_str()
-                .ok_or_else(|| not_atoms(&format!("an array holding a {}", json_type_name(a))))
+                .ok_or_else(|| wrong(&format!("an array holding a {}", json_type_name(a))))
         })
-        .collect();
-    Ok(Current::Atoms(lines?.join("\n")))
-}
-
-/// A plan as text: a string, or an array of steps (one a line).
-fn plan_text(func: &str, plan: &JsValue) -> Result<String, JsValue> {
-    if let Some(text) = plan.as_string() {
-        return Ok(text);
-    }
-    let not_plan = || {
-        type_error(&format!(
-            "{func}: plan must be a string or an array of strings, got {}",
-            type_name(plan)
-        ))
-    };
-    if !plan.is_array() {
-        return Err(not_plan());
-    }
-    let steps: Vec<String> = from_js(plan).map_err(|_| not_plan())?;
-    Ok(steps.join("\n"))
+        .collect::<Result<Vec<&str>, JsValue>>()?;
+    Ok(lines.join("\n"))
 }
 
 /// `value` frozen, and every object inside it (results share it).
@@ -221,7 +210,7 @@ impl LogicLfdClass {
         #[wasm_bindgen(unchecked_param_type = "string | string[]")] plan: JsValue,
     ) -> Result<JsValue, JsValue> {
         const F: &str = "LogicLfd.validate";
-        let plan = plan_text(F, &plan)?;
+        let plan = text_or_lines(F, "plan", "an array of strings", &plan)?;
         let s = self.observe(F, Some(state.unchecked_into()))?;
         let report = s
             .validate(std::slice::from_ref(&plan))
