@@ -10,8 +10,8 @@
 //! `build.rs`): the closed-loop `Session` on B1's template task and `benchmark`, without Teach
 //! mode (`Teacher`, taught tasks), `Session.replay`, `Session.fromScene`, B2, B3, N-block tasks,
 //! JSON paths in load errors, the PDDL tab's `plan`, `check`, `logicLfd` and `logicLfdPerturb`,
-//! and the npm-only `lqt`, `validate` and `runEpisode`; `wasm` adds them (the npm package, and the
-//! module the page loads after its first frame).
+//! and the npm-only `lqt`, `validate`, `runEpisode` and `LogicLfd` class; `wasm` adds them (the npm
+//! package, and the module the page loads after its first frame).
 
 use crate::plan::Clock;
 use wasm_bindgen::prelude::*;

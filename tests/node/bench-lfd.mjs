@@ -6,9 +6,13 @@
 // `count` states drawn with `logicLfdPerturb` (seed `seed`), then per state one `logicLfd` call in
 // paper mode with lazy GBFS + h_FF and `compare: true` (from scratch with the same search).
 //
-// Columns: "call" is the whole `logicLfd` call (parsing, grounding and the search: the binding is
+// Columns: "call" is the whole `logicLfd` call (parsing, grounding and the search: the function is
 // stateless, so every call re-reads the texts); "search" is `stats.timeMs`, the search alone, which
-// is what the native CLI's `summary.median_lfd_ms` measures (it parses and grounds once).
+// is what the native CLI's `summary.median_lfd_ms` measures (it parses and grounds once);
+// "LogicLfd.replan" is one call of the class, which read the texts once (the state's atoms, LogicIn,
+// the search, the lifted replay of the plan and the result object), timed after a warm-up pass over
+// the same states (median over three passes), and its ratio to the native per-call median
+// (target ≤ 2×).
 // The native column comes from `logic-lfd lfd D P DEMO --perturb N --seed S --mode paper --search
 // lazy-gbfs --heuristic hff --json` (env LOGIC_LFD_BIN, else target/release/logic-lfd), when that
 // binary has the `lfd` command; its states are checked to be the ones wasm drew.
@@ -102,6 +106,20 @@ for (const d of DOMAINS) {
     search.push(out.stats.timeMs);
     scratch.push(out.scratch?.stats.timeMs ?? NaN);
   }
+  const cls = new lfd.LogicLfd(texts);
+  const options = { mode: 'paper', search: 'lazy-gbfs', heuristic: 'hff' };
+  for (const s of drawn.states) cls.replan(s.facts, options);
+  // Three timed passes: the median over all their calls is steadier on a shared machine.
+  const replan = [];
+  for (let pass = 0; pass < 3; pass++) {
+    for (const s of drawn.states) {
+      const t0 = performance.now();
+      const out = cls.replan(s.facts, options);
+      replan.push(performance.now() - t0);
+      if (!out.ok || !out.valid) throw new Error(`${d.name}: LogicLfd.replan: ${out.message}`);
+    }
+  }
+  cls.free();
   const demoLen = lfd.logicLfd(texts).demo.actions.length;
   let native = { lfd: NaN, scratch: NaN, same: 'n/a' };
   if (bin) {
@@ -123,6 +141,7 @@ for (const d of DOMAINS) {
     nativeScratch: native.scratch,
     wasmSearch: median(search),
     wasmCall: median(call),
+    classReplan: median(replan),
     scratchSearch: median(scratch),
     speedup: median(scratch) / median(search),
     same: native.same,
@@ -138,11 +157,13 @@ const lines = [
   'stateless `logicLfd` call without its from-scratch search (parse + ground + LogicIn/search + validate).',
   '"from-scratch" is the same search to G from the same state (`compare: true`, `scratch.stats.timeMs`);',
   'speed-up = from-scratch search / Logic-LfD search, wasm. "failed": states without a valid merged plan (wasm).',
+  '"LogicLfd.replan" is one call of the class (texts read once; state, LogicIn, search, lifted replay, result),',
+  'median of three passes after a warm-up; "replan/native" is its ratio to the native Logic-LfD median (target ≤ 2).',
   '',
-  '| domain | demo length | Logic-LfD median ms native | wasm search | wasm/native | wasm call | from-scratch median native | from-scratch median wasm | speed-up (scratch/lfd) | same states | failed |',
-  '|---|---|---|---|---|---|---|---|---|---|---|',
+  '| domain | demo length | Logic-LfD median ms native | wasm search | wasm/native | wasm call | LogicLfd.replan | replan/native | from-scratch median native | from-scratch median wasm | speed-up (scratch/lfd) | same states | failed |',
+  '|---|---|---|---|---|---|---|---|---|---|---|---|---|',
   ...rows.map((r) =>
-    `| ${r.name} | ${r.demoLen} (${r.how}) | ${fmt(r.nativeLfd, 3)} | ${fmt(r.wasmSearch, 3)} | ${fmt(r.wasmSearch / r.nativeLfd)} | ${fmt(r.wasmCall, 2)} | ${fmt(r.nativeScratch, 3)} | ${fmt(r.scratchSearch, 3)} | ${fmt(r.speedup, 1)} | ${r.same} | ${r.failed} |`,
+    `| ${r.name} | ${r.demoLen} (${r.how}) | ${fmt(r.nativeLfd, 3)} | ${fmt(r.wasmSearch, 3)} | ${fmt(r.wasmSearch / r.nativeLfd)} | ${fmt(r.wasmCall, 2)} | ${fmt(r.classReplan, 3)} | ${fmt(r.classReplan / r.nativeLfd)} | ${fmt(r.nativeScratch, 3)} | ${fmt(r.scratchSearch, 3)} | ${fmt(r.speedup, 1)} | ${r.same} | ${r.failed} |`,
   ),
   '',
   bin ? `native: ${bin}` : 'native: n/a (no logic-lfd binary with `lfd --perturb`; set LOGIC_LFD_BIN or build target/release/logic-lfd)',

@@ -1,6 +1,6 @@
 // The README's TypeScript example, type-checked against the package's declarations by `npm test`
 // (tsc --noEmit); keep it identical to the README.
-import init, { plan, Session } from 'logic-lfd';
+import init, { plan, LogicLfd, Session } from 'logic-lfd';
 import { readFileSync } from 'node:fs';
 
 await init(); // fetches the .wasm in a browser; a no-op in node
@@ -23,3 +23,10 @@ for (let i = 0; i < 3000 && frame.status.kind !== 'done' && frame.status.kind !=
 }
 console.log(frame.status.message, `(${frame.replans} replans, last ${frame.lastReplan?.timeMs.toFixed(2)} ms)`);
 session.free();
+
+// Logic-LfD on any PDDL domain: read the task once, then replan from each observed state.
+const read = (f: string) => readFileSync(`domains/delivery/${f}`, 'utf8');
+const lfd = new LogicLfd({ domain: read('domain.pddl'), problem: read('problem.pddl'), demo: read('demo.plan') });
+const next = lfd.replan(read('disturbed.facts'), { mode: 'prioritised' });
+console.log(`joins L_${next.k} after ${next.prefix.length} new actions, valid: ${next.valid}`);
+lfd.free();

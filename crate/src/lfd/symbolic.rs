@@ -349,7 +349,7 @@ impl LogicLfd {
         let (d, p) = self.source()?;
         let mut init = self.names(s);
         init.extend(self.task.static_facts.iter().cloned());
-        let problem = p.with_init(d, &init)?;
+        let problem = p.with_ground_init(d, &init)?;
         Ok(validate_names(d, &problem, plan))
     }
 

@@ -3,7 +3,7 @@
 
 use std::collections::HashMap;
 
-use super::ast::{Atom, Domain, FunctionValue, Problem, Span, TypedName};
+use super::ast::{Atom, Domain, FunctionValue, Name, Problem, Span, Term, TypedName};
 use super::common::{define, list, name, non_negative_integer, refuse, requirements, typed_list};
 use super::domain::{duplicate, resolve_type};
 use super::error::{PddlError, Source};
@@ -318,10 +318,65 @@ impl Problem {
             .into_iter()
             .map(|(a, _)| a)
             .collect();
-        Ok(Problem {
+        Ok(self.with_atoms(init))
+    }
+
+    /// This problem with `init` (its own initial atoms are not copied).
+    fn with_atoms(&self, init: Vec<Atom>) -> Problem {
+        Problem {
+            name: self.name.clone(),
+            domain_name: self.domain_name.clone(),
+            objects: self.objects.clone(),
             init,
-            ..self.clone()
-        })
+            function_values: self.function_values.clone(),
+            goal: self.goal.clone(),
+            minimize_total_cost: self.minimize_total_cost,
+            source: self.source.clone(),
+        }
+    }
+
+    /// [`Problem::with_init`] for atoms as the grounder prints them (`(on a b)`: lower case,
+    /// single spaces) — a state of a grounding of this problem — without reading them as source
+    /// text; anything else goes through [`Problem::with_init`] and its located errors.
+    pub(crate) fn with_ground_init(
+        &self,
+        domain: &Domain,
+        facts: &[String],
+    ) -> Result<Problem, PddlError> {
+        let objects: HashMap<&str, usize> = domain
+            .constants
+            .iter()
+            .chain(&self.objects)
+            .map(|o| (o.name.text.as_str(), o.ty))
+            .collect();
+        let atom = |fact: &str| -> Option<Atom> {
+            let mut words = fact.strip_prefix('(')?.strip_suffix(')')?.split(' ');
+            let pred = words.next()?;
+            let predicate = domain.predicates.iter().position(|p| p.name.text == pred)?;
+            let params = &domain.predicates[predicate].params;
+            let mut args = Vec::with_capacity(params.len());
+            for (word, param) in words.zip(params) {
+                let &ty = objects.get(word)?;
+                if !domain.is_subtype(ty, param.ty) {
+                    return None;
+                }
+                args.push(Term::Const(Name {
+                    text: word.to_string(),
+                    span: Span::default(),
+                }));
+            }
+            (args.len() == params.len() && fact.matches(' ').count() == args.len()).then_some(
+                Atom {
+                    predicate,
+                    args,
+                    span: Span::default(),
+                },
+            )
+        };
+        match facts.iter().map(|f| atom(f)).collect::<Option<Vec<Atom>>>() {
+            Some(init) => Ok(self.with_atoms(init)),
+            None => self.with_init(domain, facts),
+        }
     }
 
     /// Reads a list of ground atoms of this problem — a state written as a user would, one
@@ -379,5 +434,45 @@ impl Problem {
             .iter()
             .map(|e| scope.atom(e).map(|a| (a, e.span())))
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::parse_domain;
+    use super::*;
+
+    const DOMAIN: &str = "(define (domain d) (:requirements :typing) (:types box room)
+      (:predicates (in ?b - box ?r - room) (open ?r - room)))";
+    const PROBLEM: &str = "(define (problem p) (:domain d) (:objects b1 - box r1 r2 - room)
+      (:init (in b1 r1)) (:goal (in b1 r2)))";
+
+    #[test]
+    fn ground_atoms_give_the_init_that_reading_them_gives() {
+        let d = parse_domain(DOMAIN, "d.pddl").unwrap();
+        let p = parse_problem(PROBLEM, "p.pddl", &d).unwrap();
+        let facts = ["(in b1 r2)".to_string(), "(open r1)".to_string()];
+        let fast = p.with_ground_init(&d, &facts).unwrap();
+        assert_eq!(fast.init.len(), 2);
+        let read = p.with_init(&d, &facts).unwrap();
+        let text = |q: &Problem| {
+            q.init
+                .iter()
+                .map(|a| d.atom_text(a, &[]))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(text(&fast), text(&read));
+        // Not the grounder's spelling, a mistyped or unknown argument: read, and located.
+        assert_eq!(
+            text(
+                &p.with_ground_init(&d, &["( OPEN  r1 )".to_string()])
+                    .unwrap()
+            ),
+            ["(open r1)"]
+        );
+        for bad in ["(open b1)", "(open r3)", "(in b1)"] {
+            let e = p.with_ground_init(&d, &[bad.to_string()]).unwrap_err();
+            assert!(e.to_string().starts_with("<init>:1:"), "{bad}: {e}");
+        }
     }
 }

@@ -1,42 +1,46 @@
-//! `logicLfd` and `logicLfdPerturb`: Logic-LfD on any PDDL domain (`lfd::LogicLfd`), stateless,
-//! text in and plain data out.
+//! `logicLfd`, `logicLfdPerturb` and the `LogicLfd` class: Logic-LfD on any PDDL domain
+//! (`lfd::LogicLfd`), text in and plain data out. The functions read the domain, the problem and
+//! the demonstration on every call; the class reads them once and answers many queries.
 //!
-//! Bad PDDL, a bad demonstration, a bad state or a bad option never throws: the result says
-//! `ok: false` with a `kind` and located diagnostics. Only a non-object input or a non-string
-//! text throws, a `TypeError` naming the parameter.
+//! Bad PDDL, a bad demonstration, a bad state or a bad option never throws from the functions or
+//! `LogicLfd.replan`: the result says `ok: false` with a `kind` and located diagnostics. Only a
+//! non-object input or a non-string text throws, a `TypeError` naming the parameter. The class's
+//! constructor, `logicIn` and `validate` throw an `Error` carrying the same diagnostics.
 
 use serde::Serialize;
 use serde_json::{Map, Value};
 use wasm_bindgen::prelude::*;
 
+mod class;
+mod diagnostics;
 mod input;
+mod query;
 
+use diagnostics::{location_message, options_diag, Diag};
 use input::{
-    count_option, files_option, known_keys, object_fields, optional_text, search_options, text,
-    Files, LFD_KEYS,
+    count_option, files_option, known_keys, object_fields, optional_text, search_options, texts,
+    Texts, FILE_KEYS, LFD_KEYS,
 };
+use query::{answer, prepare, Current, Fixed, LfdResult};
 
 use super::args::type_error;
-use super::{to_js, PerformanceClock};
-use crate::lfd::{LfdError, LfdPlan, LogicLfd, PlanSource};
-use crate::pddl::PddlError;
-use crate::plan::{Clock, SearchConfig, SearchOutcome, SearchStats, State};
+use super::to_js;
 
 #[wasm_bindgen(typescript_custom_section)]
 const TS_LOGIC_LFD: &'static str = r#"
-/** What `logicLfd` reads: a domain, a problem, one demonstration and the current state S_C. */
-export interface LogicLfdInput {
+/** A Logic-LfD task: a domain, a problem and one demonstration (what the `LogicLfd` class reads). */
+export interface LogicLfdSetup {
   /** PDDL domain text. */
   domain: string;
   /** PDDL problem text. */
   problem: string;
   /** The demonstration: IPC plan text, one `(action args)` a line, `;` comments. */
   demo: string;
-  /** S_C as PDDL atoms (one a line or space separated; static facts optional). */
-  state?: string;
-  /** Or: S_C is the state after this plan prefix from the problem's init. Neither: the problem's
-   *  initial state. Both given: `TypeError`. */
-  after?: string;
+  /** File names used in diagnostics (default `domain.pddl`, `problem.pddl`, `demo.plan`, `state`). */
+  files?: { domain?: string; problem?: string; demo?: string; state?: string };
+}
+/** How to plan (`logicLfd`'s options, and `LogicLfd.replan`'s). */
+export interface LogicLfdOptions {
   /** `paper` (default: the first demonstration state reached) or `prioritised` (the cheapest
    *  prefix + demonstration left). */
   mode?: 'paper' | 'prioritised';
@@ -48,10 +52,18 @@ export interface LogicLfdInput {
   maxExpanded?: number;
   /** Time budget in ms (default 30000). */
   timeLimitMs?: number;
-  /** File names used in diagnostics (default `domain.pddl`, `problem.pddl`, `demo.plan`, `state`). */
-  files?: { domain?: string; problem?: string; demo?: string; state?: string };
   /** Also plan from scratch to G with the same search (the result's `scratch`). */
   compare?: boolean;
+}
+/** What `logicLfd` reads: a task, the options and the current state S_C. */
+export interface LogicLfdInput extends LogicLfdSetup, LogicLfdOptions {
+  /** S_C as PDDL atoms (one a line or space separated; static facts optional). Any atoms over
+   *  the problem's objects and the domain's predicates: facts no action adds and static facts
+   *  that differ from the problem's are kept (the problem is grounded again from S_C). */
+  state?: string;
+  /** Or: S_C is the state after this plan prefix from the problem's init. Neither: the problem's
+   *  initial state. Both given: `TypeError`. */
+  after?: string;
 }
 /** A located message about one of the inputs. */
 export interface LogicLfdDiagnostic {
@@ -61,6 +73,11 @@ export interface LogicLfdDiagnostic {
   /** 1-based line and column (0/0 when the message is not about a place). */
   line: number; col: number;
   message: string;
+}
+/** What the `LogicLfd` class throws for bad input: `message` is `file:line:col: message`. */
+export interface LogicLfdError extends Error {
+  kind: 'parse' | 'demo' | 'state' | 'options';
+  diagnostics: LogicLfdDiagnostic[];
 }
 /** The demonstration as Logic-LfD reads it. */
 export interface LogicLfdDemo {
@@ -88,7 +105,7 @@ export interface LogicLfdResult {
   statics: string[];
   /** Every fluent atom of the grounded task. */
   fluents: string[];
-  /** S_C's fluents, sorted. */
+  /** S_C's atoms without the problem's static facts, sorted. */
   state: string[];
   /** The actions applicable in S_C. */
   applicable: string[];
@@ -133,74 +150,6 @@ export interface LogicLfdPerturbResult {
 /// The longest random walk of [`logic_lfd_perturb`] when `maxSteps` is not given.
 pub const DEFAULT_PERTURB_STEPS: usize = 8;
 
-#[derive(Debug, Clone, Serialize)]
-struct Diag {
-    source: &'static str,
-    file: String,
-    line: usize,
-    col: usize,
-    message: String,
-}
-
-#[derive(Debug, Default, Serialize)]
-struct Demo {
-    actions: Vec<String>,
-    states: Vec<Vec<String>>,
-    costs: Vec<u64>,
-}
-
-#[derive(Debug, Default, Serialize)]
-#[serde(rename_all = "camelCase")]
-struct Stats {
-    expanded: u64,
-    generated: u64,
-    evaluated: u64,
-    time_ms: f64,
-}
-
-impl Stats {
-    fn of(s: &SearchStats) -> Self {
-        Stats {
-            expanded: s.expanded,
-            generated: s.generated,
-            evaluated: s.evaluated,
-            time_ms: s.time_secs * 1e3,
-        }
-    }
-}
-
-#[derive(Debug, Serialize)]
-struct Scratch {
-    ok: bool,
-    plan: Vec<String>,
-    cost: Option<u64>,
-    stats: Stats,
-}
-
-#[derive(Debug, Default, Serialize)]
-#[serde(rename_all = "camelCase")]
-struct LfdResult {
-    ok: bool,
-    kind: &'static str,
-    message: String,
-    diagnostics: Vec<Diag>,
-    demo: Option<Demo>,
-    statics: Vec<String>,
-    fluents: Vec<String>,
-    state: Vec<String>,
-    applicable: Vec<String>,
-    logic_in: Option<usize>,
-    k: Option<usize>,
-    source: Option<&'static str>,
-    prefix: Vec<String>,
-    suffix: Vec<String>,
-    plan: Vec<String>,
-    cost: Option<u64>,
-    valid: bool,
-    stats: Stats,
-    scratch: Option<Scratch>,
-}
-
 #[derive(Debug, Serialize)]
 #[serde(rename_all = "camelCase")]
 struct PerturbedOut {
@@ -217,113 +166,6 @@ struct PerturbResult {
     states: Vec<PerturbedOut>,
 }
 
-fn options_diag(message: String) -> Diag {
-    Diag {
-        source: "options",
-        file: String::new(),
-        line: 0,
-        col: 0,
-        message,
-    }
-}
-
-/// `file:line:col` split from the end (a file name may hold `:`).
-fn split_location(location: &str) -> Option<(String, usize, usize)> {
-    let mut it = location.rsplitn(3, ':');
-    let col = it.next()?.parse().ok()?;
-    let line = it.next()?.parse().ok()?;
-    Some((it.next()?.to_string(), line, col))
-}
-
-/// The result kind and the diagnostics of an error from reading the inputs.
-fn input_error(e: &LfdError, files: &Files, default_source: &'static str) -> (&'static str, Diag) {
-    let kind_of = |source: &str| match source {
-        "domain" | "problem" => "parse",
-        "demo" => "demo",
-        _ => "state",
-    };
-    let located = |source: &'static str, location: Option<&str>, message: String| {
-        let (file, line, col) = location
-            .and_then(split_location)
-            .unwrap_or_else(|| (files.of(source), 0, 0));
-        Diag {
-            source,
-            file,
-            line,
-            col,
-            message,
-        }
-    };
-    match e {
-        LfdError::Input(PddlError {
-            file,
-            line,
-            col,
-            message,
-        }) => {
-            let source = files.source_of(file);
-            (
-                kind_of(source),
-                Diag {
-                    source,
-                    file: file.clone(),
-                    line: *line,
-                    col: *col,
-                    message: message.clone(),
-                },
-            )
-        }
-        LfdError::DemoNotApplicable {
-            index,
-            action,
-            false_literals,
-            location,
-        } => (
-            "demo",
-            located(
-                "demo",
-                location.as_deref(),
-                format!(
-                    "demonstration step {} `{action}` is not applicable: {}",
-                    index + 1,
-                    false_precondition(false_literals)
-                ),
-            ),
-        ),
-        LfdError::UnknownAction { .. } | LfdError::DemoMissesGoal { .. } => {
-            ("demo", located("demo", None, e.to_string()))
-        }
-        LfdError::PrefixNotApplicable {
-            step,
-            action,
-            location,
-            false_literals,
-        } => (
-            "state",
-            located(
-                "state",
-                Some(location),
-                format!(
-                    "step {step} `{action}` is not applicable: {}",
-                    false_precondition(false_literals)
-                ),
-            ),
-        ),
-        other => (
-            kind_of(default_source),
-            located(default_source, None, other.to_string()),
-        ),
-    }
-}
-
-fn false_precondition(literals: &[String]) -> String {
-    if literals.is_empty() {
-        "a precondition is false".into()
-    } else {
-        format!("false precondition {}", literals.join(" "))
-    }
-}
-
 /// Logic-LfD on any PDDL domain: reads the domain, the problem, one demonstration and the
 /// current state S_C (atoms, a plan prefix, or the problem's initial state), then LogicIn or one
 /// multi-goal search to a demonstration state L_k, merged with the rest of the demonstration.
@@ -336,172 +178,30 @@ pub fn logic_lfd(
 ) -> Result<JsValue, JsValue> {
     const F: &str = "logicLfd";
     let m = object_fields(F, &input)?;
-    let domain = text(F, &m, "domain")?;
-    let problem = text(F, &m, "problem")?;
-    let demo = text(F, &m, "demo")?;
-    let state = optional_text(F, &m, "state")?;
-    let after = optional_text(F, &m, "after")?;
-    if state.is_some() && after.is_some() {
-        return Err(type_error(&format!(
-            "{F}: input.state and input.after are exclusive: give one"
-        )));
-    }
-    let out = lfd_impl(&m, &domain, &problem, &demo, state, after);
-    to_js(&out)
-}
-
-fn options_failure(message: String) -> LfdResult {
-    LfdResult {
-        kind: "options",
-        message: message.clone(),
-        diagnostics: vec![options_diag(message)],
-        ..LfdResult::default()
-    }
-}
-
-fn lfd_impl(
-    m: &Map<String, Value>,
-    domain: &str,
-    problem: &str,
-    demo: &str,
-    state: Option<String>,
-    after: Option<String>,
-) -> LfdResult {
-    let (files, o) = match known_keys(m, &LFD_KEYS, "input")
-        .and_then(|()| files_option(m, &["domain", "problem", "demo", "state"]))
-        .and_then(|f| Ok((f, search_options(m)?)))
-    {
-        Ok(x) => x,
-        Err(e) => return options_failure(e),
-    };
-    let lfd = match LogicLfd::named(
-        (&files.domain, domain),
-        (&files.problem, problem),
-        (&files.demo, demo),
+    let texts = texts(F, &m)?;
+    let current = match (
+        optional_text(F, &m, "state")?,
+        optional_text(F, &m, "after")?,
     ) {
-        Ok(l) => l,
-        Err(e) => {
-            let (kind, d) = input_error(&e, &files, "problem");
-            return LfdResult {
-                kind,
-                message: location_message(&d),
-                diagnostics: vec![d],
-                ..LfdResult::default()
-            };
+        (Some(_), Some(_)) => {
+            return Err(type_error(&format!(
+                "{F}: input.state and input.after are exclusive: give one"
+            )))
         }
+        (Some(atoms), None) => Current::Atoms(atoms),
+        (None, Some(prefix)) => Current::After(prefix),
+        (None, None) => Current::Init,
     };
-    let task = lfd.task();
-    let mut out = LfdResult {
-        demo: Some(demo_of(&lfd)),
-        statics: lfd.static_facts().to_vec(),
-        fluents: task.facts.clone(),
-        ..LfdResult::default()
+    let options = known_keys(&m, &LFD_KEYS, "input")
+        .and_then(|()| files_option(&m, &FILE_KEYS))
+        .and_then(|f| Ok((f, search_options(&m)?)));
+    let (files, o) = match options {
+        Ok(x) => x,
+        Err(e) => return to_js(&LfdResult::options_failure(e)),
     };
-    let s = match (state, after) {
-        (Some(text), _) => lfd.state_in(&files.state, &text),
-        (None, Some(text)) => lfd.state_after(&files.state, &text),
-        (None, None) => Ok(task.init.clone()),
-    };
-    let s = match s {
-        Ok(s) => s,
-        Err(e) => {
-            let (kind, d) = input_error(&e, &files, "state");
-            out.kind = kind;
-            out.message = location_message(&d);
-            out.diagnostics = vec![d];
-            return out;
-        }
-    };
-    out.state = lfd.names(&s);
-    out.applicable = task
-        .operators
-        .iter()
-        .filter(|op| op.applicable(&s))
-        .map(|op| op.name.clone())
-        .collect();
-    out.logic_in = lfd.logic_in(&s);
-    let clock = PerformanceClock;
-    let t0 = clock.now_secs();
-    match lfd.replan(&s, o.mode, &o.config, &clock) {
-        Ok(p) => found(&lfd, &s, p, &mut out),
-        Err(e) => {
-            out.kind = match e {
-                LfdError::Budget(_) => "budget",
-                _ => "unsolvable",
-            };
-            out.message = e.to_string();
-            out.stats.time_ms = (clock.now_secs() - t0) * 1e3;
-        }
-    }
-    if o.compare {
-        out.scratch = Some(scratch(&lfd, &s, &o.config, &clock));
-    }
-    out
-}
-
-fn found(lfd: &LogicLfd, s: &State, p: LfdPlan, out: &mut LfdResult) {
-    out.valid = lfd.validate(s, &p.names).is_ok_and(|r| r.is_valid());
-    out.ok = true;
-    out.kind = "plan";
-    out.k = p.k;
-    out.source = Some(match p.source {
-        PlanSource::GoalHolds => "goal-holds",
-        PlanSource::LogicIn => "logic-in",
-        PlanSource::MultiGoal => "multi-goal",
-    });
-    out.prefix = p.prefix().to_vec();
-    out.suffix = p.suffix().to_vec();
-    out.cost = Some(p.cost);
-    out.stats = Stats::of(&p.stats);
-    out.plan = p.names;
-}
-
-fn scratch(lfd: &LogicLfd, s: &State, config: &SearchConfig, clock: &dyn Clock) -> Scratch {
-    let r = lfd.plan_from_scratch(s, config, clock);
-    let stats = Stats::of(&r.stats);
-    match r.outcome {
-        SearchOutcome::Plan(p) => Scratch {
-            ok: true,
-            plan: p
-                .names(lfd.task())
-                .into_iter()
-                .map(str::to_string)
-                .collect(),
-            cost: Some(p.cost),
-            stats,
-        },
-        _ => Scratch {
-            ok: false,
-            plan: vec![],
-            cost: None,
-            stats,
-        },
-    }
-}
-
-fn demo_of(lfd: &LogicLfd) -> Demo {
-    Demo {
-        actions: lfd.demo_actions().to_vec(),
-        states: lfd
-            .demo_states()
-            .iter()
-            .map(|l| l.iter().cloned().collect())
-            .collect(),
-        costs: lfd
-            .spec()
-            .goals
-            .iter()
-            .take(lfd.demo_states().len())
-            .map(|g| g.terminal_cost)
-            .collect(),
-    }
-}
-
-fn location_message(d: &Diag) -> String {
-    if d.line == 0 {
-        d.message.clone()
-    } else {
-        format!("{}:{}:{}: {}", d.file, d.line, d.col, d.message)
+    match prepare(&files, &texts) {
+        Ok(lfd) => to_js(&answer(&lfd, &files, current, &o).with(&Fixed::of(&lfd))),
+        Err((kind, d)) => to_js(&LfdResult::input_failure(kind, d)),
     }
 }
 
@@ -519,13 +219,11 @@ pub fn logic_lfd_perturb(
 ) -> Result<JsValue, JsValue> {
     const F: &str = "logicLfdPerturb";
     let m = object_fields(F, &input)?;
-    let domain = text(F, &m, "domain")?;
-    let problem = text(F, &m, "problem")?;
-    let demo = text(F, &m, "demo")?;
-    to_js(&perturb_impl(&m, &domain, &problem, &demo))
+    let texts = texts(F, &m)?;
+    to_js(&perturb_impl(&m, &texts))
 }
 
-fn perturb_impl(m: &Map<String, Value>, domain: &str, problem: &str, demo: &str) -> PerturbResult {
+fn perturb_impl(m: &Map<String, Value>, texts: &Texts) -> PerturbResult {
     let options = known_keys(m, &PERTURB_KEYS, "input").and_then(|()| {
         let files = files_option(m, &["domain", "problem", "demo"])?;
         let count = count_option(m, "count")?.ok_or("`count` is required")?;
@@ -543,11 +241,7 @@ fn perturb_impl(m: &Map<String, Value>, domain: &str, problem: &str, demo: &str)
             }
         }
     };
-    match LogicLfd::named(
-        (&files.domain, domain),
-        (&files.problem, problem),
-        (&files.demo, demo),
-    ) {
+    match prepare(&files, texts) {
         Ok(lfd) => PerturbResult {
             ok: true,
             message: String::new(),
@@ -562,13 +256,10 @@ fn perturb_impl(m: &Map<String, Value>, domain: &str, problem: &str, demo: &str)
                 })
                 .collect(),
         },
-        Err(e) => {
-            let (_, d) = input_error(&e, &files, "problem");
-            PerturbResult {
-                message: location_message(&d),
-                diagnostics: vec![d],
-                ..PerturbResult::default()
-            }
-        }
+        Err((_, d)) => PerturbResult {
+            message: location_message(&d),
+            diagnostics: vec![d],
+            ..PerturbResult::default()
+        },
     }
 }

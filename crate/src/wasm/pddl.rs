@@ -342,7 +342,6 @@ pub fn validate(
     #[wasm_bindgen(unchecked_param_type = "string")] problem: JsValue,
     #[wasm_bindgen(js_name = "plan", unchecked_param_type = "string")] plan_text: JsValue,
 ) -> Result<JsValue, JsValue> {
-    use crate::plan::Outcome;
     let domain = string_arg("validate", "domain", &domain)?;
     let problem = string_arg("validate", "problem", &problem)?;
     let plan_text = string_arg("validate", "plan", &plan_text)?;
@@ -365,33 +364,48 @@ pub fn validate(
         Ok(p) => p,
         Err(e) => return to_js(&bad(diagnostic(&e, df))),
     };
-    let plan_diag = |e: &PddlError| Diagnostic {
-        source: "plan",
-        ..diagnostic(e, df)
-    };
     let steps = match plan::parse_plan(plan_text, planf) {
         Ok(s) => s,
-        Err(e) => return to_js(&bad(plan_diag(&e))),
+        Err(e) => return to_js(&bad(Diagnostic::of_plan(&e))),
     };
-    let r = plan::validate(&d, &p, &steps);
-    let message = r.to_string();
-    let (failed_step, false_literals, diagnostics) = match &r.outcome {
-        Outcome::Valid => (None, vec![], vec![]),
-        Outcome::Malformed(e) => (None, vec![], vec![plan_diag(e)]),
-        Outcome::PreconditionFalse {
-            step,
+    to_js(&Validation::of(&plan::validate(&d, &p, &steps)))
+}
+
+impl Diagnostic {
+    /// A located error in a plan text.
+    pub(crate) fn of_plan(e: &PddlError) -> Self {
+        Diagnostic {
+            source: "plan",
+            file: e.file.clone(),
+            line: e.line,
+            col: e.col,
+            message: e.message.clone(),
+        }
+    }
+}
+
+impl Validation {
+    /// The verdict of a replay (a malformed step as a `plan` diagnostic).
+    pub(crate) fn of(r: &plan::ValidationReport) -> Self {
+        use crate::plan::Outcome;
+        let (failed_step, false_literals, diagnostics) = match &r.outcome {
+            Outcome::Valid => (None, vec![], vec![]),
+            Outcome::Malformed(e) => (None, vec![], vec![Diagnostic::of_plan(e)]),
+            Outcome::PreconditionFalse {
+                step,
+                false_literals,
+                ..
+            } => (Some(*step), false_literals.clone(), vec![]),
+            Outcome::GoalNotReached { false_literals } => (None, false_literals.clone(), vec![]),
+        };
+        Validation {
+            valid: r.is_valid(),
+            message: r.to_string(),
+            steps_applied: r.steps_applied,
+            cost: r.cost,
+            failed_step,
             false_literals,
-            ..
-        } => (Some(*step), false_literals.clone(), vec![]),
-        Outcome::GoalNotReached { false_literals } => (None, false_literals.clone(), vec![]),
-    };
-    to_js(&Validation {
-        valid: r.is_valid(),
-        message,
-        steps_applied: r.steps_applied,
-        cost: r.cost,
-        failed_step,
-        false_literals,
-        diagnostics,
-    })
+            diagnostics,
+        }
+    }
 }

@@ -1,5 +1,6 @@
-//! Reading the input object of `logicLfd` and `logicLfdPerturb`: the texts (a non-string throws
-//! a `TypeError` naming the key), the options (a bad one is an `options` error), the file names.
+//! Reading the inputs of `logicLfd`, `logicLfdPerturb` and the `LogicLfd` class: the texts (a
+//! non-string throws a `TypeError` naming the key), the options (a bad one is an `options`
+//! error), the file names.
 
 use serde_json::{Map, Value};
 use wasm_bindgen::prelude::*;
@@ -70,6 +71,23 @@ pub(super) fn text(func: &str, m: &Map<String, Value>, key: &str) -> Result<Stri
             other.map_or("undefined", json_type_name)
         ))),
     }
+}
+
+/// The domain, problem and demonstration texts of an input.
+pub(super) struct Texts {
+    pub(super) domain: String,
+    pub(super) problem: String,
+    pub(super) demo: String,
+}
+
+/// The input's `domain`, `problem` and `demo`: strings, or a `TypeError` naming the first that
+/// is not.
+pub(super) fn texts(func: &str, m: &Map<String, Value>) -> Result<Texts, JsValue> {
+    Ok(Texts {
+        domain: text(func, m, "domain")?,
+        problem: text(func, m, "problem")?,
+        demo: text(func, m, "demo")?,
+    })
 }
 
 /// An optional text field (`null` reads as absent): a string, or a `TypeError` naming it.
@@ -242,3 +260,19 @@ pub(super) const LFD_KEYS: [&str; 12] = [
     "files",
     "compare",
 ];
+
+/// The keys of the `LogicLfd` class's constructor input.
+pub(super) const SETUP_KEYS: [&str; 4] = ["domain", "problem", "demo", "files"];
+
+/// The keys of `LogicLfd.replan`'s options.
+pub(super) const REPLAN_KEYS: [&str; 6] = [
+    "mode",
+    "search",
+    "heuristic",
+    "maxExpanded",
+    "timeLimitMs",
+    "compare",
+];
+
+/// The keys of the `files` option of `logicLfd` and the `LogicLfd` class.
+pub(super) const FILE_KEYS: [&str; 4] = ["domain", "problem", "demo", "state"];
