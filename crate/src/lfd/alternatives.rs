@@ -99,6 +99,19 @@ pub(crate) fn after_search(
         .collect()
 }
 
+/// Marks L_`k` (`None`: G) joined with a prefix of cost `prefix` in candidates another plan
+/// joined: that plan's candidate becomes one reached at its own prefix.
+pub(crate) fn rejoin(alts: &mut [Alternative], k: Option<usize>, prefix: u64) {
+    for a in alts.iter_mut() {
+        if a.status == AlternativeStatus::Joined {
+            *a = Alternative::new(a.k, AlternativeStatus::Reached, a.prefix, a.suffix);
+        }
+    }
+    if let Some(a) = alts.iter_mut().find(|a| a.k == k) {
+        *a = Alternative::new(k, AlternativeStatus::Joined, Some(prefix), a.suffix);
+    }
+}
+
 /// The candidates when LogicIn matched L_`k` and no search ran: the suffix from L_k, the rest
 /// not searched.
 pub(crate) fn after_logic_in(spec: &MultiGoalSpec, k: usize) -> Vec<Alternative> {

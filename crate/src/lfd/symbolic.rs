@@ -282,25 +282,23 @@ impl LogicLfd {
         // Among plans of equal cost the paper plan follows the demonstration longest (the
         // prioritised search may tie-break towards G), and with a satisficing search it may
         // even be cheaper: prioritised mode returns it unless its own plan is strictly cheaper.
-        // With an optimal search, where the paper plan costs no more than LM-cut's lower bound on
-        // planning to G it is optimal and the (as costly as optimal planning) prioritised
-        // search is skipped; a satisficing search is cheaper than that bound.
+        // The candidates shown are the prioritised search's, which weighed more of them.
         let paper = run(Mode::Paper);
-        if let Ok(p) = &paper {
-            let search = self.search(Mode::Prioritised);
-            if p.source != PlanSource::MultiGoal
-                || (config.is_optimal() && search.lower_bound(s).is_some_and(|lb| p.cost <= lb))
-            {
-                return paper;
-            }
+        if paper
+            .as_ref()
+            .is_ok_and(|p| p.source != PlanSource::MultiGoal)
+        {
+            return paper;
         }
         let mut best = run(Mode::Prioritised)?;
-        if let Ok(p) = paper {
+        if let Ok(mut p) = paper {
             let searched = p.stats.expanded;
             if p.cost <= best.cost {
-                let own = best.stats;
+                p.stats = best.stats;
+                p.alternatives = std::mem::take(&mut best.alternatives);
+                let prefix = self.task.cost_of(&p.ops[..p.prefix_len]);
+                super::alternatives::rejoin(&mut p.alternatives, p.k, prefix);
                 best = p;
-                best.stats = own;
             }
             best.stats.expanded += searched;
         }

@@ -219,7 +219,7 @@ impl MultiGoalSearch {
     /// optimum from `s` is at least the cost of reaching `G_j` alone, and A* in prioritised mode
     /// takes the larger of its heuristic and the heuristic to `G_j` alone (both admissible for
     /// the prioritised objective): the compiled heuristic's minimum over the goals includes `G_j`
-    /// at cost 0, so it is never above the heuristic to `G_j`, but near a demonstration state it
+    /// at cost 0, so it is rarely above the heuristic to `G_j`, but near a demonstration state it
     /// carries that state's terminal cost and breaks the ties of A* towards it. Other modes and
     /// algorithms ignore the declaration, and so does an index out of range or a goal with a
     /// terminal cost.
@@ -261,22 +261,6 @@ impl MultiGoalSearch {
         self.mode
     }
 
-    /// An admissible lower bound on the prioritised optimum from `start`: LM-cut to the goal of
-    /// [`MultiGoalSearch::with_lower_bound`] (`None` without one; `Some(u64::MAX)` when that goal
-    /// is unreachable even in the delete relaxation).
-    pub fn lower_bound(&self, start: &State) -> Option<u64> {
-        let goal = self.bound.as_ref()?;
-        let task = self.searched();
-        let kind = HeuristicKind::LmCut;
-        let mut heur = self
-            .evaluators
-            .take(kind, true)
-            .unwrap_or_else(|| HeuristicEvaluator::new(task, std::slice::from_ref(goal), kind));
-        let v = heur.value(&self.project(start)).unwrap_or(u64::MAX);
-        self.evaluators.put(heur, true);
-        Some(v)
-    }
-
     /// `start` (a state of the original task) as a state of the searched task.
     fn project(&self, start: &State) -> State {
         let n = self.num_facts;
@@ -300,15 +284,7 @@ impl MultiGoalSearch {
         if self.mode == MultiGoalMode::Prioritised && config.algorithm == Algorithm::Bfs {
             config.algorithm = Algorithm::Ucs; // breadth-first order ignores terminal costs
         }
-        let n = self.num_facts;
-        let start = State::from_facts(
-            self.compiled.facts.len(),
-            start.facts().filter(|&f| (f as usize) < n),
-        );
-        let searched_start = self
-            .rel
-            .as_ref()
-            .map_or_else(|| start.clone(), |r| r.project(&start));
+        let searched_start = self.project(start);
         let kind = search_heuristic(&config);
         let task = self.searched();
         let mut heur = self.evaluators.take(kind, false).unwrap_or_else(|| {
