@@ -439,10 +439,14 @@ impl Controller {
             "no skeleton joining the demonstration binds in {} tries",
             self.params.max_skeletons.max(1)
         );
+        // A prioritised skeleton that does not bind gives way to the paper search's: the retries
+        // need a plan that binds, and proving each retry's plan cheapest made crowded 12-block
+        // scenes spend seconds on skeletons that did not bind either.
+        let mut mode = self.mode;
         for _ in 0..self.params.max_skeletons.max(1) {
             let p = match self.lfd.replan_avoiding(
                 s,
-                self.mode,
+                mode,
                 &self.params.search,
                 clock,
                 (!banned.is_empty()).then_some(&banned),
@@ -468,6 +472,7 @@ impl Controller {
                     })
                 }
                 Err(failure) if failure.action < p.prefix_len => {
+                    mode = Mode::Paper;
                     let i = failure.action;
                     // A new action could not be bound where the plan puts it: ban it there (or,
                     // when movable bodies were in its way, until one of them has moved), and
@@ -482,6 +487,7 @@ impl Controller {
                 // demonstration after it (the search plans that step itself, with certified
                 // actions), and sample more.
                 Err(failure) => {
+                    mode = Mode::Paper;
                     let i = failure.action;
                     let k = p.k.unwrap_or(self.lfd.spec().len());
                     first_k = first_k.max(k + 1 + (i - p.prefix_len));

@@ -199,7 +199,13 @@ pub fn plan_logic_lfd_avoiding(
     banned: Option<&BannedTask>,
     first_k: usize,
 ) -> Result<LfdPlan, LfdError> {
-    plan_with(task, spec, s, mode, config, clock, banned, first_k, None)
+    let request = Request {
+        mode,
+        banned,
+        first_k,
+        ..Request::default()
+    };
+    plan_with(task, spec, s, config, clock, request).0
 }
 
 /// [`plan_logic_lfd`] with a search from [`prepare_search`] (same task, spec and mode): nothing
@@ -216,43 +222,57 @@ pub fn plan_logic_lfd_prepared(
         MultiGoalMode::FirstReached => Mode::Paper,
         MultiGoalMode::Prioritised => Mode::Prioritised,
     };
-    plan_with(task, spec, s, mode, config, clock, None, 0, Some(search))
+    let request = Request {
+        mode,
+        prepared: Some(search),
+        ..Request::default()
+    };
+    plan_with(task, spec, s, config, clock, request).0
 }
 
-#[allow(clippy::too_many_arguments)]
-fn plan_with(
+/// What [`plan_with`] plans: the mode and, for the reactive loop, the bans, the first L_k a
+/// plan may join, a compiled search to reuse and a cost the plan must stay below.
+#[derive(Clone, Copy, Default)]
+pub(crate) struct Request<'a> {
+    pub mode: Mode,
+    /// Operators banned at the states where their binding failed.
+    pub banned: Option<&'a BannedTask>,
+    /// The first demonstration state a plan may join.
+    pub first_k: usize,
+    /// The compiled search of `mode` (used when nothing is banned and `first_k` is 0).
+    pub prepared: Option<&'a MultiGoalSearch>,
+    /// A merged plan of this cost is known: optimal searches drop every state that cannot beat
+    /// it, and [`LfdError::NoPlan`] then means none can.
+    pub below: Option<u64>,
+}
+
+/// Logic-LfD planning for `request`; the multi-goal search's statistics come back whatever the
+/// outcome (zero when no search ran).
+pub(crate) fn plan_with(
     task: &Task,
     spec: &MultiGoalSpec,
     s: &State,
-    mode: Mode,
     config: &SearchConfig,
     clock: &dyn Clock,
-    banned: Option<&BannedTask>,
-    first_k: usize,
-    prepared: Option<&MultiGoalSearch>,
-) -> Result<LfdPlan, LfdError> {
+    request: Request<'_>,
+) -> (Result<LfdPlan, LfdError>, SearchStats) {
+    let Request {
+        mode,
+        banned,
+        first_k,
+        prepared,
+        below,
+    } = request;
+    let none = SearchStats::default();
     if task.goal.holds(s) {
-        return Ok(LfdPlan::new(
-            task,
-            vec![],
-            None,
-            0,
-            PlanSource::GoalHolds,
-            SearchStats::default(),
-        ));
+        let plan = LfdPlan::new(task, vec![], None, 0, PlanSource::GoalHolds, none);
+        return (Ok(plan), none);
     }
     if let Some(k) = logic_in(spec, s).filter(|&k| k >= first_k) {
         if let Some(ops) = merge_suffix(task, spec, s, &[], k) {
-            let mut plan = LfdPlan::new(
-                task,
-                ops,
-                Some(k),
-                0,
-                PlanSource::LogicIn,
-                SearchStats::default(),
-            );
+            let mut plan = LfdPlan::new(task, ops, Some(k), 0, PlanSource::LogicIn, none);
             plan.alternatives = alternatives::after_logic_in(spec, k);
-            return Ok(plan);
+            return (Ok(plan), none);
         }
     }
     let search_task = banned.map_or(task, |b| &b.task);
@@ -269,24 +289,40 @@ fn plan_with(
     let lifted = banned.map(|b| b.lift(s));
     let start = lifted.as_ref().unwrap_or(s);
     let found = match prepared {
-        Some(search) if banned.is_none() && first_k == 0 => search.run(start, config, clock),
-        _ => MultiGoalSearch::new(search_task, &goals, search_mode(mode)).run(start, config, clock),
+        Some(search) if banned.is_none() && first_k == 0 => {
+            search.run_below(start, below, config, clock)
+        }
+        _ => {
+            let search = MultiGoalSearch::new(search_task, &goals, search_mode(mode));
+            // The suffix after L_k reaches G at c_k on the task itself; a banned task may lack
+            // its operators, so G bounds the other goals only without bans.
+            let search = match banned {
+                None => search.with_lower_bound(spec.goal_index()),
+                Some(_) => search,
+            };
+            search.run_below(start, below, config, clock)
+        }
     };
+    let stats = found.stats;
     let (prefix, k) = match (&found.outcome, found.goal_index) {
         (SearchOutcome::Plan(p), Some(k)) => (
             banned.map_or_else(|| p.operators.clone(), |b| b.original(&p.operators)),
             k,
         ),
         (SearchOutcome::BudgetExhausted { which }, _) => {
-            return Err(LfdError::Budget(which.to_string()))
+            return (Err(LfdError::Budget(which.to_string())), stats)
         }
         _ => {
-            return Err(LfdError::NoPlan(
-                "no demonstration state is reachable".into(),
-            ))
+            let why = match below {
+                Some(c) => format!("no merged plan cheaper than {c}"),
+                None => "no demonstration state is reachable".into(),
+            };
+            return (Err(LfdError::NoPlan(why)), stats);
         }
     };
-    let ops = merge_suffix(task, spec, s, &prefix, k).ok_or(LfdError::MergeFailed { k })?;
+    let Some(ops) = merge_suffix(task, spec, s, &prefix, k) else {
+        return (Err(LfdError::MergeFailed { k }), stats);
+    };
     let prefix_cost = task.cost_of(&prefix);
     let mut plan = LfdPlan::new(
         task,
@@ -294,10 +330,10 @@ fn plan_with(
         (k <= spec.len()).then_some(k),
         prefix.len(),
         PlanSource::MultiGoal,
-        found.stats,
+        stats,
     );
     plan.alternatives = alternatives::after_search(spec, &goals, &found.reached, k, prefix_cost);
-    Ok(plan)
+    (Ok(plan), stats)
 }
 
 #[cfg(test)]

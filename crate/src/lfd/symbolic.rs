@@ -18,8 +18,9 @@ use crate::plan::{
 };
 
 use super::demo::{DemoTrace, MultiGoalSpec};
-use super::logic::{plan_logic_lfd_avoiding, plan_logic_lfd_prepared, LfdPlan, Mode, PlanSource};
+use super::logic::{plan_with, LfdPlan, Mode, PlanSource, Request};
 use super::LfdError;
+use crate::plan::SearchStats;
 
 mod observed;
 
@@ -273,36 +274,7 @@ impl LogicLfd {
         config: &SearchConfig,
         clock: &dyn Clock,
     ) -> Result<LfdPlan, LfdError> {
-        let run = |mode| {
-            plan_logic_lfd_prepared(&self.task, &self.spec, s, self.search(mode), config, clock)
-        };
-        if mode == Mode::Paper {
-            return run(Mode::Paper);
-        }
-        // Among plans of equal cost the paper plan follows the demonstration longest (the
-        // prioritised search may tie-break towards G), and with a satisficing search it may
-        // even be cheaper: prioritised mode returns it unless its own plan is strictly cheaper.
-        // The candidates shown are the prioritised search's, which weighed more of them.
-        let paper = run(Mode::Paper);
-        if paper
-            .as_ref()
-            .is_ok_and(|p| p.source != PlanSource::MultiGoal)
-        {
-            return paper;
-        }
-        let mut best = run(Mode::Prioritised)?;
-        if let Ok(mut p) = paper {
-            let searched = p.stats.expanded;
-            if p.cost <= best.cost {
-                p.stats = best.stats;
-                p.alternatives = std::mem::take(&mut best.alternatives);
-                let prefix = self.task.cost_of(&p.ops[..p.prefix_len]);
-                super::alternatives::rejoin(&mut p.alternatives, p.k, prefix);
-                best = p;
-            }
-            best.stats.expanded += searched;
-        }
-        Ok(best)
+        self.replan_avoiding(s, mode, config, clock, None, 0)
     }
 
     /// The compiled multi-goal search of `mode`, built on first use.
@@ -322,12 +294,58 @@ impl LogicLfd {
         banned: Option<&BannedTask>,
         first_k: usize,
     ) -> Result<LfdPlan, LfdError> {
-        if banned.is_none() && first_k == 0 {
-            return self.replan(s, mode, config, clock);
+        let plain = banned.is_none() && first_k == 0;
+        let run = |mode, below| {
+            let request = Request {
+                mode,
+                banned,
+                first_k,
+                prepared: plain.then(|| self.search(mode)),
+                below,
+            };
+            plan_with(&self.task, &self.spec, s, config, clock, request)
+        };
+        let (paper, paper_stats) = run(Mode::Paper, None);
+        if mode == Mode::Paper {
+            return paper;
         }
-        plan_logic_lfd_avoiding(
-            &self.task, &self.spec, s, mode, config, clock, banned, first_k,
-        )
+        // Among plans of equal cost the paper plan follows the demonstration longest (the
+        // prioritised search may tie-break towards G), and with a satisficing search it may
+        // even be cheaper: prioritised mode returns it unless its own plan is strictly cheaper,
+        // so the optimal searches only look for plans below its cost.
+        let paper = match paper {
+            Ok(p) if p.source != PlanSource::MultiGoal => return Ok(p),
+            Err(_) => return run(Mode::Prioritised, None).0,
+            Ok(p) => p,
+        };
+        let (prio, mut stats) = run(Mode::Prioritised, Some(paper.cost));
+        stats.expanded += paper_stats.expanded;
+        match prio {
+            Ok(mut prio) if prio.cost < paper.cost => {
+                prio.stats = stats;
+                Ok(prio)
+            }
+            Ok(prio) => Ok(self.keep_paper(paper, prio.alternatives, stats)),
+            Err(LfdError::NoPlan(_)) => Ok(self.keep_paper(paper, vec![], stats)),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// The paper plan as prioritised mode's answer, with the prioritised search's statistics
+    /// and, when it found some, its candidates (which weighed more of them).
+    fn keep_paper(
+        &self,
+        mut paper: LfdPlan,
+        alternatives: Vec<super::alternatives::Alternative>,
+        stats: SearchStats,
+    ) -> LfdPlan {
+        paper.stats = stats;
+        if !alternatives.is_empty() {
+            paper.alternatives = alternatives;
+            let prefix = self.task.cost_of(&paper.ops[..paper.prefix_len]);
+            super::alternatives::rejoin(&mut paper.alternatives, paper.k, prefix);
+        }
+        paper
     }
 
     /// Classical planning from `s` to G with the same search (the baseline Logic-LfD is compared

@@ -129,7 +129,7 @@ impl Default for ControlParams {
         ControlParams {
             search: SearchConfig {
                 algorithm: crate::plan::Algorithm::Astar,
-                heuristic: crate::plan::HeuristicKind::HMax,
+                heuristic: crate::plan::HeuristicKind::LmCut,
                 max_nodes: Some(200_000),
                 time_limit_secs: None,
             },

@@ -81,11 +81,12 @@ pub(crate) struct Parts<'a> {
     pub goal_of_op: &'a [u32],
     /// Number of goals behind the goal operators.
     pub num_goals: usize,
-    /// With A*: a second heuristic, also admissible for the task; the larger value is taken.
-    pub bound: Option<&'a mut HeuristicEvaluator>,
     /// With `bfs`, `gbfs` and `lazy-gbfs`: a state in which one of these operators applies is a
     /// goal state too (the search stops where a goal holds, not one step later).
     pub goal_ops: &'a [u32],
+    /// With `ucs` and A*: only plans cheaper than this are wanted (one of this cost is known);
+    /// states whose `f` reaches it are dropped and the search ends unsolved when none is left.
+    pub cost_below: Option<u64>,
 }
 
 /// Runs `config` from `start` on `task` alone: builds the successor generator and the heuristic
@@ -108,8 +109,8 @@ pub(crate) fn run(
         heur: &mut heur,
         goal_of_op: &[],
         num_goals: 0,
-        bound: None,
         goal_ops: &[],
+        cost_below: None,
     };
     run_on(parts, &start, config, clock)
 }
@@ -156,13 +157,13 @@ pub(crate) fn run_on(
         child_buf: Vec::new(),
         goal_of_op: parts.goal_of_op,
         reached: vec![u64::MAX; parts.num_goals],
-        bound: match config.algorithm {
-            Algorithm::Astar => parts.bound,
-            _ => None,
-        },
         goal_ops: match config.algorithm {
             Algorithm::Bfs | Algorithm::Gbfs | Algorithm::LazyGbfs => parts.goal_ops,
             Algorithm::Ucs | Algorithm::Astar => &[],
+        },
+        cost_below: match config.algorithm {
+            Algorithm::Ucs | Algorithm::Astar => parts.cost_below,
+            _ => None,
         },
     };
     let outcome = match config.algorithm {
@@ -213,8 +214,8 @@ struct Engine<'a> {
     reached: Vec<u64>,
     /// Operators whose applicability makes a goal state (see [`Parts::goal_ops`]).
     goal_ops: &'a [u32],
-    /// A second admissible heuristic (see [`Parts::bound`]).
-    bound: Option<&'a mut HeuristicEvaluator>,
+    /// See [`Parts::cost_below`].
+    cost_below: Option<u64>,
 }
 
 impl Engine<'_> {
@@ -259,14 +260,14 @@ impl Engine<'_> {
         None
     }
 
-    /// `h` of a packed state for the best-first searches: the larger of the heuristic and the
-    /// bound, `None` when either proves a dead end.
+    /// `h` of a packed state for the best-first searches, `None` for a proven dead end; 0 where
+    /// the goal holds, whatever the heuristic estimates (a heuristic to a goal implied by the
+    /// task's, see [`crate::plan::MultiGoalSearch::with_lower_bound`], is not 0 there).
     fn h_of(&mut self, words: &[u64]) -> Option<u64> {
-        let h = self.heur.eval(words, None)?;
-        match self.bound.as_deref_mut() {
-            Some(b) => Some(h.max(b.eval(words, None)?)),
-            None => Some(h),
+        if goal_holds(self.goal, words) {
+            return Some(0);
         }
+        self.heur.eval(words, None)
     }
 
     /// Whether the goal holds in `words`, or one of the goal operators applies.
@@ -353,6 +354,7 @@ impl Engine<'_> {
             _ => (h, 0),
         };
         let greedy = alg == Algorithm::Gbfs;
+        let below = self.cost_below.unwrap_or(u64::MAX);
         let (s, _) = self.register(start, NONE, NONE, 0);
         self.stats.evaluated += 1;
         let Some(h0) = self.h_of(start) else {
@@ -365,13 +367,15 @@ impl Engine<'_> {
         let mut open = BinaryHeap::new();
         let mut seq = 0u64;
         let (k1, k2) = key(0, h0);
-        open.push(Reverse(Entry {
-            k1,
-            k2,
-            seq,
-            node: s,
-            g: 0,
-        }));
+        if k1 < below {
+            open.push(Reverse(Entry {
+                k1,
+                k2,
+                seq,
+                node: s,
+                g: 0,
+            }));
+        }
         let mut ops = std::mem::take(&mut self.ops_buf);
         while let Some(Reverse(e)) = open.pop() {
             let id = e.node;
@@ -422,9 +426,9 @@ impl Engine<'_> {
                     push = true;
                 }
                 self.child_buf = child;
-                if push {
+                let (k1, k2) = key(self.g[tu], self.h[tu]);
+                if push && k1 < below {
                     seq += 1;
-                    let (k1, k2) = key(self.g[tu], self.h[tu]);
                     open.push(Reverse(Entry {
                         k1,
                         k2,
