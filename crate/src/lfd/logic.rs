@@ -488,10 +488,13 @@ mod tests {
             let mid = replay(&task, &s, &p.ops[..p.prefix_len]).unwrap();
             let k = p.k.expect("joins the demo");
             assert!(spec.states[k].as_ref().unwrap().holds(&mid));
-            // Unstack d a, place d: then L_0 holds.
-            assert_eq!(p.prefix_len, 2);
-            assert_eq!(p.k, Some(0));
             assert_eq!(p.ops.len(), 8);
+            // Paper mode: unstack d a, place d, then L_0 holds (prioritised mode may join a
+            // later L_k at the same cost).
+            if mode == Mode::Paper {
+                assert_eq!(p.prefix_len, 2);
+                assert_eq!(p.k, Some(0));
+            }
         }
     }
 

@@ -348,10 +348,15 @@ impl Engine<'_> {
     }
 
     fn best_first(&mut self, start: &[u64], alg: Algorithm) -> SearchOutcome {
-        let key = |g: u64, h: u64| match alg {
-            Algorithm::Ucs => (g, 0),
-            Algorithm::Astar => (g.saturating_add(h), h),
-            _ => (h, 0),
+        // Among equal `f` (A*) or `g` (UCS), goal states first, then smaller `h`; then the newest
+        // entry, except among goal states, where the oldest (often the shortest path) wins.
+        let key = |g: u64, h: u64, goal: bool| {
+            let rank = 2 * h + u64::from(!goal);
+            match alg {
+                Algorithm::Ucs => (g, rank),
+                Algorithm::Astar => (g.saturating_add(h), rank),
+                _ => (h, 0),
+            }
         };
         let greedy = alg == Algorithm::Gbfs;
         let below = self.cost_below.unwrap_or(u64::MAX);
@@ -366,7 +371,7 @@ impl Engine<'_> {
         }
         let mut open = BinaryHeap::new();
         let mut seq = 0u64;
-        let (k1, k2) = key(0, h0);
+        let (k1, k2) = key(0, h0, goal_holds(self.goal, start));
         if k1 < below {
             open.push(Reverse(Entry {
                 k1,
@@ -425,14 +430,15 @@ impl Engine<'_> {
                     }
                     push = true;
                 }
+                let goal = push && !greedy && goal_holds(self.goal, &child);
                 self.child_buf = child;
-                let (k1, k2) = key(self.g[tu], self.h[tu]);
+                let (k1, k2) = key(self.g[tu], self.h[tu], goal);
                 if push && k1 < below {
                     seq += 1;
                     open.push(Reverse(Entry {
                         k1,
                         k2,
-                        seq,
+                        seq: if goal { seq } else { u64::MAX - seq },
                         node: t,
                         g: self.g[tu],
                     }));

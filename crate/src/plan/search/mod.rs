@@ -14,9 +14,12 @@
 //!   (operators of the relaxed plan applicable in the parent) also enter a second queue, the two
 //!   queues alternate and the preferred one gets 1000 extra turns whenever `h` improves.
 //!
-//! Tie-breaking is deterministic: among equal keys (`f` then `h` for A*, `g` for UCS, `h` for
-//! GBFS), the entry inserted first is taken (FIFO); successors are generated in increasing
-//! operator index. States whose heuristic is `∞` (no goal reachable even in the delete
+//! Tie-breaking is deterministic: among equal `f` (A*) or `g` (UCS) a goal state comes first,
+//! then the smaller `h`; among equal keys after that (and equal `h` for GBFS) the entry inserted
+//! last is taken (LIFO: on a plateau the search follows the newest, deepest path; on B1 with 12
+//! blocks prioritised A* expanded 5 states where first-in-first-out expanded 18), except among
+//! goal states, where the first inserted wins. Successors are generated in increasing operator
+//! index. States whose heuristic is `∞` (no goal reachable even in the delete
 //! relaxation) are pruned, which is safe, so an exhausted open list proves unsolvability.
 //!
 //! Every search has one goal (a DNF condition). Several goals with terminal costs are compiled
