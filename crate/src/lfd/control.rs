@@ -21,7 +21,7 @@
 
 use std::collections::BTreeSet;
 
-use crate::plan::{replay, BannedTask, Clock, Operator, State, Task};
+use crate::plan::{replay, Algorithm, BannedTask, Clock, HeuristicKind, Operator, State, Task};
 use crate::tamp::{Binder, Binding, BoundPlan, TimedBinder};
 
 use super::demo::DemoTrace;
@@ -443,21 +443,31 @@ impl Controller {
         // need a plan that binds, and proving each retry's plan cheapest made crowded 12-block
         // scenes spend seconds on skeletons that did not bind either.
         let mut mode = self.mode;
-        for _ in 0..self.params.max_skeletons.max(1) {
+        let mut search = self.params.search;
+        let mut tries = 0;
+        while tries < self.params.max_skeletons.max(1) {
             let p = match self.lfd.replan_avoiding(
                 s,
                 mode,
-                &self.params.search,
+                &search,
                 clock,
                 (!banned.is_empty()).then_some(&banned),
                 first_k,
             ) {
                 Ok(p) => p,
+                // An optimal search out of budget (two arms and many blocks make wide plateaus)
+                // gives way to the satisficing one: a plan now beats the cheapest plan never.
+                Err(LfdError::Budget(_)) if search.algorithm != Algorithm::LazyGbfs => {
+                    search.algorithm = Algorithm::LazyGbfs;
+                    search.heuristic = HeuristicKind::HFf;
+                    continue;
+                }
                 Err(e) => {
                     why = e.to_string();
                     break;
                 }
             };
+            tries += 1;
             expanded += p.stats.expanded;
             match binder.bind(self.task(), &p.ops, p.prefix_len) {
                 Ok(bindings) => {

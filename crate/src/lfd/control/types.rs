@@ -110,7 +110,9 @@ pub enum Decision {
 /// Tunables of the task level.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ControlParams {
-    /// Search configuration for Logic-LfD's multi-goal search and the TAMP skeletons.
+    /// Search configuration for Logic-LfD's multi-goal search and the TAMP skeletons (default
+    /// A* + LM-cut, 20 000 expansions). A Logic-LfD replan whose optimal search runs out of
+    /// budget retries with lazy GBFS + h_FF under the same budget.
     pub search: SearchConfig,
     /// Maximum replans in an episode before giving up.
     pub max_replans: usize,
@@ -130,7 +132,7 @@ impl Default for ControlParams {
             search: SearchConfig {
                 algorithm: crate::plan::Algorithm::Astar,
                 heuristic: crate::plan::HeuristicKind::LmCut,
-                max_nodes: Some(200_000),
+                max_nodes: Some(20_000),
                 time_limit_secs: None,
             },
             max_replans: 40,
