@@ -131,11 +131,8 @@ fn multi_goal_search_honours_both_budgets() {
     }
 }
 
-#[test]
-fn an_episode_out_of_planning_budget_states_it_instead_of_hanging() {
-    let mut params = SessionParams::default();
-    params.control.search.max_nodes = Some(1);
-    let spec = EpisodeSpec {
+fn l3_episode() -> EpisodeSpec {
+    EpisodeSpec {
         benchmark: Benchmark::B1,
         // L3 leaves the demonstration: the replan must search.
         level: Some(Level::L3),
@@ -143,8 +140,26 @@ fn an_episode_out_of_planning_budget_states_it_instead_of_hanging() {
         mode: Mode::Paper,
         seed: 1,
         scene: None,
-    };
-    let r = run_episode(&spec, params, &NoClock).unwrap();
+    }
+}
+
+#[test]
+fn an_optimal_replan_out_of_budget_retries_with_the_satisficing_search() {
+    let mut params = SessionParams::default();
+    // A* cannot expand past the start; lazy GBFS stops where a goal operator applies.
+    params.control.search.max_nodes = Some(1);
+    params.control.tamp_fallback = false;
+    let r = run_episode(&l3_episode(), params, &NoClock).unwrap();
+    assert!(r.success, "{:?}", r.reason);
+    assert!(r.log.replans.iter().all(|p| !p.fallback));
+    assert!(r.log.replans.iter().any(|p| p.new_actions > 0));
+}
+
+#[test]
+fn an_episode_out_of_planning_budget_states_it_instead_of_hanging() {
+    let mut params = SessionParams::default();
+    params.control.search.max_nodes = Some(0);
+    let r = run_episode(&l3_episode(), params, &NoClock).unwrap();
     assert!(!r.success);
     match r.reason {
         Some(FailReason::NoPlan { message }) => {
