@@ -3,13 +3,14 @@
 //! the ratio of the two timings is the cost of the target alone.
 //!
 //! Rows: parse + ground + search on IPC problems (A* + LM-cut, lazy GBFS + h_FF), one Logic-LfD
-//! replan (A* + h_max, as the reactive loop) per state from seeded disturbed states of B1/B2/B3,
-//! the LQT-CP pipeline (T = 100, D = 3, jerk, K = 10 RBF: weights, F, gains, one rollout), one
-//! B3 world step with the scene graph, one IK solve, and the replans of the page benchmark's
-//! scenario (`page_replans`). Every row runs untimed first, [`RowParams::warmup`] times and for at
-//! least [`RowParams::warmup_secs`] (the first run also gives the digest; a JIT-compiled target
-//! tiers up its hot code during these: V8 runs wasm in its baseline tier first and compiles a hot
-//! function with its optimising tier only after it has run a while, in the background), then
+//! replan (the reactive loop's search, A* + LM-cut) per state from seeded disturbed states of
+//! B1/B2/B3, the LQT-CP pipeline (T = 100, D = 3, jerk, K = 10 RBF: weights, F, gains, one
+//! rollout), one B3 world step with the scene graph, one IK solve, and the replans of the page
+//! benchmark's scenario (`page_replans`). Every row runs untimed first, [`RowParams::warmup`]
+//! times and for at least [`RowParams::warmup_secs`] (the first run also gives the digest; a
+//! JIT-compiled target tiers up its hot code during these: V8 runs wasm in its baseline tier
+//! first and compiles a hot function with its optimising tier only after it has run a while, in
+//! the background), then
 //! repeats its batch at least [`RowParams::min_runs`] and at most [`RowParams::runs`] times
 //! (fewer once [`RowParams::budget_secs`] is spent) and keeps the best; the caller's clock
 //! times it. Each row also reports a digest of the work done (plan lengths, expansions, facts),
