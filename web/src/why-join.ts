@@ -14,6 +14,7 @@ const STATUS: Record<Alternative['status'], string> = {
   reached: 'reached',
   unreached: 'not reached (search stopped)',
   'not-searched': 'not searched',
+  'not-cheaper': 'no cheaper plan (proved)',
 };
 
 /** The rule the mode applied, and where the other mode would have chosen differently. */
@@ -29,7 +30,8 @@ export function whySentence(r: Replan, mode: Mode): string {
   if (mode === 'prioritised') {
     const ties = withTotal.filter((a) => a !== j && a.total === j.total).map(name);
     const tie = ties.length ? ` ${ties.join(', ')} ${ties.length > 1 ? 'are' : 'is'} as short; the search completed ${name(j)} first.` : '';
-    return `Prioritised: the search minimises prefix + demonstration left, so it joined ${name(j)} with the least total, ${j.total} (${j.prefix} new + ${j.suffix} demonstrated).${tie}`;
+    const proved = alts.some((a) => a.status === 'not-cheaper') ? ' The search proved that no other L_k gives a shorter plan.' : '';
+    return `Prioritised: the search minimises prefix + demonstration left, so it joined ${name(j)} with the least total, ${j.total} (${j.prefix} new + ${j.suffix} demonstrated).${tie}${proved}`;
   }
   const first = `Paper: all L_k have equal priority; the search stops at the first state satisfying any of them — the cheapest prefix (${j.prefix}) — and joins the one there with the least demonstration left.`;
   if (cheapest !== j && cheapest.total! < j.total!) {

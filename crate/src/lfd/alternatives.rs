@@ -6,7 +6,9 @@
 //! [`MultiGoalResult::reached`](crate::plan::MultiGoalResult::reached)): the cheapest path to a
 //! state satisfying L_k among the states it registered. Goals it stopped before meeting are
 //! `unreached`; goals it was never given (LogicIn matched without a search, L_k before an
-//! action that could not be bound, an L_k the task cannot express) are `not-searched`.
+//! action that could not be bound, an L_k the task cannot express) are `not-searched`; goals
+//! prioritised mode's optimal search proved no cheaper than the joined one, without a path to
+//! them below that bound, are `not-cheaper`.
 
 use serde::{Deserialize, Serialize};
 
@@ -25,6 +27,9 @@ pub enum AlternativeStatus {
     Unreached,
     /// No search looked for it.
     NotSearched,
+    /// Prioritised mode's optimal search, bounded by the joined plan's cost, proved that no plan
+    /// through it is cheaper (it found no path below that bound, so no numbers).
+    NotCheaper,
 }
 
 /// One candidate L_k of a replan.
@@ -97,6 +102,17 @@ pub(crate) fn after_search(
             }
         })
         .collect()
+}
+
+/// After an optimal search bounded by the joined plan's cost found nothing cheaper: every
+/// candidate it did not reach is proved no cheaper.
+pub(crate) fn proved_not_cheaper(alts: &mut [Alternative]) {
+    for a in alts
+        .iter_mut()
+        .filter(|a| a.status == AlternativeStatus::Unreached)
+    {
+        a.status = AlternativeStatus::NotCheaper;
+    }
 }
 
 /// Marks L_`k` (`None`: G) joined with a prefix of cost `prefix` in candidates another plan
@@ -221,6 +237,17 @@ mod tests {
                 );
             } else {
                 assert_eq!(a.total, None);
+            }
+            if a.status == AlternativeStatus::NotCheaper {
+                // Proved: no plan through it beats the joined one.
+                assert_eq!(mode, Mode::Prioritised);
+                if let (Some(opt), Some(total)) = (optima[i], j.total) {
+                    assert!(
+                        opt + a.suffix >= total,
+                        "L{i}: {opt} + {} < {total}",
+                        a.suffix
+                    );
+                }
             }
         }
         let best_total = optima

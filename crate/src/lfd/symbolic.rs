@@ -20,7 +20,7 @@ use crate::plan::{
 use super::demo::{DemoTrace, MultiGoalSpec};
 use super::logic::{plan_with, LfdPlan, Mode, PlanSource, Request};
 use super::LfdError;
-use crate::plan::SearchStats;
+use crate::plan::{Algorithm, SearchStats};
 
 mod observed;
 
@@ -326,7 +326,19 @@ impl LogicLfd {
                 Ok(prio)
             }
             Ok(prio) => Ok(self.keep_paper(paper, prio.alternatives, stats)),
-            Err(LfdError::NoPlan(_)) => Ok(self.keep_paper(paper, vec![], stats)),
+            Err(LfdError::NoPlan(_)) => {
+                let mut p = self.keep_paper(paper, vec![], stats);
+                // Below the bound an optimal search's exhausted open list is a proof.
+                let optimal = match config.algorithm {
+                    Algorithm::Bfs | Algorithm::Ucs => true,
+                    Algorithm::Astar => config.heuristic.is_admissible(),
+                    Algorithm::Gbfs | Algorithm::LazyGbfs => false,
+                };
+                if optimal {
+                    super::alternatives::proved_not_cheaper(&mut p.alternatives);
+                }
+                Ok(p)
+            }
             Err(e) => Err(e),
         }
     }

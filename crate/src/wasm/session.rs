@@ -35,8 +35,8 @@ export interface Status {
  *  how many of its leading actions are new. (The episode log, `episodeJson()`, keeps the
  *  snake_case names of the CLI's JSON: `time_ms`, `new_actions`.) */
 export interface Replan { reason: string; timeMs: number; k?: number | null; plan: string[]; tick: number; newActions: number; /** Part of timeMs spent binding actions to motions. */ bindMs: number; /** States the searches expanded. */ expanded: number; /** Logic-LfD planned to G from scratch (its TAMP fallback). */ fallback: boolean; /** Logic-LfD: every candidate L_k (k null: G) with the costs its search found; empty for the other methods. */ alternatives: Alternative[]; }
-/** One candidate of a Logic-LfD replan: `joined` (the plan's), `reached` (the search found a path, the mode chose another), `unreached` (the search stopped first), `not-searched`. Costs: prefix S_C → L_k, suffix c_k (the demo left after L_k), total. */
-export interface Alternative { k: number | null; status: "joined" | "reached" | "unreached" | "not-searched"; prefix?: number; suffix: number; total?: number; }
+/** One candidate of a Logic-LfD replan: `joined` (the plan's), `reached` (the search found a path, the mode chose another), `unreached` (the search stopped first), `not-searched`, `not-cheaper` (prioritised mode's optimal search proved no plan through it cheaper). Costs: prefix S_C → L_k, suffix c_k (the demo left after L_k), total. */
+export interface Alternative { k: number | null; status: "joined" | "reached" | "unreached" | "not-searched" | "not-cheaper"; prefix?: number; suffix: number; total?: number; }
 /** One end-effector sample: where the arm's TCP is and where its controller aims. */
 export interface EePoint { arm: number; pos: [number, number, number]; target: [number, number, number]; }
 /** Everything the page draws after a step. */
