@@ -20,7 +20,7 @@ use crate::plan::{
 use super::demo::{DemoTrace, MultiGoalSpec};
 use super::logic::{plan_with, LfdPlan, Mode, PlanSource, Request};
 use super::LfdError;
-use crate::plan::{Algorithm, SearchStats};
+use crate::plan::SearchStats;
 
 mod observed;
 
@@ -329,12 +329,7 @@ impl LogicLfd {
             Err(LfdError::NoPlan(_)) => {
                 let mut p = self.keep_paper(paper, vec![], stats);
                 // Below the bound an optimal search's exhausted open list is a proof.
-                let optimal = match config.algorithm {
-                    Algorithm::Bfs | Algorithm::Ucs => true,
-                    Algorithm::Astar => config.heuristic.is_admissible(),
-                    Algorithm::Gbfs | Algorithm::LazyGbfs => false,
-                };
-                if optimal {
+                if config.is_optimal() {
                     super::alternatives::proved_not_cheaper(&mut p.alternatives);
                 }
                 Ok(p)

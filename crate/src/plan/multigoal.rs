@@ -259,13 +259,18 @@ impl MultiGoalSearch {
         self.mode
     }
 
-    /// `start` (a state of the original task) as a state of the searched task.
-    fn project(&self, start: &State) -> State {
+    /// `start` (a state of the original task) as a state of the compiled task.
+    fn compiled_state(&self, start: &State) -> State {
         let n = self.num_facts;
-        let start = State::from_facts(
+        State::from_facts(
             self.compiled.facts.len(),
             start.facts().filter(|&f| (f as usize) < n),
-        );
+        )
+    }
+
+    /// `start` (a state of the original task) as a state of the searched task.
+    fn project(&self, start: &State) -> State {
+        let start = self.compiled_state(start);
         match &self.rel {
             Some(r) => r.project(&start),
             None => start,
@@ -344,11 +349,7 @@ impl MultiGoalSearch {
                 }
                 debug_assert!(ops.iter().all(|&o| o < self.num_ops));
                 let cost = self.compiled.cost_of(&ops);
-                let n = self.num_facts;
-                let mut end = State::from_facts(
-                    self.compiled.facts.len(),
-                    start.facts().filter(|&f| (f as usize) < n),
-                );
+                let mut end = self.compiled_state(start);
                 for &o in &ops {
                     end = self.compiled.operators[o].apply(&end);
                 }

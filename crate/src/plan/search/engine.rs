@@ -261,10 +261,10 @@ impl Engine<'_> {
     }
 
     /// `h` of a packed state for the best-first searches, `None` for a proven dead end; 0 where
-    /// the goal holds, whatever the heuristic estimates (a heuristic to a goal implied by the
-    /// task's, see [`crate::plan::MultiGoalSearch::with_lower_bound`], is not 0 there).
-    fn h_of(&mut self, words: &[u64]) -> Option<u64> {
-        if goal_holds(self.goal, words) {
+    /// the goal holds (`goal`), whatever the heuristic estimates (a heuristic to a goal implied
+    /// by the task's, see [`crate::plan::MultiGoalSearch::with_lower_bound`], is not 0 there).
+    fn h_of(&mut self, words: &[u64], goal: bool) -> Option<u64> {
+        if goal {
             return Some(0);
         }
         self.heur.eval(words, None)
@@ -362,7 +362,8 @@ impl Engine<'_> {
         let below = self.cost_below.unwrap_or(u64::MAX);
         let (s, _) = self.register(start, NONE, NONE, 0);
         self.stats.evaluated += 1;
-        let Some(h0) = self.h_of(start) else {
+        let start_goal = goal_holds(self.goal, start);
+        let Some(h0) = self.h_of(start, start_goal) else {
             return SearchOutcome::Unsolvable;
         };
         self.h[s as usize] = h0;
@@ -371,7 +372,7 @@ impl Engine<'_> {
         }
         let mut open = BinaryHeap::new();
         let mut seq = 0u64;
-        let (k1, k2) = key(0, h0, goal_holds(self.goal, start));
+        let (k1, k2) = key(0, h0, start_goal);
         if k1 < below {
             open.push(Reverse(Entry {
                 k1,
@@ -407,9 +408,11 @@ impl Engine<'_> {
                 let (t, new) = self.register(&child, id, o, ng);
                 let tu = t as usize;
                 let mut push = false;
+                let mut goal = false;
                 if new {
+                    goal = goal_holds(self.goal, &child);
                     self.stats.evaluated += 1;
-                    match self.h_of(&child) {
+                    match self.h_of(&child, goal) {
                         None => self.status[tu] = DEAD,
                         Some(h) => {
                             self.h[tu] = h;
@@ -428,13 +431,17 @@ impl Engine<'_> {
                         self.status[tu] = OPEN;
                         self.stats.reopened += 1;
                     }
+                    goal = goal_holds(self.goal, &child);
                     push = true;
                 }
-                let goal = push && !greedy && goal_holds(self.goal, &child);
                 self.child_buf = child;
+                if !push {
+                    continue;
+                }
                 let (k1, k2) = key(self.g[tu], self.h[tu], goal);
-                if push && k1 < below {
+                if k1 < below {
                     seq += 1;
+                    // Greedy search returned at a goal child: only A* and UCS push one.
                     open.push(Reverse(Entry {
                         k1,
                         k2,
