@@ -248,7 +248,8 @@ fn one_tower(free: &[Spot], tower: &[String]) -> Vec<(String, [f64; 2])> {
 }
 
 /// Several towers' layout, `None` if it does not fit: on the first choice of tower spots
-/// ([`tower_spot_choices`]) where every block finds a spot ([`place_blocks`]).
+/// ([`tower_spot_choices`]) where every block finds a spot ([`place_blocks`]), among spots where
+/// the arm reaches the top of a tower a block taller than the tallest, else of the tallest.
 fn several_towers(
     s: &WorldSnapshot,
     free: Vec<Spot>,
@@ -256,9 +257,13 @@ fn several_towers(
     build: &[String],
 ) -> Option<Vec<(String, [f64; 2])>> {
     let tallest = towers.iter().map(|t| t.len()).max()?;
-    tower_spot_choices(s, &free, towers.len(), tallest)
-        .into_iter()
-        .find_map(|chosen| place_blocks(s, &free, &chosen, towers, build))
+    // Spots where the arm would reach a block higher first: at the limit of its reach the
+    // expert's approach above the top is cut short and its carry comes in from the side.
+    [tallest + 1, tallest].into_iter().find_map(|h| {
+        tower_spot_choices(s, &free, towers.len(), h)
+            .into_iter()
+            .find_map(|chosen| place_blocks(s, &free, &chosen, towers, build))
+    })
 }
 
 /// The blocks of `towers` laid out with tower `t`'s bottom on `free[chosen[t]]`, `None` if some
