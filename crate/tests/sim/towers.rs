@@ -9,7 +9,6 @@ use logic_lfd::sim::benchmark::{goal_facts, Benchmark, BenchmarkSources};
 use logic_lfd::sim::collide;
 use logic_lfd::sim::generate::{block_range, tower_task, TOWER_SPACING};
 use logic_lfd::sim::reach::handleable;
-use logic_lfd::sim::snapshot::BodyKind;
 use logic_lfd::sim::{SceneGraph, World};
 use nalgebra::Isometry3;
 

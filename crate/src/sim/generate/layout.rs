@@ -4,10 +4,10 @@
 //!
 //! One tower (up to [`MAX_TOWER_HEIGHT`](super::MAX_TOWER_HEIGHT) blocks) stands on the spot
 //! nearest the area's centre and its blocks lie on the next spots out, bottom-up. Several towers
-//! stand on spots at least [`TOWER_SPACING`] apart where the arm reaches their tops, and their
-//! blocks lie outside the towers' shadows ([`in_shadow`]: an arm reaching there would pass its
-//! forearm over a tower), each on the free spot nearest its own tower, in the order the
-//! demonstration builds them.
+//! stand on spots at least [`TOWER_SPACING`] apart where the arm reaches their tops, and each of
+//! their blocks starts on a spot from which the arm takes it, and carries it to its tower, clear
+//! of the towers as they stand when the demonstration takes it ([`open_at`]): not next to a
+//! tower, not in a tower's shadow ([`in_shadow`]), no other tower in the way.
 
 use super::err;
 use crate::sim::benchmark::{block, Benchmark, BLOCK_SIZE};
@@ -21,8 +21,8 @@ pub const SPOT_SPACING: f64 = 0.12;
 
 /// Least distance between the bottoms of two towers (m), four grid steps: the hand (11.5 cm
 /// from its axis along the fingers) and the wrist's link (the Panda's flange offset, 8.8 cm,
-/// plus its 5 cm radius) working one tower at any height clear the other at full height, and
-/// each spot between them lies nearer one tower than the other by at least a grid step.
+/// plus its 5 cm radius) working one tower at any height clear the other at full height, with
+/// room between them for blocks that neither tower shades.
 pub const TOWER_SPACING: f64 = 4.0 * SPOT_SPACING;
 
 /// [`TOWER_SPACING`] in grid steps, squared (an exact integer test on grid indices).
@@ -30,9 +30,9 @@ const TOWER_SPACING_STEPS_SQ: i64 = 16;
 
 /// Half-width of a tower's shadow (m): a spot farther from an arm's base than a tower and within
 /// this distance of the vertical plane through the base and the spot has the arm pass its
-/// forearm (a 6 cm capsule, with the wrist's 8.8 cm offset) over the tower to reach it. The
-/// demonstrations of two towers of 10 had the forearm cut 2 to 10 cm into a tower 8 to 9 cm from
-/// that plane and clear it by 1 cm or more from 15 cm.
+/// forearm (a 6 cm capsule, with the wrist's 8.8 cm offset) over the tower to reach it. With 9
+/// blocks on (0.35, −0.24), the expert's forearm cut up to 10 cm into the tower taking blocks
+/// from grid spots 2 to 14 cm from that plane, and cleared it by 3.6 cm or more from 14.6 cm.
 const SHADOW_RADIUS: f64 = 0.15;
 
 /// Spots keep this far inside an area's edges (m): half a block plus a centimetre.
@@ -138,9 +138,12 @@ fn in_the_way(a: [f64; 2], b: [f64; 2], t: [f64; 2]) -> bool {
     let v = [b[0] - a[0], b[1] - a[1]];
     let w = [t[0] - a[0], t[1] - a[1]];
     let r = libm::hypot(v[0], v[1]);
+    if r <= 0.0 {
+        return false;
+    }
     let along = (w[0] * v[0] + w[1] * v[1]) / r;
     let across = libm::fabs(w[0] * v[1] - w[1] * v[0]) / r;
-    r > 0.0 && along > 0.0 && along < r && across < SHADOW_RADIUS
+    along > 0.0 && along < r && across < SHADOW_RADIUS
 }
 
 /// Whether spot `p` lies in the shadow of a tower on spot `t`: the tower stands in the way

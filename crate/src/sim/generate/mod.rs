@@ -3,13 +3,14 @@
 //!
 //! Blocks are named `a`, `b`, `c`, … and laid out on a grid of [`SPOT_SPACING`] around the
 //! centre of the benchmark's start area (B1's table, B3's left-table region), keeping spots
-//! inside the reach annulus of some arm and in front of it ([`layout`]). The goal is the
-//! template's goal shape for N blocks: towers of at most [`MAX_TOWER_HEIGHT`] blocks
-//! ([`tower_heights`]: one tower `a` on `b` on … on the Nth block up to 12 blocks, two from 13),
-//! plus the template's other goal facts about each tower's bottom block (B3: the bottom block in
-//! the right-table region). One tower grows on the spot nearest the area's centre; several on
-//! spots at least [`TOWER_SPACING`] apart. The demonstration builds them block by block, level
-//! by level.
+//! inside the reach annulus of some arm and in front of it. The goal is the template's goal
+//! shape for N blocks: towers of at most [`MAX_TOWER_HEIGHT`] blocks ([`tower_heights`]: one
+//! tower `a` on `b` on … on the Nth block up to 12 blocks, two from 13), plus the template's
+//! other goal facts about each tower's bottom block (B3: the bottom block in the right-table
+//! region). One tower grows on the spot nearest the area's centre; several on spots at least
+//! [`TOWER_SPACING`] apart where the arm reaches their tops. The demonstration builds the towers
+//! bottom-up, one after the other, and each block starts where the arm takes it and carries it
+//! to its tower clear of the towers as they then stand.
 
 mod layout;
 mod script;
