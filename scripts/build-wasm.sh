@@ -4,7 +4,7 @@
 # ready on require), wasm-opt from the npm `binaryen` package (Debian's binaryen 108 emits broken
 # modules).
 # Also builds pkg/page/ (not part of the npm package) for the page: logic_lfd.js, its first-load
-# module (feature `wasm-core` alone: the Session on B1's template task and `benchmark`, without
+# module (feature `wasm-core` alone: the Session on B1's template task, `benchmark` and `blockRange`, without
 # Teach mode, Session.replay, Session.fromScene, B2, B3, N-block tasks, JSON paths in load errors,
 # the PDDL tab's plan, check, logicLfd and logicLfdPerturb, and the npm-only lqt, validate and
 # runEpisode; size-optimised profile wasm-release, then wasm-opt -O3, for the first-load target),

@@ -7,11 +7,11 @@
 //! returns a rejected value carrying a message instead of panicking.
 //!
 //! Feature `wasm-core` alone builds the page's first-load module (cfg `first_load`, set by
-//! `build.rs`): the closed-loop `Session` on B1's template task and `benchmark`, without Teach
-//! mode (`Teacher`, taught tasks), `Session.replay`, `Session.fromScene`, B2, B3, N-block tasks,
-//! JSON paths in load errors, the PDDL tab's `plan`, `check`, `logicLfd` and `logicLfdPerturb`,
-//! and the npm-only `lqt`, `validate`, `runEpisode` and `LogicLfd` class; `wasm` adds them (the npm
-//! package, and the module the page loads after its first frame).
+//! `build.rs`): the closed-loop `Session` on B1's template task, `benchmark` and `blockRange`,
+//! without Teach mode (`Teacher`, taught tasks), `Session.replay`, `Session.fromScene`, B2, B3,
+//! N-block tasks, JSON paths in load errors, the PDDL tab's `plan`, `check`, `logicLfd` and
+//! `logicLfdPerturb`, and the npm-only `lqt`, `validate`, `runEpisode` and `LogicLfd` class;
+//! `wasm` adds them (the npm package, and the module the page loads after its first frame).
 
 use crate::plan::Clock;
 use wasm_bindgen::prelude::*;

@@ -1,5 +1,6 @@
-// Browser tests of the block-count control: a generated 12-block B1 tower picked with the mouse
-// and keyboard, kept in the URL, restored on load, and reset when the benchmark cannot take it.
+// Browser tests of the block-count control: the generated 20-block B1 task (two towers) picked
+// with the mouse and keyboard, kept in the URL, restored on load, and reset when the benchmark
+// cannot take it.
 import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
@@ -23,41 +24,41 @@ async function executingWith(page, n) {
 const overflow = (page) => page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
 
 describe('block count', () => {
-  test('12 blocks picked in the select: the tower task runs, the URL keeps it, a reload restores it', async () => {
+  test('20 blocks picked in the select: the tower task runs, the URL keeps it, a reload restores it', async () => {
     const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1');
     assert.equal(await page.inputValue('#blocks'), '', 'the template task by default');
     assert.equal(await page.isDisabled('#blocks'), false);
-    // A real click on the select, then the keyboard: End goes to its last choice, 12 blocks, and
+    // A real click on the select, then the keyboard: End goes to its last choice, 20 blocks, and
     // Enter takes it (from the open list; a closed select takes End at once).
     await page.click('#blocks');
     assert.equal(await page.evaluate(() => document.activeElement?.id), 'blocks');
     await page.keyboard.press('End');
     await page.keyboard.press('Enter');
-    await page.waitForFunction(() => (/** @type {HTMLSelectElement} */ (document.querySelector('#blocks'))).value === '12');
-    assert.equal(await page.$eval('#blocks', (s) => s.selectedOptions[0].textContent), '12 blocks');
-    await executingWith(page, 12);
-    assert.match(page.url(), /[?&]blocks=12(&|$)/);
+    await page.waitForFunction(() => (/** @type {HTMLSelectElement} */ (document.querySelector('#blocks'))).value === '20');
+    assert.equal(await page.$eval('#blocks', (s) => s.selectedOptions[0].textContent), '20 blocks');
+    await executingWith(page, 20);
+    assert.match(page.url(), /[?&]blocks=20(&|$)/);
     assert.ok((await overflow(page)) <= 0);
     // The top bar keeps one row at 1440 px: its last group (scene and link) beside the first.
     const tops = await page.$$eval('.topbar > .group', (gs) => gs.map((g) => Math.round(g.getBoundingClientRect().top)));
     assert.equal(new Set(tops).size, 1, `top bar rows at ${tops}`);
-    await page.screenshot({ path: join(screenshots, 'blocks-12-1440.png') });
+    await page.screenshot({ path: join(screenshots, 'blocks-20-1440.png') });
     const query = new URL(page.url()).search;
 
     // 1024×700: the control row wraps without pushing the page sideways.
     await page.setViewportSize({ width: 1024, height: 700 });
     await page.waitForTimeout(300);
     assert.ok((await overflow(page)) <= 0);
-    await page.screenshot({ path: join(screenshots, 'blocks-12-1024.png') });
+    await page.screenshot({ path: join(screenshots, 'blocks-20-1024.png') });
     assert.deepEqual(errors, []);
     await page.close();
 
     // The link restores it, on a phone too.
     const phone = await openApp(ctx.browser, ctx.server, query, { width: 390, height: 844 });
-    assert.equal(await phone.page.inputValue('#blocks'), '12');
-    await executingWith(phone.page, 12);
+    assert.equal(await phone.page.inputValue('#blocks'), '20');
+    await executingWith(phone.page, 20);
     assert.ok((await overflow(phone.page)) <= 0, 'the phone page is wider than the screen');
-    await phone.page.screenshot({ path: join(screenshots, 'blocks-12-phone.png') });
+    await phone.page.screenshot({ path: join(screenshots, 'blocks-20-phone.png') });
     assert.deepEqual(phone.errors, []);
     await phone.page.close();
   });

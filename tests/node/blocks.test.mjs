@@ -24,10 +24,28 @@ describe('Session with blocks', () => {
     s.free();
   });
 
+  test('blockRange gives the counts each benchmark takes', () => {
+    assert.deepEqual(lfd.blockRange('b1'), [3, 20]);
+    assert.equal(lfd.blockRange('b2'), null);
+    assert.deepEqual(lfd.blockRange('b3'), [2, 10]);
+    assert.throws(() => lfd.blockRange('b4'), (e) => e instanceof Error && /unknown benchmark `b4`/.test(e.message));
+  });
+
+  test('B1 with 20 blocks starts with two towers to build', () => {
+    const s = new lfd.Session({ benchmark: 'b1', method: 'logic-lfd', mode: 'paper', seed: 1, blocks: 20 });
+    assert.equal(blocksOf(s.frame()).length, 20);
+    // The demonstration ends with 18 `on` facts: two towers of 10.
+    const last = s.frame().demoStates.at(-1);
+    const on = last.filter((x) => /^\(on [a-t] [a-t]\)$/.test(x));
+    assert.equal(on.length, 18, on.join(' '));
+    assert.ok(on.includes('(on a b)') && on.includes('(on k l)') && !on.includes('(on j k)'), on.join(' '));
+    s.free();
+  });
+
   test('a block count out of range throws an Error naming the allowed range', () => {
     assert.throws(
       () => new lfd.Session({ benchmark: 'b1', method: 'logic-lfd', mode: 'paper', seed: 1, blocks: 40 }),
-      (e) => e instanceof Error && /allowed: 3 to 12/.test(e.message),
+      (e) => e instanceof Error && /allowed: 3 to 20/.test(e.message),
     );
     assert.throws(
       () => new lfd.Session({ benchmark: 'b3', method: 'logic-lfd', mode: 'paper', seed: 1, blocks: 11 }),

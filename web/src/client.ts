@@ -1,7 +1,7 @@
 /**
  * The page's side of the protocol: typed promises over postMessage.
  */
-import type { Api, ApiKind, FromWorker, ToWorker } from './protocol';
+import type { Api, ApiKind, FromWorker, Ready, ToWorker } from './protocol';
 
 /** A request that was cancelled (or timed out) before the worker answered. */
 export class CancelledError extends Error {
@@ -15,11 +15,12 @@ export class WorkerClient {
   private readonly worker: Worker;
   private nextId = 1;
   private readonly pending = new Map<number, { resolve: (v: unknown) => void; reject: (e: Error) => void }>();
-  readonly ready: Promise<string>;
+  /** The worker's module is loaded: its version and the block counts of the N-block tasks. */
+  readonly ready: Promise<Ready>;
 
   constructor(onPush: (m: FromWorker) => void) {
     this.worker = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
-    let resolveReady!: (v: string) => void;
+    let resolveReady!: (v: Ready) => void;
     let rejectReady!: (e: Error) => void;
     this.ready = new Promise((res, rej) => {
       resolveReady = res;
@@ -34,7 +35,7 @@ export class WorkerClient {
         if (m.ok) p.resolve(m.value);
         else p.reject(new Error(m.error));
       } else if (m.type === 'ready') {
-        resolveReady(m.version);
+        resolveReady({ version: m.version, blockRanges: m.blockRanges });
       } else if (m.type === 'fatal') {
         rejectReady(new Error(m.message));
         onPush(m);

@@ -6,7 +6,7 @@
  */
 import { button, el, select } from './dom';
 import { HelpOverlay } from './help';
-import { BENCHMARKS, BLOCK_RANGES, LEVELS, METHODS, MODES, SPEEDS, blockItems, type Benchmark, type PageState, type TabId } from './state';
+import { BENCHMARKS, LEVELS, METHODS, MODES, SPEEDS, blockItems, blockRange, type Benchmark, type PageState, type TabId } from './state';
 
 /** The top bar's controls. */
 export interface Controls {
@@ -78,13 +78,21 @@ export interface Layout {
 const BLOCKS_TITLE = "Blocks: the benchmark's own task (template) or a generated tower of N blocks";
 
 /** Fills the block select with benchmark `b`'s choices, set to `blocks` (undefined: template);
- * disabled, saying why, for a benchmark without an N-block task. */
+ * disabled, saying why, for a benchmark without an N-block task, and until the worker has sent
+ * the block counts (showing the count asked for meanwhile). */
 export function setBlockChoices(sel: HTMLSelectElement, b: Benchmark, blocks: number | null | undefined): void {
-  sel.replaceChildren(...blockItems(b).map(([v, t]) => el('option', { value: v }, t)));
+  const r = blockRange(b);
+  const items = blockItems(b);
+  if (r === 'unknown' && blocks != null) items.push([String(blocks), `${blocks} blocks`]);
+  sel.replaceChildren(...items.map(([v, t]) => el('option', { value: v }, t)));
   sel.value = blocks == null ? '' : String(blocks);
-  const r = BLOCK_RANGES[b];
-  sel.disabled = r === null;
-  sel.title = r ? `${BLOCKS_TITLE} (${b.toUpperCase()}: ${r[0]} to ${r[1]})` : `${b.toUpperCase()} has no N-block variant: it runs its template task`;
+  sel.disabled = r === null || r === 'unknown';
+  sel.title =
+    r === 'unknown'
+      ? `${BLOCKS_TITLE} (loading)`
+      : r
+        ? `${BLOCKS_TITLE} (${b.toUpperCase()}: ${r[0]} to ${r[1]})`
+        : `${b.toUpperCase()} has no N-block variant: it runs its template task`;
 }
 
 function blockSelect(b: Benchmark, blocks: number | null | undefined): HTMLSelectElement {

@@ -8,11 +8,11 @@ import { Charts } from './charts';
 import { WorkerClient } from './client';
 import { FrameRenderer } from './frame-renderer';
 import { History } from './history';
-import { buildLayout } from './layout';
+import { buildLayout, setBlockChoices } from './layout';
 import { RunPanel } from './run-panel';
 import { SessionControls } from './session-controls';
 import { installShortcuts } from './shortcuts';
-import { initialState } from './state';
+import { blocksFor, initialState, setBlockRanges } from './state';
 import { StatusBar } from './status-bar';
 import { Tabs } from './tabs';
 import { installTestHooks } from './test-hooks';
@@ -51,8 +51,13 @@ history.listen(() => {
 });
 
 client.ready.then(
-  async (v) => {
-    ui.version.textContent = `v${v}`;
+  async ({ version, blockRanges }) => {
+    ui.version.textContent = `v${version}`;
+    // The block counts come from the wasm module: check the URL's count against them.
+    setBlockRanges(blockRanges);
+    const blocks = blocksFor(state.options.benchmark, state.options.blocks);
+    if (blocks === undefined) delete state.options.blocks;
+    setBlockChoices(ui.controls.blocksSel, state.options.benchmark, blocks);
     view.start();
     await session.open();
     window.lfd.loadedAt = performance.now();

@@ -75,8 +75,18 @@ export interface TickTiming {
   simSeconds: number;
 }
 
+/** The block counts `[fewest, most]` of each benchmark's generated N-block tower task (null: none),
+ * as the wasm module's `blockRange` gives them. */
+export type BlockRanges = Record<SessionOptions['benchmark'], [number, number] | null>;
+
+/** What the worker says once its module is loaded. */
+export interface Ready {
+  version: string;
+  blockRanges: BlockRanges;
+}
+
 export type FromWorker =
-  | { type: 'ready'; version: string }
+  | ({ type: 'ready' } & Ready)
   | { type: 'fatal'; message: string }
   | { type: 'frame'; frame: Frame; timing: TickTiming; playing: boolean }
   | { type: 'reply'; id: number; ok: true; value: unknown }

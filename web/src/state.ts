@@ -5,7 +5,7 @@
  * restores a scenario (the permalink).
  */
 import type { Frame, SessionOptions } from 'logic-lfd';
-import type { Level } from './protocol';
+import type { BlockRanges, Level } from './protocol';
 
 export type Benchmark = SessionOptions['benchmark'];
 export type Method = SessionOptions['method'];
@@ -33,24 +33,41 @@ export const LEVELS: [Level, string, string][] = [
   ['l3', 'L3', 'Facts change to a state the demonstration never saw'],
   ['l4', 'L4', 'A new block appears in the way'],
 ];
-/** The block counts of each benchmark's generated N-block tower task (`[fewest, most]`; B2 has none). */
-export const BLOCK_RANGES: Record<Benchmark, [number, number] | null> = {
-  b1: [3, 12],
-  b2: null,
-  b3: [2, 10],
-};
+/**
+ * The block counts of each benchmark's generated N-block tower task (`[fewest, most]`; null: none),
+ * from the wasm module's `blockRange` (the worker sends them when it is ready); null until then.
+ */
+let blockRanges: BlockRanges | null = null;
 
-/** `n` if benchmark `b` has an N-block tower task with `n` blocks, else undefined (its template). */
+/** Takes the block counts the worker sent (see `blockRanges`). */
+export function setBlockRanges(r: BlockRanges): void {
+  blockRanges = r;
+}
+
+/**
+ * The block counts benchmark `b` takes: `[fewest, most]`, null if it has no N-block task, or
+ * 'unknown' before the worker sent them.
+ */
+export function blockRange(b: Benchmark): [number, number] | null | 'unknown' {
+  return blockRanges === null ? 'unknown' : blockRanges[b];
+}
+
+/**
+ * `n` if benchmark `b` has an N-block tower task with `n` blocks, else undefined (its template).
+ * Before the counts are known, any whole number from 1 passes (checked again once they are).
+ */
 export function blocksFor(b: Benchmark, n: number | null | undefined): number | undefined {
-  const r = BLOCK_RANGES[b];
-  return r && n != null && Number.isInteger(n) && n >= r[0] && n <= r[1] ? n : undefined;
+  if (n == null || !Number.isInteger(n)) return undefined;
+  const r = blockRange(b);
+  if (r === 'unknown') return n >= 1 ? n : undefined;
+  return r && n >= r[0] && n <= r[1] ? n : undefined;
 }
 
 /** The block select's items for benchmark `b`: the template ('') and each allowed count. */
 export function blockItems(b: Benchmark): [string, string][] {
-  const r = BLOCK_RANGES[b];
+  const r = blockRange(b);
   const items: [string, string][] = [['', 'template']];
-  if (r) for (let n = r[0]; n <= r[1]; n++) items.push([String(n), `${n} blocks`]);
+  if (r && r !== 'unknown') for (let n = r[0]; n <= r[1]; n++) items.push([String(n), `${n} blocks`]);
   return items;
 }
 

@@ -2,7 +2,8 @@
  * The Web Worker that owns the wasm module and the closed-loop Session: planning and simulation
  * never run on the page's thread, so the page never freezes. It plays the session in real time
  * (scaled by `speed`) and pushes a frame after every tick. Its first module is the page's
- * size-built first load ('logic-lfd-page': the Session on B1's template task, and `benchmark`);
+ * size-built first load ('logic-lfd-page': the Session on B1's template task, `benchmark` and
+ * `blockRange`, whose block counts it sends with its `ready` message);
  * teach-worker.ts fetches the full one (built for speed) when Teach mode, `Session.replay`, the
  * PDDL tab's calls, a loaded scene, B2, B3 or an N-block task need it, and speed-up.ts moves the
  * session onto it after the first frame.
@@ -202,7 +203,8 @@ async function handle(req: ToWorker): Promise<void> {
 const ready = init().then(
   (wasm) => {
     wasmMemory = wasm.memory;
-    post({ type: 'ready', version: lfd.version() });
+    const blockRanges = { b1: lfd.blockRange('b1'), b2: lfd.blockRange('b2'), b3: lfd.blockRange('b3') };
+    post({ type: 'ready', version: lfd.version(), blockRanges });
   },
   (e) => post({ type: 'fatal', message: `could not load the wasm module: ${errorMessage(e)}` }),
 );

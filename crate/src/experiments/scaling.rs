@@ -46,6 +46,10 @@ pub const METHODS: [(&str, Method, Mode, bool); 6] = [
 /// paper mode and of TAMP from scratch, compared by [`markdown`].
 const SAME_SEARCH: [(usize, usize); 2] = [(0, 2), (3, 5)];
 
+/// The block counts `logic-lfd bench scaling` runs by default: from the template's 4 blocks to
+/// B1's most ([`crate::sim::generate::MAX_BLOCKS`]), one and two towers.
+pub const DEFAULT_BLOCKS: [usize; 5] = [4, 8, 12, 16, 20];
+
 /// Wall-clock budget of one symbolic search in the study (s): a method that needs more has
 /// failed on that task.
 pub const SEARCH_TIME_LIMIT_SECS: f64 = 2.0;

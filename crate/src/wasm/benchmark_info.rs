@@ -1,4 +1,5 @@
-//! `benchmark`: a benchmark's initial scene and PDDL files, which the page reads on its first load.
+//! `benchmark`: a benchmark's initial scene and PDDL files, which the page reads on its first load;
+//! `blockRange`: the block counts of its generated N-block tower task.
 
 use super::args::string_arg;
 use super::{js_err, to_js};
@@ -48,4 +49,22 @@ pub fn benchmark(
             .map(|a| format!("{a}\n"))
             .collect(),
     })
+}
+
+/// The block counts `[fewest, most]` that a benchmark's generated N-block tower task takes (the
+/// `blocks` option of `Session`, from `sim::generate::block_range`), or `null` for a benchmark
+/// without one (B2). Rejects an unknown id.
+#[wasm_bindgen(js_name = blockRange, unchecked_return_type = "[number, number] | null")]
+pub fn block_range(
+    #[wasm_bindgen(unchecked_param_type = "\"b1\" | \"b2\" | \"b3\"")] id: JsValue,
+) -> Result<JsValue, JsValue> {
+    use crate::sim::benchmark::Benchmark;
+    let id = string_arg("blockRange", "id", &id)?;
+    let b = Benchmark::parse(&id)
+        .ok_or_else(|| js_err(format!("unknown benchmark `{id}` (expected b1, b2 or b3)")))?;
+    // B2's "no N-block variant" is an answer here, not an error.
+    let range = crate::sim::generate::block_range(b)
+        .ok()
+        .map(|r| [*r.start(), *r.end()]);
+    to_js(&range)
 }

@@ -21,7 +21,7 @@ export interface SessionOptions {
   mode: "paper" | "prioritised";
   seed: number;
   skill?: "lqt" | "dmp";
-  /** Blocks of the generated N-block tower task (B1: 3 to 12, B3: 2 to 10; B2 has none); omitted: the benchmark's template task. */
+  /** Blocks of the generated N-block tower task, within `blockRange(benchmark)` (B2 has none); omitted: the benchmark's template task. */
   blocks?: number | null;
 }
 /** What the loop is doing. */

@@ -49,7 +49,7 @@ fn b3_tower_tasks_from_2_to_10_blocks_are_valid() {
 fn block_counts_outside_the_range_and_b2_are_refused() {
     for (b, n) in [
         (Benchmark::B1, 2),
-        (Benchmark::B1, 13),
+        (Benchmark::B1, 21),
         (Benchmark::B3, 1),
         (Benchmark::B3, 11),
     ] {
@@ -155,5 +155,22 @@ fn a_session_with_blocks_uses_the_generated_task() {
         .err()
         .map(|e| e.to_string())
         .unwrap_or_default();
-    assert!(e.contains("allowed: 3 to 12"), "{e}");
+    assert!(e.contains("allowed: 3 to 20"), "{e}");
+}
+
+#[test]
+fn the_scaling_study_s_default_counts_are_b1_tasks() {
+    use logic_lfd::experiments::scaling::DEFAULT_BLOCKS;
+    use logic_lfd::sim::generate::{block_range, block_ranges_text};
+    let r = block_range(Benchmark::B1).unwrap();
+    assert!(
+        DEFAULT_BLOCKS.iter().all(|n| r.contains(n)),
+        "{DEFAULT_BLOCKS:?}"
+    );
+    assert_eq!(
+        DEFAULT_BLOCKS.last(),
+        Some(r.end()),
+        "the study reaches the most blocks"
+    );
+    assert_eq!(block_ranges_text(), "B1: 3 to 20, B3: 2 to 10");
 }

@@ -9,6 +9,7 @@ mod hook;
 mod kinematics;
 mod scene_graph;
 mod scenes;
+mod towers;
 
 use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::geometry;

@@ -97,8 +97,9 @@ fn report<T: serde::Serialize>(
 /// Arguments of `bench scaling`.
 #[derive(clap::Args)]
 pub struct ScalingArgs {
-    /// Comma-separated block counts (B1: 3 to 12).
-    #[arg(long, default_value = "4,6,8,10,12", value_delimiter = ',')]
+    /// Comma-separated block counts of B1's generated tower tasks (`sim::generate::block_range`).
+    #[arg(long, help = scaling_blocks_help(), value_delimiter = ',',
+          default_value = default_scaling_blocks())]
     blocks: Vec<usize>,
     /// Tasks (random L3 initial states) per block count.
     #[arg(long, default_value_t = 50)]
@@ -112,6 +113,29 @@ pub struct ScalingArgs {
     /// Write an SVG plot of the median first-plan time against N to this file.
     #[arg(long)]
     svg: Option<PathBuf>,
+}
+
+/// `bench scaling`'s default block counts, comma-separated as the option takes them.
+fn default_scaling_blocks() -> &'static str {
+    static TEXT: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    TEXT.get_or_init(|| {
+        logic_lfd::experiments::scaling::DEFAULT_BLOCKS
+            .map(|n| n.to_string())
+            .join(",")
+    })
+}
+
+/// Help of `bench scaling --blocks`, with the block counts B1 takes.
+fn scaling_blocks_help() -> String {
+    use logic_lfd::sim::{benchmark::Benchmark, generate::block_range};
+    match block_range(Benchmark::B1) {
+        Ok(r) => format!(
+            "Comma-separated block counts (B1: {} to {})",
+            r.start(),
+            r.end()
+        ),
+        Err(e) => format!("Comma-separated block counts ({e})"),
+    }
 }
 
 fn scaling(a: ScalingArgs) -> ExitCode {

@@ -46,8 +46,9 @@ pub struct Args {
     /// optional scene.json) in the benchmark's workcell, with the benchmark's disturbances.
     #[arg(long, conflicts_with = "blocks")]
     domain: Option<PathBuf>,
-    /// Run the benchmark's generated tower task with N blocks (B1: 3-12, B3: 2-10).
-    #[arg(long)]
+    /// Run the benchmark's generated tower task with N blocks (the counts each benchmark takes
+    /// come from `sim::generate::block_range`).
+    #[arg(long, help = blocks_help())]
     blocks: Option<usize>,
     /// Print the report and the full episode log as JSON.
     #[arg(long)]
@@ -55,6 +56,14 @@ pub struct Args {
     /// Replay an episode JSON (the `log` of `--json`, or the whole report) and check it.
     #[arg(long)]
     replay: Option<PathBuf>,
+}
+
+/// Help of `--blocks`, with the block counts each benchmark takes.
+fn blocks_help() -> String {
+    format!(
+        "Run the benchmark's generated tower task with N blocks ({})",
+        logic_lfd::sim::generate::block_ranges_text()
+    )
 }
 
 fn bad(msg: String) -> ExitCode {

@@ -36,13 +36,22 @@ pub struct Args {
     /// Skip the replay-identity check of every episode (halves the run time).
     #[arg(long)]
     no_replay: bool,
-    /// Run the generated tower tasks with N blocks (B1: 3-12, B3 too when N ≤ 10) instead of
-    /// the template tasks.
-    #[arg(long)]
+    /// Run the generated tower tasks with N blocks instead of the template tasks, on the
+    /// benchmarks that take N (`sim::generate::block_range`).
+    #[arg(long, help = blocks_help())]
     blocks: Option<usize>,
     /// Print the report as JSON.
     #[arg(long)]
     json: bool,
+}
+
+/// Help of `--blocks`, with the block counts each benchmark takes.
+fn blocks_help() -> String {
+    format!(
+        "Run the generated tower tasks with N blocks instead of the template tasks, on the \
+         benchmarks that take N ({})",
+        logic_lfd::sim::generate::block_ranges_text()
+    )
 }
 
 /// Runs the subcommand.
