@@ -3,7 +3,8 @@
 //! of it. Each tower's bottom block starts on its tower's spot, where the tower is built.
 //!
 //! One tower (up to [`MAX_TOWER_HEIGHT`](super::MAX_TOWER_HEIGHT) blocks) stands on the spot
-//! nearest the area's centre and its blocks lie on the next spots out, bottom-up. Several towers
+//! nearest the area's centre and its blocks lie on the next spots out, bottom-up, the tower
+//! spot's neighbours left free where there is room. Several towers
 //! stand on spots at least [`TOWER_SPACING`] apart where the arm reaches their tops, and each of
 //! their blocks starts on a spot from which the arm takes it, and carries it to its tower, clear
 //! of the towers as they stand when the demonstration takes it ([`open_at`]): not next to a
@@ -240,12 +241,26 @@ pub(super) fn tower_scene(
 }
 
 /// One tower's layout (`free` holds a spot for each block): the bottom on the spot nearest the
-/// area's centre, the blocks above it on the next spots out, bottom-up.
+/// area's centre, the blocks above it on the next spots out, bottom-up, leaving the spots next
+/// to the tower's free where the area has room for it.
+///
+/// A hand working a spot reaches 11.5 cm along its fingers: with blocks on the tower spot's four
+/// neighbours every grasp of the bottom block hits one, so a bottom block moved away (an L3
+/// disturbance) could not be put back, and the hand grazes the tower working its neighbours.
 fn one_tower(free: &[Spot], tower: &[String]) -> Vec<(String, [f64; 2])> {
+    let Some(bottom) = free.first() else {
+        return vec![];
+    };
+    let mut spare = free.len().saturating_sub(tower.len());
+    let spots = free.iter().filter(|s| {
+        let skip = spare > 0 && s.steps_sq(bottom) == 1;
+        spare -= usize::from(skip);
+        !skip
+    });
     tower
         .iter()
         .rev()
-        .zip(free)
+        .zip(spots)
         .map(|(x, spot)| (x.clone(), spot.p))
         .collect()
 }
