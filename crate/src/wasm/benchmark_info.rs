@@ -32,10 +32,7 @@ pub struct BenchmarkInfo {
 pub fn benchmark(
     #[wasm_bindgen(unchecked_param_type = "\"b1\" | \"b2\" | \"b3\"")] id: JsValue,
 ) -> Result<JsValue, JsValue> {
-    use crate::sim::benchmark::Benchmark;
-    let id = string_arg("benchmark", "id", &id)?;
-    let b = Benchmark::parse(&id)
-        .ok_or_else(|| js_err(format!("unknown benchmark `{id}` (expected b1, b2 or b3)")))?;
+    let b = benchmark_arg("benchmark", &id)?;
     b.available().map_err(|e| js_err(e.message))?;
     to_js(&BenchmarkInfo {
         id: b.as_str(),
@@ -58,13 +55,17 @@ pub fn benchmark(
 pub fn block_range(
     #[wasm_bindgen(unchecked_param_type = "\"b1\" | \"b2\" | \"b3\"")] id: JsValue,
 ) -> Result<JsValue, JsValue> {
-    use crate::sim::benchmark::Benchmark;
-    let id = string_arg("blockRange", "id", &id)?;
-    let b = Benchmark::parse(&id)
-        .ok_or_else(|| js_err(format!("unknown benchmark `{id}` (expected b1, b2 or b3)")))?;
+    let b = benchmark_arg("blockRange", &id)?;
     // B2's "no N-block variant" is an answer here, not an error.
     let range = crate::sim::generate::block_range(b)
         .ok()
         .map(|r| [*r.start(), *r.end()]);
     to_js(&range)
+}
+
+/// The benchmark `id` names (argument `id` of `func`), or a `TypeError` / `Error` saying why not.
+fn benchmark_arg(func: &str, id: &JsValue) -> Result<crate::sim::benchmark::Benchmark, JsValue> {
+    let id = string_arg(func, "id", id)?;
+    crate::sim::benchmark::Benchmark::parse(&id)
+        .ok_or_else(|| js_err(format!("unknown benchmark `{id}` (expected b1, b2 or b3)")).into())
 }
