@@ -501,3 +501,28 @@ fn multi_goal_plan_plus_suffix_reaches_the_goal_in_the_pddl_model() {
         }
     }
 }
+
+#[test]
+fn a_tower_bottom_a_new_prefix_puts_down_goes_back_to_its_demonstrated_spot() {
+    let mut s = Session::new(b1_paper(1)).unwrap();
+    let home = s.world().body_pose("d").unwrap().translation.vector;
+    let a = s.world().body_pose("a").unwrap().translation.vector;
+    // d, the tower's bottom, dragged onto a before the arm moves.
+    let out = s.perturb("d", [a.x, a.y, a.z + 0.07]);
+    assert!(out.is_ok(), "{out:?}");
+    s.run_to_end(40_000, &NoClock);
+    assert_eq!(s.outcome(), Some(&Ok(())));
+    let log = s.log();
+    let first = &log.replans[0].plan;
+    assert_eq!(
+        first[..2],
+        ["(unstack panda d a)", "(place panda d)"],
+        "{first:?}"
+    );
+    // The demonstration has no release of d: it goes back where the demonstration had it.
+    let d = s.world().body_pose("d").unwrap().translation.vector;
+    assert!(
+        (d.xy() - home.xy()).norm() < 0.01,
+        "d at {d}, shown at {home}"
+    );
+}

@@ -55,6 +55,10 @@ describe('LogicLfd', () => {
             assert.equal(fn.valid, true);
             assert.equal(stable(cls), stable(fn), `${d.name} ${JSON.stringify(o)}`);
             assert.equal(c.logicIn(state), fn.logicIn);
+            // Without the lifted replay: the same answer, `valid` left open.
+            const unchecked = c.replan(state, { ...o, validate: false });
+            assert.equal(unchecked.valid, null);
+            assert.equal(stable({ ...unchecked, valid: true }), stable(cls));
           }
         }
         assert.deepEqual(c.demo, lfd.logicLfd(d.setup).demo);

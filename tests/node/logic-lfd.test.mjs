@@ -217,7 +217,7 @@ describe('logicLfd', () => {
     assert.match(out.message, /budget/);
     assert.deepEqual(out.plan, []);
     assert.equal(out.k, null);
-    assert.equal(out.valid, false);
+    assert.equal(out.valid, null, "no plan, nothing replayed");
     // The state and LogicIn are still reported.
     assert.ok(out.state.length > 0);
     // LogicIn needs no search: the same budget is enough from L_3.
@@ -243,6 +243,7 @@ describe('logicLfd', () => {
     opt({ maxExpanded: 'many' }, /maxExpanded/);
     opt({ timeLimitMs: 'soon' }, /timeLimitMs/);
     opt({ compare: 1 }, /compare/);
+    opt({ validate: 'no' }, /`validate` must be a boolean, got string/);
     opt({ max_expanded: 10 }, /unknown input key `max_expanded`/);
     opt({ files: { domain: 'd.pddl', plan: 'x' } }, /unknown files key `plan`/);
     opt({ files: 'x' }, /files/);

@@ -51,7 +51,7 @@ function column(mode: LfdMode, r: LogicLfdResult | null, pending: boolean): HTML
     ),
     el('div', { class: 'muted small' }, ...how(r), r.source === 'multi-goal' ? ` · ${r.prefix.length} new` : ''),
   );
-  if (!r.valid) col.append(el('div', { class: 'lfd-fail small' }, 'The validator rejected this plan from S_C.'));
+  if (r.valid === false) col.append(el('div', { class: 'lfd-fail small' }, 'The validator rejected this plan from S_C.'));
   const first = (k ?? 0) + 1;
   const items: HTMLElement[] = r.prefix.map((a) => el('li', { class: 'new' }, el('span', { class: 'tag new' }, 'new'), el('span', {}, a)));
   if (k !== null && r.prefix.length > 0) items.push(el('li', { class: 'join' }, '↳ reaches ', lk(k), ', demo follows'));

@@ -42,6 +42,9 @@ pub(crate) fn arm_drawing(a: &Arm) -> ArmDrawing {
     (links, fingers)
 }
 
+/// Index of the hand's capsule among an arm's link capsules ([`link_capsules`]): the last.
+pub const HAND_LINK: usize = 6;
+
 /// The link capsules of a chain's frames (base to hand), world frame.
 fn links_of(f: &ArmFrames) -> Vec<(Vector3<f64>, Vector3<f64>, f64)> {
     let o = |i: usize| f.frames[i].p;

@@ -54,6 +54,9 @@ export interface LogicLfdOptions {
   timeLimitMs?: number;
   /** Also plan from scratch to G with the same search (the result's `scratch`). */
   compare?: boolean;
+  /** Replay the merged plan on the lifted domain (the result's `valid`; default `true`). The
+   *  replay costs several times the search on small tasks; `false` skips it (`valid: null`). */
+  validate?: boolean;
 }
 /** What `logicLfd` reads: a task, the options and the current state S_C. */
 export interface LogicLfdInput extends LogicLfdSetup, LogicLfdOptions {
@@ -121,8 +124,9 @@ export interface LogicLfdResult {
   /** `prefix` then `suffix`. */
   plan: string[];
   cost: number | null;
-  /** The lifted validator replayed `plan` from S_C to the goal. */
-  valid: boolean;
+  /** The lifted validator replayed `plan` from S_C to the goal; `null` without a plan or with
+   *  `validate: false`. */
+  valid: boolean | null;
   stats: LogicLfdStats;
   /** With `compare`: classical planning from S_C to G with the same search. */
   scratch: { ok: boolean; plan: string[]; cost: number | null; stats: LogicLfdStats } | null;

@@ -214,3 +214,18 @@ fn a_joint_space_move_names_what_it_sweeps_through_and_the_ready_posture_goes_ro
     );
     assert_eq!(w.joint_move_hits(0, &deeper, &touching, &[]), None);
 }
+
+#[test]
+fn the_capsule_messages_call_the_hand_is_the_hand_capsule() {
+    let w = Benchmark::B1.scene();
+    let q = w.joints(0).unwrap();
+    let caps = geometry::link_capsules(&w, 0, &q);
+    assert_eq!(
+        caps.len(),
+        geometry::HAND_LINK + 1,
+        "the hand is the last capsule"
+    );
+    let (a, b, r) = caps[geometry::HAND_LINK];
+    let (ha, hb, hr) = geometry::hand_capsule(&w.tcp_pose(0).unwrap());
+    assert!((a - ha).norm() < 1e-9 && (b - hb).norm() < 1e-9 && r == hr);
+}

@@ -10,13 +10,14 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
 }
 
-const WIDTH: f64 = 640.0;
+const WIDTH: f64 = 760.0;
 const HEIGHT: f64 = 400.0;
 const LEFT: f64 = 70.0;
-const RIGHT: f64 = 200.0;
+const RIGHT: f64 = 270.0;
 const TOP: f64 = 20.0;
 const BOTTOM: f64 = 50.0;
-const COLOURS: [&str; 4] = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728"];
+/// Colours by method, the same for both searches (`METHODS` lists each search's three).
+const COLOURS: [&str; 3] = ["#1f77b4", "#ff7f0e", "#d62728"];
 
 /// The plot's axes: x range and the decades of the y range.
 struct Axes {
@@ -125,6 +126,12 @@ pub fn svg(series: &[Series]) -> String {
     );
     for (i, line) in series.iter().enumerate() {
         let colour = COLOURS[i % COLOURS.len()];
+        // The second search's lines (lazy GBFS) are dashed.
+        let dash = if i >= COLOURS.len() {
+            " stroke-dasharray=\"6 4\""
+        } else {
+            ""
+        };
         let pts: Vec<String> = line
             .points
             .iter()
@@ -132,13 +139,21 @@ pub fn svg(series: &[Series]) -> String {
             .map(|p| format!("{:.1},{:.1}", a.x(p.0), a.y(p.1)))
             .collect();
         s += &format!(
-            "<polyline fill=\"none\" stroke=\"{colour}\" stroke-width=\"2\" points=\"{}\"/>\n",
+            "<polyline fill=\"none\" stroke=\"{colour}\" stroke-width=\"2\"{dash} points=\"{}\"/>\n",
             pts.join(" ")
         );
+        // A marker on every point, so a method measured at one N alone still shows.
+        for p in line.points.iter().filter(|p| p.1 > 0.0) {
+            s += &format!(
+                "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"3\" fill=\"{colour}\"/>\n",
+                a.x(p.0),
+                a.y(p.1)
+            );
+        }
         let ly = TOP + 20.0 * i as f64 + 10.0;
         s += &format!(
-            "<line x1=\"{}\" y1=\"{ly}\" x2=\"{}\" y2=\"{ly}\" stroke=\"{colour}\" stroke-width=\"2\"/>\
-             <text x=\"{}\" y=\"{}\">{}</text>\n",
+            "<line x1=\"{}\" y1=\"{ly}\" x2=\"{}\" y2=\"{ly}\" stroke=\"{colour}\" stroke-width=\"2\"{dash}/>\
+             <text x=\"{}\" y=\"{}\" font-size=\"12\">{}</text>\n",
             xr + 10.0,
             xr + 30.0,
             xr + 35.0,
@@ -165,6 +180,7 @@ mod tests {
     fn the_document_is_balanced() {
         let s = svg(&demo());
         assert!(s.starts_with("<svg") && s.ends_with("</svg>\n"));
+        assert_eq!(s.matches("<circle").count(), 3, "one marker per point");
         assert_eq!(s.matches("<text").count(), s.matches("</text>").count());
     }
 

@@ -154,11 +154,17 @@ pub fn demo_actions(demo_json: &str) -> Result<Vec<String>, SessionError> {
         .collect()
 }
 
-/// Where the demonstration put things down: action → the resting pose.
+/// Where the demonstration put things down: action `(…)` → the resting pose; and block name →
+/// where it stood in the demonstration's scene (for a release the demonstration does not have).
 pub(super) type PlacementHints = BTreeMap<String, PlanarPose>;
 
 /// The placements the demonstration used for its releases onto a surface or a region (not onto
-/// a block): action → the resting pose (`sim::demo` anchor poses).
+/// a block): action → the resting pose (`sim::demo` anchor poses); and every block of the
+/// demonstration's scene `world` → its pose there.
+///
+/// A block a new prefix puts down goes back first to where the demonstration had it: the rest
+/// of the demonstration was shown with it there (a tower's bottom block put back on its spot
+/// keeps the tower's top within reach).
 pub(super) fn demo_hints(demo_json: &str, world: &World) -> PlacementHints {
     let mut out = BTreeMap::new();
     if let Ok(d) = crate::sim::demo::from_json(demo_json) {
@@ -181,6 +187,15 @@ pub(super) fn demo_hints(demo_json: &str, world: &World) -> PlacementHints {
                     yaw: a.anchor_pose.yaw,
                 });
             }
+        }
+    }
+    for name in world.block_names() {
+        if let Some(p) = world.body_pose(name) {
+            out.entry(name.to_string()).or_insert(PlanarPose {
+                x: p.translation.x,
+                y: p.translation.y,
+                yaw: crate::sim::yaw_of(&p.rotation),
+            });
         }
     }
     out

@@ -10,7 +10,7 @@ use parry3d_f64::shape::{Capsule, Cuboid};
 
 use super::obstacles::{box_aabb, overlaps, Obstacle};
 use super::{fmt_point, Geo, Predicted, StreamBinder};
-use crate::sim::geometry::link_capsules;
+use crate::sim::geometry::{link_capsules, HAND_LINK};
 use crate::sim::panda::{self, DOF};
 use crate::sim::LINK_TOLERANCE;
 use crate::tamp::motion::{joint_recovery, transit_height, JointMoves, RecoveryRoute};
@@ -525,6 +525,8 @@ impl StreamBinder<'_> {
             .contact;
         let o = &obstacles[oi].name;
         let words = match part {
+            // The last capsule is the hand's (`sim::geometry::link_capsules`).
+            Part::Link(i) if i == HAND_LINK => format!("the hand hits {o}"),
             Part::Link(i) => format!("link {i} hits {o}"),
             Part::Load(_) => format!("the carried body hits {o}"),
         };

@@ -195,7 +195,8 @@ pub struct StreamBinder<'w> {
     pub stats: StreamStats,
     /// Poses of the movable bodies after the last successfully bound skeleton (predicted).
     predicted: BTreeMap<String, Isometry3<f64>>,
-    /// Placements the demonstration used, by action: where the resting body's centre was.
+    /// Placements the demonstration used, by action `(…)`: where the resting body's centre
+    /// was; by body name: where the demonstration's scene had it.
     hints: BTreeMap<String, PlanarPose>,
 }
 
@@ -259,7 +260,8 @@ impl<'w> StreamBinder<'w> {
         }
     }
 
-    /// Placements to try first for these actions (the demonstration's).
+    /// Placements to try first: by action `(…)` (the demonstration's placement for it), else by
+    /// the name of the body put down (where the demonstration had it).
     pub fn with_hints(mut self, hints: &BTreeMap<String, PlanarPose>) -> Self {
         self.hints = hints.clone();
         self
@@ -406,7 +408,12 @@ impl<'w> StreamBinder<'w> {
         let surfaces = release_target(op, self.world)
             .map(|t| self.surfaces(&t, body))
             .unwrap_or_default();
-        let hint = self.hints.get(&op.name).copied();
+        // The demonstration's placement for this action, else where it had the body.
+        let hint = self
+            .hints
+            .get(&op.name)
+            .or_else(|| self.hints.get(body))
+            .copied();
         let candidates = self.surface_candidates(&geo, arm, &surfaces, hint);
         let mut deepest = i;
         let mut certified = 0;

@@ -185,6 +185,8 @@ pub(super) struct Options {
     pub(super) mode: Mode,
     pub(super) config: SearchConfig,
     pub(super) compare: bool,
+    /// Replay the merged plan on the lifted domain (`valid`); default on.
+    pub(super) validate: bool,
 }
 
 pub(super) fn search_options(m: &Map<String, Value>) -> Result<Options, String> {
@@ -224,16 +226,8 @@ pub(super) fn search_options(m: &Map<String, Value>) -> Result<Options, String> 
             ))
         }
     };
-    let compare = match m.get("compare") {
-        None | Some(Value::Null) => false,
-        Some(Value::Bool(b)) => *b,
-        Some(v) => {
-            return Err(format!(
-                "`compare` must be a boolean, got {}",
-                json_type_name(v)
-            ))
-        }
-    };
+    let compare = bool_option(m, "compare", false)?;
+    let validate = bool_option(m, "validate", true)?;
     Ok(Options {
         mode,
         config: SearchConfig {
@@ -243,10 +237,23 @@ pub(super) fn search_options(m: &Map<String, Value>) -> Result<Options, String> 
             time_limit_secs: Some(time_ms / 1e3),
         },
         compare,
+        validate,
     })
 }
 
-pub(super) const LFD_KEYS: [&str; 12] = [
+/// Boolean option `key` of `m`, `default` when absent or null.
+fn bool_option(m: &Map<String, Value>, key: &str, default: bool) -> Result<bool, String> {
+    match m.get(key) {
+        None | Some(Value::Null) => Ok(default),
+        Some(Value::Bool(b)) => Ok(*b),
+        Some(v) => Err(format!(
+            "`{key}` must be a boolean, got {}",
+            json_type_name(v)
+        )),
+    }
+}
+
+pub(super) const LFD_KEYS: [&str; 13] = [
     "domain",
     "problem",
     "demo",
@@ -259,19 +266,21 @@ pub(super) const LFD_KEYS: [&str; 12] = [
     "timeLimitMs",
     "files",
     "compare",
+    "validate",
 ];
 
 /// The keys of the `LogicLfd` class's constructor input.
 pub(super) const SETUP_KEYS: [&str; 4] = ["domain", "problem", "demo", "files"];
 
 /// The keys of `LogicLfd.replan`'s options.
-pub(super) const REPLAN_KEYS: [&str; 6] = [
+pub(super) const REPLAN_KEYS: [&str; 7] = [
     "mode",
     "search",
     "heuristic",
     "maxExpanded",
     "timeLimitMs",
     "compare",
+    "validate",
 ];
 
 /// The keys of the `files` option of `logicLfd` and the `LogicLfd` class.

@@ -66,7 +66,8 @@ pub(super) struct LfdResult<'f> {
     suffix: Vec<String>,
     plan: Vec<String>,
     cost: Option<u64>,
-    valid: bool,
+    /// `None` when not asked for (`validate: false`) or when there is no plan.
+    valid: Option<bool>,
     stats: Stats,
     scratch: Option<Scratch>,
 }
@@ -171,8 +172,8 @@ pub(super) fn prepare(files: &Files, t: &Texts) -> Result<LogicLfd, (&'static st
     .map_err(|e| input_error(&e, files, "problem"))
 }
 
-/// One query on a prepared instance: S_C, LogicIn, the merged plan and its replay on the lifted
-/// domain, and with `compare` planning from scratch. The result leaves out the demonstration,
+/// One query on a prepared instance: S_C, LogicIn, the merged plan and (unless `validate` is off)
+/// its replay on the lifted domain, and with `compare` planning from scratch. The result leaves out the demonstration,
 /// the static facts and the fluents ([`LfdResult::with`] adds them).
 pub(super) fn answer(
     lfd: &LogicLfd,
@@ -193,7 +194,7 @@ pub(super) fn answer(
     let clock = PerformanceClock;
     let t0 = clock.now_secs();
     match s.replan(o.mode, &o.config, &clock) {
-        Ok(p) => found(&s, p, &mut out),
+        Ok(p) => found(&s, p, o.validate, &mut out),
         Err(e) => {
             out.kind = match e {
                 LfdError::Budget(_) => "budget",
@@ -209,8 +210,10 @@ pub(super) fn answer(
     out
 }
 
-fn found(s: &Observed, p: LfdPlan, out: &mut LfdResult) {
-    out.valid = s.validate(&p.names).is_ok_and(|r| r.is_valid());
+fn found(s: &Observed, p: LfdPlan, validate: bool, out: &mut LfdResult) {
+    // The lifted replay costs several times the search on small tasks (string-heavy): a caller
+    // that replans in a loop may skip it.
+    out.valid = validate.then(|| s.validate(&p.names).is_ok_and(|r| r.is_valid()));
     out.ok = true;
     out.kind = "plan";
     out.k = p.k;
