@@ -1,6 +1,7 @@
 //! Integration tests (one binary, one sub-module per area).
 
 mod any_domain;
+mod circles;
 mod declared_names;
 mod exec;
 mod fig4;

@@ -19,10 +19,9 @@
 //! encode via-points (the paper's point): [`Dmp`]'s `plan` ignores them. It reacts to a pushed end
 //! effector by integrating on from the measured position.
 
-use super::skill::{plan_orientations, MotionSkill, Policy, Trajectory, ViaPoint};
 use super::task::gradient;
 use super::LqtError;
-use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
+use nalgebra::{Point3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
 /// Tunables of a classic DMP.
@@ -55,10 +54,10 @@ impl Default for DmpParams {
 #[serde(try_from = "DmpData")]
 pub struct Dmp {
     params: DmpParams,
-    dt: f64,
-    n_steps: usize,
+    pub(super) dt: f64,
+    pub(super) n_steps: usize,
     goal: Vector3<f64>,
-    demo_rotations: Vec<UnitQuaternion<f64>>,
+    pub(super) demo_rotations: Vec<UnitQuaternion<f64>>,
     weights: Vec<[f64; 3]>,
     demo_displacement: [Option<f64>; 3],
     centers: Vec<f64>,
@@ -115,8 +114,8 @@ impl TryFrom<DmpData> for Dmp {
 /// The integrator of a DMP for one plan: state `[y (3), z (3), s]` in the object frame.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct DmpRunner {
-    dmp: Dmp,
-    y0: Vector3<f64>,
+    pub(super) dmp: Dmp,
+    pub(super) y0: Vector3<f64>,
 }
 
 impl Dmp {
@@ -293,60 +292,5 @@ impl DmpRunner {
             }
             state[6] = s - h * p.alpha_s * s / tau;
         }
-    }
-}
-
-impl MotionSkill for Dmp {
-    /// Via-points are ignored: a classic DMP cannot encode them.
-    fn plan(
-        &self,
-        start: &Point3<f64>,
-        object_pose: &Isometry3<f64>,
-        via_points: &[ViaPoint],
-    ) -> Result<Trajectory, LqtError> {
-        Dmp::plan(self, start, object_pose, via_points)
-    }
-}
-
-impl Dmp {
-    /// Plan from `start` (world, at rest) to the demo's goal in the frame of `object_pose`.
-    /// Via-points are ignored: a classic DMP cannot encode them (the paper's comparison).
-    pub fn plan(
-        &self,
-        start: &Point3<f64>,
-        object_pose: &Isometry3<f64>,
-        _via_points: &[ViaPoint],
-    ) -> Result<Trajectory, LqtError> {
-        if !start.coords.iter().all(|v| v.is_finite()) {
-            return Err(LqtError::input("start", "expected finite coordinates"));
-        }
-        let y0 = object_pose.inverse_transform_point(start).coords;
-        let runner = DmpRunner {
-            dmp: self.clone(),
-            y0,
-        };
-        let tau = self.dt * (self.n_steps - 1) as f64;
-        let mut state = runner.initial_state();
-        let mut positions = Vec::with_capacity(self.n_steps);
-        let mut velocities = Vec::with_capacity(self.n_steps);
-        for t in 0..self.n_steps {
-            if t > 0 {
-                runner.step(&mut state);
-            }
-            positions.push(object_pose.transform_point(&Point3::new(state[0], state[1], state[2])));
-            velocities.push(
-                object_pose.transform_vector(&(Vector3::new(state[3], state[4], state[5]) / tau)),
-            );
-        }
-        let start_state = runner.initial_state();
-        Ok(Trajectory::from_parts(
-            self.dt,
-            positions,
-            velocities,
-            plan_orientations(&self.demo_rotations, object_pose, None),
-            *object_pose,
-            start_state,
-            Policy::Dmp(runner),
-        ))
     }
 }

@@ -16,6 +16,7 @@
 mod basis;
 pub mod case;
 mod dmp;
+mod dmp_skill;
 mod dynamics;
 mod error;
 mod linalg;
@@ -24,13 +25,13 @@ mod riccati;
 mod skill;
 mod solver;
 pub mod task;
+mod trajectory;
 
 pub use basis::Basis;
 pub use dmp::{Dmp, DmpParams, DmpRunner};
 pub use error::LqtError;
-pub use skill::{
-    FeedbackController, GripperEvent, MotionSkill, Policy, Skill, SkillParams, Trajectory, ViaPoint,
-};
+pub use skill::{Skill, SkillParams};
 pub use solver::{
     full_pipeline, BatchSolution, FeedbackGains, LqtConfig, LqtCp, Perturbation, Rollout, MAX_ORDER,
 };
+pub use trajectory::{FeedbackController, GripperEvent, MotionSkill, Policy, Trajectory, ViaPoint};

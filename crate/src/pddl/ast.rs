@@ -2,16 +2,7 @@
 //! [`Span`] it was read from, so later stages (grounding, validation) can point at the source.
 //! All names are lower case (PDDL is case-insensitive).
 
-use super::error::{PddlError, Source};
-
-/// A byte range `start..end` in the source text.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub struct Span {
-    /// First byte.
-    pub start: usize,
-    /// One past the last byte.
-    pub end: usize,
-}
+use super::error::{PddlError, Source, Span};
 
 /// A lower-cased name (or `?variable`) with where it was written.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -1,7 +1,8 @@
 //! Small readers shared by the domain, problem and formula parsers: names, variables, typed lists,
 //! requirement flags, and the "refused by name" message.
 
-use super::ast::{Name, Span};
+use super::ast::Name;
+use super::error::Span;
 use super::error::{PddlError, Source};
 use super::lexer::SExpr;
 

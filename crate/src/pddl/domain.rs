@@ -3,8 +3,9 @@
 
 use std::collections::HashMap;
 
-use super::ast::{Action, Domain, Formula, Name, Signature, Span, TypeDecl, TypedName};
+use super::ast::{Action, Domain, Formula, Name, Signature, TypeDecl, TypedName};
 use super::common::{define, list, name, refuse, requirements, typed_list};
+use super::error::Span;
 use super::error::{PddlError, Source};
 use super::formula::Scope;
 use super::lexer::{read_one, SExpr};

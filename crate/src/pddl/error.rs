@@ -1,6 +1,13 @@
 //! Errors with `file:line:col` and the source map that turns byte spans into line:column.
 
-use super::ast::Span;
+/// A byte range `start..end` in the source text.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Span {
+    /// First byte.
+    pub start: usize,
+    /// One past the last byte.
+    pub end: usize,
+}
 
 /// A located error in a PDDL (or plan) file: `file:line:col: message`.
 ///

@@ -288,7 +288,7 @@ impl Scope<'_> {
         &self,
         head: &SExpr,
         args: &[SExpr],
-        span: super::ast::Span,
+        span: super::error::Span,
     ) -> Result<CostIncrease, PddlError> {
         if args.len() != 2 {
             return Err(self

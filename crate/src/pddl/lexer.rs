@@ -4,7 +4,7 @@
 //! to the end of the line, anywhere. Nesting is bounded ([`MAX_DEPTH`]) so that no input can
 //! exhaust the stack of the recursive-descent interpreters that read the tree.
 
-use super::ast::Span;
+use super::error::Span;
 use super::error::{PddlError, Source};
 
 /// Deepest list nesting accepted (real domains stay below 20).

@@ -33,10 +33,10 @@ mod problem;
 
 pub use ast::{
     Action, Atom, CostAmount, CostIncrease, Domain, Effect, Formula, FunctionValue, Name, Problem,
-    Signature, Span, Term, TypeDecl, TypedName,
+    Signature, Term, TypeDecl, TypedName,
 };
 pub use domain::parse_domain;
-pub use error::{decode_source, read_source, PddlError};
+pub use error::{decode_source, read_source, PddlError, Span};
 pub use problem::{parse_problem, LocatedFact};
 
 pub(crate) use error::Source;

@@ -3,9 +3,10 @@
 
 use std::collections::HashMap;
 
-use super::ast::{Atom, Domain, FunctionValue, Name, Problem, Span, Term, TypedName};
+use super::ast::{Atom, Domain, FunctionValue, Name, Problem, Term, TypedName};
 use super::common::{define, list, name, non_negative_integer, refuse, requirements, typed_list};
 use super::domain::{duplicate, resolve_type};
+use super::error::Span;
 use super::error::{PddlError, Source};
 use super::formula::Scope;
 use super::lexer::{read_one, SExpr};

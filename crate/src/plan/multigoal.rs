@@ -33,9 +33,10 @@ use crate::plan::clock::Clock;
 use crate::plan::heuristic::{HeuristicEvaluator, HeuristicKind};
 use crate::plan::relevance::{relevant_part, Relevance};
 use crate::plan::search::{
-    run_on, sanitize_goals, search_heuristic, Algorithm, Parts, Plan, SearchConfig, SearchOutcome,
-    SearchStats, SuccessorGenerator,
+    run_on, search_heuristic, Algorithm, Parts, Plan, SearchConfig, SearchOutcome, SearchStats,
+    SuccessorGenerator,
 };
+use crate::plan::task::sanitize_goals;
 use crate::plan::{Condition, Goal, Operator, State, Task};
 
 /// How goals with terminal costs are compared.

@@ -21,8 +21,7 @@
 //! since the relaxed achievers of relevant facts are relevant operators; LM-cut stays admissible
 //! but may differ where its ties are broken by the order facts are met.
 
-use super::search::sanitize_goals;
-use super::task::{Condition, FactId, Goal, Operator, State, Task};
+use super::task::{sanitize_goals, Condition, FactId, Goal, Operator, State, Task};
 
 /// The relevant part of a task and the way back to the task's own facts and operators.
 #[derive(Clone, Debug)]

@@ -318,6 +318,31 @@ pub fn replay(task: &Task, s: &State, ops: &[usize]) -> Result<State, usize> {
     Ok(cur)
 }
 
+/// Keeps only what the task knows: facts `≥ n` never hold, so alternatives needing one are
+/// dropped and negative literals on them are vacuous.
+pub(crate) fn sanitize_goals(n: usize, goals: &[Goal]) -> Vec<Goal> {
+    goals
+        .iter()
+        .map(|g| Goal {
+            alternatives: g
+                .alternatives
+                .iter()
+                .filter(|c| c.pos.iter().all(|&f| (f as usize) < n))
+                .map(|c| Condition {
+                    pos: c.pos.clone(),
+                    neg: c
+                        .neg
+                        .iter()
+                        .copied()
+                        .filter(|&f| (f as usize) < n)
+                        .collect(),
+                })
+                .collect(),
+            terminal_cost: g.terminal_cost,
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

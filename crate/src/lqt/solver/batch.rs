@@ -14,9 +14,8 @@ use super::super::basis::Basis;
 use super::super::dynamics::integrator;
 use super::super::linalg::{solve_small_transposed, Qr};
 use super::super::LqtError;
-use super::{
-    all_finite, check_matrix, check_vector, step1, BatchSolution, Group, LqtConfig, LqtCp,
-};
+use super::config::{check_matrix, check_vector, LqtConfig};
+use super::problem::{all_finite, step1, BatchSolution, Group, LqtCp};
 use nalgebra::DMatrix;
 
 impl LqtCp {

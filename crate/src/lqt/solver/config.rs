@@ -5,9 +5,17 @@
 use super::super::basis::Basis;
 use super::super::dynamics::dense_ab;
 use super::super::LqtError;
-use super::Perturbation;
 use nalgebra::DMatrix;
 use serde::{Deserialize, Serialize};
+
+/// A perturbation added to the state part of `x̃_{after_step+1}`, just after the update.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Perturbation {
+    /// Control step t after whose update the perturbation hits (0..N-1).
+    pub after_step: usize,
+    /// Added state (nx, derivative-major).
+    pub delta: Vec<f64>,
+}
 
 /// Highest integrator order accepted (6: up to the 5th derivative in the state).
 pub const MAX_ORDER: usize = 6;

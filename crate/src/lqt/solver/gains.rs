@@ -13,10 +13,10 @@
 use super::super::basis::Basis;
 use super::super::riccati::piecewise_gains;
 use super::super::LqtError;
-use super::{
-    all_finite, check_matrix, check_perturbation, check_vector, step1, LqtConfig, LqtCp,
-    Perturbation, Rollout, MAX_ORDER,
+use super::config::{
+    check_matrix, check_perturbation, check_vector, LqtConfig, Perturbation, MAX_ORDER,
 };
+use super::problem::{all_finite, step1, LqtCp, Rollout};
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 

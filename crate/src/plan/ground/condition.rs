@@ -4,7 +4,7 @@
 use crate::pddl::{Domain, Formula, Problem};
 
 use super::objects::{arg, lit, Objects};
-use super::{GroundError, Literal, Schema, MAX_DISJUNCTS};
+use super::schema::{GroundError, Literal, Schema, MAX_DISJUNCTS};
 
 /// The schemas of a domain with the type of each one's parameters.
 pub(super) struct Schemas {

@@ -10,7 +10,7 @@ use super::condition::dnf;
 use super::hash::{HashMap, HashSet};
 use super::objects::{arg, lit, Objects};
 use super::reach::Reached;
-use super::{value, GAtom, GroundError, Lit, Literal, Obj, Schema, MAX_DISJUNCTS};
+use super::schema::{value, GAtom, GroundError, Lit, Literal, Obj, Schema, MAX_DISJUNCTS};
 
 /// Ground atom printed in IPC form: `(on a b)`.
 fn atom_name(domain: &Domain, objs: &Objects, g: &GAtom) -> String {

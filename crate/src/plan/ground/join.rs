@@ -6,7 +6,7 @@ use crate::pddl::Domain;
 
 use super::hash::HashSet;
 use super::objects::Objects;
-use super::{value, Arg, GAtom, Lit, Obj, Schema, MAX_OPERATORS, UNBOUND};
+use super::schema::{value, Arg, GAtom, Lit, Obj, Schema, MAX_OPERATORS, UNBOUND};
 
 /// Facts reached so far, indexed for joins.
 pub(super) struct FactIndex {

@@ -27,72 +27,13 @@ mod instantiate;
 mod join;
 mod objects;
 mod reach;
+mod schema;
 
-use crate::pddl::{Domain, PddlError, Problem};
+use crate::pddl::{Domain, Problem};
 
 use super::task::Task;
 
-/// Most DNF disjuncts accepted for one precondition or goal.
-const MAX_DISJUNCTS: usize = 4096;
-/// Most ground operators accepted before grounding gives up.
-const MAX_OPERATORS: usize = 5_000_000;
-
-/// Why a task could not be grounded.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-pub enum GroundError {
-    /// A located problem (e.g. a cost function without a value for some arguments).
-    #[error("{0}")]
-    Located(PddlError),
-    /// The task is too large to ground.
-    #[error("{0}: grounding stopped: {1}")]
-    TooLarge(String, String),
-}
-
-type Obj = u32;
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-enum Arg {
-    Var(usize),
-    Obj(Obj),
-}
-
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
-struct Lit {
-    pred: usize,
-    args: Vec<Arg>,
-}
-
-/// A literal of a DNF conjunction.
-#[derive(Clone, Debug)]
-enum Literal {
-    Pos(Lit),
-    Neg(Lit),
-    Eq(Arg, Arg),
-    Neq(Arg, Arg),
-}
-
-/// One disjunct of one action's precondition.
-struct Schema {
-    action: usize,
-    pos: Vec<Lit>,
-    neg: Vec<Lit>,
-    eq: Vec<(Arg, Arg)>,
-    neq: Vec<(Arg, Arg)>,
-}
-
-/// A ground atom: predicate and object arguments.
-type GAtom = (usize, Vec<Obj>);
-
-/// An argument with no object bound yet.
-const UNBOUND: Obj = Obj::MAX;
-
-/// The object `a` stands for under the binding `b` ([`UNBOUND`] if its variable is unbound).
-fn value(a: Arg, b: &[Obj]) -> Obj {
-    match a {
-        Arg::Var(v) => b[v],
-        Arg::Obj(o) => o,
-    }
-}
+pub use schema::GroundError;
 
 /// Grounds a parsed problem into a [`Task`] (see the module header for the semantics).
 pub fn ground(domain: &Domain, problem: &Problem) -> Result<Task, GroundError> {

@@ -4,7 +4,7 @@
 use crate::pddl::{Atom, Domain, Problem, Term};
 
 use super::hash::HashMap;
-use super::{Arg, Lit, Obj};
+use super::schema::{Arg, Lit, Obj};
 
 /// The objects of a grounding by index, with their types.
 pub(super) struct Objects {

@@ -11,7 +11,7 @@ use super::condition::Schemas;
 use super::hash::{HashMap, HashSet};
 use super::join::{FactIndex, Grounder};
 use super::objects::{arg, Objects};
-use super::{value, GAtom, GroundError, Obj, MAX_OPERATORS, UNBOUND};
+use super::schema::{value, GAtom, GroundError, Obj, MAX_OPERATORS, UNBOUND};
 
 /// What the fixpoint reached.
 pub(super) struct Reached {

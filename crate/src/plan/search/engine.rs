@@ -7,7 +7,8 @@ use super::{Algorithm, Budget, Plan, SearchConfig, SearchOutcome, SearchStats};
 use crate::plan::clock::Clock;
 use crate::plan::heuristic::relaxed::has;
 use crate::plan::heuristic::HeuristicEvaluator;
-use crate::plan::{Condition, Goal, State, Task};
+use crate::plan::task::sanitize_goals;
+use crate::plan::{Goal, State, Task};
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, VecDeque};
 
@@ -41,31 +42,6 @@ struct Entry {
     seq: u64,
     node: u32,
     g: u64,
-}
-
-/// Keeps only what the task knows: facts `≥ n` never hold, so alternatives needing one are
-/// dropped and negative literals on them are vacuous.
-pub(crate) fn sanitize_goals(n: usize, goals: &[Goal]) -> Vec<Goal> {
-    goals
-        .iter()
-        .map(|g| Goal {
-            alternatives: g
-                .alternatives
-                .iter()
-                .filter(|c| c.pos.iter().all(|&f| (f as usize) < n))
-                .map(|c| Condition {
-                    pos: c.pos.clone(),
-                    neg: c
-                        .neg
-                        .iter()
-                        .copied()
-                        .filter(|&f| (f as usize) < n)
-                        .collect(),
-                })
-                .collect(),
-            terminal_cost: g.terminal_cost,
-        })
-        .collect()
 }
 
 /// What a search runs on, built once and reused by every search of the same task.
