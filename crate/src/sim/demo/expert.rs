@@ -1,10 +1,13 @@
 //! The scripted expert: minimum-jerk way-point motions with seeded human-like variation,
 //! executed in the simulator and recorded relative to each action's anchor frame.
 
+use super::data::{
+    fail, AnchorPose, DemoAction, DemoError, DemoViaPoint, Demonstration, FRAME_CONVENTION,
+};
 use super::flight::{execute, reachable_height};
+use super::pull::{pull_hook_poses, PULL_TARGET_RADIUS};
+use super::segment::{Seg, Step, MIN_TRANSFER_TIME};
 use super::template::{template_steps, Script, TemplateAction};
-use super::{fail, AnchorPose, DemoAction, DemoError, DemoViaPoint, Demonstration};
-use super::{pull_hook_poses, FRAME_CONVENTION, PULL_TARGET_RADIUS};
 use crate::sim::benchmark::Benchmark;
 use crate::sim::geometry;
 use crate::sim::panda;
@@ -41,35 +44,6 @@ impl Default for ExpertParams {
     }
 }
 
-/// One way-point segment of an expert motion.
-pub(super) struct Seg {
-    pub(super) to: Isometry3<f64>,
-    pub(super) duration: f64,
-    pub(super) gripper: Option<GripperCommand>,
-    pub(super) key: Option<&'static str>,
-}
-
-/// What the expert does for one action.
-pub(super) enum Step {
-    Pick {
-        arm: usize,
-        x: String,
-    },
-    Place {
-        arm: usize,
-        x: String,
-        /// Where the carried body should rest.
-        target: Isometry3<f64>,
-        /// Go back to the home pose afterwards (B3 hand-over, so the arms keep apart).
-        retreat: bool,
-    },
-    Pull {
-        arm: usize,
-        hook: String,
-        x: String,
-    },
-}
-
 /// Largest relative change of a segment's duration (at `variation` 1).
 const DURATION_JITTER: f64 = 0.15;
 
@@ -84,9 +58,6 @@ const CONTACT_JITTER: f64 = 0.0015;
 
 /// Turning speed of transfer segments (rad/s).
 const TURN_SPEED: f64 = 1.2;
-
-/// Shortest transfer segment (s).
-pub(super) const MIN_TRANSFER_TIME: f64 = 0.6;
 
 /// A pull stroke takes this many times as long as a transfer of its length (the hook drags
 /// the block).

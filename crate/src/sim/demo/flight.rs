@@ -3,8 +3,8 @@
 //! joint-space recovery of a grasp or release pose Cartesian tracking cannot reach, and the
 //! approach height that still fits under the top of the workspace.
 
-use super::expert::{Seg, MIN_TRANSFER_TIME};
-use super::{anchor_sample, fail, min_jerk, DemoAction, DemoError, GripperEvent, KeyPoint};
+use super::data::{anchor_sample, fail, min_jerk, DemoAction, DemoError, GripperEvent, KeyPoint};
+use super::segment::{Seg, MIN_TRANSFER_TIME};
 use crate::sim::geometry::yaw_of;
 use crate::sim::world::{GripperCommand, World, WorldEvent};
 use nalgebra::{Isometry3, Translation3, Vector3};

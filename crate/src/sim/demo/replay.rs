@@ -1,7 +1,7 @@
 //! Replaying a demonstration in the simulator, and the demonstration's states `L0..LN` as the
 //! scene graph sees them.
 
-use super::{committed, fail, AnchorPose, DemoAction, DemoError, Demonstration};
+use super::data::{committed, fail, AnchorPose, DemoAction, DemoError, Demonstration};
 use crate::sim::benchmark::Benchmark;
 use crate::sim::geometry::yaw_of;
 use crate::sim::motions::MotionKind;

@@ -16,8 +16,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::expert::Step;
-use super::{fail, DemoError};
+use super::data::{fail, DemoError};
+use super::segment::Step;
 use crate::sim::motions::{MotionKind, Onto};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::world::World;

@@ -10,7 +10,7 @@
 //! of the towers as they stand when the demonstration takes it ([`open_at`]): not next to a
 //! tower, not in a tower's shadow ([`in_shadow`]), no other tower in the way.
 
-use super::err;
+use super::names::err;
 use crate::sim::benchmark::{block, Benchmark, BLOCK_SIZE};
 use crate::sim::snapshot::{ArmSnapshot, BodyKind, BodySnapshot, ShapeSnapshot, WorldSnapshot};
 use crate::sim::world::World;
@@ -162,7 +162,7 @@ fn in_shadow(s: &WorldSnapshot, t: [f64; 2], p: [f64; 2]) -> bool {
 fn top_reached(s: &WorldSnapshot, p: [f64; 2], h: usize) -> bool {
     let mut probe = s.clone();
     probe.bodies.retain(|b| b.kind != BodyKind::Block);
-    let names = super::block_names(h);
+    let names = super::names::block_names(h);
     for (i, x) in names.iter().enumerate() {
         let mut body = block(x, i, p[0], p[1], 0.0);
         body.pose.position[2] += (h - 1 - i) as f64 * BLOCK_SIZE;

@@ -13,9 +13,12 @@
 //! to its tower clear of the towers as they then stand.
 
 mod layout;
+mod names;
 mod script;
 
 pub use layout::{SPOT_SPACING, TOWER_SPACING};
+pub use names::block_names;
+use names::err;
 
 use super::benchmark::{Benchmark, BenchmarkSources};
 use super::demo::{record_script, ExpertParams};
@@ -43,20 +46,6 @@ pub const MAX_TOWER_HEIGHT: usize = 12;
 
 /// Seed of the expert's variation in a generated demonstration.
 const DEMO_SEED: u64 = 1;
-
-fn err(message: impl Into<String>) -> SceneError {
-    SceneError {
-        path: "generate".into(),
-        message: message.into(),
-    }
-}
-
-/// The names of an N-block task: `a`, `b`, … (N ≤ 26).
-pub fn block_names(n: usize) -> Vec<String> {
-    (0..n)
-        .map(|i| char::from(b'a' + (i % 26) as u8).to_string())
-        .collect()
-}
 
 /// The allowed block counts of a benchmark's N-block variant, or why it has none.
 pub fn block_range(b: Benchmark) -> Result<std::ops::RangeInclusive<usize>, SceneError> {

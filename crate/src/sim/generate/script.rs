@@ -1,8 +1,8 @@
 //! The expert's script of a generated task: the towers built block by block, each block's part
 //! of the plan found by the planner and carried through by one arm at a time.
 
-use super::err;
 use super::layout::{spots, start_area, Area, TAKEN_RADIUS};
+use super::names::err;
 use crate::plan::{Algorithm, HeuristicKind, NoClock, SearchConfig};
 use crate::sim::benchmark::Benchmark;
 use crate::sim::demo::{Script, ScriptStep};

@@ -1,7 +1,8 @@
 //! The world's invariants: no interpenetration beyond the tolerance, every free body resting on
 //! a support, nothing lost, every joint within its limits; and the support a body rests on.
 
-use super::{World, LIMIT_SLACK};
+use super::state::LIMIT_SLACK;
+use super::World;
 use crate::sim::panda::{self, DOF};
 use serde::{Deserialize, Serialize};
 use std::fmt;

@@ -1,35 +1,18 @@
 //! Scenes in and out: a [`World`] as a JSON-ready snapshot, and a snapshot (or its JSON) read
 //! back into a world with every field and the geometry validated.
 
-use super::{Arm, Body, GripperCommand, Region, Violation, World, WorldParams, LIMIT_SLACK};
+use super::state::{scene_err, SceneError, LIMIT_SLACK};
+use super::{Arm, Body, GripperCommand, Region, Violation, World, WorldParams};
 use crate::sim::panda::{self, DOF};
 use crate::sim::snapshot::*;
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::shape::Cuboid;
-
-/// An error loading a scene: the JSON path of the offending field and what is wrong.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{path}: {message}")]
-pub struct SceneError {
-    /// Where: a JSON key path naming the body (e.g. `bodies[2] "c".pose.quaternion`) or
-    /// `line L column C` for malformed JSON.
-    pub path: String,
-    /// What is wrong.
-    pub message: String,
-}
 
 /// A loaded quaternion shorter than this counts as zero: it has no orientation to normalise to.
 const MIN_QUATERNION_NORM: f64 = 1e-9;
 
 /// A loaded arm holds a body only if its TCP lies inside the body grown by this (m).
 const HELD_TCP_MARGIN: f64 = 0.01;
-
-pub(super) fn scene_err(path: impl Into<String>, message: impl Into<String>) -> SceneError {
-    SceneError {
-        path: path.into(),
-        message: message.into(),
-    }
-}
 
 fn pose_to_snapshot(p: &Isometry3<f64>) -> PoseSnapshot {
     let q = p.rotation.coords;

@@ -1,7 +1,8 @@
 //! Path checks for planners and the executor: what a hand moved along TCP poses, or an arm
 //! moved along a straight joint-space line, would sweep through (without moving anything).
 
-use super::{Body, World, DEPTH_EPSILON, LINK_TOLERANCE};
+use super::state::DEPTH_EPSILON;
+use super::{Body, World, LINK_TOLERANCE};
 use crate::sim::collide;
 use crate::sim::panda::{self, DOF};
 use crate::sim::snapshot::BodyKind;

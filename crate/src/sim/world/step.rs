@@ -2,7 +2,8 @@
 //! following their target within the velocity limits, the stops at furniture and at contacts,
 //! and the held body carried along.
 
-use super::{Body, GripperCommand, SimError, World, DEPTH_EPSILON, LINK_TOLERANCE};
+use super::state::DEPTH_EPSILON;
+use super::{Body, GripperCommand, SimError, World, LINK_TOLERANCE};
 use crate::sim::collide;
 use crate::sim::fast_math::norm3;
 use crate::sim::panda::{self, DOF};

@@ -8,7 +8,7 @@ use crate::sim::collide::{self, Solid};
 use nalgebra::{Isometry3, Point3, Translation3, Vector3};
 use parry3d_f64::shape::{Capsule, Cuboid};
 
-use super::obstacles::{box_aabb, overlaps, Obstacle};
+use super::boxes::{box_aabb, overlaps, Obstacle};
 use super::{fmt_point, Geo, Predicted, StreamBinder};
 use crate::sim::geometry::{link_capsules, HAND_LINK};
 use crate::sim::panda::{self, DOF};

@@ -5,7 +5,8 @@ use crate::sim::collide;
 use nalgebra::{Isometry3, Vector3};
 use parry3d_f64::shape::Cuboid;
 
-use super::obstacles::{box_aabb, shrunk_by};
+use super::boxes::box_aabb;
+use super::obstacles::shrunk_by;
 use super::{Geo, Held, Predicted, StreamBinder, Transit};
 use crate::sim::geometry::raised;
 use crate::tamp::motion::grasp_pose;

@@ -61,13 +61,14 @@ use crate::sim::panda::{self, IkParams, DOF};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
 
+mod boxes;
 mod certify;
 mod grasp;
 mod obstacles;
 mod place;
 mod pull;
 
-use obstacles::{box_aabb, FixedBody};
+use boxes::{box_aabb, FixedBody};
 
 /// Tunables of the streams.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -6,7 +6,7 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::shape::Cuboid;
 use rand::Rng;
 
-use super::obstacles::box_aabb;
+use super::boxes::box_aabb;
 use super::{Geo, Held, StreamBinder, Transit};
 use crate::sim::geometry::{grasp_pose_at, hand_within, raised};
 use crate::sim::snapshot::BodyKind;

@@ -5,7 +5,7 @@ use crate::sim::collide;
 use nalgebra::{Isometry3, Translation3, Vector3};
 use parry3d_f64::query::ShapeCastOptions;
 
-use super::obstacles::Obstacle;
+use super::boxes::Obstacle;
 use super::{Geo, Held, StreamBinder, Transit};
 use crate::sim::demo::{pull_hook_poses_turned, PULL_TARGET_RADIUS, PULL_TURNS};
 use crate::sim::geometry::raised;
