@@ -20,8 +20,11 @@
 //! the pick-and-place, `pull.rs` the hook pull.
 
 mod motion;
+mod params;
 mod pull;
 
+use params::refused;
+pub use params::SynthParams;
 pub use pull::{pull_samples, HookGrip};
 
 use crate::sim::demo::min_jerk;
@@ -38,34 +41,6 @@ use crate::sim::geometry;
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
 use serde::{Deserialize, Serialize};
-
-/// Tunables of the synthesised motions.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
-pub struct SynthParams {
-    /// Cartesian speed of transfers (m/s).
-    pub speed: f64,
-    /// Height of the approach way-points above the higher of grasp and place (m).
-    pub approach_height: f64,
-    /// Duration of every descent and lift (s).
-    pub contact_time: f64,
-    /// Time the gripper holds still while closing or opening (s).
-    pub hold_time: f64,
-    /// Speed of the hook while pulling (m/s).
-    pub pull_speed: f64,
-}
-
-impl Default for SynthParams {
-    fn default() -> Self {
-        SynthParams {
-            speed: 0.3,
-            approach_height: 0.10,
-            contact_time: 0.6,
-            hold_time: 0.3,
-            pull_speed: 0.25,
-        }
-    }
-}
 
 /// One edit of the page or of a script (JSON: `{"edit": "drag", …}`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -244,11 +219,6 @@ impl Recorder {
             })
             .collect()
     }
-}
-
-/// A refusal with the message `m`.
-fn refused(m: impl Into<String>) -> RecorderError {
-    RecorderError::Refused(m.into())
 }
 
 /// Where a drag puts a body: its new centre `x`, `y` (m, world) and yaw (rad).

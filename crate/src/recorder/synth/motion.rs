@@ -1,7 +1,7 @@
 //! The motion builder of the synthesiser: minimum-jerk segments between way-points, sampled
 //! every simulator step, and the pick-and-place it chains them into.
 
-use super::{refused, SynthParams};
+use super::params::{refused, SynthParams};
 use crate::recorder::engine::gripper_sample;
 use crate::recorder::recording::{ArmRef, RawSample};
 use crate::recorder::{Recorder, RecorderError};

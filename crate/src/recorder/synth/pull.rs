@@ -4,7 +4,7 @@
 use super::motion::{
     at_height, highest_top, motion_start, reaches, resolve_arms, PUT_DOWN_CLEARANCE,
 };
-use super::{refused, SynthParams};
+use super::params::{refused, SynthParams};
 use crate::recorder::recording::{ArmRef, RawSample};
 use crate::recorder::{Recorder, RecorderError};
 use crate::sim::demo::{pull_hook_poses, PULL_TARGET_RADIUS};
