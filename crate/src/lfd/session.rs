@@ -36,12 +36,11 @@ mod options;
 mod tick;
 
 pub use super::disturb::{Injection, Moving, TcpPush};
+pub use super::skill::SkillKind;
 pub use crate::sim::benchmark::BenchmarkSources;
 pub use frame::{EePoint, Frame, PerturbOutcome, Status};
 pub use log::{ActionRecord, EpisodeEvent, EpisodeLog, EpisodeResult};
-pub use options::{
-    demo_actions, mix, sources_for, SessionError, SessionOptions, SessionParams, SkillKind,
-};
+pub use options::{demo_actions, mix, sources_for, SessionError, SessionOptions, SessionParams};
 
 use nalgebra::Vector3;
 use std::sync::Arc;

@@ -9,23 +9,13 @@ use serde::{Deserialize, Serialize};
 use crate::lfd::control::ControlParams;
 use crate::lfd::exec::ExecParams;
 use crate::lfd::logic::Mode;
+use crate::lfd::skill::SkillKind;
 use crate::lfd::{LfdError, Method};
 use crate::sim::benchmark::Benchmark;
 use crate::sim::motions::{MotionKind, Onto};
 use crate::sim::snapshot::BodyKind;
 use crate::sim::World;
 use crate::tamp::streams::StreamParams;
-
-/// Which motion skill family executes the actions.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum SkillKind {
-    /// LQT-CP (the paper's).
-    #[default]
-    Lqt,
-    /// Classic DMP (the comparison).
-    Dmp,
-}
 
 /// How a session is set up (JSON: snake_case keys, defaults for all but `benchmark`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

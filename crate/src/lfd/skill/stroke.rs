@@ -16,9 +16,8 @@
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 
-use super::{LearnedSkill, SkillKind, SkillLibrary, SkillSegment};
 use crate::lfd::exec::ExecParams;
-use crate::lqt::{Basis, SkillParams, Trajectory, ViaPoint};
+use crate::lqt::{Basis, SkillParams, Trajectory};
 use crate::sim::demo::DemoAction;
 
 /// Basis functions of a stroke's controls: three times an approach's, as its via-points (position
@@ -43,7 +42,7 @@ pub(super) fn params() -> SkillParams {
 }
 
 /// A slowdown this close to 1 plays the demonstration as it is.
-const SLOWDOWN_TOLERANCE: f64 = 1e-3;
+pub(super) const SLOWDOWN_TOLERANCE: f64 = 1e-3;
 
 /// RBF width λ when the default basis is not RBF.
 const DEFAULT_LAMBDA: f64 = 100.0;
@@ -51,26 +50,26 @@ const DEFAULT_LAMBDA: f64 = 100.0;
 /// A stroke's via-point as learned: when, and where relative to the hook's contact pose.
 #[derive(Clone, Debug)]
 pub(super) struct StrokeVia {
-    label: String,
+    pub(super) label: String,
     /// Normalised time in the stroke, [0, 1].
-    phase: f64,
+    pub(super) phase: f64,
     /// Offset from the contact TCP, in axes along the pull (x), across it (y) and up (m).
-    offset: Vector3<f64>,
+    pub(super) offset: Vector3<f64>,
     /// The demo's velocity there, in the same axes (m/s): a via-point fixes where the hook
     /// passes and in which direction, so the blade comes down behind the block instead of
     /// sweeping into it sideways.
-    velocity: Vector3<f64>,
+    pub(super) velocity: Vector3<f64>,
 }
 
 /// A demonstrated stroke: its positions in the stroke frame and its via-points.
 #[derive(Clone, Debug)]
 pub(super) struct DemoStroke {
     pub(super) positions: Vec<Point3<f64>>,
-    vias: Vec<StrokeVia>,
+    pub(super) vias: Vec<StrokeVia>,
     /// Sample period (s).
-    dt: f64,
+    pub(super) dt: f64,
     /// Samples of the drag (contact to pulled).
-    drag_steps: usize,
+    pub(super) drag_steps: usize,
 }
 
 impl DemoStroke {
@@ -78,7 +77,7 @@ impl DemoStroke {
     /// stroke speed ([`ExecParams::stroke_speed`]; the tracker lags a faster stroke that folds
     /// the arm towards its base, and the lagging hand lifts the blade over the block), never
     /// faster than demonstrated.
-    fn slowdown(&self, length: f64) -> f64 {
+    pub(super) fn slowdown(&self, length: f64) -> f64 {
         let speed = ExecParams::default().stroke_speed();
         let time = self.drag_steps as f64 * self.dt;
         if time <= 0.0 {
@@ -88,7 +87,7 @@ impl DemoStroke {
     }
 
     /// The demonstration played `slow` times slower (linear interpolation of its samples).
-    fn slowed(&self, slow: f64) -> Vec<Point3<f64>> {
+    pub(super) fn slowed(&self, slow: f64) -> Vec<Point3<f64>> {
         let n = self.positions.len();
         let m = (libm::round((n - 1) as f64 * slow) as usize).max(1) + 1;
         (0..m)
@@ -190,82 +189,4 @@ pub(super) fn demo_stroke(a: &DemoAction, dt: f64) -> Option<DemoStroke> {
         dt,
         drag_steps: pulled - contact,
     })
-}
-
-impl SkillLibrary {
-    /// Plans the stroke skill `key` from TCP position `start` for a stroke from TCP position
-    /// `contact` to `pulled`, through its via-points there. `None` without such a skill.
-    pub fn stroke_plan(
-        &self,
-        key: &str,
-        start: &Point3<f64>,
-        contact: &Point3<f64>,
-        pulled: &Point3<f64>,
-    ) -> Option<StrokePlan> {
-        let entry = self.skills.get(key)?;
-        let demo = entry.stroke.as_ref()?;
-        let frame = stroke_frame(contact, pulled);
-        let along = frame.rotation;
-        // A longer drag than the demonstrated one runs slower: the same skill, learned from the
-        // demonstration played slower.
-        let slow = demo.slowdown((contact - pulled).norm());
-        let slowed;
-        let skill = if slow > 1.0 + SLOWDOWN_TOLERANCE {
-            let kind = match &entry.skill {
-                LearnedSkill::Lqt(_) => SkillKind::Lqt,
-                LearnedSkill::Dmp(_) => SkillKind::Dmp,
-            };
-            slowed = LearnedSkill::learn(kind, &demo.slowed(slow), demo.dt, params())?;
-            &slowed
-        } else {
-            &entry.skill
-        };
-        let n = match skill {
-            LearnedSkill::Lqt(s) => s.demo().len(),
-            LearnedSkill::Dmp(d) => d.n_steps(),
-        };
-        let via_points: Vec<StrokeViaPoint> = demo
-            .vias
-            .iter()
-            .map(|v| StrokeViaPoint {
-                label: v.label.clone(),
-                step: libm::round(v.phase * (n - 1) as f64) as usize,
-                position: contact + along * v.offset,
-            })
-            .collect();
-        let in_frame: Vec<ViaPoint> = demo
-            .vias
-            .iter()
-            .zip(&via_points)
-            .map(|(v, w)| ViaPoint {
-                phase: v.phase,
-                position: frame.inverse_transform_point(&w.position).coords,
-                weight: None,
-                velocity: Some(v.velocity / slow),
-            })
-            .collect();
-        let trajectory = skill.plan(start, &frame, &in_frame)?;
-        Some(StrokePlan {
-            trajectory,
-            frame,
-            via_points,
-        })
-    }
-
-    /// The stroke skill `key` as an executor segment from TCP pose `start` (see
-    /// [`stroke_plan`](Self::stroke_plan)), with its frame and the step after which the hook
-    /// is behind the block (the last via-point's).
-    pub fn stroke_segment(
-        &self,
-        key: &str,
-        start: &Isometry3<f64>,
-        contact: &Point3<f64>,
-        pulled: &Point3<f64>,
-    ) -> Option<(SkillSegment, Isometry3<f64>, usize)> {
-        let from = Point3::from(start.translation.vector);
-        let plan = self.stroke_plan(key, &from, contact, pulled)?;
-        let behind = plan.via_points.iter().map(|v| v.step).max().unwrap_or(0);
-        let seg = SkillSegment::closed(&plan.trajectory, start.rotation)?;
-        Some((seg, plan.frame, behind))
-    }
 }
