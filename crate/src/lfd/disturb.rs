@@ -39,8 +39,20 @@ use crate::sim::{SceneGraph, World};
 
 use super::demo::DemoTrace;
 
-mod motion;
-pub use motion::{inject_during_motion, Moving, TcpPush};
+pub(crate) mod motion;
+
+/// A push of an arm's hand: its tool centre point displaced while the arm moves.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TcpPush {
+    /// The arm pushed.
+    pub arm: String,
+    /// Where the TCP was (m).
+    pub from: [f64; 3],
+    /// Where the push left it (m).
+    pub to: [f64; 3],
+    /// |to − from| (mm).
+    pub displacement_mm: f64,
+}
 
 /// Disturbance levels of the paper (§IV-B); JSON and CLI: `l1`..`l4`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]

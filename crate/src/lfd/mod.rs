@@ -30,7 +30,8 @@ pub use logic::{
     logic_in, merge_suffix, plan_logic_lfd, plan_logic_lfd_prepared, prepare_search, LfdPlan, Mode,
     PlanSource,
 };
-pub use symbolic::{LogicLfd, Observed, Perturbed};
+pub use symbolic::observed::Observed;
+pub use symbolic::{LogicLfd, Perturbed};
 
 /// The method that closes the loop (the paper's method and its baselines).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]

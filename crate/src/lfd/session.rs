@@ -35,7 +35,8 @@ mod log;
 mod options;
 mod tick;
 
-pub use super::disturb::{Injection, Moving, TcpPush};
+pub use super::disturb::motion::Moving;
+pub use super::disturb::{Injection, TcpPush};
 pub use super::skill::SkillKind;
 pub use crate::sim::benchmark::BenchmarkSources;
 pub use frame::{EePoint, Frame, PerturbOutcome, Status};
@@ -366,7 +367,7 @@ impl Session {
         match (parsed, self.moving()) {
             // While the arm moves, L1 acts on that motion: the approached body or the hand.
             (Level::L1, Some(m)) => {
-                super::disturb::inject_during_motion(world, &self.trace, &m, seed)
+                super::disturb::motion::inject_during_motion(world, &self.trace, &m, seed)
             }
             _ => {
                 let busy: Vec<usize> = self.exec.iter().map(ActionExec::arm).collect();

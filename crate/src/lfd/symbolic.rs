@@ -22,9 +22,7 @@ use super::logic::{plan_with, LfdPlan, Mode, PlanSource, Request};
 use super::LfdError;
 use crate::plan::SearchStats;
 
-mod observed;
-
-pub use observed::Observed;
+pub(super) mod observed;
 
 /// Symbolic Logic-LfD: one demonstration of a PDDL task turned into the multi-goal
 /// specification L_0 … L_N, G, and replanning from any state to the best L_k it can reach.
@@ -197,34 +195,6 @@ impl LogicLfd {
     /// The fluents of `s` by name, sorted.
     pub fn names(&self, s: &State) -> Vec<String> {
         super::demo::state_names(&self.task, s)
-    }
-
-    /// Reads a state written as PDDL atoms (one a line or space-separated; `;` comments). Any
-    /// set of atoms over the problem's objects and the domain's predicates is a state: facts no
-    /// action adds and static facts that differ from the problem's `:init` are kept (see
-    /// [`Observed`]). Locations refer to a file `state`.
-    ///
-    /// # Errors
-    /// [`LfdError::Input`] naming the atom, at `line:col`: an undeclared predicate or object, or
-    /// a wrong arity or type; [`LfdError::Model`] when the problem cannot be grounded again from
-    /// the observed atoms.
-    pub fn state(&self, facts: &str) -> Result<Observed<'_>, LfdError> {
-        self.state_in("state", facts)
-    }
-
-    /// [`LogicLfd::state`] with the file name used in error locations.
-    pub fn state_in(&self, file: &str, facts: &str) -> Result<Observed<'_>, LfdError> {
-        let located = match self.source.as_deref() {
-            Some((d, p)) => p.read_facts(d, facts, file)?,
-            None => unlocated_facts(facts, file)?,
-        };
-        observed::observe(self, file, located)
-    }
-
-    /// A state of this instance's task (e.g. [`LogicLfd::state_after`]'s, or the initial
-    /// state) as an [`Observed`] state.
-    pub fn observed(&self, state: State) -> Observed<'_> {
-        Observed::known(self, state)
     }
 
     /// The state reached from the problem's initial state by a plan prefix (one `(action args)` a
@@ -462,7 +432,7 @@ fn every_step_applies(
 
 /// Atoms of a facts text without a domain to check them against (a [`LogicLfd`] built from a
 /// grounded task): names normalised, located.
-fn unlocated_facts(text: &str, file: &str) -> Result<Vec<pddl::LocatedFact>, LfdError> {
+pub(super) fn unlocated_facts(text: &str, file: &str) -> Result<Vec<pddl::LocatedFact>, LfdError> {
     let steps = parse_plan(text, file)?;
     Ok(steps
         .into_iter()

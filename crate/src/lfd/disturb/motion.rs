@@ -5,24 +5,12 @@
 use nalgebra::{Isometry3, Translation3, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
-use serde::{Deserialize, Serialize};
 
 use crate::sim::World;
 
-use super::{centre, facts, shift_one_of, Before, DemoTrace, Injection, Level, MOTION_TRIES};
-
-/// A push of an arm's hand: its tool centre point displaced while the arm moves.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct TcpPush {
-    /// The arm pushed.
-    pub arm: String,
-    /// Where the TCP was (m).
-    pub from: [f64; 3],
-    /// Where the push left it (m).
-    pub to: [f64; 3],
-    /// |to − from| (mm).
-    pub displacement_mm: f64,
-}
+use super::{
+    centre, facts, shift_one_of, Before, DemoTrace, Injection, Level, TcpPush, MOTION_TRIES,
+};
 
 /// An arm in the middle of a move, as a mid-motion disturbance sees it.
 #[derive(Clone, Debug, PartialEq)]

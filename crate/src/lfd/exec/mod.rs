@@ -17,91 +17,23 @@
 mod params;
 mod phase;
 mod recovery;
+mod state;
+mod steps;
 mod tick;
 mod via;
 
-use nalgebra::{Isometry3, Vector3};
+use nalgebra::Vector3;
 
 use crate::sim::snapshot::BodyKind;
-use crate::sim::{GripperCommand, World, WorldEvent};
+use crate::sim::{GripperCommand, World};
 use crate::tamp::action::ActionKind;
-use crate::tamp::motion::MotionParams;
 
-use super::skill::{SkillLibrary, SkillSegment};
+use super::skill::SkillLibrary;
 pub use params::ExecParams;
-use phase::{action_phases, prepare_arm, Phase, Via};
-use via::Anchor;
-
-/// The running execution of one action.
-#[derive(Clone, Debug)]
-pub struct ActionExec {
-    /// The action `(stack a b)`.
-    pub action: String,
-    /// What it does.
-    pub kind: ActionKind,
-    arm: usize,
-    phases: Vec<Phase>,
-    phase: usize,
-    /// The segment being followed: planned TCP positions, one per tick, and its goal.
-    segment: Option<Running>,
-    /// Ticks spent waiting in the current phase.
-    wait: usize,
-    gripper: GripperCommand,
-    /// Events seen during the action.
-    pub events: Vec<WorldEvent>,
-    /// The anchor frame at the gripper event (frame of the retreat skill).
-    event_frame: Option<Isometry3<f64>>,
-    /// Phase before which a transit (rise, move over, descend) was inserted.
-    transit_at: Option<usize>,
-    /// The body acted on is the hook (its skills are the `…@hook` ones).
-    hook: bool,
-    /// The motion's heights: the grasp is chosen with the hand clear up to half the approach
-    /// height.
-    motion: MotionParams,
-    /// The yaw of the TCP's x axis a release was certified with (`None`: the heading from the
-    /// base).
-    hand_yaw: Option<f64>,
-    /// Why the action failed, once its remaining phases only undo it (a lift stopped at the
-    /// start: the body is let go where it was grasped).
-    abort: Option<String>,
-    /// The TCP's height when the gripper closed on the body it grasps.
-    grasped_z: Option<f64>,
-}
-
-#[derive(Clone, Debug)]
-struct Running {
-    traj: SkillSegment,
-    t: usize,
-    goal: Isometry3<f64>,
-    /// Body watched for re-anchoring, where it was, and the skill frame planned for.
-    anchor: Option<Anchor>,
-    /// The step from which the anchor is no longer followed (a stroke's: the hook is behind the
-    /// block, which moves because the hook drags it).
-    anchor_until: Option<usize>,
-    frame: Option<Isometry3<f64>>,
-    lag: usize,
-    /// Joint-space recovery: the joint goals still to reach, the first followed instead of the
-    /// Cartesian command while there is one (the planning IK's joints for `goal`, perhaps by
-    /// way of the ready posture first); `recovered` once tried for this segment.
-    joint_goals: Vec<[f64; crate::sim::panda::DOF]>,
-    recovered: bool,
-    /// Ticks spent in joint-space recovery.
-    joint_ticks: usize,
-    /// A rise the arm could not make where it was, made by going to the ready posture instead
-    /// (the segment ends there).
-    rise_by_ready: bool,
-}
-
-/// How an action's execution stands after a tick.
-#[derive(Clone, Debug, PartialEq)]
-pub enum ExecStatus {
-    /// Still moving.
-    Running,
-    /// Finished; the world should now show the action's effects.
-    Done,
-    /// Could not be completed (why, in words).
-    Failed(String),
-}
+use phase::{action_phases, prepare_arm};
+use state::Running;
+pub use state::{ActionExec, ExecStatus};
+use steps::{Phase, Via};
 
 impl ActionExec {
     /// Prepares the execution of `kind` (placements must be bound).

@@ -4,7 +4,7 @@
 
 use nalgebra::{Isometry3, Translation3};
 
-use super::phase::{no_transit, Via};
+use super::steps::{no_transit, Via};
 use super::{ActionExec, Running};
 use crate::sim::World;
 use crate::tamp::action::ActionKind;

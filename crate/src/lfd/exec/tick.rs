@@ -4,8 +4,8 @@
 
 use nalgebra::{Isometry3, Point3, Translation3};
 
-use super::phase::{no_transit, Phase, Via};
 use super::recovery::{rise_by_ready, stuck_lift, unwound};
+use super::steps::{no_transit, Phase, Via};
 use super::via::{anchor_frame, pull_stroke, ViaPose};
 use super::{ActionExec, ExecParams, ExecStatus, Running};
 use crate::lfd::skill::SkillLibrary;

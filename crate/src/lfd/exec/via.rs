@@ -3,7 +3,7 @@
 
 use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 
-use super::phase::Via;
+use super::steps::{Anchor, Via};
 use super::ActionExec;
 use crate::lfd::skill::stroke_frame;
 use crate::sim::geometry::{raised, rest_pose, rest_pose_on, tcp_for_body_pose};
@@ -129,13 +129,6 @@ impl ActionExec {
             }
         }
     }
-}
-
-/// A body followed for re-anchoring: its name and where it was.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) struct Anchor {
-    pub(super) body: String,
-    pub(super) at: Vector3<f64>,
 }
 
 /// Where a via-point puts the TCP, the skill's object frame (centre + yaw) and the body the

@@ -21,7 +21,7 @@ use crate::plan::{self, Clock, FactId, SearchConfig, SearchResult, State, Task, 
 
 use super::super::logic::{LfdPlan, Mode};
 use super::super::LfdError;
-use super::LogicLfd;
+use super::{unlocated_facts, LogicLfd};
 
 /// A state read by [`LogicLfd::state`], with the [`LogicLfd`] whose task it is a state of: the
 /// one it was read by, or one re-grounded with the observed atoms as `:init`.
@@ -40,6 +40,37 @@ enum Instance<'a> {
     Known(&'a LogicLfd),
     /// The problem re-grounded from the observed atoms, and the state's atoms by name.
     Regrounded(Box<LogicLfd>, Vec<String>),
+}
+
+/// Observed states of a [`LogicLfd`] instance.
+impl LogicLfd {
+    /// Reads a state written as PDDL atoms (one a line or space-separated; `;` comments). Any
+    /// set of atoms over the problem's objects and the domain's predicates is a state: facts no
+    /// action adds and static facts that differ from the problem's `:init` are kept (see
+    /// [`Observed`]). Locations refer to a file `state`.
+    ///
+    /// # Errors
+    /// [`LfdError::Input`] naming the atom, at `line:col`: an undeclared predicate or object, or
+    /// a wrong arity or type; [`LfdError::Model`] when the problem cannot be grounded again from
+    /// the observed atoms.
+    pub fn state(&self, facts: &str) -> Result<Observed<'_>, LfdError> {
+        self.state_in("state", facts)
+    }
+
+    /// [`LogicLfd::state`] with the file name used in error locations.
+    pub fn state_in(&self, file: &str, facts: &str) -> Result<Observed<'_>, LfdError> {
+        let located = match self.source.as_deref() {
+            Some((d, p)) => p.read_facts(d, facts, file)?,
+            None => unlocated_facts(facts, file)?,
+        };
+        observe(self, file, located)
+    }
+
+    /// A state of this instance's task (e.g. [`LogicLfd::state_after`]'s, or the initial
+    /// state) as an [`Observed`] state.
+    pub fn observed(&self, state: State) -> Observed<'_> {
+        Observed::known(self, state)
+    }
 }
 
 impl<'a> Observed<'a> {
