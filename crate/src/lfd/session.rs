@@ -33,7 +33,9 @@
 mod frame;
 mod log;
 mod options;
+mod replay;
 mod tick;
+mod view;
 
 pub use super::disturb::motion::Moving;
 pub use super::disturb::{Injection, TcpPush};

@@ -1,0 +1,106 @@
+//! A session's log, and its replay: the loop re-run tick by tick reproduces the episode exactly.
+
+use crate::plan::NoClock;
+
+use super::log::{EpisodeEvent, EpisodeLog, EpisodeResult};
+use super::{facts_of, BenchmarkSources, Session, SessionError, SessionParams};
+
+impl Session {
+    /// Re-runs a logged episode tick by tick (see [`Session::replay_with_sources`]).
+    pub fn replay(episode_json: &str) -> Result<Session, SessionError> {
+        let log: EpisodeLog = crate::sim::json_input::from_str(episode_json)
+            .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
+        let files = super::sources_for(log.options.benchmark, log.options.blocks)?;
+        Session::replay_with_sources(&files, episode_json)
+    }
+
+    /// The full log of the episode so far.
+    pub fn log(&self) -> EpisodeLog {
+        let result = self.outcome.as_ref().map(|o| EpisodeResult {
+            success: o.is_ok(),
+            reason: o.as_ref().err().cloned(),
+            time_s: self.world.time(),
+            ticks: self.tick,
+            actions_executed: self.actions_done,
+            replans: self.controller.replans().len(),
+        });
+        EpisodeLog {
+            version: 1,
+            options: self.options.clone(),
+            scene: self.initial.clone(),
+            demo_json: self.demo_json.clone(),
+            events: self.events.clone(),
+            replans: self.controller.replans().to_vec(),
+            actions: self.actions.clone(),
+            ticks: self.tick,
+            result,
+            final_facts: facts_of(&self.world),
+            final_world: self.world.snapshot(),
+        }
+    }
+
+    /// The full log as JSON; [`Session::replay`] reproduces the episode from it.
+    pub fn episode_json(&self) -> String {
+        serde_json::to_string(&self.log()).unwrap_or_default()
+    }
+
+    /// Re-runs a logged episode tick by tick, applying its events at their ticks.
+    pub fn replay_with_sources(
+        files: &BenchmarkSources,
+        episode_json: &str,
+    ) -> Result<Session, SessionError> {
+        let log: EpisodeLog = crate::sim::json_input::from_str(episode_json)
+            .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
+        let scene = serde_json::to_string(&log.scene)
+            .map_err(|e| SessionError::Json(format!("episode: scene: {e}")))?;
+        let mut s = Session::with_sources(
+            log.options.clone(),
+            files,
+            Some(&scene),
+            log.demo_json.as_deref(),
+            SessionParams::default(),
+        )?;
+        let mut events = log.events.iter().peekable();
+        let clock = NoClock;
+        loop {
+            while let Some(e) = events.peek() {
+                let t = match e {
+                    EpisodeEvent::Perturb { tick, .. }
+                    | EpisodeEvent::Inject { tick, .. }
+                    | EpisodeEvent::Cancel { tick } => *tick,
+                };
+                if t > s.tick {
+                    break;
+                }
+                match e {
+                    EpisodeEvent::Perturb { body, position, .. } => {
+                        let _ = s.perturb(body, *position);
+                    }
+                    EpisodeEvent::Inject { level, .. } => {
+                        let _ = s.inject(level);
+                    }
+                    EpisodeEvent::Cancel { .. } => s.cancel(),
+                }
+                events.next();
+            }
+            if s.outcome.is_some() {
+                break;
+            }
+            if s.tick >= log.ticks {
+                // The final decision (done / failed) takes no tick.
+                if log.result.is_some() {
+                    s.tick_once(&clock);
+                }
+                break;
+            }
+            let before = s.tick;
+            s.tick_once(&clock);
+            if s.tick == before && s.outcome.is_none() && s.exec.is_none() {
+                break;
+            }
+        }
+        // The next `step` reports the facts that change after the replayed end, not since the start.
+        s.prev_facts = facts_of(&s.world);
+        Ok(s)
+    }
+}
