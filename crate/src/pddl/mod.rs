@@ -24,6 +24,7 @@
 //! ```
 
 mod ast;
+mod build;
 mod common;
 mod domain;
 mod error;
@@ -35,6 +36,7 @@ pub use ast::{
     Action, Atom, CostAmount, CostIncrease, Domain, Effect, Formula, FunctionValue, Name, Problem,
     Signature, Term, TypeDecl, TypedName,
 };
+pub use build::{ObjectDecl, ProblemBuilder};
 pub use domain::parse_domain;
 pub use error::{decode_source, read_source, PddlError, Span};
 pub use problem::{parse_problem, LocatedFact};

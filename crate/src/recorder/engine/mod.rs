@@ -193,26 +193,23 @@ fn scene_motions(
 
 /// The PDDL problem of the scene: its objects the domain has a type for, its facts and the
 /// static facts as `:init`, an empty goal.
-fn scene_problem_text(
+fn scene_problem(
     domain: &pddl::Domain,
     world: &World,
     facts: &[String],
     statics: &[String],
-) -> String {
-    let mut objects = String::new();
-    for o in SceneGraph::objects(world) {
-        if domain.type_index(&o.kind).is_some() {
-            objects.push_str(&format!(" {} - {}", o.name, o.kind));
-        }
-    }
-    let mut init: Vec<&str> = facts.iter().map(String::as_str).collect();
-    init.extend(statics.iter().map(String::as_str));
-    format!(
-        "(define (problem taught) (:domain {})\n (:objects{})\n (:init {})\n (:goal (and)))\n",
-        domain.name.text,
-        objects,
-        init.join(" ")
-    )
+) -> Result<pddl::Problem, pddl::PddlError> {
+    let objects = SceneGraph::objects(world)
+        .into_iter()
+        .filter(|o| domain.type_index(&o.kind).is_some())
+        .map(|o| pddl::ObjectDecl {
+            name: o.name,
+            ty: o.kind,
+        });
+    pddl::ProblemBuilder::new(domain, "taught")
+        .objects(objects)
+        .init(facts.iter().chain(statics).cloned())
+        .build()
 }
 
 impl Recorder {
@@ -233,8 +230,7 @@ impl Recorder {
             .with_motions(motions);
         let statics = static_facts(scene, &world, &domain, &options.problem_pddl)?;
         let facts = sorted_facts(&world);
-        let problem_text = scene_problem_text(&domain, &world, &facts, &statics);
-        let problem = pddl::parse_problem(&problem_text, "<scene>", &domain).map_err(|e| {
+        let problem = scene_problem(&domain, &world, &facts, &statics).map_err(|e| {
             RecorderError::Model(format!(
                 "the scene does not fit the domain {}: {e}",
                 domain.name.text
