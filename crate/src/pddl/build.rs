@@ -252,7 +252,7 @@ mod tests {
         assert_eq!(built.function_values.len(), 1, "b2's weight goes with b2");
         assert_eq!(built.function_values[0].value, 3);
         assert!(built.minimize_total_cost);
-        assert_eq!(built.goal, parsed.goal);
+        assert_eq!(built.goal, t.goal, "the template's goal");
     }
 
     #[test]
