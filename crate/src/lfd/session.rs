@@ -49,9 +49,9 @@ use std::sync::Arc;
 use crate::sim::snapshot::WorldSnapshot;
 use crate::sim::{Refused, SceneGraph, World};
 
+use super::catalogue::Level;
 use super::control::{Controller, FailReason, TaskBuilder};
 use super::demo::DemoTrace;
-use super::disturb::Level;
 use super::exec::ActionExec;
 use super::model::DomainModel;
 use super::skill::SkillLibrary;

@@ -19,13 +19,13 @@
 use serde::{Deserialize, Serialize};
 
 use super::{RecorderError, SkillFit, TaughtDemo};
+use crate::lfd::catalogue::{Level, Method, Mode};
 use crate::lfd::demo::DemoTrace;
-use crate::lfd::disturb::Level;
 use crate::lfd::model::DomainModel;
 use crate::lfd::session::{
     mix, BenchmarkSources, Session, SessionOptions, SessionParams, SkillKind,
 };
-use crate::lfd::{Method, Mode, TaskBuilder as _};
+use crate::lfd::TaskBuilder as _;
 use crate::lqt::{Skill, SkillParams};
 use crate::sim::benchmark::Benchmark;
 use crate::sim::demo::Demonstration;
