@@ -45,6 +45,7 @@ pub use motion::{inject_during_motion, Moving, TcpPush};
 
 /// What an injected disturbance did.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct Injection {
     /// `l1`..`l4`.
     pub level: Level,

@@ -33,6 +33,7 @@ use super::LfdError;
 /// Where a Logic-LfD plan came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify))]
 pub enum PlanSource {
     /// The goal already holds: empty plan.
     GoalHolds,

@@ -37,7 +37,7 @@ mod tick;
 
 pub use super::disturb::{Injection, Moving, TcpPush};
 pub use crate::sim::benchmark::BenchmarkSources;
-pub use frame::{EePoint, Frame, PerturbOutcome, Status};
+pub use frame::{EePoint, Frame, PerturbOutcome, Status, StatusKind};
 pub use log::{ActionRecord, EpisodeEvent, EpisodeLog, EpisodeResult};
 pub use options::{
     demo_actions, mix, sources_for, SessionError, SessionOptions, SessionParams, SkillKind,

@@ -34,6 +34,7 @@ use nalgebra::{Isometry3, Point3};
 
 /// A loaded and checked taught demonstration, as the page lists it.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct TaughtInfo {
     /// `b1`, `b2` or `b3`: the benchmark whose world and domain the demonstration uses.
     pub benchmark: Benchmark,
@@ -49,6 +50,7 @@ pub struct TaughtInfo {
 
 /// How a taught task is run (JSON: every key optional).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(default, deny_unknown_fields)]
 pub struct TaughtRunOptions {
     /// `logic-lfd` (default), `linear`, `rlds` or `tamp`.

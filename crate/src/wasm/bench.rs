@@ -28,6 +28,8 @@ pub fn bench_rows(
     to_js(&rows)
 }
 
+// The row types live in `experiments::hot_paths`, which does not derive their declarations yet:
+// they are written here until it does.
 #[wasm_bindgen(typescript_custom_section)]
 const TS_BENCH: &'static str = r#"
 /** The IPC texts of the planning rows of `benchRows`. */

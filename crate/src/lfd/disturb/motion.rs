@@ -13,6 +13,7 @@ use super::{centre, facts, shift_one_of, Before, DemoTrace, Injection, Level, MO
 
 /// A push of an arm's hand: its tool centre point displaced while the arm moves.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct TcpPush {
     /// The arm pushed.
     pub arm: String,

@@ -13,11 +13,31 @@ use super::{facts_of, Session};
 /// "replanning because …".
 const REPLAN_NOTICE_TICKS: u64 = 50;
 
+/// What the loop is doing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
+pub enum StatusKind {
+    /// Nothing has run yet.
+    Idle,
+    /// Looking for the first plan, or for a plan after an action ended.
+    Planning,
+    /// Executing a step of the plan.
+    Executing,
+    /// Executing the first steps of a plan made because the facts changed.
+    Replanning,
+    /// The goal holds.
+    Done,
+    /// The episode failed (the message says why).
+    Failed,
+}
+
 /// The status line of the page.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct Status {
-    /// `idle`, `planning`, `executing`, `replanning`, `done` or `failed`.
-    pub kind: String,
+    /// What the loop is doing.
+    pub kind: StatusKind,
     /// In words: "executing step 3 of 7: (stack c d)", "replanning because …", "failed because …".
     pub message: String,
     /// The step being executed (1-based), if any.
@@ -28,6 +48,7 @@ pub struct Status {
 
 /// End effector position and its commanded target (for the trajectory chart).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct EePoint {
     /// Arm index.
     pub arm: usize,
@@ -124,15 +145,22 @@ impl Session {
     }
 
     fn status(&self, plan: &[String], executing: Option<usize>) -> Status {
-        let st = |kind: &str, message: String, step: Option<usize>, of: Option<usize>| Status {
-            kind: kind.into(),
+        let st = |kind, message: String, step: Option<usize>, of: Option<usize>| Status {
+            kind,
             message,
             step,
             of,
         };
         match &self.outcome {
-            Some(Ok(())) => return st("done", "done: the goal holds".into(), None, None),
-            Some(Err(r)) => return st("failed", format!("failed because {r}"), None, None),
+            Some(Ok(())) => return st(StatusKind::Done, "done: the goal holds".into(), None, None),
+            Some(Err(r)) => {
+                return st(
+                    StatusKind::Failed,
+                    format!("failed because {r}"),
+                    None,
+                    None,
+                )
+            }
             None => {}
         }
         match executing {
@@ -141,7 +169,11 @@ impl Session {
                 let fresh = replan.is_some_and(|r| {
                     r.tick + REPLAN_NOTICE_TICKS > self.tick && r.reason != "start"
                 });
-                let kind = if fresh { "replanning" } else { "executing" };
+                let kind = if fresh {
+                    StatusKind::Replanning
+                } else {
+                    StatusKind::Executing
+                };
                 let msg = match (fresh, replan) {
                     (true, Some(r)) => format!(
                         "replanned because {}; executing step {} of {}: {}",
@@ -159,8 +191,8 @@ impl Session {
                 };
                 st(kind, msg, Some(i + 1), Some(plan.len()))
             }
-            None if self.tick == 0 => st("idle", "ready".into(), None, None),
-            None => st("planning", "planning".into(), None, None),
+            None if self.tick == 0 => st(StatusKind::Idle, "ready".into(), None, None),
+            None => st(StatusKind::Planning, "planning".into(), None, None),
         }
     }
 }

@@ -18,6 +18,7 @@ use crate::tamp::streams::StreamParams;
 
 /// Which motion skill family executes the actions.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(rename_all = "lowercase")]
 pub enum SkillKind {
     /// LQT-CP (the paper's).
@@ -29,6 +30,7 @@ pub enum SkillKind {
 
 /// How a session is set up (JSON: snake_case keys, defaults for all but `benchmark`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct SessionOptions {
     /// The benchmark.
     pub benchmark: Benchmark,
@@ -47,6 +49,7 @@ pub struct SessionOptions {
     /// Blocks of the benchmark's generated N-block tower task, within the benchmark's block
     /// range (`blockRange` in the npm package; B2 has none); `None`: the template task.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "wasm-core", tsify(type = "number | null"))]
     pub blocks: Option<usize>,
 }
 

@@ -37,14 +37,17 @@ use crate::plan::clock::Clock;
 use crate::plan::heuristic::{HeuristicKind, UnknownName};
 use crate::plan::relevance::relevant_part;
 use crate::plan::{State, Task};
+use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
 
 pub(crate) use engine::{run_on, sanitize_goals, search_heuristic, Parts};
 pub(crate) use succ::SuccessorGenerator;
 
-/// The search algorithm of a configuration.
-#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+/// The search algorithm of a configuration (JSON: its command-line name).
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify))]
+#[serde(rename_all = "kebab-case")]
 pub enum Algorithm {
     /// Breadth-first search (optimal plan length).
     Bfs,
