@@ -23,6 +23,7 @@ mod args;
 #[cfg(feature = "wasm")]
 mod bench;
 mod benchmark_info;
+mod catalogue;
 #[cfg(feature = "wasm")]
 mod logic_lfd;
 #[cfg(feature = "wasm")]
