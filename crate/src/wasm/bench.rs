@@ -28,8 +28,8 @@ pub fn bench_rows(
     to_js(&rows)
 }
 
-// The row types live in `experiments::hot_paths`, which does not derive their declarations yet:
-// they are written here until it does.
+// The row types are `experiments::hot_paths`'s, which derive no declarations: these are written
+// by hand to match them.
 #[wasm_bindgen(typescript_custom_section)]
 const TS_BENCH: &'static str = r#"
 /** The IPC texts of the planning rows of `benchRows`. */
