@@ -47,7 +47,7 @@ pub struct SessionOptions {
     #[serde(default)]
     pub skill: SkillKind,
     /// Blocks of the benchmark's generated N-block tower task, within the benchmark's block
-    /// range (`blockRange` in the npm package; B2 has none); `None`: the template task.
+    /// range (`blockRange` in the npm package; B2 has none); absent: the template task.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     #[cfg_attr(feature = "wasm-core", tsify(type = "number | null"))]
     pub blocks: Option<usize>,
