@@ -1,17 +1,20 @@
-//! WebAssembly bindings (feature `wasm`): the only module that touches `wasm-bindgen`, `js-sys`
-//! and `web-sys`.
+//! WebAssembly bindings (feature `wasm`): the only module that calls `wasm-bindgen`, `js-sys` and
+//! `web-sys`.
 //!
 //! Everything crosses the boundary as plain JSON-compatible data (serde through JSON text and
-//! `JSON.parse` / `JSON.stringify`, so that one serde_json (de)serialiser serves every type;
-//! TypeScript declarations from `tsify` or hand-written custom sections); every fallible call
-//! returns a rejected value carrying a message instead of panicking.
+//! `JSON.parse` / `JSON.stringify`, so that one serde_json (de)serialiser serves every type);
+//! every fallible call returns a rejected value carrying a message instead of panicking. The
+//! TypeScript declarations are derived with `tsify` from the types that cross (the core's behind
+//! feature `wasm-core`), `Option` as `null`; only inputs read key by key rather than deserialised
+//! (`LqtCase`, the `LogicLfd*` inputs) and the benchmark rows are written by hand.
 //!
 //! Feature `wasm-core` alone builds the page's first-load module (cfg `first_load`, set by
-//! `build.rs`): the closed-loop `Session` on B1's template task, `benchmark` and `blockRange`,
-//! without Teach mode (`Teacher`, taught tasks), `Session.replay`, `Session.fromScene`, B2, B3,
-//! N-block tasks, JSON paths in load errors, the PDDL tab's `plan`, `check`, `logicLfd` and
-//! `logicLfdPerturb`, and the npm-only `lqt`, `validate`, `runEpisode` and `LogicLfd` class;
-//! `wasm` adds them (the npm package, and the module the page loads after its first frame).
+//! `build.rs`): the closed-loop `Session` on B1's template task, `benchmark`, `blockRange` and
+//! `catalogue`, without Teach mode (`Teacher`, taught tasks), `Session.replay`,
+//! `Session.fromScene`, B2, B3, N-block tasks, JSON paths in load errors, the PDDL tab's `plan`,
+//! `check`, `logicLfd` and `logicLfdPerturb`, and the npm-only `lqt`, `validate`, `runEpisode` and
+//! `LogicLfd` class; `wasm` adds them (the npm package, and the module the page loads after its
+//! first frame).
 
 use crate::plan::Clock;
 use wasm_bindgen::prelude::*;
@@ -20,6 +23,7 @@ mod args;
 #[cfg(feature = "wasm")]
 mod bench;
 mod benchmark_info;
+mod catalogue;
 #[cfg(feature = "wasm")]
 mod logic_lfd;
 #[cfg(feature = "wasm")]
@@ -87,42 +91,6 @@ impl Clock for PerformanceClock {
 pub fn version() -> String {
     env!("CARGO_PKG_VERSION").to_string()
 }
-
-/// TypeScript declarations of the scene and frame shapes (`sim::snapshot`, the loop's `Frame`):
-/// those types live in the core, which stays free of wasm crates, so their `.d.ts` is written here.
-#[wasm_bindgen(typescript_custom_section)]
-const TS_SCENE: &'static str = r#"
-/** A rigid pose: position (m) and unit quaternion [x, y, z, w]. */
-export interface PoseSnapshot { position: [number, number, number]; quaternion: [number, number, number, number]; }
-/** One box of a compound shape, in the body frame. */
-export interface PartSnapshot { pose: PoseSnapshot; half_extents: [number, number, number]; }
-/** Geometry of a body in its own frame. */
-export type ShapeSnapshot =
-  | { type: "cuboid"; half_extents: [number, number, number] }
-  | { type: "compound"; parts: PartSnapshot[] };
-/** What a body is. */
-export type BodyKind = "block" | "hook" | "table" | "shelf";
-/** One body of the world. */
-export interface BodySnapshot { name: string; kind: BodyKind; shape: ShapeSnapshot; pose: PoseSnapshot; color: string; lost?: boolean; }
-/** A capsule (segment swept by a sphere), world frame. */
-export interface CapsuleSnapshot { a: [number, number, number]; b: [number, number, number]; radius: number; }
-/** A posed box, world frame. */
-export interface CuboidSnapshot { pose: PoseSnapshot; half_extents: [number, number, number]; }
-/** Horizontal workspace annulus of an arm (m). */
-export interface ReachSnapshot { min_radius: number; max_radius: number; }
-/** One 7-DoF arm with its gripper; `tcp`, `links` and `fingers` are derived, for drawing. */
-export interface ArmSnapshot {
-  name: string; base: PoseSnapshot; joints: number[]; gripper_opening: number; holding?: string | null;
-  reach: ReachSnapshot; tcp: PoseSnapshot; links: CapsuleSnapshot[]; fingers: CuboidSnapshot[];
-}
-/** A named table region (B3). */
-export interface RegionSnapshot { name: string; min: [number, number]; max: [number, number]; color: string; }
-/** The whole world, as `World::snapshot` writes it and `scene.json` files hold it. */
-export interface WorldSnapshot {
-  version: number; name: string; time: number; dt: number; floor_z: number;
-  regions: RegionSnapshot[]; bodies: BodySnapshot[]; arms: ArmSnapshot[];
-}
-"#;
 
 /// Converts any displayable error into a rejected value (a JS `Error` with the message).
 fn js_err(e: impl std::fmt::Display) -> JsError {
@@ -193,28 +161,21 @@ pub fn lqt(
     to_js(&out)
 }
 
+// A case is read key by key (`lqt::case`: errors name the key path and the shape expected),
+// not deserialised into a Rust type: its declaration is written here; the output is derived.
 #[cfg(feature = "wasm")]
 #[wasm_bindgen(typescript_custom_section)]
-const TS_LQT: &'static str = r#"
+const TS_LQT_CASE: &'static str = r#"
 /** An LQT-CP case (docs/formats.md); unknown keys are ignored. */
 export interface LqtCase {
   dim: number; order: number; dt: number; n_steps: number; r: number;
   basis: { type: "rbf" | "bernstein" | "fourier" | "piecewise"; n_fct: number; centers?: number[]; lambda?: number };
   x0: number[];
   reference: { mu: number[][]; q_diag: number[][] };
-  targets?: { t: number; role: "via" | "goal"; pos: number[]; w_pos: number; vel?: number[]; w_vel?: number }[];
+  targets?: { t: number; role: TargetRole; pos: number[]; w_pos: number; vel?: number[]; w_vel?: number }[];
   tracking?: { demo_pos: number[][]; weights_per_order: number[] } | null;
   feedback?: { x_init: number[]; perturbation?: { after_step: number; delta: number[] } | null } | null;
   [key: string]: unknown;
-}
-/** One feedback rollout. */
-export interface LqtRollout { x: number[][]; u: number[][]; pos: number[][]; final_goal_pos_dist: number | null; }
-/** The output object of an LQT-CP case. */
-export interface LqtOutput {
-  A: number[][]; B: number[][]; phi: number[][]; w: number[][]; u: number[][]; x: number[][]; pos: number[][];
-  cost: number;
-  target_errors: { t: number; role: "via" | "goal"; pos_dist: number; vel_dist?: number }[];
-  feedback?: { F: number[][]; gains: number[][][]; nominal: LqtRollout; perturbed?: LqtRollout };
 }
 "#;
 

@@ -6,7 +6,7 @@
 
 use logic_lfd::experiments::{EpisodeSpec, Level};
 use logic_lfd::lfd::control::FailReason;
-use logic_lfd::lfd::session::{mix, Session, SessionOptions, SessionParams, SkillKind};
+use logic_lfd::lfd::session::{mix, Session, SessionOptions, SessionParams, SkillKind, StatusKind};
 use logic_lfd::lfd::{
     logic_in, plan_logic_lfd, DemoTrace, Method, Mode, MultiGoalSpec, PlanSource, TaskBuilder,
 };
@@ -269,7 +269,10 @@ fn a_user_drag_is_logged_and_replayed() {
     let mut s = Session::new(opts).unwrap();
     let f = s.step(3.0, &NoClock);
     assert_eq!(f.tick, 300);
-    assert!(f.status.kind == "executing" || f.status.kind == "replanning");
+    assert!(matches!(
+        f.status.kind,
+        StatusKind::Executing | StatusKind::Replanning
+    ));
     // Move block a onto d while the arm works on c: a task-level change.
     let pos = s.world().body_pose("d").unwrap().translation.vector;
     let out = s.perturb("a", [pos.x, pos.y, pos.z + 0.1]);
@@ -303,7 +306,7 @@ fn a_drag_after_done_reopens_the_episode_which_finishes_again_and_replays() {
         None,
         "the drag opens the finished episode again"
     );
-    assert_eq!(s.frame().status.kind, "planning");
+    assert_eq!(s.frame().status.kind, StatusKind::Planning);
     s.run_to_end(40_000, &NoClock);
     assert_eq!(s.outcome(), Some(&Ok(())));
     assert!(s.controller().replans().len() > replans);

@@ -15,7 +15,7 @@ export class WorkerClient {
   private readonly worker: Worker;
   private nextId = 1;
   private readonly pending = new Map<number, { resolve: (v: unknown) => void; reject: (e: Error) => void }>();
-  /** The worker's module is loaded: its version and the block counts of the N-block tasks. */
+  /** The worker's module is loaded: its version, the block counts of the N-block tasks and the catalogue. */
   readonly ready: Promise<Ready>;
 
   constructor(onPush: (m: FromWorker) => void) {
@@ -35,7 +35,7 @@ export class WorkerClient {
         if (m.ok) p.resolve(m.value);
         else p.reject(new Error(m.error));
       } else if (m.type === 'ready') {
-        resolveReady({ version: m.version, blockRanges: m.blockRanges });
+        resolveReady({ version: m.version, blockRanges: m.blockRanges, catalogue: m.catalogue });
       } else if (m.type === 'fatal') {
         rejectReady(new Error(m.message));
         onPush(m);

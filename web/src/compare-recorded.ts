@@ -3,9 +3,9 @@
  * recorded ones — the user's drags, L1–L4 injections and cancels, read from the Run's episode log
  * and applied at the same ticks to every method, as `Session.replay` applies them.
  */
-import type { Frame, SessionOptions, WorldSnapshot } from 'logic-lfd';
+import type { Frame, Level, SessionOptions, WorldSnapshot } from 'logic-lfd';
 import type { WorkerClient } from './client';
-import type { Level, Vec3 } from './protocol';
+import type { Vec3 } from './protocol';
 
 /** One external event of the episode log (`EpisodeLog.events`, the CLI's snake_case JSON). */
 export type LoggedEvent =

@@ -1,26 +1,35 @@
 /**
  * The Compare tab (a chunk of its own, loaded when the tab first opens): runs the same episode —
  * benchmark, blocks, seed, and one scripted disturbance (level and time) or the Run's recorded
- * drags, injections and cancels at their times — with Linear, RLDS, TAMP and Logic-LfD in both modes, one after another in a worker of its own (the Run's session
- * is untouched), and ends with a table: success, simulated execution time, replans, planning time
+ * drags, injections and cancels at their times — with every method of the catalogue (Logic-LfD
+ * in each of its modes), one after another in a worker of its own (the Run's session is
+ * untouched), and ends with a table: success, simulated execution time, replans, planning time
  * and the reason of a failure.
  */
-import type { Frame, SessionOptions } from 'logic-lfd';
+import type { Catalogue, Frame, Level, Method, Mode, SessionOptions } from 'logic-lfd';
+import { descriptionOf, items } from './catalogue';
 import { WorkerClient } from './client';
 import { button, el, select } from './dom';
-import { METHOD_NOTES, MODE_NOTES, noteOf } from './explain';
 import { applyAll, type Disturbance, eventLabel, type Recorded, recordedDisturbances, recordedOf, scriptedDisturbance } from './compare-recorded';
-import type { Level } from './protocol';
-import { LEVELS, type Method, type Mode } from './state';
 
-/** The runs of a comparison: method, mode, and the row's name. */
-export const RUNS: [Method, Mode, string][] = [
-  ['linear', 'paper', 'Linear'],
-  ['rlds', 'paper', 'RLDS'],
-  ['tamp', 'paper', 'TAMP'],
-  ['logic-lfd', 'paper', 'Logic-LfD (paper)'],
-  ['logic-lfd', 'prioritised', 'Logic-LfD (prioritised)'],
-];
+/** One run of a comparison: method, mode, the row's name and tooltip. */
+export interface Run {
+  method: Method;
+  mode: Mode;
+  name: string;
+  tip: string;
+}
+
+/** The runs of a comparison: every method in table order, the one the multi-goal mode steers
+ * (Logic-LfD) once per mode, the others in the first (the default, paper). */
+export function runsOf(c: Catalogue): Run[] {
+  const [first] = c.modes;
+  return c.methods.flatMap((m): Run[] =>
+    m.id === 'logic-lfd'
+      ? c.modes.map((mode) => ({ method: m.id, mode: mode.id, name: `${m.label} (${mode.label})`, tip: `${m.description} Mode: ${mode.description}` }))
+      : [{ method: m.id, mode: first.id, name: m.label, tip: m.description }],
+  );
+}
 
 /** Simulated seconds per request while an episode runs to its end. */
 const CHUNK_S = 2;
@@ -58,7 +67,7 @@ type Source = 'scripted' | 'recorded';
 const finished = (f: Frame) => f.status.kind === 'done' || f.status.kind === 'failed';
 
 /** Runs one method on the script in `client`'s worker. */
-async function runOne(client: WorkerClient, script: CompareScript, method: Method, mode: Mode, name: string): Promise<CompareResult> {
+async function runOne(client: WorkerClient, script: CompareScript, { method, mode, name }: Run): Promise<CompareResult> {
   const options: SessionOptions = { ...script.options, method, mode };
   const opened = await client.call('open', script.scene === undefined ? { options } : { options, scene: script.scene });
   const applied = await applyAll(client, opened, script.disturbances);
@@ -94,9 +103,10 @@ export class ComparePanel {
     ],
     'scripted',
   );
-  private readonly levelSel = select('compare-level', 'Disturbance level', LEVELS, 'l3');
+  private readonly levelSel: HTMLSelectElement;
+  private readonly runs: Run[];
   private readonly atIn = el('input', { id: 'compare-at', type: 'number', min: '0', step: '0.1', value: '0.5', 'aria-label': 'Inject at (simulated seconds)', title: 'Inject at (simulated seconds)' });
-  private readonly scripted = el('span', { class: 'compare-scripted' }, el('label', {}, 'inject ', this.levelSel), el('label', {}, 'at ', this.atIn, ' s'));
+  private readonly scripted: HTMLElement;
   /** Why the recorded disturbances cannot be chosen (shown while they cannot). */
   private readonly why = el('p', { id: 'compare-source-why', class: 'muted small', hidden: '' });
   private readonly runBtn = button('compare-run', 'Run every method on the same seed and disturbances', '▶ Compare', 'primary');
@@ -105,7 +115,14 @@ export class ComparePanel {
   private client: WorkerClient | null = null;
   private recorded: Recorded | string = '';
 
-  constructor(private readonly host: CompareHost) {
+  constructor(
+    private readonly host: CompareHost,
+    catalogue: Catalogue,
+  ) {
+    this.runs = runsOf(catalogue);
+    this.levelSel = select('compare-level', 'Disturbance level', items(catalogue.levels), 'l3');
+    for (const o of this.levelSel.options) o.title = descriptionOf(catalogue.levels, o.value);
+    this.scripted = el('span', { class: 'compare-scripted' }, el('label', {}, 'inject ', this.levelSel), el('label', {}, 'at ', this.atIn, ' s'));
     this.root = el(
       'div',
       { class: 'compare' },
@@ -185,9 +202,9 @@ export class ComparePanel {
     this.note.textContent = this.describe(script);
     try {
       await client.ready;
-      for (const [method, mode, name] of RUNS) {
-        this.showRows(results, name);
-        results.push(await runOne(client, script, method, mode, name));
+      for (const run of this.runs) {
+        this.showRows(results, run.name);
+        results.push(await runOne(client, script, run));
       }
       this.showRows(results);
       this.root.dataset.done = 'true';
@@ -203,9 +220,8 @@ export class ComparePanel {
 
   private showRows(results: CompareResult[], running?: string): void {
     delete this.root.dataset.done;
-    const rows = RUNS.map(([method, mode, name]) => {
+    const rows = this.runs.map(({ name, tip }) => {
       const r = results.find((x) => x.name === name);
-      const tip = method === 'logic-lfd' ? `${noteOf(METHOD_NOTES, method)} Mode: ${noteOf(MODE_NOTES, mode)}` : noteOf(METHOD_NOTES, method);
       const head = el('th', { title: tip }, name);
       if (!r) return el('tr', { class: 'pending' }, head, el('td', { colspan: '5', class: 'muted' }, name === running ? 'running…' : '—'));
       return el(

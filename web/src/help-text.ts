@@ -1,12 +1,11 @@
 /**
  * The help overlay's content (loaded when the help first opens, not with the page): what the page
- * shows, the disturbance levels L1–L4, the methods, the multi-goal modes, the symbols L_k and
- * S_C, the keyboard shortcuts, and links to the project's documentation (the repository's
+ * shows, the disturbance levels L1–L4, the methods, the multi-goal modes and the benchmarks (from
+ * the catalogue), the symbols L_k and S_C, the keyboard shortcuts, and links to the project's documentation (the repository's
  * docs/*.md, which the build copies beside the page: see vite.config.ts).
  */
+import type { Catalogue, CatalogueEntry } from 'logic-lfd';
 import { el } from './dom';
-import { METHOD_NOTES, MODE_NOTES } from './explain';
-import { LEVELS } from './state';
 
 const KEYS: [string, string][] = [
   ['Space', 'play / pause'],
@@ -46,23 +45,24 @@ function section(title: string, rows: [string, string][]): HTMLElement {
   );
 }
 
+/** A catalogue list as a section's rows: label, description. */
+const rows = <T extends string>(entries: CatalogueEntry<T>[]): [string, string][] => entries.map((e) => [e.label, e.description]);
+
 /** The explanations, as one element of the help dialog. */
-function helpExplanations(): HTMLElement {
+function helpExplanations(c: Catalogue): HTMLElement {
   return el(
     'div',
     { id: 'help-explain', class: 'help-explain' },
-    section(
-      'Disturbances (buttons L1–L4, keys 1–4)',
-      LEVELS.map(([, name, what]) => [name, `${what}.`]),
-    ),
-    section('Methods (the method select)', METHOD_NOTES.map(([, name, what]) => [name, what])),
-    section('Logic-LfD modes (the mode select)', MODE_NOTES.map(([, name, what]) => [name, what])),
+    section('Disturbances (buttons L1–L4, keys 1–4)', rows(c.levels)),
+    section('Methods (the method select)', rows(c.methods)),
+    section('Logic-LfD modes (the mode select)', rows(c.modes)),
+    section('Benchmarks (the benchmark select)', rows(c.benchmarks)),
     section('Symbols', SYMBOLS),
   );
 }
 
-/** Everything the dialog shows above its Close button. */
-export function helpContent(): HTMLElement[] {
+/** Everything the dialog shows above its Close button, the explanations from catalogue `c`. */
+export function helpContent(c: Catalogue): HTMLElement[] {
   return [
     el('h2', {}, 'logic-lfd — learning a task from one demonstration'),
     el(
@@ -72,7 +72,7 @@ export function helpContent(): HTMLElement[] {
       el('em', {}, 'any'),
       ' state seen in that demonstration, then follows the rest of it. Drag a block with the mouse (or a finger) while it works: it notices the change, replans in milliseconds and still finishes. Compare runs the same disturbance with every method.',
     ),
-    helpExplanations(),
+    helpExplanations(c),
     el('table', { class: 'keys' }, ...KEYS.map(([k, v]) => el('tr', {}, el('th', {}, el('kbd', {}, k)), el('td', {}, v)))),
     el(
       'ul',

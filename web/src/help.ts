@@ -3,6 +3,7 @@
  * the keyboard shortcuts and links to the documentation) is loaded when it first opens. Opens
  * with the ? button or key; closes with its button, Escape or a click beside the dialog.
  */
+import { catalogueReady } from './catalogue';
 import { el } from './dom';
 
 export class HelpOverlay {
@@ -37,7 +38,7 @@ export class HelpOverlay {
   open(): void {
     this.root.hidden = false;
     this.closeBtn.focus();
-    this.explained ??= import('./help-text').then(({ helpContent }) => this.content.replaceChildren(...helpContent()));
+    this.explained ??= Promise.all([import('./help-text'), catalogueReady]).then(([{ helpContent }, catalogue]) => this.content.replaceChildren(...helpContent(catalogue)));
   }
 
   /** The explanations' chunk, once asked for. */

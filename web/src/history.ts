@@ -3,10 +3,10 @@
  * moment) and the markers of disturbances and replans, shared by the timeline and the charts.
  * No DOM: the timeline and the charts read it and listen for changes.
  */
-import type { EePoint, Frame, WorldSnapshot } from 'logic-lfd';
+import type { EePoint, Frame, Level, WorldSnapshot } from 'logic-lfd';
 
 /** What a marker stands for: a user's drag, an injected disturbance (L1–L4) or a replan. */
-export type MarkKind = 'drag' | 'l1' | 'l2' | 'l3' | 'l4' | 'replan';
+export type MarkKind = 'drag' | Level | 'replan';
 
 export interface Mark {
   kind: MarkKind;
@@ -25,7 +25,8 @@ export interface Moment {
   ee: EePoint[];
 }
 
-/** The colour of each kind of marker, the same in the timeline and the charts. */
+/** The colour of each kind of marker, the same in the timeline and the charts (a new level needs
+ * one: the type asks for it). */
 export const MARK_COLOURS: Record<MarkKind, string> = {
   drag: '#e6e6e6',
   l1: '#4cc38a',

@@ -4,9 +4,11 @@
  * Teach, Charts, PDDL). Builds the elements, mounts them in #app and hands back the ones the panels
  * use; no behaviour lives here.
  */
+import type { Benchmark, Catalogue } from 'logic-lfd';
+import { items } from './catalogue';
 import { button, el, select } from './dom';
 import { HelpOverlay } from './help';
-import { BENCHMARKS, LEVELS, METHODS, MODES, SPEEDS, blockItems, blockRange, type Benchmark, type PageState, type TabId } from './state';
+import { SPEEDS, blockItems, blockRange, type PageState, type Scenario, type TabId } from './state';
 
 /** The top bar's controls. */
 export interface Controls {
@@ -20,6 +22,8 @@ export interface Controls {
   playBtn: HTMLButtonElement;
   stepBtn: HTMLButtonElement;
   speedSel: HTMLSelectElement;
+  /** The L1–L4 buttons' group, and the buttons (made when the catalogue arrives). */
+  levelGroup: HTMLElement;
   levelBtns: HTMLButtonElement[];
   saveBtn: HTMLButtonElement;
   loadBtn: HTMLButtonElement;
@@ -101,24 +105,49 @@ function blockSelect(b: Benchmark, blocks: number | null | undefined): HTMLSelec
   return sel;
 }
 
-function buildControls(s: PageState): Controls {
-  const o = s.options;
-  const levelBtns = LEVELS.map(([lvl, text, what]) => {
-    const b = button(`inject-${lvl}`, `Inject ${text}: ${what} (${lvl[1]})`, text, 'level');
-    b.dataset.level = lvl;
+/** A select that shows `value` alone, disabled, until the catalogue fills it. */
+function pending<T extends string>(id: string, label: string, value: T): HTMLSelectElement {
+  const s = select(id, label, [[value, value]], value);
+  s.disabled = true;
+  return s;
+}
+
+/** Sets a select's items and value, and enables it. */
+function fill<T extends string>(sel: HTMLSelectElement, choices: [T, string][], value: T): void {
+  sel.replaceChildren(...choices.map(([v, t]) => el('option', { value: v }, t)));
+  sel.value = value;
+  sel.disabled = false;
+}
+
+/** Fills the benchmark, method and mode selects and makes the L1–L4 buttons from the catalogue
+ * the worker sent, the selects set to scenario `o`. */
+export function setCatalogueChoices(c: Controls, cat: Catalogue, o: Scenario): void {
+  fill(c.benchSel, items(cat.benchmarks), o.benchmark);
+  fill(c.methodSel, items(cat.methods), o.method);
+  fill(c.modeSel, items(cat.modes), o.mode);
+  const buttons = cat.levels.map(({ id, label, description }, i) => {
+    const b = button(`inject-${id}`, `Inject ${label} (key ${i + 1}): ${description}`, label, 'level');
+    b.dataset.level = id;
     return b;
   });
+  c.levelBtns.splice(0, c.levelBtns.length, ...buttons);
+  c.levelGroup.append(...buttons);
+}
+
+function buildControls(s: PageState): Controls {
+  const o = s.options;
   return {
-    benchSel: select('benchmark', 'Benchmark', BENCHMARKS, o.benchmark),
+    benchSel: pending('benchmark', 'Benchmark', o.benchmark),
     blocksSel: blockSelect(o.benchmark, o.blocks),
-    methodSel: select('method', 'Method', METHODS, o.method),
-    modeSel: select('mode', 'Multi-goal mode', MODES, o.mode),
+    methodSel: pending('method', 'Method', o.method),
+    modeSel: pending('mode', 'Multi-goal mode', o.mode),
     seedIn: el('input', { id: 'seed', type: 'number', min: '0', step: '1', 'aria-label': 'Random seed', title: 'Random seed', value: String(o.seed) }),
     resetBtn: button('reset', 'Reset the episode with this seed (R)', '↺ Reset'),
     playBtn: button('play', 'Play (Space)', '▶ Play', 'primary'),
     stepBtn: button('step', 'Advance 0.1 s of simulated time (N)', 'Step'),
     speedSel: select('speed', 'Playback speed', SPEEDS, String(s.speed)),
-    levelBtns,
+    levelGroup: el('div', { class: 'group', role: 'group', 'aria-label': 'Inject a disturbance' }, el('span', { class: 'muted small' }, 'inject')),
+    levelBtns: [],
     saveBtn: button('save-scene', 'Save the current scene as JSON', 'Save'),
     loadBtn: button('load-scene', 'Load a scene JSON file', 'Load'),
     fileIn: el('input', { type: 'file', accept: 'application/json,.json', hidden: '', 'aria-label': 'Scene JSON file' }),
@@ -173,7 +202,7 @@ function buildTopBar(c: Controls, version: HTMLElement, taskTag: HTMLElement): H
     el('div', { class: 'brand' }, el('strong', {}, 'logic-lfd'), version, taskTag),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Scenario' }, c.benchSel, c.blocksSel, c.methodSel, c.modeSel, el('label', { class: 'seed' }, 'seed', c.seedIn), c.resetBtn),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Playback' }, c.playBtn, c.stepBtn, c.speedSel),
-    el('div', { class: 'group', role: 'group', 'aria-label': 'Inject a disturbance' }, el('span', { class: 'muted small' }, 'inject'), ...c.levelBtns),
+    c.levelGroup,
     el('div', { class: 'group right', role: 'group', 'aria-label': 'Scene and link' }, c.saveBtn, c.loadBtn, c.fileIn, c.linkBtn, c.helpBtn),
   );
 }

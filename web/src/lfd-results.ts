@@ -3,13 +3,11 @@
  * (the new prefix the multi-goal search found, then the demonstration suffix it joins at L_k),
  * which mode is shorter, and planning from scratch for comparison. Plain rendering, no state.
  */
-import type { LogicLfdResult, LogicLfdStats } from 'logic-lfd';
+import type { LogicLfdResult, LogicLfdStats, Mode } from 'logic-lfd';
 import { el } from './dom';
 
-export type LfdMode = 'paper' | 'prioritised';
-
-/** What each mode joins, as its column explains it. */
-const JOINS: Record<LfdMode, () => (Node | string)[]> = {
+/** What each mode joins, as its column explains it (a new mode needs a line: the type asks). */
+const JOINS: Record<Mode, () => (Node | string)[]> = {
   paper: () => ['the first ', lk('k'), ' reached'],
   prioritised: () => ['cheapest prefix + demo left'],
 };
@@ -30,7 +28,7 @@ function how(r: LogicLfdResult): (Node | string)[] {
 }
 
 /** One mode's column: summary, then the merged plan with prefix lines "new" and suffix lines "demo a_j". */
-function column(mode: LfdMode, r: LogicLfdResult | null, pending: boolean): HTMLElement {
+function column(mode: Mode, r: LogicLfdResult | null, pending: boolean): HTMLElement {
   const head = el('h3', {}, mode, el('span', { class: 'lfd-joins muted' }, ...JOINS[mode]()));
   const col = el('div', { class: 'lfd-col', id: `lfd-col-${mode}`, 'data-mode': mode }, head);
   if (!r) {
@@ -82,7 +80,7 @@ function scratchLine(paper: LogicLfdResult | null): HTMLElement {
 }
 
 /** The results panel: both columns, the comparison and the from-scratch line. */
-export function renderResults(paper: LogicLfdResult | null, prio: LogicLfdResult | null, running: LfdMode | null): HTMLElement[] {
+export function renderResults(paper: LogicLfdResult | null, prio: LogicLfdResult | null, running: Mode | null): HTMLElement[] {
   const cols = el(
     'div',
     { class: 'lfd-cols' },

@@ -11,10 +11,11 @@ import type {
   LogicLfdPerturbInput,
   LogicLfdPerturbResult,
   LogicLfdResult,
+  Mode,
 } from 'logic-lfd';
 import './lfd.css';
 import { el } from './dom';
-import { lk, renderResults, type LfdMode } from './lfd-results';
+import { lk, renderResults } from './lfd-results';
 import { StateEditor } from './lfd-state-editor';
 import { withInit } from './pddl-init';
 
@@ -219,7 +220,7 @@ export class LfdView {
     clearTimeout(this.timer);
     ++this.seq;
     const input: LogicLfdInput = { ...this.base(), ...this.opts.search(), timeLimitMs: LFD_TIME_LIMIT_MS };
-    const show = (p: LogicLfdResult | null, q: LogicLfdResult | null, running: LfdMode | null) =>
+    const show = (p: LogicLfdResult | null, q: LogicLfdResult | null, running: Mode | null) =>
       this.results.replaceChildren(...renderResults(p, q, running));
     this.state.setBusy(true);
     try {

@@ -8,11 +8,12 @@ import { Charts } from './charts';
 import { WorkerClient } from './client';
 import { FrameRenderer } from './frame-renderer';
 import { History } from './history';
-import { buildLayout, setBlockChoices } from './layout';
+import { setCatalogue } from './catalogue';
+import { buildLayout, setBlockChoices, setCatalogueChoices } from './layout';
 import { RunPanel } from './run-panel';
 import { SessionControls } from './session-controls';
 import { installShortcuts } from './shortcuts';
-import { blocksFor, initialState, setBlockRanges } from './state';
+import { blocksFor, initialState, setBlockRanges, settleChoices } from './state';
 import { StatusBar } from './status-bar';
 import { Tabs } from './tabs';
 import { installTestHooks } from './test-hooks';
@@ -51,9 +52,12 @@ history.listen(() => {
 });
 
 client.ready.then(
-  async ({ version, blockRanges }) => {
+  async ({ version, blockRanges, catalogue }) => {
     ui.version.textContent = `v${version}`;
-    // The block counts come from the wasm module: check the URL's count against them.
+    // The choices and the block counts come from the wasm module: check the URL's against them.
+    setCatalogue(catalogue);
+    settleChoices(state, catalogue);
+    setCatalogueChoices(ui.controls, catalogue, state.options);
     setBlockRanges(blockRanges);
     const blocks = blocksFor(state.options.benchmark, state.options.blocks);
     if (blocks === undefined) delete state.options.blocks;
@@ -65,7 +69,7 @@ client.ready.then(
     // The first frame is drawn: the worker now fetches the full-speed module and moves onto it.
     void client.call('speedUp', {});
     // Not needed for the first frame: fetched once the page is interactive.
-    void import('./explain').then(({ explainSelects }) => explainSelects(ui.controls.methodSel, ui.controls.modeSel));
+    void import('./explain').then(({ explainSelects }) => explainSelects(ui.controls.methodSel, ui.controls.modeSel, catalogue));
     view.loadExtras();
     void import('./timeline').then(
       ({ Timeline }) => new Timeline(ui.stage.root, { history, pause: () => void session.guard(() => session.pause()), togglePlay: () => void session.togglePlay() }),

@@ -4,13 +4,16 @@
  * of the same id. While a session plays, the worker pushes `frame` messages on its own.
  */
 import type {
+  Benchmark,
   BenchmarkInfo,
+  Catalogue,
   Diagnostic,
   Frame,
   LogicLfdInput,
   LogicLfdPerturbInput,
   LogicLfdPerturbResult,
   LogicLfdResult,
+  Level,
   PlanOptions,
   PlanOutcome,
   SessionOptions,
@@ -18,7 +21,6 @@ import type {
 import type { SpeedUpState } from './speed-up';
 import type { TeachApi } from './teach-protocol';
 
-export type Level = 'l1' | 'l2' | 'l3' | 'l4';
 export type Vec3 = [number, number, number];
 
 /** The result of a user's drop: accepted (with what the world did) or refused with a reason. */
@@ -42,7 +44,7 @@ export interface Api extends TeachApi {
   /** Logic-LfD on the texts of the PDDL tab (plain data in and out). */
   logicLfd: { args: { input: LogicLfdInput }; result: LogicLfdResult };
   logicLfdPerturb: { args: { input: LogicLfdPerturbInput }; result: LogicLfdPerturbResult };
-  benchmark: { args: { id: SessionOptions['benchmark'] }; result: BenchmarkInfo };
+  benchmark: { args: { id: Benchmark }; result: BenchmarkInfo };
   open: { args: { options: SessionOptions; scene?: string }; result: Frame };
   replay: { args: { episode: string }; result: Frame };
   play: { args: { speed: number }; result: null };
@@ -77,12 +79,14 @@ export interface TickTiming {
 
 /** The block counts `[fewest, most]` of each benchmark's generated N-block tower task (null: none),
  * as the wasm module's `blockRange` gives them. */
-export type BlockRanges = Record<SessionOptions['benchmark'], [number, number] | null>;
+export type BlockRanges = Record<Benchmark, [number, number] | null>;
 
 /** What the worker says once its module is loaded. */
 export interface Ready {
   version: string;
   blockRanges: BlockRanges;
+  /** The methods, modes, benchmarks and disturbance levels, as the module's `catalogue()` lists them. */
+  catalogue: Catalogue;
 }
 
 export type FromWorker =

@@ -3,13 +3,12 @@
  * actions with the state the robot joined, the current facts S_C with the last change, and the
  * last replan. Redrawn only when what it shows changed.
  */
-import type { Frame, Replan } from 'logic-lfd';
+import type { Frame, Mode, Replan } from 'logic-lfd';
 
 /** Replans listed under the plan (the newest). */
 const MAX_REPLANS_SHOWN = 6;
 import { demoStateItem, el, factChips } from './dom';
 import type { RunLists } from './layout';
-import type { Mode } from './state';
 
 type WhyJoin = typeof import('./why-join');
 

@@ -3,7 +3,7 @@
  * play, pause, step, reset, change the speed, inject a disturbance, cancel the plan, drop a dragged
  * block, save the scene, copy the permalink; and the frames the worker pushes while it plays.
  */
-import type { Frame } from 'logic-lfd';
+import type { Benchmark, Frame, Level, Method, Mode } from 'logic-lfd';
 import type { DropRequest, View } from './view';
 import type { WorkerClient } from './client';
 import { downloadJson, guard } from './dom';
@@ -11,8 +11,8 @@ import type { FirstVisitHint } from './guide';
 import type { FrameRenderer } from './frame-renderer';
 import type { History } from './history';
 import { setBlockChoices, type Layout } from './layout';
-import type { FromWorker, Level } from './protocol';
-import { BENCHMARKS, blocksFor, parseSeed, recordStep, updateUrl, type Benchmark, type Method, type Mode, type PageState } from './state';
+import type { FromWorker } from './protocol';
+import { blocksFor, parseSeed, recordStep, updateUrl, type PageState } from './state';
 import type { StatusBar } from './status-bar';
 import type { Tabs } from './tabs';
 
@@ -279,8 +279,8 @@ export class SessionControls {
   /** Selects the next benchmark (as if chosen in its select). */
   nextBenchmark(): void {
     const sel = this.p.ui.controls.benchSel;
-    const i = BENCHMARKS.findIndex(([b]) => b === this.p.state.options.benchmark);
-    sel.value = BENCHMARKS[(i + 1) % BENCHMARKS.length][0];
+    if (sel.disabled) return;
+    sel.selectedIndex = (sel.selectedIndex + 1) % sel.options.length;
     sel.dispatchEvent(new Event('change'));
   }
 
@@ -353,7 +353,11 @@ export class SessionControls {
       updateUrl(state);
       void this.guard(() => client.call('speed', { speed: state.speed }));
     };
-    c.levelBtns.forEach((b) => (b.onclick = () => void this.inject(b.dataset.level as Level)));
+    // The buttons come with the catalogue: one handler on their group serves them all.
+    c.levelGroup.onclick = (e) => {
+      const b = (e.target as HTMLElement).closest<HTMLButtonElement>('button.level');
+      if (b) void this.inject(b.dataset.level as Level);
+    };
     this.p.ui.stage.cancelBtn.onclick = () => void this.cancel();
     c.saveBtn.onclick = () => void this.guard(() => this.save());
     c.loadBtn.onclick = () => c.fileIn.click();

@@ -5,12 +5,16 @@
 import { isShortcut } from './dom';
 import type { HelpOverlay } from './help';
 import type { Controls, Stage } from './layout';
-import { LEVELS } from './state';
+import { catalogue } from './catalogue';
 import type { SessionControls } from './session-controls';
 import type { Tabs } from './tabs';
 
-/** Keys of the Run that would act on the hidden episode while Teach mode owns the view. */
-const RUN_KEYS = ' nrc1234';
+/** Keys of the Run that would act on the hidden episode while Teach mode owns the view (digits:
+ * the disturbance levels). */
+const RUN_KEYS = ' nrc123456789';
+
+/** The disturbance level key `k` injects: `1` the catalogue's first, and so on. */
+const levelOfKey = (k: string) => (/^[1-9]$/.test(k) ? catalogue()?.levels[Number(k) - 1]?.id : undefined);
 
 export function installShortcuts(p: { help: HelpOverlay; session: SessionControls; tabs: Tabs; controls: Controls; stage: Stage }): void {
   const { help, session, tabs } = p;
@@ -19,7 +23,6 @@ export function installShortcuts(p: { help: HelpOverlay; session: SessionControl
     n: () => p.controls.stepBtn.click(),
     r: () => void session.guard(() => session.reset()),
     c: () => p.stage.cancelBtn.click(),
-    ...Object.fromEntries(LEVELS.map(([level]) => [level[1], () => void session.inject(level)])),
     b: () => session.nextBenchmark(),
     '+': () => session.stepSpeed(1),
     '=': () => session.stepSpeed(1),
@@ -44,7 +47,8 @@ export function installShortcuts(p: { help: HelpOverlay; session: SessionControl
     if (help.shown) return;
     const k = e.key.toLowerCase();
     if (tabs.teach?.active && RUN_KEYS.includes(k)) return;
-    const f = act[k];
+    const level = levelOfKey(k);
+    const f = level ? () => void session.inject(level) : act[k];
     if (f) {
       e.preventDefault();
       f();

@@ -1,38 +1,22 @@
 /**
  * What the page knows, in one object: the scenario it runs (benchmark, method, mode, seed, blocks), the
  * playback (speed, playing), the latest frame from the worker (status, plan, demo, facts), the step
- * timings, the open tab and the last cancel. Also the choices the controls offer and the URL that
- * restores a scenario (the permalink).
+ * timings, the open tab and the last cancel. Also the block counts the controls offer and the URL
+ * that restores a scenario (the permalink); the methods, modes, benchmarks and levels they offer
+ * come from the catalogue (catalogue.ts).
  */
-import type { Frame, SessionOptions } from 'logic-lfd';
-import type { BlockRanges, Level } from './protocol';
+import type { Benchmark, Catalogue, Frame, Method, Mode, SessionOptions } from 'logic-lfd';
+import { entryOf } from './catalogue';
+import type { BlockRanges } from './protocol';
 
-export type Benchmark = SessionOptions['benchmark'];
-export type Method = SessionOptions['method'];
-export type Mode = SessionOptions['mode'];
 export type TabId = 'run' | 'teach' | 'charts' | 'pddl' | 'compare';
 
-export const BENCHMARKS: [Benchmark, string][] = [
-  ['b1', 'B1 · tower'],
-  ['b2', 'B2 · reach (hook)'],
-  ['b3', 'B3 · two arms'],
-];
-export const METHODS: [Method, string][] = [
-  ['logic-lfd', 'Logic-LfD'],
-  ['linear', 'Linear'],
-  ['rlds', 'RLDS'],
-  ['tamp', 'TAMP'],
-];
-export const MODES: [Mode, string][] = [
-  ['paper', 'paper'],
-  ['prioritised', 'prioritised'],
-];
-export const LEVELS: [Level, string, string][] = [
-  ['l1', 'L1', 'Motion-level: move a block a little; the facts stay the same'],
-  ['l2', 'L2', 'Facts change to a state seen in the demonstration'],
-  ['l3', 'L3', 'Facts change to a state the demonstration never saw'],
-  ['l4', 'L4', 'A new block appears in the way'],
-];
+/** The scenario the Run's session runs: its options with every choice made. */
+export type Scenario = SessionOptions & { method: Method; mode: Mode; seed: number };
+
+/** What a page without a choice in its URL runs. */
+const DEFAULTS = { benchmark: 'b1', method: 'logic-lfd', mode: 'paper' } as const satisfies Pick<Scenario, 'benchmark' | 'method' | 'mode'>;
+
 /**
  * The block counts of each benchmark's generated N-block tower task (`[fewest, most]`; null: none),
  * from the wasm module's `blockRange` (the worker sends them when it is ready); null until then.
@@ -92,7 +76,7 @@ export interface CancelTiming {
 
 export interface PageState {
   /** The scenario the session runs. */
-  options: SessionOptions;
+  options: Scenario;
   /** Playback speed (simulated seconds per wall-clock second). */
   speed: number;
   /** Whether a freshly opened or reset episode starts playing (`?autoplay=0` turns it off). */
@@ -120,19 +104,17 @@ export function parseSeed(text: string): number {
   return Math.max(0, Math.floor(Number(text)) || 0);
 }
 
-const pick = <T extends string>(v: string | null, all: [T, ...unknown[]][], d: T): T =>
-  all.some(([k]) => k === v) ? (v as T) : d;
-
-/** The state a page opened at `search` (its URL's query) starts from. */
+/** The state a page opened at `search` (its URL's query) starts from. Its benchmark, method and
+ * mode are taken as written until the catalogue arrives (see `settleChoices`). */
 export function initialState(search: string): PageState {
   const params = new URLSearchParams(search);
-  const benchmark = pick(params.get('benchmark'), BENCHMARKS, 'b1');
+  const benchmark = (params.get('benchmark') ?? DEFAULTS.benchmark) as Benchmark;
   const blocks = blocksFor(benchmark, params.has('blocks') ? Number(params.get('blocks')) : undefined);
   return {
     options: {
       benchmark,
-      method: pick(params.get('method'), METHODS, 'logic-lfd'),
-      mode: pick(params.get('mode'), MODES, 'paper'),
+      method: (params.get('method') ?? DEFAULTS.method) as Method,
+      mode: (params.get('mode') ?? DEFAULTS.mode) as Mode,
       seed: parseSeed(params.get('seed') ?? '1'),
       ...(blocks === undefined ? {} : { blocks }),
     },
@@ -149,6 +131,15 @@ export function initialState(search: string): PageState {
     editorBenchmark: null,
     lastCancel: null,
   };
+}
+
+/** Replaces a benchmark, method or mode the catalogue does not list (a mistyped link) by the
+ * default. */
+export function settleChoices(s: PageState, c: Catalogue): void {
+  const o = s.options;
+  if (!entryOf(c.benchmarks, o.benchmark)) o.benchmark = DEFAULTS.benchmark;
+  if (!entryOf(c.methods, o.method)) o.method = DEFAULTS.method;
+  if (!entryOf(c.modes, o.mode)) o.mode = DEFAULTS.mode;
 }
 
 /** Records the wall time of one worker step. */

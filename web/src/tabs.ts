@@ -4,6 +4,7 @@
  * the worker), so the page becomes interactive sooner.
  */
 import type { Frame } from 'logic-lfd';
+import { catalogueReady } from './catalogue';
 import type { Charts } from './charts';
 import { SearchRunner, type WorkerClient } from './client';
 import type { ComparePanel } from './compare';
@@ -97,14 +98,17 @@ export class Tabs {
 
   /** Loads the Compare view's chunk and mounts it (once). */
   private loadCompare(): Promise<ComparePanel> {
-    this.comparePromise ??= import('./compare').then(({ ComparePanel }) => {
-      const c = new ComparePanel({
-        scenario: () => {
-          const o = this.p.state.options;
-          return { benchmark: o.benchmark, seed: o.seed, ...(o.blocks != null ? { blocks: o.blocks } : {}) };
+    this.comparePromise ??= Promise.all([import('./compare'), catalogueReady]).then(([{ ComparePanel }, catalogue]) => {
+      const c = new ComparePanel(
+        {
+          scenario: () => {
+            const o = this.p.state.options;
+            return { benchmark: o.benchmark, seed: o.seed, ...(o.blocks != null ? { blocks: o.blocks } : {}) };
+          },
+          episode: () => this.p.client.call('episode', {}),
         },
-        episode: () => this.p.client.call('episode', {}),
-      });
+        catalogue,
+      );
       this.p.ui.compareSlot.append(c.root);
       return c;
     });

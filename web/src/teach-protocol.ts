@@ -3,12 +3,12 @@
  * `Teacher` (the demonstration recorder) lives in the same worker as the Session, and "Run"
  * replaces the Session by one running the taught task.
  */
-import type { Frame, TaughtInfo, TaughtRunOptions, TeachEdit, TeachFinish, TeachResult, TeachState } from 'logic-lfd';
+import type { Benchmark, Frame, TaughtInfo, TaughtRunOptions, TeachEdit, TeachFinish, TeachResult, TeachState } from 'logic-lfd';
 
 export interface TeachApi {
   /** Starts fetching Teach mode's wasm module (the tab opened), so that Record need not wait. */
   teachLoad: { args: Record<string, never>; result: null };
-  teachStart: { args: { benchmark: 'b1' | 'b2' | 'b3'; scene?: string }; result: TeachState };
+  teachStart: { args: { benchmark: Benchmark; scene?: string }; result: TeachState };
   teachPush: { args: { edit: TeachEdit }; result: TeachResult };
   teachUndo: { args: Record<string, never>; result: TeachResult };
   teachFinish: { args: Record<string, never>; result: TeachFinish };

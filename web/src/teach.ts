@@ -10,7 +10,7 @@
  * taught demo.json, and Run: a closed-loop session of the taught task from a random, the taught or
  * a user-arranged initial world, disturbed with the usual drag and L1–L4 buttons.
  */
-import type { Frame, SessionOptions, TaughtInfo, TeachEdit, TeachError, TeachResult, TeachState, WorldSnapshot } from 'logic-lfd';
+import type { Benchmark, Frame, SessionOptions, TaughtInfo, TeachEdit, TeachError, TeachResult, TeachState, WorldSnapshot } from 'logic-lfd';
 import type { WorkerClient } from './client';
 import type { View, DropRequest } from './view';
 import { button, downloadJson, el, guard, isShortcut } from './dom';
@@ -20,7 +20,6 @@ import { GripperStream } from './teach-gripper-stream';
 import { buildTeachUi, TEACH_MODES, type TeachMode, type TeachUi } from './teach-layout';
 import { checkedGoal, errorContent, goalItems, recordingItems, taughtItems } from './teach-listing';
 
-type Benchmark = SessionOptions['benchmark'];
 type Start = 'random' | 'taught' | 'arrange';
 
 export interface TeachHost {
@@ -270,7 +269,7 @@ export class TeachPanel {
       this.demoJson = json;
       this.clearError();
     } catch (e) {
-      this.showError({ kind: 'input', message: (e as Error).message, added: [], removed: [] });
+      this.showError({ kind: 'input', message: (e as Error).message, t: null, added: [], removed: [] });
       this.renderGoal();
     }
   }
@@ -296,7 +295,7 @@ export class TeachPanel {
       this.info = await this.host.client.call('teachInfo', { demoJson: text });
     } catch (e) {
       const kept = this.info ? 'Nothing was loaded: the demonstration listed below is unchanged.' : 'Nothing was loaded.';
-      this.showError({ kind: 'input', message: `${file.name}: ${(e as Error).message}`, added: [], removed: [] }, kept);
+      this.showError({ kind: 'input', message: `${file.name}: ${(e as Error).message}`, t: null, added: [], removed: [] }, kept);
       return;
     }
     this.demoJson = text;

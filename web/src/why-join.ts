@@ -3,9 +3,8 @@
  * from S_C to each L_k, the demonstration left after it (c_k) and the total — and one sentence on
  * why the mode joined the L_k it did. Loaded only when the user first asks (a chunk of its own).
  */
-import type { Alternative, Replan } from 'logic-lfd';
+import type { Alternative, Mode, Replan } from 'logic-lfd';
 import { el } from './dom';
-import type { Mode } from './state';
 
 const name = (a: Alternative): string => (a.k == null ? 'G' : `L${a.k}`);
 

@@ -2,15 +2,15 @@
  * The Web Worker that owns the wasm module and the closed-loop Session: planning and simulation
  * never run on the page's thread, so the page never freezes. It plays the session in real time
  * (scaled by `speed`) and pushes a frame after every tick. Its first module is the page's
- * size-built first load ('logic-lfd-page': the Session on B1's template task, `benchmark` and
- * `blockRange`, whose block counts it sends with its `ready` message);
+ * size-built first load ('logic-lfd-page': the Session on B1's template task, `benchmark`,
+ * `blockRange` and `catalogue`, whose block counts and catalogue it sends with its `ready` message);
  * teach-worker.ts fetches the full one (built for speed) when Teach mode, `Session.replay`, the
  * PDDL tab's calls, a loaded scene, B2, B3 or an N-block task need it, and speed-up.ts moves the
  * session onto it after the first frame.
  */
 import init, * as lfd from 'logic-lfd-page';
-import type { Frame, SessionOptions } from 'logic-lfd';
-import type { Api, ApiKind, FromWorker, Level, ToWorker } from './protocol';
+import type { Frame, Level, SessionOptions } from 'logic-lfd';
+import type { Api, ApiKind, BlockRanges, FromWorker, ToWorker } from './protocol';
 import { teachHandlers, teachLastPanic, teachMemoryBytes, teachModule } from './teach-worker';
 import { type FullSession, fullModule, speedUp, speedUpState } from './speed-up';
 
@@ -19,6 +19,8 @@ const post = (m: FromWorker) => (self as unknown as Worker).postMessage(m);
 /** The live session: on the first-load module until speed-up.ts moves it onto the full one. */
 let session: lfd.Session | FullSession | null = null;
 let wasmMemory: WebAssembly.Memory | null = null;
+/** The disturbance levels of the module's catalogue (read once it is loaded). */
+let levels: Level[] = [];
 let playing = false;
 let speed = 1;
 let timer: ReturnType<typeof setTimeout> | null = null;
@@ -150,8 +152,7 @@ const handlers: Handlers = {
   },
   levels: () => {
     const s = need();
-    const why = (l: Level) => s.canInject(l) ?? null;
-    return { l1: why('l1'), l2: why('l2'), l3: why('l3'), l4: why('l4') };
+    return Object.fromEntries(levels.map((l) => [l, s.canInject(l) ?? null])) as Record<Level, string | null>;
   },
   reset: ({ seed }) => {
     stop();
@@ -203,8 +204,10 @@ async function handle(req: ToWorker): Promise<void> {
 const ready = init().then(
   (wasm) => {
     wasmMemory = wasm.memory;
-    const blockRanges = { b1: lfd.blockRange('b1'), b2: lfd.blockRange('b2'), b3: lfd.blockRange('b3') };
-    post({ type: 'ready', version: lfd.version(), blockRanges });
+    const catalogue = lfd.catalogue();
+    levels = catalogue.levels.map((l) => l.id);
+    const blockRanges = Object.fromEntries(catalogue.benchmarks.map(({ id }) => [id, lfd.blockRange(id)])) as BlockRanges;
+    post({ type: 'ready', version: lfd.version(), blockRanges, catalogue });
   },
   (e) => post({ type: 'fatal', message: `could not load the wasm module: ${errorMessage(e)}` }),
 );

@@ -17,6 +17,7 @@ use crate::plan::Goal;
 
 /// What became of one candidate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(rename_all = "kebab-case")]
 pub enum AlternativeStatus {
     /// The plan joins this one.
@@ -34,6 +35,7 @@ pub enum AlternativeStatus {
 
 /// One candidate L_k of a replan.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct Alternative {
     /// The demonstration state index (`None`: the task goal G itself).
     pub k: Option<usize>,

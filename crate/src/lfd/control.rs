@@ -24,10 +24,10 @@ use std::collections::BTreeSet;
 use crate::plan::{replay, Algorithm, BannedTask, Clock, HeuristicKind, Operator, State, Task};
 use crate::tamp::{Binder, Binding, BoundPlan, TimedBinder};
 
+use super::catalogue::{Method, Mode};
 use super::demo::DemoTrace;
-use super::logic::Mode;
 use super::symbolic::LogicLfd;
-use super::{LfdError, Method};
+use super::LfdError;
 
 mod baselines;
 #[cfg(test)]

@@ -37,12 +37,14 @@ use crate::sim::reach::handleable;
 use crate::sim::snapshot::{BodyKind, BodySnapshot, PoseSnapshot, ShapeSnapshot};
 use crate::sim::{SceneGraph, World};
 
+pub use super::catalogue::Level;
 use super::demo::DemoTrace;
 
 pub(crate) mod motion;
 
 /// A push of an arm's hand: its tool centre point displaced while the arm moves.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct TcpPush {
     /// The arm pushed.
     pub arm: String,
@@ -54,44 +56,9 @@ pub struct TcpPush {
     pub displacement_mm: f64,
 }
 
-/// Disturbance levels of the paper (§IV-B); JSON and CLI: `l1`..`l4`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Level {
-    /// Motion level: positions change, facts do not.
-    L1,
-    /// Slight task level: facts change to a state seen in the demonstration.
-    L2,
-    /// Severe task level: facts change to a state the demonstration never visits.
-    L3,
-    /// Extreme task level: a new block appears in the way.
-    L4,
-}
-
-impl Level {
-    /// All levels.
-    pub const ALL: [Level; 4] = [Level::L1, Level::L2, Level::L3, Level::L4];
-
-    /// `l1`..`l4`.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Level::L1 => "l1",
-            Level::L2 => "l2",
-            Level::L3 => "l3",
-            Level::L4 => "l4",
-        }
-    }
-
-    /// Parses `l1`..`l4` (case-insensitive).
-    pub fn parse(s: &str) -> Option<Level> {
-        Level::ALL
-            .into_iter()
-            .find(|l| l.as_str().eq_ignore_ascii_case(s))
-    }
-}
-
 /// What an injected disturbance did.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct Injection {
     /// `l1`..`l4`.
     pub level: Level,

@@ -26,42 +26,14 @@ use crate::plan::{
 };
 
 use super::alternatives::{self, Alternative};
+use super::catalogue::Mode;
 use super::demo::MultiGoalSpec;
 use super::LfdError;
-
-/// How the multi-goal search picks among the demonstration states.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Mode {
-    /// The paper: the first demonstration state reached, all goals of equal priority.
-    #[default]
-    Paper,
-    /// Minimise (cost to reach L_k) + (demo actions left after k) in the same single search.
-    Prioritised,
-}
-
-impl Mode {
-    /// The name used on the CLI and in JSON.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Mode::Paper => "paper",
-            Mode::Prioritised => "prioritised",
-        }
-    }
-
-    /// Parses `paper` or `prioritised` (also `prioritized`).
-    pub fn parse(s: &str) -> Option<Self> {
-        match s {
-            "paper" => Some(Mode::Paper),
-            "prioritised" | "prioritized" => Some(Mode::Prioritised),
-            _ => None,
-        }
-    }
-}
 
 /// Where a Logic-LfD plan came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify))]
 pub enum PlanSource {
     /// The goal already holds: empty plan.
     GoalHolds,

@@ -41,7 +41,7 @@ pub use super::disturb::motion::Moving;
 pub use super::disturb::{Injection, TcpPush};
 pub use super::skill::SkillKind;
 pub use crate::sim::benchmark::BenchmarkSources;
-pub use frame::{EePoint, Frame, PerturbOutcome, Status};
+pub use frame::{EePoint, Frame, PerturbOutcome, Status, StatusKind};
 pub use log::{ActionRecord, EpisodeEvent, EpisodeLog, EpisodeResult};
 pub use options::{demo_actions, mix, sources_for, SessionError, SessionOptions, SessionParams};
 
@@ -51,9 +51,9 @@ use std::sync::Arc;
 use crate::sim::snapshot::WorldSnapshot;
 use crate::sim::{Refused, SceneGraph, World};
 
+use super::catalogue::Level;
 use super::control::{Controller, FailReason, TaskBuilder};
 use super::demo::DemoTrace;
-use super::disturb::Level;
 use super::exec::ActionExec;
 use super::model::DomainModel;
 use super::skill::SkillLibrary;

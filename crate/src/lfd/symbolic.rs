@@ -17,8 +17,9 @@ use crate::plan::{
     Outcome, SearchConfig, SearchResult, State, Task, ValidationReport,
 };
 
+use super::catalogue::Mode;
 use super::demo::{DemoTrace, MultiGoalSpec};
-use super::logic::{plan_with, LfdPlan, Mode, PlanSource, Request};
+use super::logic::{plan_with, LfdPlan, PlanSource, Request};
 use super::LfdError;
 use crate::plan::SearchStats;
 

@@ -43,11 +43,12 @@ pub struct CaseInput {
 
 /// Distances of the batch trajectory to one input target.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct TargetError {
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
+pub struct LqtTargetError {
     /// The target's step.
     pub t: usize,
-    /// `"via"` or `"goal"`.
-    pub role: &'static str,
+    /// Via-point or goal.
+    pub role: TargetRole,
     /// Euclidean distance between the position at `t` and the target position.
     pub pos_dist: f64,
     /// Euclidean distance between the velocity at `t` and the target velocity (when given).
@@ -57,7 +58,8 @@ pub struct TargetError {
 
 /// One feedback rollout in the output.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct RolloutOut {
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
+pub struct LqtRollout {
     /// States (T×nx).
     pub x: Vec<Vec<f64>>,
     /// Controls (N×D).
@@ -70,21 +72,27 @@ pub struct RolloutOut {
 
 /// The `feedback` object of the output.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct FeedbackOut {
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
+pub struct LqtFeedback {
     /// F ((N·D)×(nx+1)).
     #[serde(rename = "F")]
     pub f: Vec<Vec<f64>>,
     /// The gains K̃_t (N×D×(nx+1)).
     pub gains: Vec<Vec<Vec<f64>>>,
     /// Rollout from `x_init` without perturbation.
-    pub nominal: RolloutOut,
+    pub nominal: LqtRollout,
     /// Rollout from `x_init` with the perturbation (when given).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub perturbed: Option<RolloutOut>,
+    pub perturbed: Option<LqtRollout>,
 }
 
 /// The output object of `logic-lfd lqt`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
+#[cfg_attr(
+    feature = "wasm-core",
+    derive(tsify::Tsify),
+    tsify(missing_as_null, rename = "LqtOutput")
+)]
 pub struct CaseOutput {
     /// A (nx×nx).
     #[serde(rename = "A")]
@@ -105,10 +113,10 @@ pub struct CaseOutput {
     /// Cost J of the batch solution.
     pub cost: f64,
     /// One entry per input target, in order.
-    pub target_errors: Vec<TargetError>,
+    pub target_errors: Vec<LqtTargetError>,
     /// Present when the input has a `feedback` object.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub feedback: Option<FeedbackOut>,
+    pub feedback: Option<LqtFeedback>,
 }
 
 /// A JSON value with its dotted path, for error messages.
@@ -412,9 +420,9 @@ pub fn run_case(input: &CaseInput) -> Result<CaseOutput, LqtError> {
     let target_errors = input
         .targets
         .iter()
-        .map(|tg| TargetError {
+        .map(|tg| LqtTargetError {
             t: tg.t,
-            role: tg.role.name(),
+            role: tg.role,
             pos_dist: dist(&sol.x, tg.t, 0, &tg.pos),
             vel_dist: tg.vel.as_ref().map(|v| dist(&sol.x, tg.t, dim, v)),
         })
@@ -428,7 +436,7 @@ pub fn run_case(input: &CaseInput) -> Result<CaseOutput, LqtError> {
         None => None,
         Some(fb) => {
             let gains = lqt.feedback(&input.mu)?;
-            let out = |x: DMatrix<f64>, u: DMatrix<f64>| RolloutOut {
+            let out = |x: DMatrix<f64>, u: DMatrix<f64>| LqtRollout {
                 pos: pos_of(&x),
                 final_goal_pos_dist: last_goal.map(|g| dist(&x, g.t, 0, &g.pos)),
                 x: rows(&x),
@@ -442,7 +450,7 @@ pub fn run_case(input: &CaseInput) -> Result<CaseOutput, LqtError> {
                 }
                 None => None,
             };
-            Some(FeedbackOut {
+            Some(LqtFeedback {
                 f: rows(&gains.f_matrix()),
                 gains: (0..gains.n_controls())
                     .filter_map(|t| gains.gain(t))

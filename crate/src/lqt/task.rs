@@ -22,6 +22,7 @@ use serde::{Deserialize, Serialize};
 /// target the feedback rollouts are measured against).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify))]
 pub enum TargetRole {
     /// An intermediate point to pass through.
     Via,

@@ -35,6 +35,7 @@ use serde_json::Value;
 
 /// An arm by index or by name.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(untagged)]
 pub enum ArmRef {
     /// Index in the scene's arm list.
@@ -55,6 +56,7 @@ impl ArmRef {
 
 /// A gripper pose: TCP position and yaw (the gripper points straight down).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct GripperPose {
     /// TCP position, world frame (m).
     pub position: [f64; 3],
@@ -64,6 +66,7 @@ pub struct GripperPose {
 
 /// Open or closed gripper.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(rename_all = "lowercase")]
 pub enum GripperState {
     /// Fingers open (a held body is released).
@@ -93,6 +96,7 @@ impl GripperState {
 
 /// A block displaced by the user's hand.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct HandMove {
     /// The block (or hook).
     pub body: String,
@@ -102,6 +106,7 @@ pub struct HandMove {
 
 /// One recorded sample.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(untagged)]
 pub enum RawSample {
     /// The gripper handle of one arm.

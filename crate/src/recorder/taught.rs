@@ -19,13 +19,13 @@
 use serde::{Deserialize, Serialize};
 
 use super::{RecorderError, SkillFit, TaughtDemo};
+use crate::lfd::catalogue::{Level, Method, Mode};
 use crate::lfd::demo::DemoTrace;
-use crate::lfd::disturb::Level;
 use crate::lfd::model::DomainModel;
 use crate::lfd::session::{
     mix, BenchmarkSources, Session, SessionOptions, SessionParams, SkillKind,
 };
-use crate::lfd::{Method, Mode, TaskBuilder as _};
+use crate::lfd::TaskBuilder as _;
 use crate::lqt::{Skill, SkillParams};
 use crate::sim::benchmark::Benchmark;
 use crate::sim::demo::Demonstration;
@@ -34,6 +34,7 @@ use nalgebra::{Isometry3, Point3};
 
 /// A loaded and checked taught demonstration, as the page lists it.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct TaughtInfo {
     /// `b1`, `b2` or `b3`: the benchmark whose world and domain the demonstration uses.
     pub benchmark: Benchmark,
@@ -49,6 +50,7 @@ pub struct TaughtInfo {
 
 /// How a taught task is run (JSON: every key optional).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(default, deny_unknown_fields)]
 pub struct TaughtRunOptions {
     /// `logic-lfd` (default), `linear`, `rlds` or `tamp`.

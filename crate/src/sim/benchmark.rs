@@ -28,6 +28,7 @@ pub const BLOCK_SIZE: f64 = 0.06;
 /// One of the paper's benchmarks (JSON and CLI: `b1`, `b2`, `b3`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify))]
 pub enum Benchmark {
     /// Tower construction: one arm, four blocks.
     B1,

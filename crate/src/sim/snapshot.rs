@@ -23,6 +23,7 @@ pub const SNAPSHOT_VERSION: u32 = 1;
 
 /// A rigid pose: position plus unit quaternion.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct PoseSnapshot {
     /// Position `[x, y, z]` in metres, world frame (or the parent frame where stated).
     pub position: [f64; 3],
@@ -33,6 +34,7 @@ pub struct PoseSnapshot {
 
 /// One box of a compound shape, posed in the body's own frame.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct PartSnapshot {
     /// Pose of the box centre in the body frame.
     pub pose: PoseSnapshot,
@@ -42,6 +44,7 @@ pub struct PartSnapshot {
 
 /// The geometry of a body, in its own frame (the body pose places it in the world).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(tag = "type", rename_all = "snake_case")]
 pub enum ShapeSnapshot {
     /// A box centred on the body origin.
@@ -58,6 +61,7 @@ pub enum ShapeSnapshot {
 
 /// What a body is; decides which rules apply to it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(rename_all = "snake_case")]
 pub enum BodyKind {
     /// A cube that can be grasped, stacked and pushed; a PDDL `block` object.
@@ -72,6 +76,7 @@ pub enum BodyKind {
 
 /// One body of the world (blocks, the hook, tables, shelves).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct BodySnapshot {
     /// Unique lower-case name; for blocks and the hook it is the PDDL object name (`a`, `hook`).
     pub name: String,
@@ -91,6 +96,7 @@ pub struct BodySnapshot {
 
 /// A capsule (segment swept by a sphere), used for the arm links.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct CapsuleSnapshot {
     /// First end point of the segment, world frame, metres.
     pub a: [f64; 3],
@@ -102,6 +108,7 @@ pub struct CapsuleSnapshot {
 
 /// A posed box in the world frame (a gripper finger).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct CuboidSnapshot {
     /// Pose of the box centre, world frame.
     pub pose: PoseSnapshot,
@@ -111,6 +118,7 @@ pub struct CuboidSnapshot {
 
 /// The horizontal workspace annulus used for the `(inreach arm x)` fact.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct ReachSnapshot {
     /// Smallest horizontal distance (m) from the arm's base axis to a block centre that counts as
     /// in reach.
@@ -122,6 +130,8 @@ pub struct ReachSnapshot {
 
 /// One 7-DoF Panda-like arm with a parallel gripper.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
+#[serde(from = "ArmIn")]
 pub struct ArmSnapshot {
     /// Unique lower-case name, the PDDL `arm` object (`panda`, `left`, `right`).
     pub name: String,
@@ -132,25 +142,22 @@ pub struct ArmSnapshot {
     /// Distance between the two finger pads in metres, 0 (closed) ..= 0.08 (open).
     pub gripper_opening: f64,
     /// Name of the body in the gripper, if any (it moves rigidly with the gripper).
-    #[serde(default)]
     pub holding: Option<String>,
     /// Workspace annulus for `(inreach arm x)`.
     pub reach: ReachSnapshot,
     /// *Derived*: the gripper's tool centre point (between the fingertips; `z` axis points out of
     /// the gripper, `y` axis joins the fingers), world frame.
-    #[serde(default = "identity_pose")]
     pub tcp: PoseSnapshot,
     /// *Derived*: the link capsules in the world frame, base to hand, for drawing.
-    #[serde(default)]
     pub links: Vec<CapsuleSnapshot>,
     /// *Derived*: the two finger boxes in the world frame.
-    #[serde(default)]
     pub fingers: Vec<CuboidSnapshot>,
 }
 
 /// A named rectangle of table top (B3's `left-table`, `handover`, `right-table`): a PDDL `region`
 /// object; a block resting on a table with its centre inside it is `(at x region)`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct RegionSnapshot {
     /// Unique lower-case name (the PDDL object).
     pub name: String,
@@ -164,26 +171,113 @@ pub struct RegionSnapshot {
 
 /// The whole world.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
+#[serde(from = "WorldIn")]
 pub struct WorldSnapshot {
     /// Format version, [`SNAPSHOT_VERSION`].
     pub version: u32,
     /// Scene name, e.g. `b1-tower`.
     pub name: String,
     /// Simulated time in seconds since the scene started.
-    #[serde(default)]
     pub time: f64,
     /// Fixed step of [`World::step`](super::World::step) in seconds (default 0.01).
-    #[serde(default = "default_dt")]
     pub dt: f64,
     /// Height of the floor (m); lost bodies lie on it.
     pub floor_z: f64,
     /// Named table regions (B3); empty elsewhere.
-    #[serde(default)]
     pub regions: Vec<RegionSnapshot>,
     /// Every body, in a stable order (fixed bodies first, then the hook, then blocks by name).
     pub bodies: Vec<BodySnapshot>,
     /// Every arm, in PDDL order.
     pub arms: Vec<ArmSnapshot>,
+}
+
+/// [`ArmSnapshot`] as a scene file may give it: the derived fields can be left out.
+#[derive(Deserialize)]
+struct ArmIn {
+    name: String,
+    base: PoseSnapshot,
+    joints: Vec<f64>,
+    gripper_opening: f64,
+    #[serde(default)]
+    holding: Option<String>,
+    reach: ReachSnapshot,
+    #[serde(default = "identity_pose")]
+    tcp: PoseSnapshot,
+    #[serde(default)]
+    links: Vec<CapsuleSnapshot>,
+    #[serde(default)]
+    fingers: Vec<CuboidSnapshot>,
+}
+
+// The snapshot types read scene files through these input shapes, so that their TypeScript
+// declarations (derived from the types themselves) say what a frame always holds.
+impl From<ArmIn> for ArmSnapshot {
+    fn from(a: ArmIn) -> Self {
+        let ArmIn {
+            name,
+            base,
+            joints,
+            gripper_opening,
+            holding,
+            reach,
+            tcp,
+            links,
+            fingers,
+        } = a;
+        ArmSnapshot {
+            name,
+            base,
+            joints,
+            gripper_opening,
+            holding,
+            reach,
+            tcp,
+            links,
+            fingers,
+        }
+    }
+}
+
+/// [`WorldSnapshot`] as a scene file may give it: time, step and regions can be left out.
+#[derive(Deserialize)]
+struct WorldIn {
+    version: u32,
+    name: String,
+    #[serde(default)]
+    time: f64,
+    #[serde(default = "default_dt")]
+    dt: f64,
+    floor_z: f64,
+    #[serde(default)]
+    regions: Vec<RegionSnapshot>,
+    bodies: Vec<BodySnapshot>,
+    arms: Vec<ArmSnapshot>,
+}
+
+impl From<WorldIn> for WorldSnapshot {
+    fn from(w: WorldIn) -> Self {
+        let WorldIn {
+            version,
+            name,
+            time,
+            dt,
+            floor_z,
+            regions,
+            bodies,
+            arms,
+        } = w;
+        WorldSnapshot {
+            version,
+            name,
+            time,
+            dt,
+            floor_z,
+            regions,
+            bodies,
+            arms,
+        }
+    }
 }
 
 fn default_dt() -> f64 {

@@ -28,6 +28,8 @@ pub fn bench_rows(
     to_js(&rows)
 }
 
+// The row types are `experiments::hot_paths`'s, which derive no declarations: these are written
+// by hand to match them.
 #[wasm_bindgen(typescript_custom_section)]
 const TS_BENCH: &'static str = r#"
 /** The IPC texts of the planning rows of `benchRows`. */

@@ -3,6 +3,7 @@
 
 use super::args::string_arg;
 use super::{js_err, to_js};
+use crate::sim::benchmark::Benchmark;
 use serde::Serialize;
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
@@ -10,12 +11,11 @@ use wasm_bindgen::prelude::*;
 /// A benchmark's initial scene and PDDL files (see [`benchmark()`]).
 #[derive(Debug, Serialize, Tsify)]
 pub struct BenchmarkInfo {
-    /// `b1`, `b2` or `b3`.
-    pub id: &'static str,
+    /// The benchmark.
+    pub id: Benchmark,
     /// The directory name, e.g. `b1-tower`.
     pub name: &'static str,
     /// The initial world, as the page draws it.
-    #[tsify(type = "WorldSnapshot")]
     pub scene: crate::sim::snapshot::WorldSnapshot,
     /// `domains/<name>/domain.pddl`.
     pub domain: &'static str,
@@ -30,12 +30,12 @@ pub struct BenchmarkInfo {
 /// scene and its PDDL domain and problem. Rejects an unknown id.
 #[wasm_bindgen(unchecked_return_type = "BenchmarkInfo")]
 pub fn benchmark(
-    #[wasm_bindgen(unchecked_param_type = "\"b1\" | \"b2\" | \"b3\"")] id: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Benchmark")] id: JsValue,
 ) -> Result<JsValue, JsValue> {
     let b = benchmark_arg("benchmark", &id)?;
     b.available().map_err(|e| js_err(e.message))?;
     to_js(&BenchmarkInfo {
-        id: b.as_str(),
+        id: b,
         name: b.dir_name(),
         scene: b.scene_snapshot(),
         domain: b.domain_pddl(),
@@ -53,7 +53,7 @@ pub fn benchmark(
 /// without one (B2). Rejects an unknown id.
 #[wasm_bindgen(js_name = blockRange, unchecked_return_type = "[number, number] | null")]
 pub fn block_range(
-    #[wasm_bindgen(unchecked_param_type = "\"b1\" | \"b2\" | \"b3\"")] id: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "Benchmark")] id: JsValue,
 ) -> Result<JsValue, JsValue> {
     let b = benchmark_arg("blockRange", &id)?;
     // B2's "no N-block variant" is an answer here, not an error.
@@ -64,8 +64,8 @@ pub fn block_range(
 }
 
 /// The benchmark `id` names (argument `id` of `func`), or a `TypeError` / `Error` saying why not.
-fn benchmark_arg(func: &str, id: &JsValue) -> Result<crate::sim::benchmark::Benchmark, JsValue> {
+fn benchmark_arg(func: &str, id: &JsValue) -> Result<Benchmark, JsValue> {
     let id = string_arg(func, "id", id)?;
-    crate::sim::benchmark::Benchmark::parse(&id)
+    Benchmark::parse(&id)
         .ok_or_else(|| js_err(format!("unknown benchmark `{id}` (expected b1, b2 or b3)")).into())
 }

@@ -9,6 +9,7 @@
 
 use serde::Serialize;
 use serde_json::{Map, Value};
+use tsify::Tsify;
 use wasm_bindgen::prelude::*;
 
 mod class;
@@ -16,18 +17,21 @@ mod diagnostics;
 mod input;
 mod query;
 
-use diagnostics::{location_message, options_diag, Diag};
+use diagnostics::{location_message, options_diag, LogicLfdDiagnostic};
 use input::{
     count_option, files_option, known_keys, object_fields, optional_text, search_options, texts,
     Texts, FILE_KEYS, LFD_KEYS,
 };
-use query::{answer, prepare, Current, Fixed, LfdResult};
+use query::{answer, prepare, Current, Fixed, LogicLfdResult};
 
 use super::args::type_error;
 use super::to_js;
 
+// The inputs are read key by key (`input.rs`: a wrong type names the key, a bad option is an
+// `options` result), not deserialised into a Rust type, and the class's error is a JS `Error`
+// with two properties: their declarations are written here, naming the derived types they use.
 #[wasm_bindgen(typescript_custom_section)]
-const TS_LOGIC_LFD: &'static str = r#"
+const TS_LOGIC_LFD_INPUT: &'static str = r#"
 /** A Logic-LfD task: a domain, a problem and one demonstration (what the `LogicLfd` class reads). */
 export interface LogicLfdSetup {
   /** PDDL domain text. */
@@ -43,11 +47,11 @@ export interface LogicLfdSetup {
 export interface LogicLfdOptions {
   /** `paper` (default: the first demonstration state reached) or `prioritised` (the cheapest
    *  prefix + demonstration left). */
-  mode?: 'paper' | 'prioritised';
+  mode?: Mode;
   /** Default `astar`. */
-  search?: 'bfs' | 'ucs' | 'astar' | 'gbfs' | 'lazy-gbfs';
+  search?: Algorithm;
   /** Default `lmcut` for `astar`, `hff` otherwise. */
-  heuristic?: 'blind' | 'hmax' | 'hadd' | 'hff' | 'lmcut';
+  heuristic?: HeuristicKind;
   /** Node budget (default unbounded). */
   maxExpanded?: number;
   /** Time budget in ms (default 30000). */
@@ -68,68 +72,10 @@ export interface LogicLfdInput extends LogicLfdSetup, LogicLfdOptions {
    *  initial state. Both given: `TypeError`. */
   after?: string;
 }
-/** A located message about one of the inputs. */
-export interface LogicLfdDiagnostic {
-  source: 'domain' | 'problem' | 'demo' | 'state' | 'options';
-  /** The file name used in the message. */
-  file: string;
-  /** 1-based line and column (0/0 when the message is not about a place). */
-  line: number; col: number;
-  message: string;
-}
 /** What the `LogicLfd` class throws for bad input: `message` is `file:line:col: message`. */
 export interface LogicLfdError extends Error {
   kind: 'parse' | 'demo' | 'state' | 'options';
   diagnostics: LogicLfdDiagnostic[];
-}
-/** The demonstration as Logic-LfD reads it. */
-export interface LogicLfdDemo {
-  /** a_1 … a_N. */
-  actions: string[];
-  /** L_0 … L_N: the fluents before a_1, after a_1, …, after a_N (sorted names). */
-  states: string[][];
-  /** c_0 … c_N: the cost of the demonstration left after L_k. */
-  costs: number[];
-}
-/** Search statistics; `timeMs` is the search time (parsing and grounding excluded). */
-export interface LogicLfdStats { expanded: number; generated: number; evaluated: number; timeMs: number; }
-/** What `logicLfd` found. */
-export interface LogicLfdResult {
-  /** `true` iff a plan was produced. */
-  ok: boolean;
-  kind: 'plan' | 'parse' | 'demo' | 'state' | 'options' | 'unsolvable' | 'budget';
-  /** One line for people (`''` when ok). */
-  message: string;
-  /** Located errors (empty when ok). */
-  diagnostics: LogicLfdDiagnostic[];
-  /** `null` when the inputs did not parse. */
-  demo: LogicLfdDemo | null;
-  /** The problem's static facts. */
-  statics: string[];
-  /** Every fluent atom of the grounded task. */
-  fluents: string[];
-  /** S_C's atoms without the problem's static facts, sorted. */
-  state: string[];
-  /** The actions applicable in S_C. */
-  applicable: string[];
-  /** LogicIn(S_C): the largest k with L_k ⊆ S_C. */
-  logicIn: number | null;
-  /** The demonstration state joined (`null`: G directly, or no plan). */
-  k: number | null;
-  source: 'goal-holds' | 'logic-in' | 'multi-goal' | null;
-  /** New actions to L_k. */
-  prefix: string[];
-  /** The demonstration's actions after L_k. */
-  suffix: string[];
-  /** `prefix` then `suffix`. */
-  plan: string[];
-  cost: number | null;
-  /** The lifted validator replayed `plan` from S_C to the goal; `null` without a plan or with
-   *  `validate: false`. */
-  valid: boolean | null;
-  stats: LogicLfdStats;
-  /** With `compare`: classical planning from S_C to G with the same search. */
-  scratch: { ok: boolean; plan: string[]; cost: number | null; stats: LogicLfdStats } | null;
 }
 /** What `logicLfdPerturb` reads. */
 export interface LogicLfdPerturbInput {
@@ -143,31 +89,37 @@ export interface LogicLfdPerturbInput {
   /** File names used in diagnostics. */
   files?: { domain?: string; problem?: string; demo?: string };
 }
-/** One drawn state: its fluents, the demonstration state its walk started from, the walk's length. */
-export interface LogicLfdPerturbed { facts: string[]; fromK: number; steps: number; }
-/** What `logicLfdPerturb` drew. */
-export interface LogicLfdPerturbResult {
-  ok: boolean; message: string; diagnostics: LogicLfdDiagnostic[]; states: LogicLfdPerturbed[];
-}
 "#;
 
 /// The longest random walk of [`logic_lfd_perturb`] when `maxSteps` is not given.
 pub const DEFAULT_PERTURB_STEPS: usize = 8;
 
-#[derive(Debug, Serialize)]
+/// One drawn state: its fluents, the demonstration state its walk started from, the walk's
+/// length.
+#[derive(Debug, Serialize, Tsify)]
 #[serde(rename_all = "camelCase")]
-struct PerturbedOut {
+#[tsify(missing_as_null)]
+struct LogicLfdPerturbed {
+    /// The state's fluents.
     facts: Vec<String>,
+    /// The demonstration state L_k the walk started from.
     from_k: usize,
+    /// Random actions taken.
     steps: usize,
 }
 
-#[derive(Debug, Default, Serialize)]
-struct PerturbResult {
+/// What `logicLfdPerturb` drew.
+#[derive(Debug, Default, Serialize, Tsify)]
+#[tsify(missing_as_null)]
+struct LogicLfdPerturbResult {
+    /// `true` iff the inputs were read.
     ok: bool,
+    /// One line for people (`''` when ok).
     message: String,
-    diagnostics: Vec<Diag>,
-    states: Vec<PerturbedOut>,
+    /// Located errors (empty when ok).
+    diagnostics: Vec<LogicLfdDiagnostic>,
+    /// The states drawn.
+    states: Vec<LogicLfdPerturbed>,
 }
 
 /// Logic-LfD on any PDDL domain: reads the domain, the problem, one demonstration and the
@@ -201,11 +153,11 @@ pub fn logic_lfd(
         .and_then(|f| Ok((f, search_options(&m)?)));
     let (files, o) = match options {
         Ok(x) => x,
-        Err(e) => return to_js(&LfdResult::options_failure(e)),
+        Err(e) => return to_js(&LogicLfdResult::options_failure(e)),
     };
     match prepare(&files, &texts) {
         Ok(lfd) => to_js(&answer(&lfd, &files, current, &o).with(&Fixed::of(&lfd))),
-        Err((kind, d)) => to_js(&LfdResult::input_failure(kind, d)),
+        Err((kind, d)) => to_js(&LogicLfdResult::input_failure(kind, d)),
     }
 }
 
@@ -227,7 +179,7 @@ pub fn logic_lfd_perturb(
     to_js(&perturb_impl(&m, &texts))
 }
 
-fn perturb_impl(m: &Map<String, Value>, texts: &Texts) -> PerturbResult {
+fn perturb_impl(m: &Map<String, Value>, texts: &Texts) -> LogicLfdPerturbResult {
     let options = known_keys(m, &PERTURB_KEYS, "input").and_then(|()| {
         let files = files_option(m, &["domain", "problem", "demo"])?;
         let count = count_option(m, "count")?.ok_or("`count` is required")?;
@@ -238,32 +190,32 @@ fn perturb_impl(m: &Map<String, Value>, texts: &Texts) -> PerturbResult {
     let (files, count, seed, max_steps) = match options {
         Ok(o) => o,
         Err(e) => {
-            return PerturbResult {
+            return LogicLfdPerturbResult {
                 message: e.clone(),
                 diagnostics: vec![options_diag(e)],
-                ..PerturbResult::default()
+                ..LogicLfdPerturbResult::default()
             }
         }
     };
     match prepare(&files, texts) {
-        Ok(lfd) => PerturbResult {
+        Ok(lfd) => LogicLfdPerturbResult {
             ok: true,
             message: String::new(),
             diagnostics: vec![],
             states: lfd
                 .perturb(count, seed, max_steps)
                 .into_iter()
-                .map(|p| PerturbedOut {
+                .map(|p| LogicLfdPerturbed {
                     facts: lfd.names(&p.state),
                     from_k: p.from_k,
                     steps: p.steps,
                 })
                 .collect(),
         },
-        Err((_, d)) => PerturbResult {
+        Err((_, d)) => LogicLfdPerturbResult {
             message: location_message(&d),
             diagnostics: vec![d],
-            ..PerturbResult::default()
+            ..LogicLfdPerturbResult::default()
         },
     }
 }

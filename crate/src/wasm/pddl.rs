@@ -10,54 +10,60 @@ use serde::{Deserialize, Serialize};
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
 
-#[wasm_bindgen(typescript_custom_section)]
-const TS_PLAN_OPTIONS: &'static str = r#"
-/** Options of `plan()`; every field is optional, unknown keys are refused. */
-export interface PlanOptions {
-  /** Default `astar`. */
-  search?: "bfs" | "ucs" | "astar" | "gbfs" | "lazy-gbfs";
-  /** Default `lmcut` for `astar`, `hff` otherwise. */
-  heuristic?: "blind" | "hmax" | "hadd" | "hff" | "lmcut";
-  /** Stop after this many expanded states (default: unbounded). */
-  maxExpanded?: number;
-  /** Stop after this many milliseconds (default 30 000). */
-  timeLimitMs?: number;
-  /** File name of the domain in diagnostics (default `domain.pddl`). */
-  domainFile?: string;
-  /** File name of the problem in diagnostics (default `problem.pddl`). */
-  problemFile?: string;
-  /** @deprecated Use `maxExpanded`; the snake_case name is removed in the next release. */
-  max_expanded?: number;
-  /** @deprecated Use `timeLimitMs`; the snake_case name is removed in the next release. */
-  time_limit_ms?: number;
-  /** @deprecated Use `domainFile`; the snake_case name is removed in the next release. */
-  domain_file?: string;
-  /** @deprecated Use `problemFile`; the snake_case name is removed in the next release. */
-  problem_file?: string;
-}
-"#;
-
-/// Options of [`plan()`]; every field is optional. Names are camelCase; the snake_case names
-/// of 0.1 are read too, for one release (TypeScript: `PlanOptions`, written above).
-#[derive(Debug, Default, Deserialize)]
+/// Options of [`plan()`]; every field is optional, unknown keys are refused. Names are
+/// camelCase; the snake_case names of 0.1 are read too, for one release.
+#[derive(Debug, Default, Deserialize, Tsify)]
 #[serde(default, deny_unknown_fields, rename_all = "camelCase")]
+#[tsify(missing_as_null)]
 pub struct PlanOptions {
-    /// `bfs|ucs|astar|gbfs|lazy-gbfs` (default `astar`).
+    /// Default `astar`.
+    #[tsify(type = "Algorithm")]
     pub search: Option<String>,
-    /// `blind|hmax|hadd|hff|lmcut` (default `lmcut` for `astar`, `hff` otherwise).
+    /// Default `lmcut` for `astar`, `hff` otherwise.
+    #[tsify(type = "HeuristicKind")]
     pub heuristic: Option<String>,
     /// Stop after this many expanded states (default: unbounded).
-    #[serde(alias = "max_expanded")]
     pub max_expanded: Option<u64>,
     /// Stop after this many milliseconds (default 30 000).
-    #[serde(alias = "time_limit_ms")]
     pub time_limit_ms: Option<f64>,
-    /// File names used in diagnostics (default `domain.pddl`, `problem.pddl`).
-    #[serde(alias = "domain_file")]
+    /// File name of the domain in diagnostics (default `domain.pddl`).
     pub domain_file: Option<String>,
-    /// See `domain_file`.
-    #[serde(alias = "problem_file")]
+    /// File name of the problem in diagnostics (default `problem.pddl`).
     pub problem_file: Option<String>,
+    /// @deprecated Use `maxExpanded`; the snake_case name is removed in the next release.
+    #[serde(rename = "max_expanded")]
+    pub old_max_expanded: Option<u64>,
+    /// @deprecated Use `timeLimitMs`; the snake_case name is removed in the next release.
+    #[serde(rename = "time_limit_ms")]
+    pub old_time_limit_ms: Option<f64>,
+    /// @deprecated Use `domainFile`; the snake_case name is removed in the next release.
+    #[serde(rename = "domain_file")]
+    pub old_domain_file: Option<String>,
+    /// @deprecated Use `problemFile`; the snake_case name is removed in the next release.
+    #[serde(rename = "problem_file")]
+    pub old_problem_file: Option<String>,
+}
+
+impl PlanOptions {
+    /// The options with each snake_case name of 0.1 moved to its camelCase one; both names
+    /// given is an error, as a repeated key is.
+    fn current(self) -> Result<PlanOptions, String> {
+        fn one<T>(new: Option<T>, old: Option<T>, name: &str) -> Result<Option<T>, String> {
+            match (new, old) {
+                (Some(_), Some(_)) => Err(format!("duplicate field `{name}`")),
+                (new, old) => Ok(new.or(old)),
+            }
+        }
+        Ok(PlanOptions {
+            search: self.search,
+            heuristic: self.heuristic,
+            max_expanded: one(self.max_expanded, self.old_max_expanded, "maxExpanded")?,
+            time_limit_ms: one(self.time_limit_ms, self.old_time_limit_ms, "timeLimitMs")?,
+            domain_file: one(self.domain_file, self.old_domain_file, "domainFile")?,
+            problem_file: one(self.problem_file, self.old_problem_file, "problemFile")?,
+            ..PlanOptions::default()
+        })
+    }
 }
 
 /// A located message about one of the inputs.
@@ -284,7 +290,9 @@ pub fn plan(
         PlanOptions::default()
     } else {
         // Misspelt keys are refused (deny_unknown_fields).
-        from_js(&options).map_err(|e| js_err(format!("options: {e}")))?
+        from_js::<PlanOptions>(&options)
+            .and_then(PlanOptions::current)
+            .map_err(|e| js_err(format!("options: {e}")))?
     };
     to_js(&plan_impl(&domain, &problem, o))
 }
@@ -315,6 +323,7 @@ pub fn check(
 /// The verdict of [`validate()`].
 #[derive(Debug, Serialize, Tsify)]
 #[serde(rename_all = "camelCase")]
+#[tsify(missing_as_null)]
 pub struct Validation {
     /// Every step applied and the goal holds.
     pub valid: bool,
@@ -325,7 +334,6 @@ pub struct Validation {
     /// Cost of the applied steps.
     pub cost: u64,
     /// The 1-based step whose precondition is false, if that is the verdict.
-    #[tsify(optional)]
     pub failed_step: Option<usize>,
     /// The false precondition or goal literals.
     pub false_literals: Vec<String>,

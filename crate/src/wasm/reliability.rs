@@ -4,8 +4,8 @@
 use super::args::string_arg;
 use super::{js_err, PerformanceClock};
 use crate::experiments::{run_episode, EpisodeSpec, Level};
+use crate::lfd::catalogue::{Listed, Method, Mode};
 use crate::lfd::session::SessionParams;
-use crate::lfd::{Method, Mode};
 use crate::sim::benchmark::Benchmark;
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
@@ -45,28 +45,13 @@ impl Default for EpisodeOptions {
 }
 
 fn spec_of(o: EpisodeOptions) -> Result<(EpisodeSpec, bool), String> {
-    let benchmark = Benchmark::parse(&o.benchmark).ok_or_else(|| {
-        format!(
-            "benchmark: unknown benchmark {:?} (b1, b2, b3)",
-            o.benchmark
-        )
-    })?;
-    let level = if o.level == "none" {
-        None
-    } else {
-        Some(
-            Level::parse(&o.level)
-                .ok_or_else(|| format!("level: unknown level {:?} (l1..l4, none)", o.level))?,
-        )
+    let benchmark = Benchmark::from_id(&o.benchmark).map_err(|e| format!("benchmark: {e}"))?;
+    let level = match o.level.as_str() {
+        "none" => None,
+        l => Some(Level::from_id(l).map_err(|e| format!("level: {e} or none"))?),
     };
-    let method = Method::parse(&o.method).ok_or_else(|| {
-        format!(
-            "method: unknown method {:?} (logic-lfd, linear, rlds, tamp)",
-            o.method
-        )
-    })?;
-    let mode = Mode::parse(&o.mode)
-        .ok_or_else(|| format!("mode: unknown mode {:?} (paper, prioritised)", o.mode))?;
+    let method = Method::from_id(&o.method).map_err(|e| format!("method: {e}"))?;
+    let mode = Mode::from_id(&o.mode).map_err(|e| format!("mode: {e}"))?;
     Ok((
         EpisodeSpec {
             benchmark,

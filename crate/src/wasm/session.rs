@@ -4,118 +4,102 @@
 
 use super::args::{number_arg, object_arg, string_arg, type_error, type_name};
 use super::{from_js, js_err, seed_of, to_js, PerformanceClock};
-use crate::lfd::control::Replan;
-use crate::lfd::session::{EePoint, Frame, PerturbOutcome, Status};
+use crate::lfd::control;
+use crate::lfd::session::{self as core, EePoint, Status};
 use crate::sim::snapshot::WorldSnapshot;
 use serde::Serialize;
+use tsify::Tsify;
 use wasm_bindgen::prelude::*;
 
-/// TypeScript declarations of the closed-loop session's data (the loop's `SessionOptions`, `Frame`
-/// and friends, see `lfd::session`).
-#[wasm_bindgen(typescript_custom_section)]
-const TS_SESSION: &'static str = r#"
-/** Which benchmark, method and mode a session runs. */
-export interface SessionOptions {
-  benchmark: "b1" | "b2" | "b3";
-  method: "logic-lfd" | "linear" | "rlds" | "tamp";
-  mode: "paper" | "prioritised";
-  seed: number;
-  skill?: "lqt" | "dmp";
-  /** Blocks of the generated N-block tower task, within `blockRange(benchmark)` (B2 has none); omitted: the benchmark's template task. */
-  blocks?: number | null;
-}
-/** What the loop is doing. */
-export interface Status {
-  kind: "idle" | "planning" | "executing" | "replanning" | "done" | "failed";
-  message: string;
-  step?: number | null;
-  of?: number | null;
-}
-/** The last replan: why, how long it took (ms), which demo state it joined, the plan it made and
- *  how many of its leading actions are new. (The episode log, `episodeJson()`, keeps the
- *  snake_case names of the CLI's JSON: `time_ms`, `new_actions`.) */
-export interface Replan { reason: string; timeMs: number; k?: number | null; plan: string[]; tick: number; newActions: number; /** Part of timeMs spent binding actions to motions. */ bindMs: number; /** States the searches expanded. */ expanded: number; /** Logic-LfD planned to G from scratch (its TAMP fallback). */ fallback: boolean; /** Logic-LfD: every candidate L_k (k null: G) with the costs its search found; empty for the other methods. */ alternatives: Alternative[]; }
-/** One candidate of a Logic-LfD replan: `joined` (the plan's), `reached` (the search found a path, the mode chose another), `unreached` (the search stopped first), `not-searched`, `not-cheaper` (prioritised mode's optimal search proved no plan through it cheaper). Costs: prefix S_C → L_k, suffix c_k (the demo left after L_k), total. */
-export interface Alternative { k: number | null; status: "joined" | "reached" | "unreached" | "not-searched" | "not-cheaper"; prefix?: number; suffix: number; total?: number; }
-/** One end-effector sample: where the arm's TCP is and where its controller aims. */
-export interface EePoint { arm: number; pos: [number, number, number]; target: [number, number, number]; }
-/** Everything the page draws after a step. */
-export interface Frame {
-  t: number;
-  tick: number;
-  world: WorldSnapshot;
-  status: Status;
-  plan: string[];
-  executing?: number | null;
-  demo: string[];
-  demoStates: string[][];
-  matchedK?: number | null;
-  facts: string[];
-  factsAdded: string[];
-  factsRemoved: string[];
-  lastReplan?: Replan | null;
-  replans: number;
-  ee: EePoint[];
-}
-/** An accepted drag: where the block went, what it rests on, what settled after it left. */
-export interface PerturbOutcome {
-  body: string; from: [number, number, number]; to: [number, number, number]; support: string;
-  alsoMoved: [string, [number, number, number]][];
-}
-/** What an injected disturbance (l1..l4) did. */
-export interface Injection { level: string; description: string; moved: [string, [number, number, number]][]; during?: string; push?: { arm: string; from: [number, number, number]; to: [number, number, number]; displacement_mm: number }; }
-"#;
-/// [`Frame`] as JS reads it: the same data with camelCase names.
-#[derive(Serialize)]
+/// Everything the page draws after a step (the session's frame, with camelCase names).
+#[derive(Serialize, Tsify)]
 #[serde(rename_all = "camelCase")]
-struct FrameOut<'a> {
+#[tsify(missing_as_null)]
+struct Frame<'a> {
+    /// Simulated seconds.
     t: f64,
+    /// 10 ms steps so far.
     tick: u64,
+    /// Every body pose, arm joints and link capsules, grippers.
     world: &'a WorldSnapshot,
+    /// The status line.
     status: &'a Status,
+    /// The current plan, actions as `(stack a b)`.
     plan: &'a [String],
+    /// Index into `plan` of the action being executed.
     executing: Option<usize>,
+    /// The demonstration's actions a_1..a_N.
     demo: &'a [String],
+    /// L_0..L_N (fluents).
     demo_states: &'a [Vec<String>],
+    /// Demonstration state index the current plan joins.
     matched_k: Option<usize>,
+    /// S_C, sorted.
     facts: &'a [String],
+    /// Facts that appeared since the previous frame.
     facts_added: &'a [String],
+    /// Facts that disappeared since the previous frame.
     facts_removed: &'a [String],
-    last_replan: Option<ReplanOut<'a>>,
+    /// The last replan.
+    last_replan: Option<Replan<'a>>,
+    /// Number of replans so far.
     replans: usize,
+    /// End effector positions and targets.
     ee: &'a [EePoint],
 }
 
-/// [`Replan`] with camelCase names (the episode log keeps the CLI's snake_case).
-#[derive(Serialize)]
+/// The last replan: why, how long it took, which demonstration state it joined, the plan it made
+/// and how many of its leading actions are new (the controller's replan with camelCase names; the
+/// episode log, `episodeJson()`, keeps the snake_case names of the CLI's JSON: `time_ms`,
+/// `new_actions`).
+#[derive(Serialize, Tsify)]
 #[serde(rename_all = "camelCase")]
-struct ReplanOut<'a> {
+#[tsify(missing_as_null)]
+struct Replan<'a> {
+    /// Why: `start`, `(on c d) no longer holds`, `(on e b) appeared`, …
     reason: &'a str,
+    /// Planning time in milliseconds.
     time_ms: f64,
+    /// The demonstration state index the plan joins.
     k: Option<usize>,
+    /// The new plan.
     plan: &'a [String],
+    /// Simulation tick when it happened.
     tick: u64,
+    /// How many leading actions of the plan are new (not from the demonstration).
     new_actions: usize,
+    /// Part of `timeMs` spent binding actions to motions.
     bind_ms: f64,
+    /// States the searches expanded.
     expanded: u64,
+    /// Logic-LfD planned to G from scratch (its TAMP fallback).
     fallback: bool,
+    /// Logic-LfD: every candidate L_k (k null: G) with the costs its search found; empty for the
+    /// other methods.
     alternatives: &'a [crate::lfd::alternatives::Alternative],
 }
 
-/// [`PerturbOutcome`] with camelCase names.
-#[derive(Serialize)]
+/// An accepted drag: where the block went, what it rests on, what settled after it left (the
+/// world's move outcome with camelCase names).
+#[derive(Serialize, Tsify)]
 #[serde(rename_all = "camelCase")]
-struct PerturbOut<'a> {
+#[tsify(missing_as_null)]
+struct PerturbOutcome<'a> {
+    /// The block moved.
     body: &'a str,
+    /// Its centre before (m).
     from: [f64; 3],
+    /// Its centre after settling (m).
     to: [f64; 3],
+    /// What it rests on.
     support: &'a str,
+    /// Bodies that settled after it left: name and new centre (m).
     also_moved: &'a [(String, [f64; 3])],
 }
 
 /// A frame as plain JS data, camelCase.
-fn frame_js(f: &Frame) -> Result<JsValue, JsValue> {
-    let last_replan = f.last_replan.as_ref().map(|r: &Replan| ReplanOut {
+fn frame_js(f: &core::Frame) -> Result<JsValue, JsValue> {
+    let last_replan = f.last_replan.as_ref().map(|r: &control::Replan| Replan {
         reason: &r.reason,
         time_ms: r.time_ms,
         k: r.k,
@@ -127,7 +111,7 @@ fn frame_js(f: &Frame) -> Result<JsValue, JsValue> {
         fallback: r.fallback,
         alternatives: &r.alternatives,
     });
-    to_js(&FrameOut {
+    to_js(&Frame {
         t: f.t,
         tick: f.tick,
         world: &f.world,
@@ -146,8 +130,8 @@ fn frame_js(f: &Frame) -> Result<JsValue, JsValue> {
     })
 }
 
-fn perturb_js(o: &PerturbOutcome) -> Result<JsValue, JsValue> {
-    to_js(&PerturbOut {
+fn perturb_js(o: &core::PerturbOutcome) -> Result<JsValue, JsValue> {
+    to_js(&PerturbOutcome {
         body: &o.body,
         from: o.from,
         to: o.to,
@@ -276,7 +260,7 @@ impl WasmSession {
     #[wasm_bindgen(unchecked_return_type = "Injection")]
     pub fn inject(
         &mut self,
-        #[wasm_bindgen(unchecked_param_type = "\"l1\" | \"l2\" | \"l3\" | \"l4\"")] level: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Level")] level: JsValue,
     ) -> Result<JsValue, JsValue> {
         let level = string_arg("Session.inject", "level", &level)?;
         let out = self.inner.inject(&level).map_err(js_err)?;
@@ -288,7 +272,7 @@ impl WasmSession {
     #[wasm_bindgen(js_name = canInject)]
     pub fn can_inject(
         &self,
-        #[wasm_bindgen(unchecked_param_type = "\"l1\" | \"l2\" | \"l3\" | \"l4\"")] level: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Level")] level: JsValue,
     ) -> Result<Option<String>, JsValue> {
         let level = string_arg("Session.canInject", "level", &level)?;
         Ok(self.inner.can_inject(&level).err().map(|e| e.to_string()))

@@ -9,75 +9,39 @@ use super::args::{
 use super::{from_js, js_err, seed_of, to_js, WasmSession};
 use crate::recorder::synth::Edit;
 use crate::recorder::taught::{self, TaughtRunOptions};
-use crate::recorder::{GripperHandle, Recorder, RecorderError, RecorderEvent, Segment, SkillFit};
+use crate::recorder::{self as rec, GripperHandle, Recorder, RecorderError, RecorderEvent};
 use crate::sim::benchmark::Benchmark;
 use serde::Serialize;
+use tsify::Tsify;
 use wasm_bindgen::prelude::*;
 
-#[wasm_bindgen(typescript_custom_section)]
-const TS_TEACH: &'static str = r#"
-/** One recognised action of a recording. */
-export interface Segment {
-  index: number; action: string; arm: string; tStart: number; tEvent: number; tEnd: number;
-  added: string[]; removed: string[];
-}
-/** One arm's gripper (the page's handle). */
-export interface GripperHandle {
-  arm: string; position: [number, number, number]; yaw: number; gripper: "open" | "closed"; holding?: string | null;
-}
-/** An edit of the recording: a gripper command held for `duration` s (gripper mode), a block
- * carried by the robot to a block or a place (quick mode), a hook pull (B2), a hand move. */
-export type TeachEdit =
-  | { edit: "gripper"; arm: number | string; position: [number, number, number]; yaw: number; gripper: "open" | "closed"; duration?: number }
-  | { edit: "drag"; body: string; onto?: string | null; position?: [number, number] | null; yaw?: number | null; arm?: number | string | null }
-  | { edit: "pull"; body: string; hook?: string | null; arm?: number | string | null }
-  | { edit: "move"; body: string; position: [number, number, number] };
-/** Everything the Teach panel shows. */
-export interface TeachState {
-  t: number; benchmark: string; segments: Segment[]; states: string[][]; facts: string[];
-  world: WorldSnapshot; handles: GripperHandle[]; goal?: string[] | null; steps: number;
-}
-/** Why an edit or the end of a recording was refused. */
-export interface TeachError {
-  kind: "input" | "model" | "unexplained" | "physics" | "refused";
-  message: string; t?: number | null; added: string[]; removed: string[];
-}
-/** The result of an edit: the new state, or the refusal (the recording is unchanged). */
-export type TeachResult =
-  | { ok: true; state: TeachState; newSegments: Segment[]; worldEvents: unknown[]; removed?: Segment | null }
-  | { ok: false; state: TeachState; error: TeachError };
-/** How well an LQT-CP skill learned from a recorded motion reproduces it (m). */
-export interface SkillFit { action: string; steps: number; rmsError: number; goalError: number; }
-/** A checked taught demonstration. */
-export interface TaughtInfo { benchmark: "b1" | "b2" | "b3"; actions: string[]; arms: string[]; states: string[][]; goal: string[]; }
-/** The end of a recording: the demo.json text, its listing and the skill fits. */
-export type TeachFinish =
-  | { ok: true; demoJson: string; info: TaughtInfo; skills: SkillFit[] }
-  | { ok: false; error: TeachError };
-/** How a taught task runs; every key optional. */
-export interface TaughtRunOptions {
-  method?: "logic-lfd" | "linear" | "rlds" | "tamp"; mode?: "paper" | "prioritised"; seed?: number;
-  skill?: "lqt" | "dmp"; scene?: string | null; random?: boolean;
-}
-"#;
-
-/// A recognised action with camelCase names (the recorder's [`Segment`] keeps the CLI's).
-#[derive(Serialize)]
+/// One recognised action of a recording (the recorder's segment with camelCase names; the
+/// recorder's keeps the CLI's).
+#[derive(Serialize, Tsify)]
 #[serde(rename_all = "camelCase")]
-struct SegmentOut {
+#[tsify(missing_as_null)]
+struct Segment {
+    /// Position in the demonstration (0-based): the action a_{index+1} leading to L_{index+1}.
     index: usize,
+    /// The grounded action, e.g. `(stack panda c b)`.
     action: String,
+    /// The arm that carries it out.
     arm: String,
+    /// Recording time of the segment's first sample (s).
     t_start: f64,
+    /// Recording time of the fact change (s).
     t_event: f64,
+    /// Recording time of the segment's last sample (s; provisional for the last segment).
     t_end: f64,
+    /// Facts made true.
     added: Vec<String>,
+    /// Facts made false.
     removed: Vec<String>,
 }
 
-impl From<Segment> for SegmentOut {
-    fn from(s: Segment) -> Self {
-        SegmentOut {
+impl From<rec::Segment> for Segment {
+    fn from(s: rec::Segment) -> Self {
+        Segment {
             index: s.index,
             action: s.action,
             arm: s.arm,
@@ -90,19 +54,25 @@ impl From<Segment> for SegmentOut {
     }
 }
 
-/// A skill fit with camelCase names.
-#[derive(Serialize)]
+/// How well an LQT-CP skill learned from a recorded motion reproduces it (the recorder's fit
+/// with camelCase names).
+#[derive(Serialize, Tsify)]
 #[serde(rename_all = "camelCase")]
-struct SkillFitOut {
+#[tsify(missing_as_null)]
+struct SkillFit {
+    /// The action.
     action: String,
+    /// Number of samples (time steps T).
     steps: usize,
+    /// Root-mean-square distance between the skill's plan and the recorded positions (m).
     rms_error: f64,
+    /// Distance between the plan's end and the recorded end (m).
     goal_error: f64,
 }
 
-impl From<SkillFit> for SkillFitOut {
-    fn from(f: SkillFit) -> Self {
-        SkillFitOut {
+impl From<rec::SkillFit> for SkillFit {
+    fn from(f: rec::SkillFit) -> Self {
+        SkillFit {
             action: f.action,
             steps: f.steps,
             rms_error: f.rms_error,
@@ -111,75 +81,136 @@ impl From<SkillFit> for SkillFitOut {
     }
 }
 
-fn segments_out(segments: Vec<Segment>) -> Vec<SegmentOut> {
-    segments.into_iter().map(SegmentOut::from).collect()
+fn segments_out(segments: Vec<rec::Segment>) -> Vec<Segment> {
+    segments.into_iter().map(Segment::from).collect()
 }
 
-#[derive(Serialize)]
+/// Everything the Teach panel shows.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null)]
 struct TeachState {
+    /// Recording time (s).
     t: f64,
-    benchmark: String,
-    segments: Vec<SegmentOut>,
+    /// The benchmark whose workcell and domain the recording uses.
+    benchmark: Benchmark,
+    /// The actions recognised so far.
+    segments: Vec<Segment>,
+    /// L_0..L_k: the fluents before the first action and after each.
     states: Vec<Vec<String>>,
+    /// The current facts (fluents, sorted).
     facts: Vec<String>,
+    /// The world now.
     world: crate::sim::snapshot::WorldSnapshot,
+    /// Each arm's gripper handle.
     handles: Vec<GripperHandle>,
+    /// The taught goal, once set (default: every fact of the last state).
     goal: Option<Vec<String>>,
+    /// Samples recorded.
     steps: usize,
 }
 
-#[derive(Serialize)]
+/// Why an edit or the end of a recording was refused.
+#[derive(Clone, Copy, Serialize, Tsify)]
+#[serde(rename_all = "lowercase")]
+enum TeachErrorKind {
+    /// The edit is malformed.
+    Input,
+    /// The domain or the scene cannot be read.
+    Model,
+    /// A fact change no action of the domain explains.
+    Unexplained,
+    /// The world refused the motion (a release in mid-air, a collision).
+    Physics,
+    /// The recorder refused the request (nothing demonstrated, a block still held, …).
+    Refused,
+}
+
+/// Why an edit or the end of a recording was refused.
+#[derive(Serialize, Tsify)]
+#[tsify(missing_as_null)]
 struct TeachError {
-    kind: &'static str,
+    /// Which kind of refusal.
+    kind: TeachErrorKind,
+    /// One line for people.
     message: String,
+    /// Recording time of the refused change (s), when it is about one.
     t: Option<f64>,
+    /// Facts the unexplained change made true.
     added: Vec<String>,
+    /// Facts the unexplained change made false.
     removed: Vec<String>,
 }
 
-#[derive(Serialize)]
+/// The result of an edit: the new state, or the refusal (the recording is unchanged).
+#[derive(Serialize, Tsify)]
 #[serde(untagged)]
+#[tsify(missing_as_null)]
 enum TeachResult {
+    /// The edit was applied.
     #[serde(rename_all = "camelCase")]
     Ok {
+        /// Always `true`.
+        #[tsify(type = "true")]
         ok: bool,
+        /// The state after the edit.
         state: TeachState,
-        new_segments: Vec<SegmentOut>,
+        /// Actions the edit completed.
+        new_segments: Vec<Segment>,
+        /// What happened in the world (grasps, releases, pushes).
         world_events: Vec<crate::sim::WorldEvent>,
-        removed: Option<SegmentOut>,
+        /// The action an undo removed.
+        removed: Option<Segment>,
     },
+    /// The edit was refused.
     Err {
+        /// Always `false`.
+        #[tsify(type = "false")]
         ok: bool,
+        /// The state, unchanged.
         state: TeachState,
+        /// Why.
         error: TeachError,
     },
 }
 
-#[derive(Serialize)]
+/// The end of a recording: the `demo.json` text, its listing and the skill fits, or why not.
+#[derive(Serialize, Tsify)]
 #[serde(untagged)]
+#[tsify(missing_as_null)]
 enum TeachFinish {
+    /// The demonstration.
     #[serde(rename_all = "camelCase")]
     Ok {
+        /// Always `true`.
+        #[tsify(type = "true")]
         ok: bool,
+        /// The taught `demo.json`.
         demo_json: String,
+        /// Its actions, states and goal.
         info: taught::TaughtInfo,
-        skills: Vec<SkillFitOut>,
+        /// How well each learned skill reproduces its recorded motion.
+        skills: Vec<SkillFit>,
     },
+    /// Why the recording cannot end here.
     Err {
+        /// Always `false`.
+        #[tsify(type = "false")]
         ok: bool,
+        /// Why.
         error: TeachError,
     },
 }
 
 fn teach_error(e: &RecorderError) -> TeachError {
+    use TeachErrorKind as K;
     let (kind, t, added, removed) = match e {
-        RecorderError::Input { .. } => ("input", None, vec![], vec![]),
-        RecorderError::Model(_) => ("model", None, vec![], vec![]),
+        RecorderError::Input { .. } => (K::Input, None, vec![], vec![]),
+        RecorderError::Model(_) => (K::Model, None, vec![], vec![]),
         RecorderError::Unexplained {
             t, added, removed, ..
-        } => ("unexplained", Some(*t), added.clone(), removed.clone()),
-        RecorderError::Physics { t, .. } => ("physics", Some(*t), vec![], vec![]),
-        RecorderError::Refused(_) => ("refused", None, vec![], vec![]),
+        } => (K::Unexplained, Some(*t), added.clone(), removed.clone()),
+        RecorderError::Physics { t, .. } => (K::Physics, Some(*t), vec![], vec![]),
+        RecorderError::Refused(_) => (K::Refused, None, vec![], vec![]),
     };
     TeachError {
         kind,
@@ -201,7 +232,7 @@ impl Teacher {
     fn state(&self) -> TeachState {
         TeachState {
             t: self.inner.time(),
-            benchmark: self.benchmark.as_str().to_string(),
+            benchmark: self.benchmark,
             segments: segments_out(self.inner.segments()),
             states: self.inner.demo_states(),
             facts: self.inner.facts().to_vec(),
@@ -215,7 +246,7 @@ impl Teacher {
     fn result(
         &self,
         r: Result<RecorderEvent, RecorderError>,
-        removed: Option<Segment>,
+        removed: Option<rec::Segment>,
     ) -> TeachResult {
         match r {
             Ok(ev) => TeachResult::Ok {
@@ -223,7 +254,7 @@ impl Teacher {
                 state: self.state(),
                 new_segments: segments_out(ev.new_segments),
                 world_events: ev.world_events,
-                removed: removed.map(SegmentOut::from),
+                removed: removed.map(Segment::from),
             },
             Err(e) => TeachResult::Err {
                 ok: false,
@@ -240,7 +271,7 @@ impl Teacher {
     /// `scene` (a `WorldSnapshot` JSON of that benchmark's world).
     #[wasm_bindgen(constructor)]
     pub fn new(
-        #[wasm_bindgen(unchecked_param_type = "\"b1\" | \"b2\" | \"b3\"")] benchmark: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "Benchmark")] benchmark: JsValue,
         scene: Option<StringArg>,
     ) -> Result<Teacher, JsValue> {
         let benchmark = string_arg("new Teacher", "benchmark", &benchmark)?;
@@ -363,7 +394,7 @@ impl Teacher {
                 ok: true,
                 demo_json,
                 info,
-                skills: skills.into_iter().map(SkillFitOut::from).collect(),
+                skills: skills.into_iter().map(SkillFit::from).collect(),
             },
             Err(e) => TeachFinish::Err {
                 ok: false,

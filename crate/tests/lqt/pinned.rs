@@ -84,7 +84,7 @@ fn hand_solved_three_step_case() {
     assert_eq!(o.target_errors.len(), 2);
     assert!((o.target_errors[0].pos_dist - 0.125).abs() < EXACT);
     assert!((o.target_errors[1].pos_dist - 0.375).abs() < EXACT);
-    assert_eq!(o.target_errors[1].role, "goal");
+    assert_eq!(o.target_errors[1].role.name(), "goal");
 
     let fb = o.feedback.expect("feedback asked");
     let f = literal(&[&[1.25, -1.75], &[0.5, -1.5]]);

@@ -46,9 +46,8 @@ pub struct Args {
     /// S_C as the state a plan prefix reaches from the problem's initial state.
     #[arg(long, value_name = "PLAN_PREFIX")]
     after: Option<PathBuf>,
-    /// paper: the first demonstration state reached; prioritised: the cheapest
-    /// (cost to reach L_k) + (demonstration actions left after k).
-    #[arg(long, default_value = "paper", value_parser = parse_mode)]
+    /// Multi-goal mode.
+    #[arg(long, default_value = "paper", value_parser = crate::listed::one::<Mode>())]
     mode: Mode,
     #[command(flatten)]
     search: SearchArgs,
@@ -57,10 +56,6 @@ pub struct Args {
     json: bool,
     #[command(flatten)]
     study: StudyArgs,
-}
-
-fn parse_mode(s: &str) -> Result<Mode, String> {
-    Mode::parse(s).ok_or_else(|| format!("unknown mode `{s}` (expected paper|prioritised)"))
 }
 
 /// Reads the domain, the problem and the demonstration; the error is the located message

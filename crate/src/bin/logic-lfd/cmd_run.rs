@@ -19,23 +19,24 @@ use logic_lfd::lfd::{Method, Mode};
 use logic_lfd::sim::benchmark::Benchmark;
 
 use crate::cmd_plan::WallClock;
-use crate::exit;
+use crate::{exit, listed};
 
 /// Arguments of `run`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Benchmark: b1, b2 or b3.
-    #[arg(long, default_value = "b1")]
-    benchmark: String,
-    /// Disturbance level injected during execution: l1, l2, l3, l4 or none.
-    #[arg(long, default_value = "none")]
-    level: String,
-    /// Method: logic-lfd, linear, rlds or tamp.
-    #[arg(long, default_value = "logic-lfd")]
-    method: String,
-    /// Multi-goal mode of Logic-LfD: paper or prioritised.
-    #[arg(long, default_value = "paper")]
-    mode: String,
+    /// Benchmark.
+    #[arg(long, default_value = "b1", value_parser = listed::one::<Benchmark>())]
+    benchmark: Benchmark,
+    /// Disturbance level injected during execution.
+    // A qualified `Option`: clap reads `none` as a value, not as a missing flag.
+    #[arg(long, default_value = "none", value_parser = listed::or_none::<Level>("No disturbance."))]
+    level: ::std::option::Option<Level>,
+    /// Method.
+    #[arg(long, default_value = "logic-lfd", value_parser = listed::one::<Method>())]
+    method: Method,
+    /// Multi-goal mode of Logic-LfD.
+    #[arg(long, default_value = "paper", value_parser = listed::one::<Mode>())]
+    mode: Mode,
     /// Seed of every random choice of the episode.
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -79,37 +80,7 @@ pub fn run(args: Args) -> ExitCode {
         }
         return replay(path);
     }
-    let Some(benchmark) = Benchmark::parse(&args.benchmark) else {
-        return bad(format!(
-            "--benchmark: unknown benchmark {:?} (b1, b2, b3)",
-            args.benchmark
-        ));
-    };
-    let level = if args.level == "none" {
-        None
-    } else {
-        match Level::parse(&args.level) {
-            Some(l) => Some(l),
-            None => {
-                return bad(format!(
-                    "--level: unknown level {:?} (l1..l4, none)",
-                    args.level
-                ))
-            }
-        }
-    };
-    let Some(method) = Method::parse(&args.method) else {
-        return bad(format!(
-            "--method: unknown method {:?} (logic-lfd, linear, rlds, tamp)",
-            args.method
-        ));
-    };
-    let Some(mode) = Mode::parse(&args.mode) else {
-        return bad(format!(
-            "--mode: unknown mode {:?} (paper, prioritised)",
-            args.mode
-        ));
-    };
+    let (benchmark, level, method, mode) = (args.benchmark, args.level, args.method, args.mode);
     let scene = match &args.scene {
         Some(p) => match std::fs::read_to_string(p) {
             Ok(t) => Some(t),

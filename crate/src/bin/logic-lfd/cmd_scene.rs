@@ -8,7 +8,7 @@
 //!   Tables I/II, the soak and the page (`lfd::disturb`, "seen" meaning a state of the
 //!   benchmark's demonstration), print `{"disturbance": …, "scene": …}`.
 
-use crate::exit;
+use crate::{exit, listed};
 use logic_lfd::experiments::tasks::demo_trace;
 use logic_lfd::lfd::disturb::{inject, Level};
 use logic_lfd::sim::benchmark::Benchmark;
@@ -40,16 +40,17 @@ enum Action {
     },
     /// Print a benchmark's template scene JSON.
     Template {
-        /// b1, b2 or b3.
-        benchmark: String,
+        /// Benchmark.
+        #[arg(value_parser = listed::one::<Benchmark>())]
+        benchmark: Benchmark,
     },
     /// Print the PDDL problem of a scene for a benchmark's goal.
     Problem {
         /// Scene JSON.
         scene: PathBuf,
-        /// b1, b2 or b3.
-        #[arg(long)]
-        benchmark: String,
+        /// Benchmark.
+        #[arg(long, value_parser = listed::one::<Benchmark>())]
+        benchmark: Benchmark,
     },
     /// Apply a disturbance (L1–L4) as Tables I/II, the soak and the page do, and print it with
     /// the new scene. L1 moves one block by 2–5 cm keeping the facts; L2 moves one block to a
@@ -58,12 +59,12 @@ enum Action {
     Disturb {
         /// Scene JSON.
         scene: PathBuf,
-        /// b1, b2 or b3.
-        #[arg(long)]
-        benchmark: String,
-        /// l1, l2, l3 or l4.
-        #[arg(long)]
-        level: String,
+        /// Benchmark.
+        #[arg(long, value_parser = listed::one::<Benchmark>())]
+        benchmark: Benchmark,
+        /// Disturbance level.
+        #[arg(long, value_parser = listed::one::<Level>())]
+        level: Level,
         /// Injector seed.
         #[arg(long, default_value_t = 0)]
         seed: u64,
@@ -84,13 +85,6 @@ fn load(path: &Path) -> Result<World, ExitCode> {
     Ok(match Benchmark::parse(world.name()) {
         Some(b) => world.with_motions(b.motions()),
         None => world,
-    })
-}
-
-fn benchmark(s: &str) -> Result<Benchmark, ExitCode> {
-    Benchmark::parse(s).ok_or_else(|| {
-        eprintln!("unknown benchmark {s:?} (b1, b2, b3)");
-        ExitCode::from(exit::BAD_INPUT)
     })
 }
 
@@ -126,14 +120,14 @@ fn run_inner(args: Args) -> Result<(), ExitCode> {
             println!("ok");
         }
         Action::Template { benchmark: b } => {
-            println!("{}", benchmark(&b)?.scene().to_json());
+            println!("{}", b.scene().to_json());
         }
         Action::Problem {
             scene,
             benchmark: b,
         } => {
             let w = load(&scene)?;
-            print!("{}", benchmark(&b)?.problem_for(&w, "scene"));
+            print!("{}", b.problem_for(&w, "scene"));
         }
         Action::Disturb {
             scene,
@@ -141,11 +135,6 @@ fn run_inner(args: Args) -> Result<(), ExitCode> {
             level,
             seed,
         } => {
-            let b = benchmark(&b)?;
-            let Some(level) = Level::parse(&level) else {
-                eprintln!("unknown level {level:?} (l1, l2, l3, l4)");
-                return Err(ExitCode::from(exit::BAD_INPUT));
-            };
             let mut w = load(&scene)?;
             let trace = demo_trace(b).map_err(|e| {
                 eprintln!("{}: {e}", b.dir_name());

@@ -17,6 +17,7 @@ mod cmd_soak;
 mod cmd_tables;
 mod cmd_validate;
 mod domain_dir;
+mod listed;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;

@@ -7,11 +7,31 @@ use crate::lfd::control::Replan;
 use crate::sim::snapshot::WorldSnapshot;
 use crate::sim::MoveOutcome;
 
+/// What the loop is doing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
+pub enum StatusKind {
+    /// Nothing has run yet.
+    Idle,
+    /// Looking for the first plan, or for a plan after an action ended.
+    Planning,
+    /// Executing a step of the plan.
+    Executing,
+    /// Executing the first steps of a plan made because the facts changed.
+    Replanning,
+    /// The goal holds.
+    Done,
+    /// The episode failed (the message says why).
+    Failed,
+}
+
 /// The status line of the page.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct Status {
-    /// `idle`, `planning`, `executing`, `replanning`, `done` or `failed`.
-    pub kind: String,
+    /// What the loop is doing.
+    pub kind: StatusKind,
     /// In words: "executing step 3 of 7: (stack c d)", "replanning because …", "failed because …".
     pub message: String,
     /// The step being executed (1-based), if any.
@@ -22,6 +42,7 @@ pub struct Status {
 
 /// End effector position and its commanded target (for the trajectory chart).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct EePoint {
     /// Arm index.
     pub arm: usize,

@@ -6,11 +6,11 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use crate::lfd::catalogue::{Method, Mode};
 use crate::lfd::control::ControlParams;
 use crate::lfd::exec::ExecParams;
-use crate::lfd::logic::Mode;
 use crate::lfd::skill::SkillKind;
-use crate::lfd::{LfdError, Method};
+use crate::lfd::LfdError;
 use crate::sim::benchmark::Benchmark;
 use crate::sim::motions::{MotionKind, Onto};
 use crate::sim::snapshot::BodyKind;
@@ -19,23 +19,26 @@ use crate::tamp::streams::StreamParams;
 
 /// How a session is set up (JSON: snake_case keys, defaults for all but `benchmark`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct SessionOptions {
-    /// `b1`, `b2` or `b3`.
+    /// The benchmark.
     pub benchmark: Benchmark,
-    /// `logic-lfd`, `linear`, `rlds` or `tamp`.
+    /// The method that closes the loop (default `logic-lfd`).
     #[serde(default)]
     pub method: Method,
-    /// `paper` or `prioritised`.
+    /// Logic-LfD's multi-goal mode (default `paper`).
     #[serde(default)]
     pub mode: Mode,
     /// Seed of every random choice of the episode.
     #[serde(default)]
     pub seed: u64,
-    /// `lqt` or `dmp`.
+    /// The motion skill family (default `lqt`).
     #[serde(default)]
     pub skill: SkillKind,
-    /// Blocks of the benchmark's generated N-block tower task (`None`: the template task).
+    /// Blocks of the benchmark's generated N-block tower task, within the benchmark's block
+    /// range (`blockRange` in the npm package; B2 has none); absent: the template task.
     #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "wasm-core", tsify(type = "number | null"))]
     pub blocks: Option<usize>,
 }
 

@@ -2,9 +2,9 @@
 //! and start the next action when none runs, else advance the running skill by one tick and
 //! check the scene; `step` and `run_to_end` repeat it.
 
+use crate::lfd::catalogue::Method;
 use crate::lfd::control::{Controller, Decision, FailReason};
 use crate::lfd::exec::{ActionExec, ExecStatus};
-use crate::lfd::Method;
 use crate::plan::Clock;
 use crate::sim::World;
 use crate::tamp::streams::{StreamBinder, StreamParams};

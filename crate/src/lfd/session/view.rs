@@ -1,6 +1,6 @@
 //! How a session's [`Frame`] is read off it.
 
-use super::frame::{EePoint, Frame, Status};
+use super::frame::{EePoint, Frame, Status, StatusKind};
 use super::{facts_of, Session};
 
 /// For this many ticks after a replan (other than the first plan) the status line says
@@ -56,15 +56,22 @@ impl Session {
     }
 
     fn status(&self, plan: &[String], executing: Option<usize>) -> Status {
-        let st = |kind: &str, message: String, step: Option<usize>, of: Option<usize>| Status {
-            kind: kind.into(),
+        let st = |kind, message: String, step: Option<usize>, of: Option<usize>| Status {
+            kind,
             message,
             step,
             of,
         };
         match &self.outcome {
-            Some(Ok(())) => return st("done", "done: the goal holds".into(), None, None),
-            Some(Err(r)) => return st("failed", format!("failed because {r}"), None, None),
+            Some(Ok(())) => return st(StatusKind::Done, "done: the goal holds".into(), None, None),
+            Some(Err(r)) => {
+                return st(
+                    StatusKind::Failed,
+                    format!("failed because {r}"),
+                    None,
+                    None,
+                )
+            }
             None => {}
         }
         match executing {
@@ -73,7 +80,11 @@ impl Session {
                 let fresh = replan.is_some_and(|r| {
                     r.tick + REPLAN_NOTICE_TICKS > self.tick && r.reason != "start"
                 });
-                let kind = if fresh { "replanning" } else { "executing" };
+                let kind = if fresh {
+                    StatusKind::Replanning
+                } else {
+                    StatusKind::Executing
+                };
                 let msg = match (fresh, replan) {
                     (true, Some(r)) => format!(
                         "replanned because {}; executing step {} of {}: {}",
@@ -91,8 +102,8 @@ impl Session {
                 };
                 st(kind, msg, Some(i + 1), Some(plan.len()))
             }
-            None if self.tick == 0 => st("idle", "ready".into(), None, None),
-            None => st("planning", "planning".into(), None, None),
+            None if self.tick == 0 => st(StatusKind::Idle, "ready".into(), None, None),
+            None => st(StatusKind::Planning, "planning".into(), None, None),
         }
     }
 }

@@ -19,7 +19,8 @@ use std::collections::{BTreeMap, BTreeSet};
 use crate::pddl::{Domain, Formula, LocatedFact, PddlError, Problem};
 use crate::plan::{self, Clock, FactId, SearchConfig, SearchResult, State, Task, ValidationReport};
 
-use super::super::logic::{LfdPlan, Mode};
+use super::super::catalogue::Mode;
+use super::super::logic::LfdPlan;
 use super::super::LfdError;
 use super::{unlocated_facts, LogicLfd};
 

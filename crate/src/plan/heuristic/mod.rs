@@ -20,11 +20,14 @@ pub(crate) mod relaxed;
 use crate::plan::{Goal, State, Task};
 use lmcut::LmCut;
 use relaxed::{has, Combine, Exploration, RelaxedTask, GOAL_OP, INF};
+use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
 
-/// The heuristic of a search configuration.
-#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+/// The heuristic of a search configuration (JSON: its command-line name).
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify))]
+#[serde(rename_all = "lowercase")]
 pub enum HeuristicKind {
     /// 0 on goal states, the cheapest operator cost elsewhere.
     Blind,

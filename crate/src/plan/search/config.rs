@@ -1,11 +1,14 @@
 //! What a search runs: the algorithm, its heuristic and budgets.
 
 use crate::plan::heuristic::{HeuristicKind, UnknownName};
+use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
 
-/// The search algorithm of a configuration.
-#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash)]
+/// The search algorithm of a configuration (JSON: its command-line name).
+#[derive(Clone, Copy, PartialEq, Eq, Debug, Hash, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify))]
+#[serde(rename_all = "kebab-case")]
 pub enum Algorithm {
     /// Breadth-first search (optimal plan length).
     Bfs,

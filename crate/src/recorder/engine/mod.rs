@@ -49,6 +49,7 @@ impl Default for RecorderOptions {
 
 /// One arm's gripper as the page's handle shows it.
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct GripperHandle {
     /// Arm name.
     pub arm: String,

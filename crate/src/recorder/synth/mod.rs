@@ -44,6 +44,11 @@ use serde::{Deserialize, Serialize};
 
 /// One edit of the page or of a script (JSON: `{"edit": "drag", …}`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(
+    feature = "wasm-core",
+    derive(tsify::Tsify),
+    tsify(missing_as_null, rename = "TeachEdit")
+)]
 #[serde(tag = "edit", rename_all = "snake_case")]
 pub enum Edit {
     /// A raw gripper sample (or hand move) as in a recording file.

@@ -14,6 +14,7 @@ use std::fmt;
 
 /// Something that happened during a step or a user move (for logs and the page).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(tag = "event", rename_all = "snake_case")]
 pub enum WorldEvent {
     /// An arm closed its gripper around a body.

@@ -16,7 +16,7 @@ use super::input::{
     files_option, known_keys, object_fields, search_options, texts, Files, FILE_KEYS, REPLAN_KEYS,
     SETUP_KEYS,
 };
-use super::query::{answer, prepare, Current, Fixed, LfdResult};
+use super::query::{answer, prepare, Current, Fixed, LogicLfdResult};
 use crate::lfd::{LogicLfd, Observed};
 
 #[wasm_bindgen]
@@ -185,7 +185,7 @@ impl LogicLfdClass {
         };
         let o = match known_keys(&m, &REPLAN_KEYS, "options").and_then(|()| search_options(&m)) {
             Ok(o) => o,
-            Err(e) => return to_js(&LfdResult::options_failure(e)),
+            Err(e) => return to_js(&LogicLfdResult::options_failure(e)),
         };
         let out = to_js(&answer(&task.lfd, &task.files, current, &o))?;
         // An answer leaves the fixed parts empty: the shared ones go in at the same keys.

@@ -3,6 +3,7 @@
 //! JS `Error` the class throws with them.
 
 use serde::Serialize;
+use tsify::Tsify;
 use wasm_bindgen::prelude::*;
 
 use super::super::to_js;
@@ -10,19 +11,26 @@ use super::input::Files;
 use crate::lfd::LfdError;
 use crate::pddl::PddlError;
 
-/// A located message about one of the inputs (`LogicLfdDiagnostic`).
-#[derive(Debug, Clone, Serialize)]
-pub(super) struct Diag {
+/// A located message about one of the inputs.
+#[derive(Debug, Clone, Serialize, Tsify)]
+#[tsify(missing_as_null)]
+pub(super) struct LogicLfdDiagnostic {
+    /// Which input.
+    #[tsify(type = "'domain' | 'problem' | 'demo' | 'state' | 'options'")]
     pub(super) source: &'static str,
+    /// The file name used in the message.
     pub(super) file: String,
+    /// 1-based line (0 when the message is not about a place).
     pub(super) line: usize,
+    /// 1-based column (0 when the message is not about a place).
     pub(super) col: usize,
+    /// What is wrong.
     pub(super) message: String,
 }
 
 /// A diagnostic about the options (not about a place in a text).
-pub(super) fn options_diag(message: String) -> Diag {
-    Diag {
+pub(super) fn options_diag(message: String) -> LogicLfdDiagnostic {
+    LogicLfdDiagnostic {
         source: "options",
         file: String::new(),
         line: 0,
@@ -44,7 +52,7 @@ pub(super) fn input_error(
     e: &LfdError,
     files: &Files,
     default_source: &'static str,
-) -> (&'static str, Diag) {
+) -> (&'static str, LogicLfdDiagnostic) {
     let kind_of = |source: &str| match source {
         "domain" | "problem" => "parse",
         "demo" => "demo",
@@ -54,7 +62,7 @@ pub(super) fn input_error(
         let (file, line, col) = location
             .and_then(split_location)
             .unwrap_or_else(|| (files.of(source), 0, 0));
-        Diag {
+        LogicLfdDiagnostic {
             source,
             file,
             line,
@@ -72,7 +80,7 @@ pub(super) fn input_error(
             let source = files.source_of(file);
             (
                 kind_of(source),
-                Diag {
+                LogicLfdDiagnostic {
                     source,
                     file: file.clone(),
                     line: *line,
@@ -133,7 +141,7 @@ fn false_precondition(literals: &[String]) -> String {
 }
 
 /// The diagnostic as one line: `file:line:col: message` when it has a place.
-pub(super) fn location_message(d: &Diag) -> String {
+pub(super) fn location_message(d: &LogicLfdDiagnostic) -> String {
     if d.line == 0 {
         d.message.clone()
     } else {
@@ -143,7 +151,7 @@ pub(super) fn location_message(d: &Diag) -> String {
 
 /// The `Error` the class throws: the one-line message, and `kind` and `diagnostics` properties
 /// as `logicLfd`'s result would carry them.
-pub(super) fn located_error(kind: &str, d: Diag) -> JsValue {
+pub(super) fn located_error(kind: &str, d: LogicLfdDiagnostic) -> JsValue {
     let error = js_sys::Error::new(&location_message(&d));
     let set = |key: &str, value: &JsValue| {
         // Setting a property on a fresh Error cannot fail.

@@ -2,33 +2,44 @@
 //! demonstration first) and the `LogicLfd` class (which read them once, when it was built).
 
 use serde::Serialize;
+use tsify::Tsify;
 
 use super::super::PerformanceClock;
-use super::diagnostics::{input_error, location_message, options_diag, Diag};
+use super::diagnostics::{input_error, location_message, options_diag, LogicLfdDiagnostic};
 use super::input::{Files, Options, Texts};
 use crate::lfd::{LfdError, LfdPlan, LogicLfd, Observed, PlanSource};
 use crate::plan::{Clock, SearchConfig, SearchOutcome, SearchStats};
 
-/// The demonstration as the result shows it (`LogicLfdDemo`).
-#[derive(Debug, Default, Serialize)]
-pub(super) struct Demo {
+/// The demonstration as Logic-LfD reads it.
+#[derive(Debug, Default, Serialize, Tsify)]
+#[tsify(missing_as_null)]
+pub(super) struct LogicLfdDemo {
+    /// a_1 … a_N.
     actions: Vec<String>,
+    /// L_0 … L_N: the fluents before a_1, after a_1, …, after a_N (sorted names).
     states: Vec<Vec<String>>,
+    /// c_0 … c_N: the cost of the demonstration left after L_k.
     costs: Vec<u64>,
 }
 
-#[derive(Debug, Default, Serialize)]
+/// Search statistics; `timeMs` is the search time (parsing and grounding excluded).
+#[derive(Debug, Default, Serialize, Tsify)]
 #[serde(rename_all = "camelCase")]
-struct Stats {
+#[tsify(missing_as_null)]
+struct LogicLfdStats {
+    /// States expanded.
     expanded: u64,
+    /// States generated.
     generated: u64,
+    /// Heuristic evaluations.
     evaluated: u64,
+    /// Search time in milliseconds.
     time_ms: f64,
 }
 
-impl Stats {
+impl LogicLfdStats {
     fn of(s: &SearchStats) -> Self {
-        Stats {
+        LogicLfdStats {
             expanded: s.expanded,
             generated: s.generated,
             evaluated: s.evaluated,
@@ -37,45 +48,72 @@ impl Stats {
     }
 }
 
-#[derive(Debug, Serialize)]
-struct Scratch {
+/// Classical planning from S_C to G with the same search (`compare: true`).
+#[derive(Debug, Serialize, Tsify)]
+#[tsify(missing_as_null)]
+struct LogicLfdScratch {
+    /// A plan was found.
     ok: bool,
+    /// The plan (empty without one).
     plan: Vec<String>,
+    /// Its cost.
     cost: Option<u64>,
-    stats: Stats,
+    /// The search's statistics.
+    stats: LogicLfdStats,
 }
 
-/// `LogicLfdResult`. The parts that do not depend on S_C are borrowed, so the class can keep
-/// them across queries.
-#[derive(Debug, Default, Serialize)]
+/// What `logicLfd` found. The parts that do not depend on S_C are borrowed, so the class can
+/// keep them across queries.
+#[derive(Debug, Default, Serialize, Tsify)]
 #[serde(rename_all = "camelCase")]
-pub(super) struct LfdResult<'f> {
+#[tsify(missing_as_null)]
+pub(super) struct LogicLfdResult<'f> {
+    /// `true` iff a plan was produced.
     ok: bool,
+    /// `plan`, or what stopped it.
+    #[tsify(type = "'plan' | 'parse' | 'demo' | 'state' | 'options' | 'unsolvable' | 'budget'")]
     kind: &'static str,
+    /// One line for people (`''` when ok).
     message: String,
-    diagnostics: Vec<Diag>,
-    demo: Option<&'f Demo>,
+    /// Located errors (empty when ok).
+    diagnostics: Vec<LogicLfdDiagnostic>,
+    /// `null` when the inputs did not parse.
+    demo: Option<&'f LogicLfdDemo>,
+    /// The problem's static facts.
     statics: &'f [String],
+    /// Every fluent atom of the grounded task.
     fluents: &'f [String],
+    /// S_C's atoms without the problem's static facts, sorted.
     state: Vec<String>,
+    /// The actions applicable in S_C.
     applicable: Vec<String>,
+    /// LogicIn(S_C): the largest k with L_k ⊆ S_C.
     logic_in: Option<usize>,
+    /// The demonstration state joined (`null`: G directly, or no plan).
     k: Option<usize>,
-    source: Option<&'static str>,
+    /// How the plan was made.
+    source: Option<PlanSource>,
+    /// New actions to L_k.
     prefix: Vec<String>,
+    /// The demonstration's actions after L_k.
     suffix: Vec<String>,
+    /// `prefix` then `suffix`.
     plan: Vec<String>,
+    /// The plan's cost.
     cost: Option<u64>,
-    /// `None` when not asked for (`validate: false`) or when there is no plan.
+    /// The lifted validator replayed `plan` from S_C to the goal; `null` without a plan or with
+    /// `validate: false`.
     valid: Option<bool>,
-    stats: Stats,
-    scratch: Option<Scratch>,
+    /// Search statistics.
+    stats: LogicLfdStats,
+    /// With `compare`: classical planning from S_C to G with the same search.
+    scratch: Option<LogicLfdScratch>,
 }
 
 /// What a result says whatever S_C is: the demonstration, the static facts, the fluents.
 #[derive(Debug)]
 pub(super) struct Fixed {
-    pub(super) demo: Demo,
+    pub(super) demo: LogicLfdDemo,
     pub(super) statics: Vec<String>,
     pub(super) fluents: Vec<String>,
 }
@@ -83,7 +121,7 @@ pub(super) struct Fixed {
 impl Fixed {
     pub(super) fn of(lfd: &LogicLfd) -> Self {
         Fixed {
-            demo: Demo {
+            demo: LogicLfdDemo {
                 actions: lfd.demo_actions().to_vec(),
                 states: lfd
                     .demo_states()
@@ -104,7 +142,7 @@ impl Fixed {
     }
 }
 
-impl<'f> LfdResult<'f> {
+impl<'f> LogicLfdResult<'f> {
     /// The result with `fixed`'s demonstration, static facts and fluents.
     pub(super) fn with(mut self, fixed: &'f Fixed) -> Self {
         self.demo = Some(&fixed.demo);
@@ -115,21 +153,21 @@ impl<'f> LfdResult<'f> {
 
     /// `ok: false` for a bad option.
     pub(super) fn options_failure(message: String) -> Self {
-        LfdResult {
+        LogicLfdResult {
             kind: "options",
             message: message.clone(),
             diagnostics: vec![options_diag(message)],
-            ..LfdResult::default()
+            ..LogicLfdResult::default()
         }
     }
 
     /// `ok: false` for an input that could not be read, with its located diagnostic.
-    pub(super) fn input_failure(kind: &'static str, d: Diag) -> Self {
-        LfdResult {
+    pub(super) fn input_failure(kind: &'static str, d: LogicLfdDiagnostic) -> Self {
+        LogicLfdResult {
             kind,
             message: location_message(&d),
             diagnostics: vec![d],
-            ..LfdResult::default()
+            ..LogicLfdResult::default()
         }
     }
 }
@@ -150,7 +188,7 @@ impl Current {
         self,
         lfd: &'l LogicLfd,
         files: &Files,
-    ) -> Result<Observed<'l>, (&'static str, Diag)> {
+    ) -> Result<Observed<'l>, (&'static str, LogicLfdDiagnostic)> {
         match self {
             Current::Atoms(text) => lfd.state_in(&files.state, &text),
             Current::After(text) => lfd
@@ -163,7 +201,10 @@ impl Current {
 }
 
 /// Reads the domain, the problem and the demonstration, or says why not (a result to return).
-pub(super) fn prepare(files: &Files, t: &Texts) -> Result<LogicLfd, (&'static str, Diag)> {
+pub(super) fn prepare(
+    files: &Files,
+    t: &Texts,
+) -> Result<LogicLfd, (&'static str, LogicLfdDiagnostic)> {
     LogicLfd::named(
         (&files.domain, &t.domain),
         (&files.problem, &t.problem),
@@ -174,22 +215,22 @@ pub(super) fn prepare(files: &Files, t: &Texts) -> Result<LogicLfd, (&'static st
 
 /// One query on a prepared instance: S_C, LogicIn, the merged plan and (unless `validate` is off)
 /// its replay on the lifted domain, and with `compare` planning from scratch. The result leaves out the demonstration,
-/// the static facts and the fluents ([`LfdResult::with`] adds them).
+/// the static facts and the fluents ([`LogicLfdResult::with`] adds them).
 pub(super) fn answer(
     lfd: &LogicLfd,
     files: &Files,
     current: Current,
     o: &Options,
-) -> LfdResult<'static> {
+) -> LogicLfdResult<'static> {
     let s = match current.read(lfd, files) {
         Ok(s) => s,
-        Err((kind, d)) => return LfdResult::input_failure(kind, d),
+        Err((kind, d)) => return LogicLfdResult::input_failure(kind, d),
     };
-    let mut out = LfdResult {
+    let mut out = LogicLfdResult {
         state: s.names(),
         applicable: s.applicable().map(str::to_string).collect(),
         logic_in: s.logic_in(),
-        ..LfdResult::default()
+        ..LogicLfdResult::default()
     };
     let clock = PerformanceClock;
     let t0 = clock.now_secs();
@@ -210,30 +251,26 @@ pub(super) fn answer(
     out
 }
 
-fn found(s: &Observed, p: LfdPlan, validate: bool, out: &mut LfdResult) {
+fn found(s: &Observed, p: LfdPlan, validate: bool, out: &mut LogicLfdResult) {
     // The lifted replay costs several times the search on small tasks (string-heavy): a caller
     // that replans in a loop may skip it.
     out.valid = validate.then(|| s.validate(&p.names).is_ok_and(|r| r.is_valid()));
     out.ok = true;
     out.kind = "plan";
     out.k = p.k;
-    out.source = Some(match p.source {
-        PlanSource::GoalHolds => "goal-holds",
-        PlanSource::LogicIn => "logic-in",
-        PlanSource::MultiGoal => "multi-goal",
-    });
+    out.source = Some(p.source);
     out.prefix = p.prefix().to_vec();
     out.suffix = p.suffix().to_vec();
     out.cost = Some(p.cost);
-    out.stats = Stats::of(&p.stats);
+    out.stats = LogicLfdStats::of(&p.stats);
     out.plan = p.names;
 }
 
-fn scratch(s: &Observed, config: &SearchConfig, clock: &dyn Clock) -> Scratch {
+fn scratch(s: &Observed, config: &SearchConfig, clock: &dyn Clock) -> LogicLfdScratch {
     let r = s.plan_from_scratch(config, clock);
-    let stats = Stats::of(&r.stats);
+    let stats = LogicLfdStats::of(&r.stats);
     match r.outcome {
-        SearchOutcome::Plan(p) => Scratch {
+        SearchOutcome::Plan(p) => LogicLfdScratch {
             ok: true,
             plan: p
                 .names(s.lfd().task())
@@ -243,7 +280,7 @@ fn scratch(s: &Observed, config: &SearchConfig, clock: &dyn Clock) -> Scratch {
             cost: Some(p.cost),
             stats,
         },
-        _ => Scratch {
+        _ => LogicLfdScratch {
             ok: false,
             plan: vec![],
             cost: None,
