@@ -16,7 +16,8 @@
 //! `LogicLfd` class; `wasm` adds them (the npm package, and the module the page loads after its
 //! first frame).
 
-use crate::plan::Clock;
+#[cfg(feature = "wasm")]
+use convert::{from_js, js_err, to_js};
 use wasm_bindgen::prelude::*;
 
 mod args;
@@ -24,6 +25,7 @@ mod args;
 mod bench;
 mod benchmark_info;
 mod catalogue;
+mod convert;
 #[cfg(feature = "wasm")]
 mod logic_lfd;
 #[cfg(feature = "wasm")]
@@ -38,21 +40,6 @@ pub use benchmark_info::BenchmarkInfo;
 #[cfg(feature = "wasm")]
 pub use pddl::{Diagnostic, PlanFailed, PlanFound, PlanOptions, PlanOutcome, Validation};
 pub use session::WasmSession;
-
-thread_local! {
-    /// The global `performance` object (windows, workers and node ≥ 16 have one), read once.
-    static PERFORMANCE: Option<web_sys::Performance> =
-        js_sys::Reflect::get(&js_sys::global(), &JsValue::from_str("performance"))
-            .ok()
-            .filter(JsValue::is_object)
-            .map(JsCast::unchecked_into);
-}
-
-/// `performance.now()` (ms); 0 where the global has no `performance` (time limits then never
-/// trigger and reported times are 0, as with `NoClock`).
-fn performance_now() -> f64 {
-    PERFORMANCE.with(|p| p.as_ref().map_or(0.0, web_sys::Performance::now))
-}
 
 /// The message of the last panic (a bug: user input never panics), for [`last_panic`].
 static LAST_PANIC: std::sync::Mutex<String> = std::sync::Mutex::new(String::new());
@@ -77,59 +64,10 @@ pub fn last_panic() -> String {
     LAST_PANIC.lock().map(|s| s.clone()).unwrap_or_default()
 }
 
-/// The JS high-resolution clock, for search time limits and reported times.
-struct PerformanceClock;
-
-impl Clock for PerformanceClock {
-    fn now_secs(&self) -> f64 {
-        performance_now() / 1000.0
-    }
-}
-
 /// The crate version, e.g. `"0.1.0"`.
 #[wasm_bindgen]
 pub fn version() -> String {
     env!("CARGO_PKG_VERSION").to_string()
-}
-
-/// Converts any displayable error into a rejected value (a JS `Error` with the message).
-fn js_err(e: impl std::fmt::Display) -> JsError {
-    JsError::new(&e.to_string())
-}
-
-/// `JSON.stringify(value)`: `None` for `undefined`, a function or a symbol; `Err` for a BigInt
-/// or a cycle.
-fn json_stringify(value: &JsValue) -> Result<Option<String>, JsValue> {
-    js_sys::JSON::stringify(value).map(|s| JsValue::from(s).as_string())
-}
-
-/// Reads plain data from JS through its JSON text, so that one deserialiser (serde_json's, which
-/// the core uses for JSON text) serves every type. `undefined` reads as `null`, and an object's
-/// `undefined` fields as absent (JSON has no `undefined`). Errors are the serde messages, without
-/// a position in the text.
-fn from_js<T: serde::de::DeserializeOwned>(v: &JsValue) -> Result<T, String> {
-    let text = json_stringify(v)
-        .map_err(|_| "not JSON data (a BigInt, or a cycle)".to_string())?
-        .unwrap_or_else(|| "null".into());
-    serde_json::from_str(&text).map_err(|e| json_message(&e))
-}
-
-/// A serde_json error without its ` at line L column C` suffix.
-fn json_message(e: &serde_json::Error) -> String {
-    let s = e.to_string();
-    let at = format!(" at line {} column {}", e.line(), e.column());
-    match s.strip_suffix(&at) {
-        Some(m) if e.line() != 0 => m.to_string(),
-        _ => s,
-    }
-}
-
-/// Serialises plain data for JS (objects, not `Map`s; numbers for `u64`) through serde_json's
-/// compact text and `JSON.parse`: floats are written shortest-round-trip, so JS gets the same
-/// numbers; a non-finite one would come out as `null`, as in the CLI's JSON.
-fn to_js<T: serde::Serialize>(v: &T) -> Result<JsValue, JsValue> {
-    let text = serde_json::to_string(v).map_err(js_err)?;
-    js_sys::JSON::parse(&text).map_err(|_| js_err("JSON.parse failed").into())
 }
 
 /// Solves one LQT-CP case (the contract of `docs/formats.md`, as `logic-lfd lqt CASE.json`).
@@ -178,14 +116,3 @@ export interface LqtCase {
   [key: string]: unknown;
 }
 "#;
-
-/// Converts a JS number to a seed (a non-negative integer below 2^53).
-fn seed_of(seed: f64) -> Result<u64, JsError> {
-    if seed.is_finite() && seed >= 0.0 && seed.fract() == 0.0 && seed <= 9_007_199_254_740_991.0 {
-        Ok(seed as u64)
-    } else {
-        Err(js_err(format!(
-            "seed must be a non-negative integer, got {seed}"
-        )))
-    }
-}

@@ -3,7 +3,7 @@
 //! `logic-lfd bench wasm-rows`: same code, same inputs, same best-of-N discipline).
 
 use super::args::object_arg;
-use super::{from_js, js_err, to_js, PerformanceClock};
+use super::convert::{from_js, js_err, to_js, PerformanceClock};
 use crate::experiments::hot_paths::{run_rows, RowInputs, RowParams};
 use wasm_bindgen::prelude::*;
 

@@ -2,7 +2,7 @@
 //! `blockRange`: the block counts of its generated N-block tower task.
 
 use super::args::string_arg;
-use super::{js_err, to_js};
+use super::convert::{js_err, to_js};
 use crate::sim::benchmark::Benchmark;
 use serde::Serialize;
 use tsify::Tsify;

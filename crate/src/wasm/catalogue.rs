@@ -2,7 +2,7 @@
 //! and one-line description (`lfd::catalogue`), from which the page builds its selects, tables
 //! and tooltips.
 
-use super::to_js;
+use super::convert::to_js;
 use wasm_bindgen::prelude::*;
 
 /// Every method, multi-goal mode, benchmark and disturbance level: the id that options take, a

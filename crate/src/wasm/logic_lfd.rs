@@ -25,7 +25,7 @@ use input::{
 use query::{answer, prepare, Current, Fixed, LogicLfdResult};
 
 use super::args::type_error;
-use super::to_js;
+use super::convert::to_js;
 
 // The inputs are read key by key (`input.rs`: a wrong type names the key, a bad option is an
 // `options` result), not deserialised into a Rust type, and the class's error is a JS `Error`

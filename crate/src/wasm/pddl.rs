@@ -3,7 +3,7 @@
 //! parameter of the wrong JS type throws a `TypeError`.
 
 use super::args::{object_arg, optional_string_arg, string_arg, StringArg};
-use super::{from_js, js_err, to_js, PerformanceClock};
+use super::convert::{from_js, js_err, to_js, PerformanceClock};
 use crate::pddl::{self, PddlError};
 use crate::plan::{self, Algorithm, Clock, HeuristicKind, SearchConfig, SearchOutcome};
 use serde::{Deserialize, Serialize};

@@ -2,7 +2,7 @@
 //! node test can check that the same seed gives byte-identical episode JSON natively and in wasm.
 
 use super::args::string_arg;
-use super::{js_err, PerformanceClock};
+use super::convert::{js_err, PerformanceClock};
 use crate::experiments::{run_episode, EpisodeSpec, Level};
 use crate::lfd::catalogue::{Listed, Method, Mode};
 use crate::lfd::session::SessionParams;

@@ -3,7 +3,7 @@
 //! snapshot inside keeps the scene file's names; the episode log keeps the CLI's).
 
 use super::args::{number_arg, object_arg, string_arg, type_error, type_name};
-use super::{from_js, js_err, seed_of, to_js, PerformanceClock};
+use super::convert::{from_js, js_err, seed_of, to_js, PerformanceClock};
 use crate::lfd::control;
 use crate::lfd::session::{self as core, EePoint, Status};
 use crate::sim::snapshot::WorldSnapshot;

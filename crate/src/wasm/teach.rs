@@ -6,7 +6,8 @@
 use super::args::{
     number_arg, object_arg, optional_string_arg, string_arg, type_error, type_name, StringArg,
 };
-use super::{from_js, js_err, seed_of, to_js, WasmSession};
+use super::convert::{from_js, js_err, seed_of, to_js};
+use super::session::WasmSession;
 use crate::recorder::synth::Edit;
 use crate::recorder::taught::{self, TaughtRunOptions};
 use crate::recorder::{self as rec, GripperHandle, Recorder, RecorderError, RecorderEvent};

@@ -9,8 +9,8 @@ use js_sys::{Object, Reflect};
 use wasm_bindgen::prelude::*;
 
 use super::super::args::{json_type_name, type_error, type_name};
+use super::super::convert::{from_js, to_js};
 use super::super::pddl::Validation;
-use super::super::{from_js, to_js};
 use super::diagnostics::{located_error, options_diag};
 use super::input::{
     files_option, known_keys, object_fields, search_options, texts, Files, FILE_KEYS, REPLAN_KEYS,

@@ -6,7 +6,7 @@ use serde::Serialize;
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
 
-use super::super::to_js;
+use super::super::convert::to_js;
 use super::input::Files;
 use crate::lfd::LfdError;
 use crate::pddl::PddlError;

@@ -6,7 +6,7 @@ use serde_json::{Map, Value};
 use wasm_bindgen::prelude::*;
 
 use super::super::args::{json_type_name, type_error, type_name};
-use super::super::from_js;
+use super::super::convert::from_js;
 use crate::lfd::Mode;
 use crate::plan::{Algorithm, HeuristicKind, SearchConfig};
 

@@ -4,7 +4,7 @@
 use serde::Serialize;
 use tsify::Tsify;
 
-use super::super::PerformanceClock;
+use super::super::convert::PerformanceClock;
 use super::diagnostics::{input_error, location_message, options_diag, LogicLfdDiagnostic};
 use super::input::{Files, Options, Texts};
 use crate::lfd::{LfdError, LfdPlan, LogicLfd, Observed, PlanSource};
