@@ -5,7 +5,7 @@ use rand::Rng;
 use rand_pcg::Pcg64Mcg;
 use serde_json::{json, Value};
 
-use super::{ensure, idx, Verdict};
+use super::common::{ensure, idx, Verdict};
 use crate::lfd::session::{EpisodeLog, Session, SessionError, SessionOptions};
 use crate::lqt::case::{run_case, CaseInput};
 use crate::lqt::LqtError;

@@ -27,11 +27,14 @@
 //! (`pddl.rs`), plan files (`plan.rs`), JSON documents — scenes, LQT-CP cases, episodes
 //! (`json.rs`) — and world operations (`world_ops.rs`).
 
+mod common;
 mod json;
 mod pddl;
 mod plan;
 mod world_ops;
 
+pub use common::Verdict;
+use common::BENCH_DIRS;
 pub use json::{hostile_value, is_line_col_within, mutate_json, JsonEdit, MAX_REPLAY_TICKS};
 pub use pddl::{mutate_pddl, pddl_error_in_bounds, PddlEdit};
 pub use plan::{check_plan_against, mutate_plan, PlanEdit};
@@ -45,7 +48,6 @@ use serde::{Deserialize, Serialize};
 use serde_json::json;
 
 use crate::lfd::session::{demo_actions, mix};
-use crate::sim::benchmark::Benchmark;
 
 /// An input format under test.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -103,23 +105,7 @@ impl Target {
     }
 }
 
-/// What the parser under test did with an input that kept every guarantee.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Verdict {
-    /// Accepted (and, where it applies, the accepted value behaved).
-    Accepted,
-    /// Refused with a located error.
-    Refused,
-}
-
 // ------------------------------------------------------------------------------ base inputs
-
-/// The benchmark folders whose files are base inputs, with the benchmark each one holds.
-const BENCH_DIRS: [(&str, Benchmark); 3] = [
-    ("b1-tower", Benchmark::B1),
-    ("b2-workspace-reach", Benchmark::B2),
-    ("b3-dual-arm", Benchmark::B3),
-];
 
 /// The base inputs of a target (mutations start from one of them).
 pub fn base_inputs(target: Target) -> Result<Vec<String>, String> {
@@ -153,11 +139,6 @@ pub fn base_inputs(target: Target) -> Result<Vec<String>, String> {
 }
 
 // ------------------------------------------------------------------------------ mutate
-
-/// A random index (edits take it modulo what they index).
-fn idx(rng: &mut Pcg64Mcg) -> usize {
-    rng.random::<u32>() as usize
-}
 
 /// Mutates `base` for `target` with `1..=max_edits` random edits.
 pub fn mutate(target: Target, base: &str, max_edits: usize, rng: &mut Pcg64Mcg) -> String {
@@ -214,30 +195,6 @@ pub fn generate(
 }
 
 // ------------------------------------------------------------------------------ oracles
-
-/// `Ok` when `ok`, else the broken guarantee `msg()`.
-fn ensure(ok: bool, msg: impl FnOnce() -> String) -> Result<(), String> {
-    if ok {
-        Ok(())
-    } else {
-        Err(msg())
-    }
-}
-
-/// The benchmark a `; fuzz <dir> …` header names (B1 without a header), and the header's words.
-fn header(input: &str) -> (Benchmark, Vec<String>) {
-    let first = input.lines().next().unwrap_or("");
-    let words: Vec<String> = first
-        .strip_prefix("; fuzz ")
-        .map(|r| r.split_whitespace().map(str::to_string).collect())
-        .unwrap_or_default();
-    let b = words
-        .first()
-        .and_then(|d| BENCH_DIRS.iter().find(|(n, _)| n == d))
-        .map(|(_, b)| *b)
-        .unwrap_or(Benchmark::B1);
-    (b, words)
-}
 
 /// The oracle: runs `input` through the parser(s) of `target` and checks the guarantees of the
 /// module table. `Err` names a broken guarantee. It may panic (that is what fuzzing looks for):

@@ -4,7 +4,7 @@
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
 
-use super::{ensure, header, idx, Verdict};
+use super::common::{ensure, header, idx, Verdict};
 use crate::pddl::{parse_domain, parse_problem, PddlError};
 use crate::plan::ground;
 

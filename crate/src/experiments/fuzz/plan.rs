@@ -4,8 +4,8 @@
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
 
+use super::common::{ensure, header, idx, Verdict};
 use super::pddl::pddl_error_in_bounds;
-use super::{ensure, header, idx, Verdict};
 use crate::pddl::{parse_domain, parse_problem, Domain, Problem};
 use crate::plan::{parse_plan, validate, Outcome};
 

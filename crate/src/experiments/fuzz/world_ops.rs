@@ -7,7 +7,7 @@ use rand::Rng;
 use rand_pcg::Pcg64Mcg;
 use serde::{Deserialize, Serialize};
 
-use super::{ensure, Verdict};
+use super::common::{ensure, Verdict};
 use crate::sim::benchmark::Benchmark;
 use crate::sim::World;
 
