@@ -32,8 +32,8 @@ fn rank(module: &str) -> Option<u8> {
     LAYERS.iter().find(|(m, _)| *m == module).map(|&(_, r)| r)
 }
 
-/// The module path of a source file below `src/` (`lfd/exec.rs` → `[lfd, exec]`,
-/// `lfd/mod.rs` → `[lfd]`, `wasm.rs` → `[wasm]`).
+/// The module path of a source file below `src/` (`lfd/exec/tick.rs` → `[lfd, exec, tick]`,
+/// `lfd/mod.rs` → `[lfd]`).
 fn module_path(rel: &Path) -> Vec<String> {
     let mut parts: Vec<String> = rel
         .iter()

@@ -3,9 +3,9 @@
 //!
 //! The command line's help and value parsing, the npm package's `catalogue()` and the page's
 //! selects, tables and tooltips all read it, so an entry is named and described here only. What
-//! an entry does is code elsewhere: a method's behaviour is the match in `control.rs` and
+//! an entry does is code elsewhere: a method's behaviour is the match in `control/mod.rs` and
 //! `session/tick.rs`, a mode's the multi-goal search of `logic.rs`, a level's the injector of
-//! `disturb.rs`, a benchmark's files and scene [`crate::sim::benchmark`].
+//! `disturb/mod.rs`, a benchmark's files and scene [`crate::sim::benchmark`].
 
 use serde::{Deserialize, Serialize};
 
