@@ -30,10 +30,7 @@ fn planning(c: &mut Criterion) {
         &motions.scene_predicates(),
     )
     .unwrap();
-    let objs: Vec<(String, String)> = SceneGraph::objects(&world)
-        .into_iter()
-        .map(|o| (o.name, o.kind))
-        .collect();
+    let objs = SceneGraph::objects(&world);
     let template = model
         .build(&objs, &SceneGraph::from_world(&world).to_strings())
         .unwrap();

@@ -64,11 +64,8 @@ impl Run {
     }
 }
 
-fn objects(s: &Session) -> Vec<(String, String)> {
+fn objects(s: &Session) -> Vec<logic_lfd::pddl::ObjectDecl> {
     SceneGraph::objects(s.world())
-        .into_iter()
-        .map(|o| (o.name, o.kind))
-        .collect()
 }
 
 /// Runs an episode like `logic-lfd run` does, checking the world's invariants after every tick
@@ -433,10 +430,7 @@ fn multi_goal_plan_plus_suffix_reaches_the_goal_in_the_pddl_model() {
         &b.motions().scene_predicates(),
     )
     .unwrap();
-    let objs: Vec<(String, String)> = SceneGraph::objects(&world)
-        .into_iter()
-        .map(|o| (o.name, o.kind))
-        .collect();
+    let objs = SceneGraph::objects(&world);
     let facts = SceneGraph::from_world(&world).to_strings();
     let template = model.build(&objs, &facts).unwrap();
     let demo = logic_lfd::lfd::session::demo_actions(&files.demo).unwrap();

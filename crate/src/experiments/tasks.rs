@@ -46,10 +46,7 @@ pub fn template_task_for(
         "problem.pddl",
         &b.motions().scene_predicates(),
     )?;
-    let objects: Vec<(String, String)> = SceneGraph::objects(&template)
-        .into_iter()
-        .map(|o| (o.name, o.kind))
-        .collect();
+    let objects = SceneGraph::objects(&template);
     let task = model.build(&objects, &SceneGraph::from_world(&template).to_strings())?;
     let trace = DemoTrace::derive(&task, &demo_actions(&files.demo)?)?;
     Ok((task, trace))

@@ -20,7 +20,7 @@ pub struct DomainModel {
     domain: Domain,
     template: Problem,
     static_init: Vec<String>,
-    template_objects: Vec<(String, String)>,
+    template_objects: Vec<ObjectDecl>,
 }
 
 impl DomainModel {
@@ -47,7 +47,10 @@ impl DomainModel {
         let template_objects = problem
             .objects
             .iter()
-            .map(|o| (o.name.text.clone(), domain.types[o.ty].name.text.clone()))
+            .map(|o| ObjectDecl {
+                name: o.name.text.clone(),
+                ty: domain.types[o.ty].name.text.clone(),
+            })
             .collect();
         Ok(DomainModel {
             domain,
@@ -63,18 +66,11 @@ impl DomainModel {
     }
 
     /// The problem of a world with these objects (those of a type the domain declares) and facts.
-    pub fn problem(
-        &self,
-        objects: &[(String, String)],
-        facts: &[String],
-    ) -> Result<Problem, LfdError> {
+    pub fn problem(&self, objects: &[ObjectDecl], facts: &[String]) -> Result<Problem, LfdError> {
         let decls = objects
             .iter()
-            .filter(|(_, ty)| self.domain.type_index(ty).is_some())
-            .map(|(name, ty)| ObjectDecl {
-                name: name.clone(),
-                ty: ty.clone(),
-            });
+            .filter(|o| self.domain.type_index(&o.ty).is_some())
+            .cloned();
         ProblemBuilder::from_template(&self.domain, &self.template)
             .objects(decls)
             .init(facts.iter().chain(&self.static_init).cloned())
@@ -82,14 +78,14 @@ impl DomainModel {
             .map_err(|e| LfdError::Model(e.to_string()))
     }
 
-    /// The template problem's objects (name, type).
-    pub fn template_objects(&self) -> &[(String, String)] {
+    /// The template problem's objects.
+    pub fn template_objects(&self) -> &[ObjectDecl] {
         &self.template_objects
     }
 }
 
 impl TaskBuilder for DomainModel {
-    fn build(&self, objects: &[(String, String)], facts: &[String]) -> Result<Task, LfdError> {
+    fn build(&self, objects: &[ObjectDecl], facts: &[String]) -> Result<Task, LfdError> {
         let problem = self.problem(objects, facts)?;
         plan::ground(&self.domain, &problem).map_err(|e| LfdError::Model(e.to_string()))
     }

@@ -141,8 +141,8 @@ fn sources_with_goal(
         .with_motions(b.motions());
     let mut objects = String::new();
     for o in SceneGraph::objects(&world) {
-        if domain.type_index(&o.kind).is_some() {
-            objects.push_str(&format!(" {} - {}", o.name, o.kind));
+        if domain.type_index(&o.ty).is_some() {
+            objects.push_str(&format!(" {} - {}", o.name, o.ty));
         }
     }
     let statics: Vec<String> = b.static_facts().iter().map(|f| f.to_string()).collect();
@@ -188,10 +188,7 @@ fn model_and_trace(
         &motions.scene_predicates(),
     )
     .map_err(|e| RecorderError::Model(e.to_string()))?;
-    let objects: Vec<(String, String)> = SceneGraph::objects(&world)
-        .into_iter()
-        .map(|o| (o.name, o.kind))
-        .collect();
+    let objects = SceneGraph::objects(&world);
     let facts = SceneGraph::from_world(&world).to_strings();
     let task = model
         .build(&objects, &facts)

@@ -258,9 +258,9 @@ impl Benchmark {
         let objects = SceneGraph::objects(world);
         let mut by_type: Vec<(String, Vec<String>)> = Vec::new();
         for o in objects {
-            match by_type.iter_mut().find(|(t, _)| *t == o.kind) {
+            match by_type.iter_mut().find(|(t, _)| *t == o.ty) {
                 Some((_, v)) => v.push(o.name),
-                None => by_type.push((o.kind, vec![o.name])),
+                None => by_type.push((o.ty, vec![o.name])),
             }
         }
         let mut text = format!(

@@ -33,6 +33,7 @@ use super::geometry::HOOK_GRASP_POINT;
 use super::motions::{ObjectKind, Relation, Slot};
 use super::snapshot::BodyKind;
 use super::world::World;
+use crate::pddl::ObjectDecl;
 use nalgebra::{Point3, Vector3};
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -64,15 +65,6 @@ impl fmt::Display for Fact {
         }
         write!(f, ")")
     }
-}
-
-/// A PDDL object present in the scene and its type.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct SceneObject {
-    /// Object name.
-    pub name: String,
-    /// Its PDDL type, as the domain's declaration gives it (`object` if none).
-    pub kind: String,
 }
 
 /// The facts of a world.
@@ -110,7 +102,7 @@ impl SceneGraph {
 
     /// The PDDL objects of `world` with their types: arms, blocks, hooks and regions, the kinds
     /// the domain's declaration names (`object` where it gives no type).
-    pub fn objects(world: &World) -> Vec<SceneObject> {
+    pub fn objects(world: &World) -> Vec<ObjectDecl> {
         let m = world.motions();
         let mut out = Vec::new();
         for kind in ObjectKind::ALL {
@@ -119,9 +111,9 @@ impl SceneGraph {
             };
             let ty = spec.ty.clone().unwrap_or_else(|| "object".into());
             for name in names_of(world, kind) {
-                out.push(SceneObject {
+                out.push(ObjectDecl {
                     name,
-                    kind: ty.clone(),
+                    ty: ty.clone(),
                 });
             }
         }

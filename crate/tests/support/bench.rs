@@ -32,10 +32,7 @@ pub(crate) fn model_and_task_for(
         &b.motions().scene_predicates(),
     )
     .unwrap();
-    let objs: Vec<(String, String)> = SceneGraph::objects(world)
-        .into_iter()
-        .map(|o| (o.name, o.kind))
-        .collect();
+    let objs = SceneGraph::objects(world);
     let task = model
         .build(&objs, &SceneGraph::from_world(world).to_strings())
         .unwrap();

@@ -21,6 +21,7 @@
 
 use std::collections::BTreeSet;
 
+use crate::pddl::ObjectDecl;
 use crate::plan::{replay, Algorithm, BannedTask, Clock, HeuristicKind, Operator, State, Task};
 use crate::tamp::{Binder, Binding, BoundPlan, TimedBinder};
 
@@ -39,7 +40,7 @@ pub use types::{ControlParams, Decision, FailReason, Replan};
 /// Builds the grounded task for the current world: objects (name, PDDL type) and facts S_C.
 pub trait TaskBuilder {
     /// A task whose initial state is `facts` and whose goal is the benchmark's goal.
-    fn build(&self, objects: &[(String, String)], facts: &[String]) -> Result<Task, LfdError>;
+    fn build(&self, objects: &[ObjectDecl], facts: &[String]) -> Result<Task, LfdError>;
 }
 
 /// A new plan: its operators, the demonstration state it joins, how many of its leading actions
@@ -64,7 +65,7 @@ pub struct Controller {
     params: ControlParams,
     /// The task level: the current grounding, the demonstration and its specification.
     lfd: LogicLfd,
-    objects: Vec<(String, String)>,
+    objects: Vec<ObjectDecl>,
     plan: Vec<usize>,
     plan_names: Vec<String>,
     /// What the streams bound for each action of the plan (empty when the method binds
@@ -118,7 +119,7 @@ impl Controller {
         params: ControlParams,
         trace: DemoTrace,
         task: Task,
-        objects: Vec<(String, String)>,
+        objects: Vec<ObjectDecl>,
     ) -> Self {
         Controller {
             method,
@@ -249,7 +250,7 @@ impl Controller {
     pub fn decide(
         &mut self,
         facts: &[String],
-        objects: &[(String, String)],
+        objects: &[ObjectDecl],
         builder: &dyn TaskBuilder,
         binder: &mut dyn Binder,
         clock: &dyn Clock,

@@ -37,7 +37,7 @@ fn tower() -> (Task, DemoTrace) {
 struct SameTask(Task);
 
 impl TaskBuilder for SameTask {
-    fn build(&self, _: &[(String, String)], _: &[String]) -> Result<Task, LfdError> {
+    fn build(&self, _: &[crate::pddl::ObjectDecl], _: &[String]) -> Result<Task, LfdError> {
         Ok(self.0.clone())
     }
 }

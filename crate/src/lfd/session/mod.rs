@@ -48,6 +48,7 @@ pub use options::{demo_actions, mix, sources_for, SessionError, SessionOptions, 
 use nalgebra::Vector3;
 use std::sync::Arc;
 
+use crate::pddl::ObjectDecl;
 use crate::sim::snapshot::WorldSnapshot;
 use crate::sim::{Refused, SceneGraph, World};
 
@@ -97,11 +98,8 @@ fn facts_of(world: &World) -> Vec<String> {
     f
 }
 
-fn objects_of(world: &World) -> Vec<(String, String)> {
+fn objects_of(world: &World) -> Vec<ObjectDecl> {
     SceneGraph::objects(world)
-        .into_iter()
-        .map(|o| (o.name, o.kind))
-        .collect()
 }
 
 impl Session {

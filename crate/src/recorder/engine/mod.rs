@@ -202,11 +202,7 @@ fn scene_problem(
 ) -> Result<pddl::Problem, pddl::PddlError> {
     let objects = SceneGraph::objects(world)
         .into_iter()
-        .filter(|o| domain.type_index(&o.kind).is_some())
-        .map(|o| pddl::ObjectDecl {
-            name: o.name,
-            ty: o.kind,
-        });
+        .filter(|o| domain.type_index(&o.ty).is_some());
     pddl::ProblemBuilder::new(domain, "taught")
         .objects(objects)
         .init(facts.iter().chain(statics).cloned())
