@@ -12,18 +12,18 @@ use logic_lfd::prelude::*;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../domains/delivery");
-    let read = |f: &str| std::fs::read_to_string(format!("{dir}/{f}"));
+    let read = |f: &str| Source::read(format!("{dir}/{f}"));
     let lfd = LogicLfd::named(
-        ("domain.pddl", &read("domain.pddl")?),
-        ("problem.pddl", &read("problem.pddl")?),
-        ("demo.plan", &read("demo.plan")?),
+        &read("domain.pddl")?,
+        &read("problem.pddl")?,
+        &read("demo.plan")?,
     )?;
     println!(
         "demonstration: {} actions, states L_0 … L_{}",
         lfd.demo_actions().len(),
         lfd.demo_states().len() - 1
     );
-    let now = lfd.state_in("disturbed.facts", &read("disturbed.facts")?)?;
+    let now = lfd.state_in("disturbed.facts", &read("disturbed.facts")?.text)?;
     match now.logic_in() {
         Some(k) => println!("LogicIn: L_{k} ⊆ S_C, the rest of the demonstration applies"),
         None => println!("LogicIn: no demonstration state holds, one multi-goal search"),

@@ -41,6 +41,7 @@ pub mod wasm;
 /// ```
 pub mod prelude {
     pub use crate::lfd::{LfdError, LfdPlan, LogicLfd, Mode, Observed, Perturbed, PlanSource};
+    pub use crate::pddl::Source;
     pub use crate::plan::{
         Algorithm, Clock, HeuristicKind, NoClock, SearchConfig, SearchOutcome, SearchStats, State,
         ValidationReport,

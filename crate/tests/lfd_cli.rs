@@ -2,6 +2,7 @@
 //! S_C (grounded and lifted, independently of the binary), bad input exits 2 with its location,
 //! search outcomes exit 3 and 4, and the perturbation study is deterministic.
 
+use logic_lfd::pddl::Source;
 use std::path::{Path, PathBuf};
 
 use logic_lfd::prelude::LogicLfd;
@@ -61,9 +62,9 @@ impl Task {
     }
 
     fn lfd(&self) -> LogicLfd {
-        let read = |p: &Path| (text(p), std::fs::read_to_string(p).unwrap());
+        let read = |p: &Path| Source::new(text(p), std::fs::read_to_string(p).unwrap());
         let (d, p, m) = (read(&self.domain), read(&self.problem), read(&self.demo));
-        LogicLfd::named((&d.0, &d.1), (&p.0, &p.1), (&m.0, &m.1)).unwrap()
+        LogicLfd::named(&d, &p, &m).unwrap()
     }
 }
 

@@ -2,7 +2,7 @@
 //! [`Span`] it was read from, so later stages (grounding, validation) can point at the source.
 //! All names are lower case (PDDL is case-insensitive).
 
-use super::error::{PddlError, Source, Span};
+use super::error::{PddlError, SourceMap, Span};
 
 /// A lower-cased name (or `?variable`) with where it was written.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -162,7 +162,7 @@ pub struct Domain {
     pub functions: Vec<Signature>,
     /// Action schemas.
     pub actions: Vec<Action>,
-    pub(crate) source: Source,
+    pub(crate) source: SourceMap,
 }
 
 /// A value `(= (f a …) N)` of a static cost function in the problem's init.
@@ -195,7 +195,7 @@ pub struct Problem {
     pub goal: Formula,
     /// Whether the problem asks `(:metric minimize (total-cost))`.
     pub minimize_total_cost: bool,
-    pub(crate) source: Source,
+    pub(crate) source: SourceMap,
 }
 
 impl Domain {

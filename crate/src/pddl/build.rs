@@ -8,7 +8,7 @@
 use std::collections::{BTreeSet, HashMap};
 
 use super::ast::{Domain, Formula, Name, Problem, TypedName};
-use super::error::{PddlError, Source, Span};
+use super::error::{PddlError, SourceMap, Span};
 
 /// An object to declare: its name and the name of its type (lower case).
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -147,7 +147,7 @@ impl<'d> ProblemBuilder<'d> {
                 Formula::And(Vec::new(), Span::default()),
                 Vec::new(),
                 false,
-                Source::new("", "<problem>"),
+                SourceMap::new("", "<problem>"),
             ),
         };
         let shell = Problem {
@@ -175,7 +175,7 @@ fn unlocated(text: &str) -> Name {
 fn check_goal_objects(
     goal: &Formula,
     declared: &HashMap<&str, usize>,
-    src: &Source,
+    src: &SourceMap,
 ) -> Result<(), PddlError> {
     let missing = |name: &Name| -> Result<(), PddlError> {
         match declared.contains_key(name.text.as_str()) {

@@ -3,7 +3,7 @@
 
 use super::ast::Name;
 use super::error::Span;
-use super::error::{PddlError, Source};
+use super::error::{PddlError, SourceMap};
 use super::lexer::SExpr;
 
 /// Requirements this front end implements.
@@ -42,7 +42,7 @@ const KNOWN_UNSUPPORTED_REQUIREMENTS: &[&str] = &[
 ];
 
 /// `` `construct` is not supported: why`` at the construct.
-pub(crate) fn refuse(src: &Source, span: Span, construct: &str, why: &str) -> PddlError {
+pub(crate) fn refuse(src: &SourceMap, span: Span, construct: &str, why: &str) -> PddlError {
     src.error(span, format!("`{construct}` is not supported: {why}"))
 }
 
@@ -61,7 +61,11 @@ fn describe(e: &SExpr) -> String {
 }
 
 /// The items of a list, or an error naming what was expected.
-pub(crate) fn list<'e>(src: &Source, e: &'e SExpr, what: &str) -> Result<&'e [SExpr], PddlError> {
+pub(crate) fn list<'e>(
+    src: &SourceMap,
+    e: &'e SExpr,
+    what: &str,
+) -> Result<&'e [SExpr], PddlError> {
     match e {
         SExpr::List(items, _) => Ok(items),
         SExpr::Atom(..) => Err(src.error(
@@ -72,7 +76,7 @@ pub(crate) fn list<'e>(src: &Source, e: &'e SExpr, what: &str) -> Result<&'e [SE
 }
 
 /// A name (not a variable, keyword or number).
-pub(crate) fn name(src: &Source, e: &SExpr, what: &str) -> Result<Name, PddlError> {
+pub(crate) fn name(src: &SourceMap, e: &SExpr, what: &str) -> Result<Name, PddlError> {
     match e {
         SExpr::Atom(a, span) if is_name(a) => Ok(Name {
             text: a.clone(),
@@ -83,7 +87,7 @@ pub(crate) fn name(src: &Source, e: &SExpr, what: &str) -> Result<Name, PddlErro
 }
 
 /// A `?variable`.
-pub(crate) fn variable(src: &Source, e: &SExpr) -> Result<Name, PddlError> {
+pub(crate) fn variable(src: &SourceMap, e: &SExpr) -> Result<Name, PddlError> {
     match e {
         SExpr::Atom(a, span) if a.starts_with('?') && is_name(&a[1..]) => Ok(Name {
             text: a.clone(),
@@ -99,7 +103,7 @@ pub(crate) fn variable(src: &Source, e: &SExpr) -> Result<Name, PddlError> {
 /// A typed list `a b - t c - u d` → `[(a, Some(t)), (b, Some(t)), (c, Some(u)), (d, None)]`.
 /// `variables` selects `?x` items or plain names. `(either …)` is refused by name.
 pub(crate) fn typed_list(
-    src: &Source,
+    src: &SourceMap,
     items: &[SExpr],
     variables: bool,
 ) -> Result<Vec<(Name, Option<Name>)>, PddlError> {
@@ -145,7 +149,7 @@ pub(crate) fn typed_list(
 
 /// Checks a `(:requirements …)` section: supported flags pass, known PDDL flags we do not
 /// implement are refused by name, anything else is unknown.
-pub(crate) fn requirements(src: &Source, items: &[SExpr]) -> Result<Vec<Name>, PddlError> {
+pub(crate) fn requirements(src: &SourceMap, items: &[SExpr]) -> Result<Vec<Name>, PddlError> {
     let mut out = Vec::new();
     for e in &items[1..] {
         let Some(a) = e.atom() else {
@@ -172,7 +176,7 @@ pub(crate) fn requirements(src: &Source, items: &[SExpr]) -> Result<Vec<Name>, P
 }
 
 /// A non-negative integer (a cost or a function value).
-pub(crate) fn non_negative_integer(src: &Source, e: &SExpr) -> Result<u64, PddlError> {
+pub(crate) fn non_negative_integer(src: &SourceMap, e: &SExpr) -> Result<u64, PddlError> {
     let text = e.atom().unwrap_or("");
     // Accept `5` and `5.0` / `5.00`; refuse fractions and negatives.
     let int = text.strip_suffix(".0").or_else(|| {
@@ -194,7 +198,7 @@ pub(crate) fn non_negative_integer(src: &Source, e: &SExpr) -> Result<u64, PddlE
 
 /// Splits `(define (KIND NAME) section …)` into its name and sections, checking the header.
 pub(crate) fn define<'e>(
-    src: &Source,
+    src: &SourceMap,
     top: &'e SExpr,
     kind: &str,
 ) -> Result<(Name, &'e [SExpr]), PddlError> {

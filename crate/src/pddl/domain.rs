@@ -6,13 +6,13 @@ use std::collections::HashMap;
 use super::ast::{Action, Domain, Formula, Name, Signature, TypeDecl, TypedName};
 use super::common::{define, list, name, refuse, requirements, typed_list};
 use super::error::Span;
-use super::error::{PddlError, Source};
+use super::error::{PddlError, SourceMap};
 use super::formula::Scope;
 use super::lexer::{read_one, SExpr};
 
 /// Parses a domain file. `file` is used in error locations only.
 pub fn parse_domain(text: &str, file: &str) -> Result<Domain, PddlError> {
-    let src = Source::new(text, file);
+    let src = SourceMap::new(text, file);
     let top = read_one(&src)?;
     let (dname, sections) = define(&src, &top, "domain")?;
 
@@ -137,7 +137,7 @@ fn object_type() -> TypeDecl {
     }
 }
 
-pub(crate) fn duplicate(src: &Source, what: &str, n: &Name, prev: Span) -> PddlError {
+pub(crate) fn duplicate(src: &SourceMap, what: &str, n: &Name, prev: Span) -> PddlError {
     let (l, c) = src.line_col(prev.start);
     src.error(
         n.span,
@@ -151,7 +151,7 @@ pub(crate) fn duplicate(src: &Source, what: &str, n: &Name, prev: Span) -> PddlE
 /// with parents of which one descends from the other (IPC-2006 storage writes `area - object`
 /// and `area - surface`), when it takes the most specific. Two unrelated parents (multiple
 /// inheritance) and cycles are errors.
-fn type_hierarchy(src: &Source, items: &[SExpr]) -> Result<Vec<TypeDecl>, PddlError> {
+fn type_hierarchy(src: &SourceMap, items: &[SExpr]) -> Result<Vec<TypeDecl>, PddlError> {
     let mut types = vec![object_type()];
     let mut explicit: Vec<bool> = vec![true];
     // Every parent each type was declared under, with the name that declared it.
@@ -244,7 +244,7 @@ fn descends(parents: &[Vec<(usize, Name)>], sub: usize, sup: usize) -> bool {
 /// Every chain of declared parents must reach `object`: a type declared (indirectly) under
 /// itself is an error.
 fn check_acyclic(
-    src: &Source,
+    src: &SourceMap,
     types: &[TypeDecl],
     parents: &[Vec<(usize, Name)>],
 ) -> Result<(), PddlError> {
@@ -291,7 +291,7 @@ fn check_acyclic(
 
 /// The type index of a declared type name (`object` when absent).
 pub(crate) fn resolve_type(
-    src: &Source,
+    src: &SourceMap,
     domain: &Domain,
     ty: Option<&Name>,
 ) -> Result<usize, PddlError> {
@@ -306,7 +306,7 @@ pub(crate) fn resolve_type(
 /// Typed `?x` parameters; action parameters must have unique names (predicate signatures need
 /// not: the IPC logistics domain declares `(in ?obj ?obj)`).
 fn parameters(
-    src: &Source,
+    src: &SourceMap,
     domain: &Domain,
     items: &[SExpr],
     unique: bool,
@@ -323,7 +323,7 @@ fn parameters(
 }
 
 fn signatures(
-    src: &Source,
+    src: &SourceMap,
     domain: &Domain,
     items: &[SExpr],
     what: &str,
@@ -346,7 +346,7 @@ fn signatures(
 
 /// `(:functions (total-cost) - number (f ?x - t) - number)`; only `number` functions.
 fn function_signatures(
-    src: &Source,
+    src: &SourceMap,
     domain: &Domain,
     items: &[SExpr],
 ) -> Result<Vec<Signature>, PddlError> {
@@ -383,7 +383,7 @@ fn function_signatures(
 
 /// `(:action NAME :parameters (…) :precondition φ :effect ε)`.
 fn action(
-    src: &Source,
+    src: &SourceMap,
     domain: &Domain,
     consts: &HashMap<String, usize>,
     e: &SExpr,

@@ -25,15 +25,40 @@ pub struct PddlError {
     pub message: String,
 }
 
+/// A named text: a file's name, as error locations give it, and its contents.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Source {
+    /// The file name (`domain.pddl`, a path, `<stdin>`).
+    pub file: String,
+    /// The text.
+    pub text: String,
+}
+
+impl Source {
+    /// A text under a file name.
+    pub fn new(file: impl Into<String>, text: impl Into<String>) -> Self {
+        Source {
+            file: file.into(),
+            text: text.into(),
+        }
+    }
+
+    /// Reads a file as UTF-8 text ([`read_source`]), named by its path.
+    pub fn read(path: impl AsRef<std::path::Path>) -> Result<Source, PddlError> {
+        let path = path.as_ref();
+        Ok(Source::new(path.display().to_string(), read_source(path)?))
+    }
+}
+
 /// A source text with its file name and line index, to locate byte spans.
 #[derive(Clone, Debug, Default)]
-pub(crate) struct Source {
+pub(crate) struct SourceMap {
     pub(crate) file: String,
     pub(crate) text: String,
     line_starts: Vec<usize>,
 }
 
-impl Source {
+impl SourceMap {
     pub(crate) fn new(text: &str, file: &str) -> Self {
         let mut line_starts = vec![0];
         line_starts.extend(
@@ -42,7 +67,7 @@ impl Source {
                 .filter(|&(_, b)| b == b'\n')
                 .map(|(i, _)| i + 1),
         );
-        Source {
+        SourceMap {
             file: file.to_string(),
             text: text.to_string(),
             line_starts,
@@ -86,7 +111,7 @@ pub fn decode_source(bytes: Vec<u8>, file: &str) -> Result<String, PddlError> {
             let valid = e.utf8_error().valid_up_to();
             let bytes = e.into_bytes();
             let prefix = std::str::from_utf8(&bytes[..valid]).unwrap_or_default();
-            let src = Source::new(prefix, file);
+            let src = SourceMap::new(prefix, file);
             Err(src.error(
                 Span {
                     start: valid,
@@ -118,7 +143,7 @@ mod tests {
 
     #[test]
     fn line_col_counts_characters_from_one() {
-        let s = Source::new("ab\nçd\n\nx", "f");
+        let s = SourceMap::new("ab\nçd\n\nx", "f");
         assert_eq!(s.line_col(0), (1, 1));
         assert_eq!(s.line_col(2), (1, 3));
         assert_eq!(s.line_col(3), (2, 1));

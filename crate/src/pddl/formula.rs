@@ -6,12 +6,12 @@ use std::collections::HashMap;
 
 use super::ast::{Atom, CostAmount, CostIncrease, Domain, Effect, Formula, Name, Term, TypedName};
 use super::common::{is_name, list, non_negative_integer, refuse};
-use super::error::{PddlError, Source};
+use super::error::{PddlError, SourceMap};
 use super::lexer::SExpr;
 
 /// What names mean where a formula is read.
 pub(crate) struct Scope<'a> {
-    pub(crate) src: &'a Source,
+    pub(crate) src: &'a SourceMap,
     pub(crate) domain: &'a Domain,
     /// Action parameters (empty in a problem).
     pub(crate) params: &'a [TypedName],

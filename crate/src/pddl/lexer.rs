@@ -5,7 +5,7 @@
 //! exhaust the stack of the recursive-descent interpreters that read the tree.
 
 use super::error::Span;
-use super::error::{PddlError, Source};
+use super::error::{PddlError, SourceMap};
 
 /// Deepest list nesting accepted (real domains stay below 20).
 pub(crate) const MAX_DEPTH: usize = 200;
@@ -43,7 +43,7 @@ impl SExpr {
 }
 
 /// Reads exactly one top-level list (the `(define …)`), with nothing but comments after it.
-pub(crate) fn read_one(src: &Source) -> Result<SExpr, PddlError> {
+pub(crate) fn read_one(src: &SourceMap) -> Result<SExpr, PddlError> {
     let text = src.text.as_str();
     let bytes = text.as_bytes();
     let mut stack: Vec<(usize, Vec<SExpr>)> = Vec::new();
@@ -154,7 +154,7 @@ fn atom_end(bytes: &[u8], start: usize) -> usize {
 }
 
 /// Reads a sequence of top-level lists (a plan file: one `(action arg …)` per line).
-pub(crate) fn read_many(src: &Source) -> Result<Vec<SExpr>, PddlError> {
+pub(crate) fn read_many(src: &SourceMap) -> Result<Vec<SExpr>, PddlError> {
     let text = src.text.as_str();
     let bytes = text.as_bytes();
     let mut out = Vec::new();
@@ -224,7 +224,7 @@ mod tests {
     use super::*;
 
     fn read(t: &str) -> Result<SExpr, PddlError> {
-        read_one(&Source::new(t, "t"))
+        read_one(&SourceMap::new(t, "t"))
     }
 
     #[test]

@@ -38,8 +38,8 @@ pub use ast::{
 };
 pub use build::{ObjectDecl, ProblemBuilder};
 pub use domain::parse_domain;
-pub use error::{decode_source, read_source, PddlError, Span};
+pub use error::{decode_source, read_source, PddlError, Source, Span};
 pub use problem::{parse_problem, LocatedFact};
 
-pub(crate) use error::Source;
+pub(crate) use error::SourceMap;
 pub(crate) use lexer::{read_many, SExpr};

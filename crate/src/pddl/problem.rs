@@ -7,13 +7,13 @@ use super::ast::{Atom, Domain, FunctionValue, Name, Problem, Term, TypedName};
 use super::common::{define, list, name, non_negative_integer, refuse, requirements, typed_list};
 use super::domain::{duplicate, resolve_type};
 use super::error::Span;
-use super::error::{PddlError, Source};
+use super::error::{PddlError, SourceMap};
 use super::formula::Scope;
 use super::lexer::{read_one, SExpr};
 
 /// Parses a problem file against its domain. `file` is used in error locations only.
 pub fn parse_problem(text: &str, file: &str, domain: &Domain) -> Result<Problem, PddlError> {
-    let src = Source::new(text, file);
+    let src = SourceMap::new(text, file);
     let top = read_one(&src)?;
     let (pname, sections) = define(&src, &top, "problem")?;
 
@@ -188,7 +188,7 @@ pub fn parse_problem(text: &str, file: &str, domain: &Domain) -> Result<Problem,
 
 /// `(= (f a …) N)`; `(= (total-cost) N)` is accepted and dropped (plan cost starts at 0).
 fn function_value(
-    src: &Source,
+    src: &SourceMap,
     domain: &Domain,
     names: &HashMap<String, usize>,
     e: &SExpr,
@@ -248,7 +248,7 @@ fn function_value(
 }
 
 /// `(:metric minimize (total-cost))`, the only metric supported.
-fn metric(src: &Source, domain: &Domain, items: &[SExpr], span: Span) -> Result<(), PddlError> {
+fn metric(src: &SourceMap, domain: &Domain, items: &[SExpr], span: Span) -> Result<(), PddlError> {
     let Some(dir) = items.get(1) else {
         return Err(src.error(span, "expected `(:metric minimize (total-cost))`"));
     };
@@ -313,7 +313,7 @@ impl Problem {
     /// graph whose facts are unreachable from the original `:init`. Errors are located in the
     /// facts joined one per line, under the file name `<init>`.
     pub fn with_init(&self, domain: &Domain, facts: &[String]) -> Result<Problem, PddlError> {
-        let src = Source::new(&facts.join("\n"), "<init>");
+        let src = SourceMap::new(&facts.join("\n"), "<init>");
         let init = self
             .atoms_in(domain, &src)?
             .into_iter()
@@ -402,7 +402,7 @@ impl Problem {
         text: &str,
         file: &str,
     ) -> Result<Vec<LocatedFact>, PddlError> {
-        let src = Source::new(text, file);
+        let src = SourceMap::new(text, file);
         Ok(self
             .atoms_in(domain, &src)?
             .into_iter()
@@ -417,7 +417,7 @@ impl Problem {
             .collect())
     }
 
-    fn atoms_in(&self, domain: &Domain, src: &Source) -> Result<Vec<(Atom, Span)>, PddlError> {
+    fn atoms_in(&self, domain: &Domain, src: &SourceMap) -> Result<Vec<(Atom, Span)>, PddlError> {
         let names: HashMap<String, usize> = domain
             .constants
             .iter()

@@ -66,7 +66,7 @@ impl PlanStep {
 /// Parses a plan file: one `(action arg …)` per line, `;` comments and blank lines allowed,
 /// case-insensitive. Names are checked against the domain by [`validate`].
 pub fn parse_plan(text: &str, file: &str) -> Result<Vec<PlanStep>, PddlError> {
-    let src = crate::pddl::Source::new(text, file);
+    let src = crate::pddl::SourceMap::new(text, file);
     let lists = crate::pddl::read_many(&src)?;
     let tok = |text: &str, span: Span| {
         let (line, col) = src.line_col(span.start);

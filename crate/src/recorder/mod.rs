@@ -58,6 +58,7 @@ pub mod synth;
 pub mod taught;
 mod types;
 
+use crate::pddl::Source;
 pub use engine::{GripperHandle, Recorder, RecorderOptions};
 pub use recording::{ArmRef, GripperPose, RawRecording, RawSample, RecordingScene};
 pub(crate) use types::change_text;
@@ -73,13 +74,13 @@ pub fn segment_recording(
     recording: &RawRecording,
     domain_pddl: &str,
     domain_file: &str,
-    problem: Option<(&str, &str)>,
+    problem: Option<&Source>,
     params: RecorderParams,
 ) -> Result<Taught, RecorderError> {
     let scene = recording.scene.snapshot()?;
     let options = RecorderOptions {
         domain_file: domain_file.to_string(),
-        problem_pddl: problem.map(|(t, f)| (t.to_string(), f.to_string())),
+        problem_pddl: problem.cloned(),
         motions_json: None,
         params,
     };

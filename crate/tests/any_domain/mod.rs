@@ -70,12 +70,9 @@ fn cases() -> Vec<(String, LogicLfd)> {
     }
     for dir in ["kitchen", "delivery"] {
         let f = |n: &str| repo(&format!("domains/{dir}/{n}"));
-        let lfd = LogicLfd::named(
-            ("domain.pddl", &f("domain.pddl")),
-            ("problem.pddl", &f("problem.pddl")),
-            ("demo.plan", &f("demo.plan")),
-        )
-        .unwrap_or_else(|e| panic!("{dir}: {e}"));
+        let src = |n: &str| Source::new(n, f(n));
+        let lfd = LogicLfd::named(&src("domain.pddl"), &src("problem.pddl"), &src("demo.plan"))
+            .unwrap_or_else(|e| panic!("{dir}: {e}"));
         out.push((dir.to_string(), lfd));
     }
     out

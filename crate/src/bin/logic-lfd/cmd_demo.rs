@@ -7,6 +7,7 @@
 //! bad input: `file: key.path: message` for malformed JSON, `file: at t = 1.23 s: …` for a fact
 //! change the domain cannot explain or a physically implausible step. Nothing is written then.
 
+use logic_lfd::pddl::Source;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -75,7 +76,7 @@ fn segment(a: SegmentArgs) -> ExitCode {
     };
     let problem = match &a.problem {
         Some(p) => match read_source(p) {
-            Ok(t) => Some((t, p.display().to_string())),
+            Ok(t) => Some(Source::new(p.display().to_string(), t)),
             Err(e) => return bad(e.to_string()),
         },
         None => None,
@@ -84,16 +85,11 @@ fn segment(a: SegmentArgs) -> ExitCode {
         learn_skills: !a.no_skills,
         ..RecorderParams::default()
     };
-    let taught = match segment_recording(
-        &recording,
-        &domain,
-        &domain_file,
-        problem.as_ref().map(|(t, f)| (t.as_str(), f.as_str())),
-        params,
-    ) {
-        Ok(t) => t,
-        Err(e) => return bad(format!("{rec_file}: {e}")),
-    };
+    let taught =
+        match segment_recording(&recording, &domain, &domain_file, problem.as_ref(), params) {
+            Ok(t) => t,
+            Err(e) => return bad(format!("{rec_file}: {e}")),
+        };
     let json = match serde_json::to_string(&taught.demo) {
         Ok(j) => j,
         Err(e) => return bad(format!("{rec_file}: {e}")),

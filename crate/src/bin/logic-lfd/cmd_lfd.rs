@@ -12,6 +12,7 @@
 //! 3 proved unsolvable, 4 budget exhausted; 5 for a merged plan that does not replay.
 //! `--perturb N` runs the perturbation study of [`crate::cmd_lfd_perturb`] instead.
 
+use logic_lfd::pddl::Source;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -63,11 +64,11 @@ pub struct Args {
 pub fn load_lfd(domain: &Path, problem: &Path, demo: &Path) -> Result<LogicLfd, String> {
     let read = |p: &Path| {
         read_source(p)
-            .map(|text| (p.display().to_string(), text))
+            .map(|text| Source::new(p.display().to_string(), text))
             .map_err(|e| e.to_string())
     };
     let (d, p, m) = (read(domain)?, read(problem)?, read(demo)?);
-    LogicLfd::named((&d.0, &d.1), (&p.0, &p.1), (&m.0, &m.1)).map_err(|e| e.to_string())
+    LogicLfd::named(&d, &p, &m).map_err(|e| e.to_string())
 }
 
 /// The exit code of a failed Logic-LfD call: a plan that cannot be merged is a bug, like an

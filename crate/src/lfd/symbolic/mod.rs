@@ -5,6 +5,7 @@
 //! `Controller` holds one, the CLI's `lfd` command, the npm `logicLfd` and the page's PDDL tab
 //! build one from text.
 
+use crate::pddl::Source;
 use std::collections::BTreeSet;
 use std::sync::OnceLock;
 
@@ -98,21 +99,17 @@ impl LogicLfd {
     /// - [`LfdError::Model`]: the task cannot be grounded.
     pub fn new(domain: &str, problem: &str, demo: &str) -> Result<Self, LfdError> {
         Self::named(
-            ("domain.pddl", domain),
-            ("problem.pddl", problem),
-            ("demo.plan", demo),
+            &Source::new("domain.pddl", domain),
+            &Source::new("problem.pddl", problem),
+            &Source::new("demo.plan", demo),
         )
     }
 
-    /// [`LogicLfd::new`] with the file names used in error locations: `(name, text)` each.
-    pub fn named(
-        domain: (&str, &str),
-        problem: (&str, &str),
-        demo: (&str, &str),
-    ) -> Result<Self, LfdError> {
-        let d = pddl::parse_domain(domain.1, domain.0)?;
-        let p = pddl::parse_problem(problem.1, problem.0, &d)?;
-        let steps = parse_plan(demo.1, demo.0)?;
+    /// [`LogicLfd::new`] with the file names used in error locations.
+    pub fn named(domain: &Source, problem: &Source, demo: &Source) -> Result<Self, LfdError> {
+        let d = pddl::parse_domain(&domain.text, &domain.file)?;
+        let p = pddl::parse_problem(&problem.text, &problem.file, &d)?;
+        let steps = parse_plan(&demo.text, &demo.file)?;
         let applied = every_step_applies(
             validate(&d, &p, &steps).outcome,
             |step, action, at, lits| LfdError::DemoNotApplicable {

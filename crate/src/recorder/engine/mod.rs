@@ -11,6 +11,7 @@ mod segment;
 use super::recording::{ArmRef, GripperPose, GripperState, RawSample};
 use super::{RecorderError, RecorderEvent, RecorderParams, Segment};
 use crate::pddl;
+use crate::pddl::Source;
 use crate::plan::{self, State, Task};
 use crate::sim::benchmark::Benchmark;
 pub(crate) use crate::sim::geometry::gripper_yaw;
@@ -25,13 +26,12 @@ use std::sync::Arc;
 pub struct RecorderOptions {
     /// Name of the domain file, for error messages.
     pub domain_file: String,
-    /// A PDDL problem `(text, file name)` whose `:init` supplies static facts the scene graph does
-    /// not report (B3's `reaches`). Without it they come from the benchmark whose name the scene
-    /// carries, if any.
-    pub problem_pddl: Option<(String, String)>,
-    /// The domain's `motions.json` `(text, file name)`. Without it, the motions of the benchmark
-    /// whose name the scene carries.
-    pub motions_json: Option<(String, String)>,
+    /// A PDDL problem whose `:init` supplies static facts the scene graph does not report (B3's
+    /// `reaches`). Without it they come from the benchmark whose name the scene carries, if any.
+    pub problem_pddl: Option<Source>,
+    /// The domain's `motions.json`. Without it, the motions of the benchmark whose name the scene
+    /// carries.
+    pub motions_json: Option<Source>,
     /// Tunables.
     pub params: RecorderParams,
 }
@@ -152,12 +152,12 @@ fn static_facts(
     scene: &WorldSnapshot,
     world: &World,
     domain: &pddl::Domain,
-    problem_pddl: &Option<(String, String)>,
+    problem_pddl: &Option<Source>,
 ) -> Result<Vec<String>, RecorderError> {
     let preds: Vec<String> = world.motions().scene_predicates();
     Ok(match problem_pddl {
-        Some((text, file)) => {
-            let p = pddl::parse_problem(text, file, domain).map_err(model_err)?;
+        Some(src) => {
+            let p = pddl::parse_problem(&src.text, &src.file, domain).map_err(model_err)?;
             p.init
                 .iter()
                 .filter(|a| !preds.contains(&domain.predicates[a.predicate].name.text))
@@ -175,10 +175,10 @@ fn static_facts(
 fn scene_motions(
     scene: &WorldSnapshot,
     domain: &pddl::Domain,
-    motions_json: &Option<(String, String)>,
+    motions_json: &Option<Source>,
 ) -> Result<Arc<Motions>, RecorderError> {
     match motions_json {
-        Some((text, file)) => Motions::parse(text, file, domain)
+        Some(src) => Motions::parse(&src.text, &src.file, domain)
             .map(Arc::new)
             .map_err(|e| RecorderError::Model(e.to_string())),
         None => Benchmark::parse(&scene.name)

@@ -1,6 +1,7 @@
 //! One Logic-LfD query and its result, shared by `logicLfd` (which reads the domain, problem and
 //! demonstration first) and the `LogicLfd` class (which read them once, when it was built).
 
+use crate::pddl::Source;
 use serde::Serialize;
 use tsify::Tsify;
 
@@ -206,9 +207,9 @@ pub(super) fn prepare(
     t: &Texts,
 ) -> Result<LogicLfd, (&'static str, LogicLfdDiagnostic)> {
     LogicLfd::named(
-        (&files.domain, &t.domain),
-        (&files.problem, &t.problem),
-        (&files.demo, &t.demo),
+        &Source::new(&files.domain, &t.domain),
+        &Source::new(&files.problem, &t.problem),
+        &Source::new(&files.demo, &t.demo),
     )
     .map_err(|e| input_error(&e, files, "problem"))
 }
