@@ -10,7 +10,8 @@ use crate::plan::Clock;
 use crate::sim::benchmark::Benchmark;
 use crate::sim::World;
 
-use super::{count, infeasible, reason_kind, stats, PAPER_TABLE1};
+use super::common::{count, reason_kind, stats, PAPER_TABLE1};
+use super::feasible::infeasible;
 use crate::experiments::episode::{run_episode, EpisodeSpec, Level};
 
 /// One method on one benchmark in Table I.

@@ -8,7 +8,7 @@ use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
 use crate::sim::benchmark::Benchmark;
 
-use super::{count, reason_kind, stats, PAPER_TABLE2};
+use super::common::{count, reason_kind, stats, PAPER_TABLE2};
 use crate::experiments::episode::{run_episode, EpisodeSpec, Level};
 
 /// One (level, method, benchmark) cell of Table II.
