@@ -16,7 +16,7 @@ for c in rustfmt clippy; do
   rustup component list --installed 2>/dev/null | grep -q "^$c" || rustup component add "$c"
 done
 
-# ---- web: wasm target, pinned wasm-bindgen, Chromium for the browser tests, npm packages ----
+# ---- web: wasm target, pinned wasm-bindgen and wasm-pack, Chromium, npm packages ----
 say "wasm32 target"
 rustup target list --installed 2>/dev/null | grep -q '^wasm32-unknown-unknown$' \
   || rustup target add wasm32-unknown-unknown
@@ -26,6 +26,15 @@ wb_want="$(grep -A1 '^name = "wasm-bindgen"$' Cargo.lock | sed -n 's/^version = 
 wb_have="$(wasm-bindgen --version 2>/dev/null | awk '{print $2}' || true)"
 if [ "$wb_want" != "$wb_have" ]; then
   cargo install wasm-bindgen-cli --version "$wb_want"
+fi
+
+# wasm-pack builds the npm package (scripts/build-wasm.sh, which reads this pin); pinned so that
+# its cargo and wasm-bindgen command lines, and so the package's bytes, do not change under it.
+WASM_PACK_VERSION=0.15.1
+say "wasm-pack $WASM_PACK_VERSION"
+wp_have="$(wasm-pack --version 2>/dev/null | awk '{print $2}' || true)"
+if [ "$WASM_PACK_VERSION" != "$wp_have" ]; then
+  cargo install wasm-pack --locked --version "$WASM_PACK_VERSION"
 fi
 
 if [ ! -x /usr/bin/chromium ]; then

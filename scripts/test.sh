@@ -22,8 +22,12 @@ step "cargo doc -D warnings"
 RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked
 
 # ---- web: the npm package, the page, node and browser tests ----
-step "wasm build (npm package into pkg/)"
+step "wasm build (npm package into pkg/, with wasm-pack)"
 bash scripts/build-wasm.sh
+
+# wasm-pack must not change the package: the same bytes as cargo + wasm-bindgen (about 2 minutes).
+step "pkg/ byte-identical to a direct wasm-bindgen build"
+bash scripts/check-wasm-pack.sh --no-build
 
 step "tsc --noEmit"
 npm run typecheck
