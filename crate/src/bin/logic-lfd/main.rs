@@ -17,20 +17,11 @@ mod cmd_soak;
 mod cmd_tables;
 mod cmd_validate;
 mod domain_dir;
+mod exit;
 mod listed;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
-
-/// Exit codes shared by every subcommand.
-#[allow(dead_code)]
-mod exit {
-    pub const OK: u8 = 0;
-    pub const BAD_INPUT: u8 = 2;
-    pub const UNSOLVABLE: u8 = 3;
-    pub const BUDGET: u8 = 4;
-    pub const INVALID_PLAN: u8 = 5;
-}
 
 #[derive(Parser)]
 #[command(
