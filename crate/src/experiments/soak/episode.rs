@@ -12,7 +12,7 @@ use rand_pcg::Pcg64Mcg;
 use super::reasons::{
     drag_proof, shelf_full_for, Check, Models, DRAGGED_AWAY, SHELF_FULL, UNSOLVABLE,
 };
-use super::{ExplainedFailure, SoakFinding, SoakParams, SoakReport};
+use super::report::{ExplainedFailure, SoakFinding, SoakParams, SoakReport};
 use crate::lfd::control::FailReason;
 use crate::lfd::session::{mix, Session, SessionOptions, SkillKind};
 use crate::lfd::{Method, Mode};
