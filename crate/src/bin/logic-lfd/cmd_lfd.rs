@@ -23,7 +23,7 @@ use logic_lfd::prelude::{
 };
 
 use crate::cmd_lfd_perturb::{self, StudyArgs};
-use crate::cmd_plan::{cost_kind, stats_line, SearchArgs, WallClock};
+use crate::cmd_plan::{cost_kind, stats_line, status_name, SearchArgs, WallClock};
 use crate::exit;
 
 /// Arguments of `lfd`.
@@ -79,16 +79,6 @@ pub fn error_code(e: &LfdError) -> u8 {
         LfdError::Budget(_) => exit::BUDGET,
         LfdError::MergeFailed { .. } => exit::INVALID_PLAN,
         _ => exit::BAD_INPUT,
-    }
-}
-
-/// `solved`, `unsolvable`, `budget` (as `plan`), or `error` for a prefix that does not merge.
-pub fn status_name(r: &Result<LfdPlan, LfdError>) -> &'static str {
-    match r {
-        Ok(_) => "solved",
-        Err(LfdError::NoPlan(_)) => "unsolvable",
-        Err(LfdError::Budget(_)) => "budget",
-        Err(_) => "error",
     }
 }
 

@@ -15,8 +15,7 @@ use logic_lfd::prelude::{
     Algorithm, Clock, HeuristicKind, LfdError, LfdPlan, LogicLfd, Mode, Perturbed, SearchConfig,
 };
 
-use crate::cmd_lfd::status_name;
-use crate::cmd_plan::{outcome_name, WallClock};
+use crate::cmd_plan::{outcome_name, status_name, WallClock};
 use crate::exit;
 
 /// The study's options (part of `lfd`'s arguments).

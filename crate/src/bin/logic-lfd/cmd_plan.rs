@@ -216,3 +216,13 @@ fn json(task: &Task, config: &SearchConfig, r: &SearchResult, total: f64) -> ser
     }
     j
 }
+
+/// `solved`, `unsolvable`, `budget` (as `plan`), or `error` for a prefix that does not merge.
+pub fn status_name(r: &Result<logic_lfd::lfd::LfdPlan, logic_lfd::lfd::LfdError>) -> &'static str {
+    match r {
+        Ok(_) => "solved",
+        Err(logic_lfd::lfd::LfdError::NoPlan(_)) => "unsolvable",
+        Err(logic_lfd::lfd::LfdError::Budget(_)) => "budget",
+        Err(_) => "error",
+    }
+}
