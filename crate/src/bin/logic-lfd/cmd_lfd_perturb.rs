@@ -279,7 +279,7 @@ pub fn run(
     args: &StudyArgs,
     sweep: &SweepArgs,
 ) -> ExitCode {
-    let (files, mode, config) = (given, given.mode, given.config);
+    let (mode, config) = (given.mode, given.config);
     let t = args.optimal_time_limit;
     if t.is_nan() || t < 0.0 {
         eprintln!("--optimal-time-limit: expected a non-negative number of seconds");
@@ -287,10 +287,10 @@ pub fn run(
     }
     let read = |p: &Path| read_source(p).unwrap_or_default();
     let study = Study {
-        domain: files.domain.display().to_string(),
-        problem: files.problem.display().to_string(),
-        demo: files.demo.display().to_string(),
-        inputs: fnv1a(&[&read(files.domain), &read(files.problem), &read(files.demo)]),
+        domain: given.domain.display().to_string(),
+        problem: given.problem.display().to_string(),
+        demo: given.demo.display().to_string(),
+        inputs: fnv1a(&[&read(given.domain), &read(given.problem), &read(given.demo)]),
         mode,
         search: config.algorithm.name().into(),
         heuristic: config.heuristic.name().into(),
@@ -322,7 +322,7 @@ pub fn run(
         }
     };
     match sweep.shard {
-        Some(shard) => print_shard(COMMAND, &study, count, shard, &indices, rows),
+        Some(shard) => print_shard(COMMAND, &study, drawn.len(), shard, &indices, rows),
         None => print_study(&study, &rows, given.json),
     }
 }
