@@ -22,6 +22,7 @@ mod sim;
 mod soak;
 mod standalone;
 mod support;
+mod sweeps;
 mod tables;
 mod tamp;
 mod validate;

@@ -6,6 +6,9 @@
 //! Defaults: every folder of `tests/data/ipc` (the vendored IPC benchmarks), configuration `lazy-gbfs:hff`, 60 s per problem.
 //! Every plan found is replayed on the grounded task; an invalid plan is reported and the command
 //! exits with 5. Run it in release.
+//!
+//! `bench table1`, `table2` and `scaling` take `--threads N` and `--shard K/N`
+//! ([`crate::sweep`]).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -14,6 +17,10 @@ use logic_lfd::plan::{search, Algorithm, Clock, HeuristicKind, SearchConfig, Sea
 
 use crate::cmd_plan::{load, outcome_name, WallClock};
 use crate::exit;
+use crate::sweep::{print_shard, SweepArgs};
+
+/// `bench scaling`'s name in shard files.
+pub const SCALING: &str = "bench scaling";
 
 /// Arguments of `bench`.
 #[derive(clap::Args)]
@@ -108,11 +115,13 @@ pub struct ScalingArgs {
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// Print JSON instead of a markdown table.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "shard")]
     json: bool,
     /// Write an SVG plot of the median first-plan time against N to this file.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "shard")]
     svg: Option<PathBuf>,
+    #[command(flatten)]
+    sweep: SweepArgs,
 }
 
 /// `bench scaling`'s default block counts, comma-separated as the option takes them.
@@ -139,22 +148,43 @@ fn scaling_blocks_help() -> String {
 }
 
 fn scaling(a: ScalingArgs) -> ExitCode {
-    use logic_lfd::experiments::scaling;
+    use logic_lfd::experiments::scaling::ScalingSweep;
+    let sweep = ScalingSweep {
+        blocks: a.blocks,
+        tasks: a.tasks,
+        seed: a.seed,
+    };
     let clock = WallClock::start();
-    let rows = match scaling::scaling(&a.blocks, a.tasks, a.seed, &clock) {
-        Ok(r) => r,
+    let indices = a.sweep.indices(sweep.items());
+    let tasks = match a.sweep.map(&indices, |i| sweep.run(i, &clock)) {
+        Ok(Ok(t)) => t,
+        Ok(Err(e)) => {
+            eprintln!("{e}");
+            return ExitCode::from(exit::BAD_INPUT);
+        }
         Err(e) => {
             eprintln!("{e}");
             return ExitCode::from(exit::BAD_INPUT);
         }
     };
+    match a.sweep.shard {
+        Some(shard) => print_shard(SCALING, &sweep, sweep.items(), shard, &indices, tasks),
+        None => print_scaling(&sweep.report(tasks), a.json, a.svg.as_deref()),
+    }
+}
+
+/// Prints the scaling study's rows as JSON or markdown, and writes its plot to `svg`.
+pub fn print_scaling(
+    rows: &[logic_lfd::experiments::scaling::ScalingRow],
+    json: bool,
+    svg: Option<&Path>,
+) -> ExitCode {
+    use logic_lfd::experiments::scaling;
     report(
-        a.svg
-            .as_deref()
-            .map(|p| (p, scaling::plot::svg(&scaling::series(&rows)))),
-        a.json,
+        svg.map(|p| (p, scaling::plot::svg(&scaling::series(rows)))),
+        json,
         &rows,
-        || scaling::markdown(&rows),
+        || scaling::markdown(rows),
     )
 }
 

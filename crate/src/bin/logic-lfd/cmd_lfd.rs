@@ -25,6 +25,7 @@ use logic_lfd::prelude::{
 use crate::cmd_lfd_perturb::{self, StudyArgs};
 use crate::cmd_plan::{cost_kind, stats_line, status_name, SearchArgs, WallClock};
 use crate::exit;
+use crate::sweep::SweepArgs;
 
 /// Arguments of `lfd`.
 #[derive(clap::Args)]
@@ -53,10 +54,12 @@ pub struct Args {
     #[command(flatten)]
     search: SearchArgs,
     /// Print a JSON object on stdout instead of the annotated plan.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "shard")]
     json: bool,
     #[command(flatten)]
     study: StudyArgs,
+    #[command(flatten)]
+    sweep: SweepArgs,
 }
 
 /// Reads the domain, the problem and the demonstration; the error is the located message
@@ -118,6 +121,10 @@ fn current_state<'a>(lfd: &'a LogicLfd, args: &Args) -> Result<Current<'a>, Stri
 /// Runs the subcommand.
 pub fn run(args: Args) -> ExitCode {
     let clock = WallClock::start();
+    if args.study.perturb.is_none() && (args.sweep.threads.is_some() || args.sweep.shard.is_some())
+    {
+        return bad_input("--threads, --shard: they split the study's states; give --perturb N");
+    }
     let config = match args.search.config() {
         Ok(c) => c,
         Err(e) => return bad_input(&e),
@@ -127,15 +134,17 @@ pub fn run(args: Args) -> ExitCode {
         Err(e) => return bad_input(&e),
     };
     if let Some(count) = args.study.perturb {
-        let header = cmd_lfd_perturb::Header {
+        let given = cmd_lfd_perturb::Given {
             domain: &args.domain,
             problem: &args.problem,
+            demo: &args.demo,
             mode: args.mode,
             config: &config,
             json: args.json,
         };
-        return cmd_lfd_perturb::run(&lfd, &header, count, &args.study);
+        return cmd_lfd_perturb::run(&lfd, &given, count, &args.study, &args.sweep);
     }
+
     let current = match current_state(&lfd, &args) {
         Ok(c) => c,
         Err(e) => return bad_input(&e),

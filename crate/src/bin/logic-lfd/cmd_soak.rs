@@ -1,17 +1,26 @@
-//! `logic-lfd soak --episodes N --seed S [--max-disturbances K] [--blocks N] [--no-replay] [--json]` — random
+//! `logic-lfd soak --episodes N --seed S [--max-disturbances K] [--blocks N] [--no-replay] [--json]
+//! [--threads N] [--shard K/N]` — random
 //! closed-loop Logic-LfD episodes over B1–B3 with random disturbances (levels L1–L4 and user-like
 //! drags), checking world invariants every tick, every adopted plan with the PDDL validator, that
 //! refusals change nothing, that every episode succeeds or states a legitimate reason, and that
 //! each episode replays byte-identically (see `experiments::soak`).
 //!
+//! Episodes run on every core (`--threads`) or in shards (`--shard`, joined by `logic-lfd
+//! merge`; see [`crate::sweep`]).
+//!
 //! Exit codes: 0 every guarantee held, 5 a guarantee was broken (the findings say which, with the
-//! episode and seed to replay), 2 bad input.
+//! episode and seed to replay), 2 bad input. A shard exits 0 once its file is written: `merge`
+//! gives the sweep's verdict.
 
 use std::process::ExitCode;
 
-use logic_lfd::experiments::soak::{soak_with, SoakParams, SoakReport};
+use logic_lfd::experiments::soak::{SoakParams, SoakReport, SoakRunner};
 
 use crate::exit;
+use crate::sweep::{print_shard, SweepArgs};
+
+/// The command's name in shard files.
+pub const COMMAND: &str = "soak";
 
 /// Arguments of `soak`.
 #[derive(clap::Args)]
@@ -41,8 +50,10 @@ pub struct Args {
     #[arg(long, help = blocks_help())]
     blocks: Option<usize>,
     /// Print the report as JSON.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "shard")]
     json: bool,
+    #[command(flatten)]
+    sweep: SweepArgs,
 }
 
 /// Help of `--blocks`, with the block counts each benchmark takes.
@@ -71,25 +82,45 @@ pub fn run(args: Args) -> ExitCode {
             return ExitCode::from(exit::BAD_INPUT);
         }
     }
-    let report = soak_with(&params, |e, ep, json| {
-        if let Some(dir) = &args.save_findings {
-            if !ep.findings.is_empty() || !ep.explained.is_empty() {
-                let name = dir.join(format!("soak-{}-{e}.json", args.seed));
-                if let Err(err) = std::fs::write(&name, json) {
-                    eprintln!("soak: cannot save {}: {err}", name.display());
-                }
-            }
-        }
-    });
-    let report = match report {
+    let runner = match SoakRunner::new(&params) {
         Ok(r) => r,
         Err(e) => {
             eprintln!("soak: {e}");
             return ExitCode::from(exit::BAD_INPUT);
         }
     };
-    if args.json {
-        match serde_json::to_string_pretty(&report) {
+    let indices = args.sweep.indices(params.episodes);
+    let episodes = args.sweep.map(&indices, |i| {
+        let (ep, json) = runner.episode(i)?;
+        if let Some(dir) = &args.save_findings {
+            if !ep.findings.is_empty() || !ep.explained.is_empty() {
+                let e = params.first_episode + i;
+                let name = dir.join(format!("soak-{}-{e}.json", args.seed));
+                if let Err(err) = std::fs::write(&name, json) {
+                    eprintln!("soak: cannot save {}: {err}", name.display());
+                }
+            }
+        }
+        Ok(ep)
+    });
+    let episodes = match episodes {
+        Ok(Ok(eps)) => eps,
+        Ok(Err(e)) | Err(e) => {
+            eprintln!("soak: {e}");
+            return ExitCode::from(exit::BAD_INPUT);
+        }
+    };
+    match args.sweep.shard {
+        Some(shard) => print_shard(COMMAND, &params, params.episodes, shard, &indices, episodes),
+        None => print_report(&params.report(episodes), args.json),
+    }
+}
+
+/// Prints a soak's report as JSON or as the summary; the exit code says whether every
+/// guarantee held.
+pub fn print_report(report: &SoakReport, json: bool) -> ExitCode {
+    if json {
+        match serde_json::to_string_pretty(report) {
             Ok(s) => println!("{s}"),
             Err(e) => {
                 eprintln!("soak: cannot write JSON: {e}");
@@ -97,7 +128,7 @@ pub fn run(args: Args) -> ExitCode {
             }
         }
     } else {
-        print_summary(&report);
+        print_summary(report);
     }
     if report.is_clean() {
         ExitCode::from(exit::OK)

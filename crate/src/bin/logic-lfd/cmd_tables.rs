@@ -1,17 +1,27 @@
 //! `logic-lfd bench table1 [--tasks 100] [--seed S] [--markdown|--json] [--task-scene I]` and
 //! `logic-lfd bench table2 [--trials 10] [--seed S] [--markdown|--json]`: the paper's Tables I
 //! and II with our numbers beside the paper's (planning times by the wall clock; run in release).
-//! Logic-LfD's TAMP fallback is off unless `--tamp-fallback`.
+//! Logic-LfD's TAMP fallback is off unless `--tamp-fallback`. Both take `--threads N` and
+//! `--shard K/N` ([`crate::sweep`]).
 
 use std::process::ExitCode;
 
-use logic_lfd::experiments::tables::{table1, table1_scene, table1_task_seed, table2};
+use logic_lfd::experiments::tables::{
+    table1_scene, table1_task_seed, Table1, Table1Sweep, Table2, Table2Sweep,
+};
 use logic_lfd::experiments::Level;
-use logic_lfd::lfd::session::{SessionError, SessionParams};
+use logic_lfd::lfd::session::SessionParams;
 use logic_lfd::sim::benchmark::Benchmark;
 
 use crate::cmd_plan::WallClock;
 use crate::exit;
+use crate::sweep::{print_shard, SweepArgs};
+
+/// `bench table1`'s name in shard files.
+pub const TABLE1: &str = "bench table1";
+
+/// `bench table2`'s name in shard files.
+pub const TABLE2: &str = "bench table2";
 
 /// Arguments of `bench table1`.
 #[derive(clap::Args)]
@@ -26,19 +36,21 @@ pub struct Table1Args {
     #[arg(long, default_value = "b1,b2,b3", value_delimiter = ',')]
     benchmarks: Vec<String>,
     /// Print markdown (the default).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "shard")]
     markdown: bool,
     /// Print JSON (every cell with its raw numbers).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "shard")]
     json: bool,
     /// Print the initial scene JSON of task I of the first benchmark instead (stderr: its level,
     /// seed and draw; replay it with `logic-lfd run --scene FILE --seed SEED --method …`).
-    #[arg(long, value_name = "I")]
+    #[arg(long, value_name = "I", conflicts_with_all = ["shard", "threads"])]
     task_scene: Option<usize>,
     /// Let Logic-LfD plan to G from scratch when none of its skeletons binds (its TAMP
     /// fallback; off by default, so the table counts Logic-LfD's own success).
     #[arg(long)]
     tamp_fallback: bool,
+    #[command(flatten)]
+    sweep: SweepArgs,
 }
 
 /// Arguments of `bench table2`.
@@ -54,15 +66,17 @@ pub struct Table2Args {
     #[arg(long, default_value = "b1,b2,b3", value_delimiter = ',')]
     benchmarks: Vec<String>,
     /// Print markdown (the default).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "shard")]
     markdown: bool,
     /// Print JSON (every cell with its raw numbers).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "shard")]
     json: bool,
     /// Let Logic-LfD plan to G from scratch when none of its skeletons binds (its TAMP
     /// fallback; off by default, so the table counts Logic-LfD's own success).
     #[arg(long)]
     tamp_fallback: bool,
+    #[command(flatten)]
+    sweep: SweepArgs,
 }
 
 fn benchmarks(names: &[String]) -> Result<Vec<Benchmark>, String> {
@@ -72,13 +86,6 @@ fn benchmarks(names: &[String]) -> Result<Vec<Benchmark>, String> {
             Benchmark::parse(n).ok_or_else(|| format!("--benchmarks: unknown benchmark {n:?}"))
         })
         .collect()
-}
-
-/// The session parameters of a table run: the defaults, with Logic-LfD's TAMP fallback as asked.
-fn table_params(tamp_fallback: bool) -> SessionParams {
-    let mut p = SessionParams::default();
-    p.control.tamp_fallback = tamp_fallback;
-    p
 }
 
 fn progress(line: &str) {
@@ -117,20 +124,24 @@ pub fn run_table1(a: Table1Args) -> ExitCode {
             }
         };
     }
+    let sweep = Table1Sweep {
+        benchmarks: bs,
+        tasks: a.tasks,
+        seed: a.seed,
+        tamp_fallback: a.tamp_fallback,
+    };
     let clock = WallClock::start();
-    let mut p = progress;
-    let result = table1(
-        &bs,
-        a.tasks,
-        a.seed,
-        table_params(a.tamp_fallback),
-        &clock,
-        &mut p,
-    );
-    report(
-        result.map(|t| (serde_json::to_string(&t), t.markdown())),
-        a.json,
-    )
+    let indices = a.sweep.indices(sweep.items());
+    let tasks = a.sweep.map(&indices, |i| {
+        sweep.run(i, SessionParams::default(), &clock, &mut progress)
+    });
+    match flatten(tasks) {
+        Err(code) => code,
+        Ok(tasks) => match a.sweep.shard {
+            Some(shard) => print_shard(TABLE1, &sweep, sweep.items(), shard, &indices, tasks),
+            None => print_table1(&sweep.report(tasks), a.json),
+        },
+    }
 }
 
 /// `bench table2`.
@@ -142,39 +153,59 @@ pub fn run_table2(a: Table2Args) -> ExitCode {
             return ExitCode::from(exit::BAD_INPUT);
         }
     };
+    let sweep = Table2Sweep {
+        benchmarks: bs,
+        trials: a.trials,
+        seed: a.seed,
+        tamp_fallback: a.tamp_fallback,
+    };
     let clock = WallClock::start();
-    let mut p = progress;
-    let result = table2(
-        &bs,
-        a.trials,
-        a.seed,
-        table_params(a.tamp_fallback),
-        &clock,
-        &mut p,
-    );
-    report(
-        result.map(|t| (serde_json::to_string(&t), t.markdown())),
-        a.json,
-    )
+    let indices = a.sweep.indices(sweep.items());
+    let trials = a.sweep.map(&indices, |i| {
+        sweep.run(i, SessionParams::default(), &clock, &mut progress)
+    });
+    match flatten(trials) {
+        Err(code) => code,
+        Ok(trials) => match a.sweep.shard {
+            Some(shard) => print_shard(TABLE2, &sweep, sweep.items(), shard, &indices, trials),
+            None => print_table2(&sweep.report(trials), a.json),
+        },
+    }
 }
 
-/// Prints a finished table as JSON or markdown, or its error on stderr (exit 2).
-fn report(
-    table: Result<(serde_json::Result<String>, String), SessionError>,
-    json: bool,
-) -> ExitCode {
-    match table {
-        Ok((as_json, markdown)) => {
-            if json {
-                println!("{}", as_json.unwrap_or_default());
-            } else {
-                print!("{markdown}");
-            }
-            ExitCode::from(exit::OK)
+/// The records of a sweep, or the exit code of its error (printed on stderr).
+fn flatten<R, E: std::fmt::Display>(
+    records: Result<Result<Vec<R>, E>, String>,
+) -> Result<Vec<R>, ExitCode> {
+    match records {
+        Ok(Ok(r)) => Ok(r),
+        Ok(Err(e)) => {
+            eprintln!("{e}");
+            Err(ExitCode::from(exit::BAD_INPUT))
         }
         Err(e) => {
             eprintln!("{e}");
-            ExitCode::from(exit::BAD_INPUT)
+            Err(ExitCode::from(exit::BAD_INPUT))
         }
     }
+}
+
+/// Prints Table I as JSON or markdown.
+pub fn print_table1(t: &Table1, json: bool) -> ExitCode {
+    print_table(serde_json::to_string(t), t.markdown(), json)
+}
+
+/// Prints Table II as JSON or markdown.
+pub fn print_table2(t: &Table2, json: bool) -> ExitCode {
+    print_table(serde_json::to_string(t), t.markdown(), json)
+}
+
+/// Prints a finished table as JSON or markdown.
+fn print_table(as_json: serde_json::Result<String>, markdown: String, json: bool) -> ExitCode {
+    if json {
+        println!("{}", as_json.unwrap_or_default());
+    } else {
+        print!("{markdown}");
+    }
+    ExitCode::from(exit::OK)
 }

@@ -10,6 +10,7 @@ mod cmd_fuzz;
 mod cmd_lfd;
 mod cmd_lfd_perturb;
 mod cmd_lqt;
+mod cmd_merge;
 mod cmd_plan;
 mod cmd_run;
 mod cmd_scene;
@@ -19,6 +20,7 @@ mod cmd_validate;
 mod domain_dir;
 mod exit;
 mod listed;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -56,6 +58,8 @@ enum Command {
     Soak(cmd_soak::Args),
     /// Mutation fuzzing of an input parser (same mutators and checks as the CI property tests).
     Fuzz(cmd_fuzz::Args),
+    /// Join the shard files of a sweep (`--shard K/N` runs) into the whole sweep's report.
+    Merge(cmd_merge::Args),
 }
 
 /// A closed stdout (`logic-lfd plan … | head`) ends the process quietly, as Unix tools do,
@@ -101,5 +105,6 @@ fn main() -> ExitCode {
         Command::Demo(args) => cmd_demo::run(args),
         Command::Soak(args) => cmd_soak::run(args),
         Command::Fuzz(args) => cmd_fuzz::run(args),
+        Command::Merge(args) => cmd_merge::run(args),
     }
 }

@@ -5,7 +5,7 @@
 
 pub mod plot;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::episode::{run_episode_with_blocks, EpisodeSpec};
 use super::tasks::initial_scene_for;
@@ -91,72 +91,178 @@ fn quantile(v: &mut [f64], q: f64) -> f64 {
     v[i.clamp(1, v.len()) - 1]
 }
 
-/// Runs `tasks` B1-N tasks (L3 initial states, seeded from `seed`) for every N of `blocks` and
-/// every method of [`METHODS`].
-pub fn scaling(
-    blocks: &[usize],
-    tasks: usize,
-    seed: u64,
-    clock: &dyn Clock,
-) -> Result<Vec<ScalingRow>, SessionError> {
-    let b = Benchmark::B1;
-    let mut rows = Vec::new();
-    for &n in blocks {
-        let scenes: Vec<String> = (0..tasks as u64)
-            .map(|t| initial_scene_for(b, Some(n), Level::L3, mix(seed, t)))
-            .collect::<Result<_, _>>()?;
-        for (label, method, mode, satisficing) in METHODS {
+/// What one method's episode on one task of the study gave.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ScalingRun {
+    /// The episode reached the goal.
+    pub success: bool,
+    /// Why it failed, if it did.
+    pub failure: Option<String>,
+    /// Its first plan, if it planned.
+    pub first_plan: Option<FirstPlan>,
+}
+
+/// The first plan of a study episode.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FirstPlan {
+    /// Its time (ms, caller's clock).
+    pub time_ms: f64,
+    /// The part of it spent binding actions to motions (ms).
+    pub bind_ms: f64,
+    /// States its searches expanded.
+    pub expanded: u64,
+    /// Its length (actions).
+    pub length: usize,
+}
+
+/// What one task of the study gave: one run per method of [`METHODS`], in that order (a record
+/// of the sweep, joined by [`ScalingSweep::report`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ScalingTask {
+    /// Blocks of the task.
+    pub blocks: usize,
+    /// Task index within its block count.
+    pub task: usize,
+    /// One run per method.
+    pub runs: Vec<ScalingRun>,
+}
+
+/// The study as a sweep: `tasks` tasks per block count; item `i` is task `i mod tasks` of
+/// `blocks[i / tasks]`, seeded `mix(seed, task)` alone, so items run in any order (or on other
+/// machines) and [`ScalingSweep::report`] joins them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ScalingSweep {
+    /// Block counts, in row order.
+    pub blocks: Vec<usize>,
+    /// Tasks per block count.
+    pub tasks: usize,
+    /// Seed of the tasks and episodes.
+    pub seed: u64,
+}
+
+impl ScalingSweep {
+    /// Number of items (tasks over all block counts).
+    pub fn items(&self) -> usize {
+        self.blocks.len() * self.tasks
+    }
+
+    /// Runs item `index`: draws its L3 initial state and runs every method of [`METHODS`] from
+    /// it (each symbolic search within [`SEARCH_TIME_LIMIT_SECS`] of `clock`).
+    pub fn run(&self, index: usize, clock: &dyn Clock) -> Result<ScalingTask, SessionError> {
+        let b = Benchmark::B1;
+        let (n, t) = (self.blocks[index / self.tasks], index % self.tasks);
+        let seed = mix(self.seed, t as u64);
+        let scene = initial_scene_for(b, Some(n), Level::L3, seed)?;
+        let mut runs = Vec::with_capacity(METHODS.len());
+        for (_, method, mode, satisficing) in METHODS {
             let mut params = SessionParams::default();
             params.control.search.time_limit_secs = Some(SEARCH_TIME_LIMIT_SECS);
             if satisficing {
                 params.control.search.algorithm = Algorithm::LazyGbfs;
                 params.control.search.heuristic = HeuristicKind::HFf;
             }
-            let mut failure = None;
-            let mut times = Vec::new();
-            let mut search = Vec::new();
-            let mut bind = Vec::new();
-            let mut expanded = Vec::new();
-            let mut lengths = Vec::new();
-            let mut successes = 0;
-            for (t, scene) in scenes.iter().enumerate() {
-                let spec = EpisodeSpec {
-                    benchmark: b,
-                    level: None,
-                    method,
-                    mode,
-                    seed: mix(seed, t as u64),
-                    scene: Some(scene.clone()),
-                };
-                let r = run_episode_with_blocks(&spec, Some(n), params, clock)?;
-                successes += usize::from(r.success);
-                if let (None, Some(why)) = (&failure, &r.reason) {
-                    failure = Some(why.to_string());
-                }
-                if let Some(first) = r.log.replans.first() {
-                    times.push(first.time_ms);
-                    search.push((first.time_ms - first.bind_ms).max(0.0));
-                    bind.push(first.bind_ms);
-                    expanded.push(first.expanded as f64);
-                    lengths.push(first.plan.len() as f64);
-                }
-            }
-            rows.push(ScalingRow {
-                blocks: n,
-                method: label.to_string(),
-                tasks,
-                successes,
-                first_plan_ms_median: quantile(&mut times.clone(), 0.5),
-                first_plan_ms_p95: quantile(&mut times, 0.95),
-                search_ms_median: quantile(&mut search, 0.5),
-                bind_ms_median: quantile(&mut bind, 0.5),
-                plan_length_median: quantile(&mut lengths, 0.5),
-                expanded_median: quantile(&mut expanded, 0.5),
-                first_failure: failure,
+            let spec = EpisodeSpec {
+                benchmark: b,
+                level: None,
+                method,
+                mode,
+                seed,
+                scene: Some(scene.clone()),
+            };
+            let r = run_episode_with_blocks(&spec, Some(n), params, clock)?;
+            runs.push(ScalingRun {
+                success: r.success,
+                failure: r.reason.as_ref().map(|why| why.to_string()),
+                first_plan: r.log.replans.first().map(|first| FirstPlan {
+                    time_ms: first.time_ms,
+                    bind_ms: first.bind_ms,
+                    expanded: first.expanded,
+                    length: first.plan.len(),
+                }),
             });
         }
+        Ok(ScalingTask {
+            blocks: n,
+            task: t,
+            runs,
+        })
     }
-    Ok(rows)
+
+    /// The study's rows (block count by block count, method by method) from its items, given
+    /// in item order.
+    pub fn report(&self, items: impl IntoIterator<Item = ScalingTask>) -> Vec<ScalingRow> {
+        let mut items = items.into_iter();
+        let mut rows = Vec::new();
+        for &n in &self.blocks {
+            let tasks: Vec<ScalingTask> = items.by_ref().take(self.tasks).collect();
+            for (m, (label, ..)) in METHODS.iter().enumerate() {
+                let runs = tasks.iter().filter_map(|t| t.runs.get(m));
+                rows.push(row(n, label, self.tasks, runs));
+            }
+        }
+        rows
+    }
+}
+
+/// The row of block count `n` and method `label` from its runs, in task order.
+fn row<'a>(
+    n: usize,
+    label: &str,
+    tasks: usize,
+    runs: impl Iterator<Item = &'a ScalingRun>,
+) -> ScalingRow {
+    let mut failure = None;
+    let mut times = Vec::new();
+    let mut search = Vec::new();
+    let mut bind = Vec::new();
+    let mut expanded = Vec::new();
+    let mut lengths = Vec::new();
+    let mut successes = 0;
+    for r in runs {
+        successes += usize::from(r.success);
+        if let (None, Some(why)) = (&failure, &r.failure) {
+            failure = Some(why.clone());
+        }
+        if let Some(first) = &r.first_plan {
+            times.push(first.time_ms);
+            search.push((first.time_ms - first.bind_ms).max(0.0));
+            bind.push(first.bind_ms);
+            expanded.push(first.expanded as f64);
+            lengths.push(first.length as f64);
+        }
+    }
+    ScalingRow {
+        blocks: n,
+        method: label.to_string(),
+        tasks,
+        successes,
+        first_plan_ms_median: quantile(&mut times.clone(), 0.5),
+        first_plan_ms_p95: quantile(&mut times, 0.95),
+        search_ms_median: quantile(&mut search, 0.5),
+        bind_ms_median: quantile(&mut bind, 0.5),
+        plan_length_median: quantile(&mut lengths, 0.5),
+        expanded_median: quantile(&mut expanded, 0.5),
+        first_failure: failure,
+    }
+}
+
+/// Runs `tasks` B1-N tasks (L3 initial states, seeded from `seed`) for every N of `blocks` and
+/// every method of [`METHODS`] (the items of [`ScalingSweep`], one after another).
+pub fn scaling(
+    blocks: &[usize],
+    tasks: usize,
+    seed: u64,
+    clock: &dyn Clock,
+) -> Result<Vec<ScalingRow>, SessionError> {
+    let sweep = ScalingSweep {
+        blocks: blocks.to_vec(),
+        tasks,
+        seed,
+    };
+    let items = (0..sweep.items())
+        .map(|i| sweep.run(i, clock))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(sweep.report(items))
 }
 
 /// The rows as a markdown table, then Logic-LfD's advantage per N (TAMP's median first-plan

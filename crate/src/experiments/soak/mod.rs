@@ -63,16 +63,56 @@ pub fn soak_with(
     params: &SoakParams,
     mut on_episode: impl FnMut(usize, &SoakReport, &str),
 ) -> Result<SoakReport, String> {
-    let models = Models::new(params.blocks)?;
-    let mut report = SoakReport {
-        params: Some(*params),
-        ..SoakReport::default()
-    };
-    for e in params.first_episode..params.first_episode + params.episodes {
+    let runner = SoakRunner::new(params)?;
+    let mut episodes = Vec::with_capacity(params.episodes);
+    for i in 0..params.episodes {
+        let (ep, json) = runner.episode(i)?;
+        on_episode(params.first_episode + i, &ep, &json);
+        episodes.push(ep);
+    }
+    Ok(params.report(episodes))
+}
+
+impl SoakParams {
+    /// The soak's report from its episodes' reports, given in episode order (the order fixes
+    /// which findings and proofs the report keeps).
+    pub fn report(&self, episodes: impl IntoIterator<Item = SoakReport>) -> SoakReport {
+        let mut report = SoakReport {
+            params: Some(*self),
+            ..SoakReport::default()
+        };
+        for ep in episodes {
+            report.merge(ep);
+        }
+        report
+    }
+}
+
+/// A soak ready to run episode by episode, in any order or on several threads: the models its
+/// checks need are built once and only read.
+pub struct SoakRunner {
+    params: SoakParams,
+    models: Models,
+}
+
+impl SoakRunner {
+    /// Builds the checks' models for `params`.
+    pub fn new(params: &SoakParams) -> Result<SoakRunner, String> {
+        Ok(SoakRunner {
+            params: *params,
+            models: Models::new(params.blocks)?,
+        })
+    }
+
+    /// Runs the soak's `i`-th episode (episode `first_episode + i`, seeded from the soak's seed
+    /// and its own index alone): its report and its episode JSON. A panic is caught on native
+    /// targets and counted as a finding; an episode that cannot start is an error.
+    pub fn episode(&self, i: usize) -> Result<(SoakReport, String), String> {
+        let (params, e) = (&self.params, self.params.first_episode + i);
         let mut ep = SoakReport::default();
         let mut json = String::new();
         let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            soak_episode(params, e, &models, &mut ep, &mut json)
+            soak_episode(params, e, &self.models, &mut ep, &mut json)
         }));
         match r {
             Ok(Ok(())) => {}
@@ -90,8 +130,6 @@ pub fn soak_with(
                 });
             }
         }
-        on_episode(e, &ep, &json);
-        report.merge(ep);
+        Ok((ep, json))
     }
-    Ok(report)
 }

@@ -12,9 +12,10 @@ mod table2;
 pub use common::{stats, MeanSd, PAPER_TABLE1, PAPER_TABLE2};
 pub use feasible::infeasible;
 pub use table1::{
-    table1, table1_scene, table1_task_seed, Redraw, Table1, Table1Cell, MAX_DRAWS, TABLE1_METHODS,
+    table1, table1_scene, table1_task_seed, Redraw, Table1, Table1Cell, Table1Run, Table1Sweep,
+    Table1Task, MAX_DRAWS, TABLE1_METHODS,
 };
-pub use table2::{table2, Table2, Table2Cell, TABLE2_METHODS};
+pub use table2::{table2, Table2, Table2Cell, Table2Sweep, Table2Trial, TABLE2_METHODS};
 
 #[cfg(test)]
 mod tests {

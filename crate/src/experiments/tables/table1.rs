@@ -47,11 +47,16 @@ pub struct Table1Cell {
 impl Table1Cell {
     /// The method's row name: `linear`, `tamp`, `logic-lfd (paper)`, `logic-lfd (prioritised)`.
     pub fn method_label(&self) -> String {
-        match (self.method, self.mode) {
-            (Method::LogicLfd, Mode::Prioritised) => "logic-lfd (prioritised)".to_string(),
-            (Method::LogicLfd, Mode::Paper) => "logic-lfd (paper)".to_string(),
-            (m, _) => m.as_str().to_string(),
-        }
+        method_label(self.method, self.mode)
+    }
+}
+
+/// A method's row name in Table I.
+fn method_label(method: Method, mode: Mode) -> String {
+    match (method, mode) {
+        (Method::LogicLfd, Mode::Prioritised) => "logic-lfd (prioritised)".to_string(),
+        (Method::LogicLfd, Mode::Paper) => "logic-lfd (paper)".to_string(),
+        (m, _) => m.as_str().to_string(),
     }
 }
 
@@ -129,8 +134,182 @@ pub fn table1_task_seed(b: Benchmark, index: usize, seed: u64) -> u64 {
     mix(seed, (b as u64) << 32 | index as u64)
 }
 
+/// What one Table I task gave: the draw its initial state came from and every method's run
+/// from it (a record of the sweep, joined by [`Table1Sweep::report`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Table1Task {
+    /// Benchmark.
+    pub benchmark: Benchmark,
+    /// Task index within the benchmark.
+    pub task: usize,
+    /// The draw used (0: the first; see [`table1_scene`]).
+    pub draw: usize,
+    /// One run per method of [`TABLE1_METHODS`], in that order.
+    pub runs: Vec<Table1Run>,
+}
+
+/// One method's closed-loop episode from a Table I task.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Table1Run {
+    /// Time of the first plan (ms, caller's clock), if the method planned.
+    pub plan_ms: Option<f64>,
+    /// The part of it spent binding actions to motions (ms).
+    pub bind_ms: Option<f64>,
+    /// Replans that planned to G from scratch (the TAMP fallback).
+    pub fallbacks: usize,
+    /// Actions executed, if the episode reached the goal.
+    pub success_actions: Option<usize>,
+    /// The failure's kind, if it failed with a stated reason.
+    pub failure: Option<String>,
+}
+
+/// Table I as a sweep: `tasks` tasks for each benchmark, benchmark by benchmark; item `i` is
+/// task `i mod tasks` of benchmark `benchmarks[i / tasks]`, seeded by [`table1_task_seed`] alone,
+/// so items run in any order (or on other machines) and [`Table1Sweep::report`] joins them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Table1Sweep {
+    /// Benchmarks, in row order.
+    pub benchmarks: Vec<Benchmark>,
+    /// Tasks per benchmark.
+    pub tasks: usize,
+    /// Seed of the task generator and episodes.
+    pub seed: u64,
+    /// Whether Logic-LfD may fall back to TAMP from scratch.
+    pub tamp_fallback: bool,
+}
+
+impl Table1Sweep {
+    /// Number of items (tasks over all benchmarks).
+    pub fn items(&self) -> usize {
+        self.benchmarks.len() * self.tasks
+    }
+
+    /// Runs item `index`: draws its initial state ([`table1_scene`]) and runs every method of
+    /// [`TABLE1_METHODS`] in closed loop from it, with `params` (their
+    /// `control.tamp_fallback` set from the sweep's). `progress` hears of failures and of the
+    /// task's end.
+    pub fn run(
+        &self,
+        index: usize,
+        params: SessionParams,
+        clock: &dyn Clock,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<Table1Task, SessionError> {
+        let mut params = params;
+        params.control.tamp_fallback = self.tamp_fallback;
+        let (b, i) = (self.benchmarks[index / self.tasks], index % self.tasks);
+        let level = Level::ALL[i % 4];
+        let task_seed = table1_task_seed(b, i, self.seed);
+        let (scene, draw) = table1_scene(b, level, task_seed)?;
+        let mut runs = Vec::with_capacity(TABLE1_METHODS.len());
+        for (method, mode) in TABLE1_METHODS {
+            let spec = EpisodeSpec {
+                benchmark: b,
+                level: None,
+                method,
+                mode,
+                seed: task_seed,
+                scene: Some(scene.clone()),
+            };
+            let r = run_episode(&spec, params, clock)?;
+            let first = r.log.replans.first();
+            let failure = match (&r.reason, r.success) {
+                (Some(reason), false) => {
+                    progress(&format!(
+                        "table1 {} task {i} ({}) {}: failed: {reason}",
+                        b.as_str(),
+                        level.as_str(),
+                        method_label(method, mode)
+                    ));
+                    Some(reason_kind(reason))
+                }
+                _ => None,
+            };
+            runs.push(Table1Run {
+                plan_ms: first.map(|f| f.time_ms),
+                bind_ms: first.map(|f| f.bind_ms),
+                fallbacks: r.log.replans.iter().filter(|p| p.fallback).count(),
+                success_actions: r.success.then_some(r.actions_executed),
+                failure,
+            });
+        }
+        progress(&format!(
+            "table1 {} task {}/{}",
+            b.as_str(),
+            i + 1,
+            self.tasks
+        ));
+        Ok(Table1Task {
+            benchmark: b,
+            task: i,
+            draw,
+            runs,
+        })
+    }
+
+    /// Table I from the sweep's items, given in item order.
+    pub fn report(&self, items: impl IntoIterator<Item = Table1Task>) -> Table1 {
+        let mut cells: Vec<Table1Cell> = self
+            .benchmarks
+            .iter()
+            .flat_map(|&b| {
+                TABLE1_METHODS
+                    .iter()
+                    .map(move |&(method, mode)| Table1Cell {
+                        benchmark: b,
+                        method,
+                        mode,
+                        successes: 0,
+                        tasks: 0,
+                        plan_ms: vec![],
+                        search_ms: vec![],
+                        bind_ms: vec![],
+                        fallbacks: 0,
+                        actions: vec![],
+                        failures: vec![],
+                    })
+            })
+            .collect();
+        let mut redrawn = vec![];
+        for (p, item) in items.into_iter().enumerate() {
+            if item.draw > 0 {
+                redrawn.push(Redraw {
+                    benchmark: item.benchmark,
+                    task: item.task,
+                    draws: item.draw + 1,
+                });
+            }
+            // Item p is a task of the (p / tasks)-th benchmark: its row of cells starts there.
+            let row = p / self.tasks * TABLE1_METHODS.len();
+            for (cell, run) in cells.iter_mut().skip(row).zip(item.runs) {
+                cell.tasks += 1;
+                if let (Some(plan), Some(bind)) = (run.plan_ms, run.bind_ms) {
+                    cell.plan_ms.push(plan);
+                    cell.search_ms.push(plan - bind);
+                    cell.bind_ms.push(bind);
+                }
+                cell.fallbacks += run.fallbacks;
+                if let Some(actions) = run.success_actions {
+                    cell.successes += 1;
+                    cell.actions.push(actions);
+                } else if let Some(kind) = run.failure {
+                    count(&mut cell.failures, kind);
+                }
+            }
+        }
+        Table1 {
+            tasks: self.tasks,
+            seed: self.seed,
+            cells,
+            redrawn,
+            tamp_fallback: self.tamp_fallback,
+        }
+    }
+}
+
 /// Runs Table I: `tasks` initial states per benchmark ([`table1_scene`]), levels L1..L4 in
-/// turn; every method runs the closed loop from each state.
+/// turn; every method runs the closed loop from each state (the items of [`Table1Sweep`], one
+/// after another).
 pub fn table1(
     benchmarks: &[Benchmark],
     tasks: usize,
@@ -139,77 +318,16 @@ pub fn table1(
     clock: &dyn Clock,
     progress: &mut dyn FnMut(&str),
 ) -> Result<Table1, SessionError> {
-    let mut cells = vec![];
-    let mut redrawn = vec![];
-    for &b in benchmarks {
-        let mut row: Vec<Table1Cell> = TABLE1_METHODS
-            .iter()
-            .map(|&(method, mode)| Table1Cell {
-                benchmark: b,
-                method,
-                mode,
-                successes: 0,
-                tasks: 0,
-                plan_ms: vec![],
-                search_ms: vec![],
-                bind_ms: vec![],
-                fallbacks: 0,
-                actions: vec![],
-                failures: vec![],
-            })
-            .collect();
-        for i in 0..tasks {
-            let level = Level::ALL[i % 4];
-            let task_seed = table1_task_seed(b, i, seed);
-            let (scene, draw) = table1_scene(b, level, task_seed)?;
-            if draw > 0 {
-                redrawn.push(Redraw {
-                    benchmark: b,
-                    task: i,
-                    draws: draw + 1,
-                });
-            }
-            for cell in &mut row {
-                let spec = EpisodeSpec {
-                    benchmark: b,
-                    level: None,
-                    method: cell.method,
-                    mode: cell.mode,
-                    seed: task_seed,
-                    scene: Some(scene.clone()),
-                };
-                let r = run_episode(&spec, params, clock)?;
-                cell.tasks += 1;
-                if let Some(first) = r.log.replans.first() {
-                    cell.plan_ms.push(first.time_ms);
-                    cell.search_ms.push(first.time_ms - first.bind_ms);
-                    cell.bind_ms.push(first.bind_ms);
-                }
-                cell.fallbacks += r.log.replans.iter().filter(|p| p.fallback).count();
-                if r.success {
-                    cell.successes += 1;
-                    cell.actions.push(r.actions_executed);
-                } else if let Some(reason) = &r.reason {
-                    count(&mut cell.failures, reason_kind(reason));
-                    progress(&format!(
-                        "table1 {} task {i} ({}) {}: failed: {reason}",
-                        b.as_str(),
-                        level.as_str(),
-                        cell.method_label()
-                    ));
-                }
-            }
-            progress(&format!("table1 {} task {}/{}", b.as_str(), i + 1, tasks));
-        }
-        cells.extend(row);
-    }
-    Ok(Table1 {
+    let sweep = Table1Sweep {
+        benchmarks: benchmarks.to_vec(),
         tasks,
         seed,
-        cells,
-        redrawn,
         tamp_fallback: params.control.tamp_fallback,
-    })
+    };
+    let items = (0..sweep.items())
+        .map(|i| sweep.run(i, params, clock, progress))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(sweep.report(items))
 }
 
 /// Medians of the search and binding parts of the first plans: `0.21 / 0.09`.

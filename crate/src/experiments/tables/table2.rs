@@ -60,23 +60,121 @@ pub struct Table2 {
 /// The methods of Table II.
 pub const TABLE2_METHODS: [Method; 3] = [Method::Linear, Method::Rlds, Method::LogicLfd];
 
-/// Runs Table II: `trials` disturbed episodes per level, method and benchmark.
-pub fn table2(
-    benchmarks: &[Benchmark],
-    trials: usize,
-    seed: u64,
-    params: SessionParams,
-    clock: &dyn Clock,
-    progress: &mut dyn FnMut(&str),
-) -> Result<Table2, SessionError> {
-    let mut cells = vec![];
-    for level in Level::ALL {
-        for method in TABLE2_METHODS {
-            for &b in benchmarks {
-                let mut cell = Table2Cell {
+/// What one Table II trial gave (a record of the sweep, joined by [`Table2Sweep::report`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Table2Trial {
+    /// The trial's seed.
+    pub seed: u64,
+    /// Whether the level was injected (a trial it was not counts apart).
+    pub injected: bool,
+    /// The TCP's largest distance from the undisturbed path, if the disturbance hit a moving
+    /// arm (mm).
+    pub deviation_mm: Option<f64>,
+    /// The push of the hand, if there was one (mm).
+    pub push_mm: Option<f64>,
+    /// Simulated execution time, if the trial succeeded (s).
+    pub execution_s: Option<f64>,
+    /// Simulated time lost against the undisturbed run (s).
+    pub time_lost_s: Option<f64>,
+    /// The failure's kind, if it failed with a stated reason.
+    pub failure: Option<String>,
+}
+
+/// Table II as a sweep: cells by level, then method, then benchmark, each `trials` trials;
+/// item `i` is trial `i mod trials` of cell `i / trials`, seeded `seed + trial` alone, so items
+/// run in any order (or on other machines) and [`Table2Sweep::report`] joins them.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Table2Sweep {
+    /// Benchmarks.
+    pub benchmarks: Vec<Benchmark>,
+    /// Trials per cell.
+    pub trials: usize,
+    /// Seed of the first trial (trial t uses `seed + t`).
+    pub seed: u64,
+    /// Whether Logic-LfD may fall back to TAMP from scratch.
+    pub tamp_fallback: bool,
+}
+
+impl Table2Sweep {
+    /// Number of items (trials over all cells).
+    pub fn items(&self) -> usize {
+        Level::ALL.len() * TABLE2_METHODS.len() * self.benchmarks.len() * self.trials
+    }
+
+    /// The (level, method, benchmark) of cell `c`.
+    fn cell(&self, c: usize) -> (Level, Method, Benchmark) {
+        let nb = self.benchmarks.len();
+        let per_level = TABLE2_METHODS.len() * nb;
+        (
+            Level::ALL[c / per_level],
+            TABLE2_METHODS[c % per_level / nb],
+            self.benchmarks[c % nb],
+        )
+    }
+
+    /// Runs item `index` with `params` (their `control.tamp_fallback` set from the sweep's);
+    /// `progress` hears of its end.
+    pub fn run(
+        &self,
+        index: usize,
+        params: SessionParams,
+        clock: &dyn Clock,
+        progress: &mut dyn FnMut(&str),
+    ) -> Result<Table2Trial, SessionError> {
+        let mut params = params;
+        params.control.tamp_fallback = self.tamp_fallback;
+        let (level, method, b) = self.cell(index / self.trials);
+        let t = index % self.trials;
+        let s = self.seed.wrapping_add(t as u64);
+        let spec = EpisodeSpec {
+            benchmark: b,
+            level: Some(level),
+            method,
+            mode: Mode::Paper,
+            seed: s,
+            scene: None,
+        };
+        let r = run_episode(&spec, params, clock)?;
+        let trial = Table2Trial {
+            seed: s,
+            injected: r.injection.is_some(),
+            deviation_mm: r.motion.as_ref().map(|m| m.deviation_mm),
+            push_mm: r
+                .injection
+                .as_ref()
+                .and_then(|i| i.push.as_ref())
+                .map(|p| p.displacement_mm),
+            execution_s: r.success.then_some(r.execution_s),
+            time_lost_s: r.time_lost_s,
+            failure: r.reason.as_ref().map(reason_kind),
+        };
+        let outcome = match (&trial.execution_s, &trial.failure) {
+            _ if !trial.injected => "not injected".to_string(),
+            (Some(_), _) => "succeeded".to_string(),
+            (None, Some(kind)) => format!("failed: {kind}"),
+            (None, None) => "failed".to_string(),
+        };
+        progress(&format!(
+            "table2 {} {} {} trial {}/{}: {outcome}",
+            level.as_str(),
+            method.as_str(),
+            b.as_str(),
+            t + 1,
+            self.trials
+        ));
+        Ok(trial)
+    }
+
+    /// Table II from the sweep's items, given in item order.
+    pub fn report(&self, items: impl IntoIterator<Item = Table2Trial>) -> Table2 {
+        let cells = self.benchmarks.len() * Level::ALL.len() * TABLE2_METHODS.len();
+        let mut cells: Vec<Table2Cell> = (0..cells)
+            .map(|c| {
+                let (level, method, benchmark) = self.cell(c);
+                Table2Cell {
                     level,
                     method,
-                    benchmark: b,
+                    benchmark,
                     times: vec![],
                     trials: 0,
                     failures: vec![],
@@ -86,59 +184,64 @@ pub fn table2(
                     deviation_mm: vec![],
                     push_mm: vec![],
                     time_lost_s: vec![],
-                };
-                for t in 0..trials {
-                    let s = seed.wrapping_add(t as u64);
-                    let spec = EpisodeSpec {
-                        benchmark: b,
-                        level: Some(level),
-                        method,
-                        mode: Mode::Paper,
-                        seed: s,
-                        scene: None,
-                    };
-                    let r = run_episode(&spec, params, clock)?;
-                    cell.trials += 1;
-                    cell.seeds.push(s);
-                    record_trial(&mut cell, &r);
                 }
-                progress(&format!(
-                    "table2 {} {} {}: {}/{} succeeded",
-                    level.as_str(),
-                    method.as_str(),
-                    b.as_str(),
-                    cell.times.len(),
-                    cell.trials
-                ));
-                cells.push(cell);
+            })
+            .collect();
+        for (p, trial) in items.into_iter().enumerate() {
+            if let Some(cell) = cells.get_mut(p / self.trials) {
+                record_trial(cell, trial);
             }
         }
+        Table2 {
+            trials: self.trials,
+            seed: self.seed,
+            cells,
+        }
     }
-    Ok(Table2 {
-        trials,
-        seed,
-        cells,
-    })
 }
 
-/// Adds trial `r` to `cell`: a trial the level could not be injected into counts apart.
-fn record_trial(cell: &mut Table2Cell, r: &crate::experiments::episode::EpisodeReport) {
-    if r.injection.is_none() {
+/// Runs Table II: `trials` disturbed episodes per level, method and benchmark (the items of
+/// [`Table2Sweep`], one after another).
+pub fn table2(
+    benchmarks: &[Benchmark],
+    trials: usize,
+    seed: u64,
+    params: SessionParams,
+    clock: &dyn Clock,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Table2, SessionError> {
+    let sweep = Table2Sweep {
+        benchmarks: benchmarks.to_vec(),
+        trials,
+        seed,
+        tamp_fallback: params.control.tamp_fallback,
+    };
+    let items = (0..sweep.items())
+        .map(|i| sweep.run(i, params, clock, progress))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(sweep.report(items))
+}
+
+/// Adds a trial to `cell`: a trial the level could not be injected into counts apart.
+fn record_trial(cell: &mut Table2Cell, t: Table2Trial) {
+    cell.trials += 1;
+    cell.seeds.push(t.seed);
+    if !t.injected {
         cell.not_injected += 1;
         return;
     }
-    if let Some(m) = &r.motion {
+    if let Some(d) = t.deviation_mm {
         cell.mid_motion += 1;
-        cell.deviation_mm.push(m.deviation_mm);
+        cell.deviation_mm.push(d);
     }
-    if let Some(p) = r.injection.as_ref().and_then(|i| i.push.as_ref()) {
-        cell.push_mm.push(p.displacement_mm);
+    if let Some(p) = t.push_mm {
+        cell.push_mm.push(p);
     }
-    if r.success {
-        cell.times.push(r.execution_s);
-        cell.time_lost_s.extend(r.time_lost_s);
-    } else if let Some(reason) = &r.reason {
-        count(&mut cell.failures, reason_kind(reason));
+    if let Some(time) = t.execution_s {
+        cell.times.push(time);
+        cell.time_lost_s.extend(t.time_lost_s);
+    } else if let Some(kind) = t.failure {
+        count(&mut cell.failures, kind);
     }
 }
 
