@@ -157,11 +157,7 @@ fn scaling(a: ScalingArgs) -> ExitCode {
     let clock = WallClock::start();
     let indices = a.sweep.indices(sweep.items());
     let tasks = match a.sweep.map(&indices, |i| sweep.run(i, &clock)) {
-        Ok(Ok(t)) => t,
-        Ok(Err(e)) => {
-            eprintln!("{e}");
-            return ExitCode::from(exit::BAD_INPUT);
-        }
+        Ok(t) => t,
         Err(e) => {
             eprintln!("{e}");
             return ExitCode::from(exit::BAD_INPUT);

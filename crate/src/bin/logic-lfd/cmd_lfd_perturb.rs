@@ -311,15 +311,9 @@ pub fn run(
     let drawn = lfd.perturb(count, args.seed, args.max_steps);
     let indices = sweep.indices(drawn.len());
     let rows = sweep.map(&indices, |i| {
-        Ok::<_, String>(measure(lfd, &configured, &drawn[i]))
+        Ok::<_, std::convert::Infallible>(measure(lfd, &configured, &drawn[i]))
     });
-    let rows = match rows {
-        Ok(Ok(rows)) => rows,
-        Ok(Err(e)) | Err(e) => {
-            eprintln!("{e}");
-            return ExitCode::from(exit::BAD_INPUT);
-        }
-    };
+    let Ok(rows) = rows;
     match sweep.shard {
         Some(shard) => print_shard(COMMAND, &study, drawn.len(), shard, &indices, rows),
         None => print_study(&study, &rows, given.json),

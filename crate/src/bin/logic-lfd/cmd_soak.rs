@@ -101,11 +101,11 @@ pub fn run(args: Args) -> ExitCode {
                 }
             }
         }
-        Ok(ep)
+        Ok::<_, String>(ep)
     });
     let episodes = match episodes {
-        Ok(Ok(eps)) => eps,
-        Ok(Err(e)) | Err(e) => {
+        Ok(eps) => eps,
+        Err(e) => {
             eprintln!("soak: {e}");
             return ExitCode::from(exit::BAD_INPUT);
         }

@@ -174,20 +174,11 @@ pub fn run_table2(a: Table2Args) -> ExitCode {
 }
 
 /// The records of a sweep, or the exit code of its error (printed on stderr).
-fn flatten<R, E: std::fmt::Display>(
-    records: Result<Result<Vec<R>, E>, String>,
-) -> Result<Vec<R>, ExitCode> {
-    match records {
-        Ok(Ok(r)) => Ok(r),
-        Ok(Err(e)) => {
-            eprintln!("{e}");
-            Err(ExitCode::from(exit::BAD_INPUT))
-        }
-        Err(e) => {
-            eprintln!("{e}");
-            Err(ExitCode::from(exit::BAD_INPUT))
-        }
-    }
+fn flatten<R, E: std::fmt::Display>(records: Result<Vec<R>, E>) -> Result<Vec<R>, ExitCode> {
+    records.map_err(|e| {
+        eprintln!("{e}");
+        ExitCode::from(exit::BAD_INPUT)
+    })
 }
 
 /// Prints Table I as JSON or markdown.

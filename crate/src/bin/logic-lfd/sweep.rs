@@ -112,22 +112,28 @@ impl SweepArgs {
     /// Runs `run_item` on every index of `indices` and returns the records in that order, or
     /// the error of the first failing index in that order (so the message does not depend on
     /// the number of threads). One thread runs them in turn and stops at the first error; more
-    /// run on a pool of this command's own.
+    /// run on a pool of this command's own (or in turn, with a warning, if it cannot start).
     pub fn map<R: Send, E: Send>(
         &self,
         indices: &[usize],
         run_item: impl Fn(usize) -> Result<R, E> + Sync,
-    ) -> Result<Result<Vec<R>, E>, String> {
+    ) -> Result<Vec<R>, E> {
         let threads = self.threads().min(indices.len().max(1));
-        if threads == 1 {
-            return Ok(indices.iter().map(|&i| run_item(i)).collect());
-        }
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .stack_size(THREAD_STACK)
-            .thread_name(|i| format!("sweep-{i}"))
-            .build()
-            .map_err(|e| format!("--threads: cannot start {threads} threads: {e}"))?;
+        let pool = (threads > 1).then(|| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .stack_size(THREAD_STACK)
+                .thread_name(|i| format!("sweep-{i}"))
+                .build()
+        });
+        let pool = match pool {
+            Some(Ok(pool)) => pool,
+            Some(Err(e)) => {
+                eprintln!("--threads: cannot start {threads} threads ({e}); running on one");
+                return indices.iter().map(|&i| run_item(i)).collect();
+            }
+            None => return indices.iter().map(|&i| run_item(i)).collect(),
+        };
         // One item per task: items differ in cost by orders of magnitude, so no batching.
         let results: Vec<Result<R, E>> = pool.install(|| {
             indices
@@ -136,7 +142,7 @@ impl SweepArgs {
                 .map(|&i| run_item(i))
                 .collect()
         });
-        Ok(results.into_iter().collect())
+        results.into_iter().collect()
     }
 }
 
