@@ -3,7 +3,7 @@
 //!
 //! # What the recorder does
 //!
-//! A recording is a stream of *edits* of a world (a [`WorldSnapshot`]): gripper samples (the user
+//! A recording is a stream of *edits* of a world (a [`WorldSnapshot`](crate::sim::snapshot::WorldSnapshot)): gripper samples (the user
 //! moves the gripper — a 3-D handle with a position, a yaw and open/close — and the arm follows by
 //! IK), hand moves of a block (the user displaces a block directly), or, in the quicker mode, block
 //! drags and hook pulls for which the recorder synthesises the arm motion ([`synth`]). Each edit is

@@ -149,7 +149,7 @@ pub struct TaughtDemo {
     pub scene: WorldSnapshot,
 }
 
-/// The result of [`Recorder::finish`].
+/// The result of [`Recorder::finish`](super::Recorder::finish).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Taught {
     /// The demonstration to save as `demo.json`.
@@ -157,6 +157,6 @@ pub struct Taught {
     /// L_0..L_N (fluents, sorted), derived by applying the actions.
     pub states: Vec<Vec<String>>,
     /// One fit per skill the loop learns from the demo — the approach and the retreat of every
-    /// action ([`taught::skill_fits`]); empty when [`RecorderParams::learn_skills`] is off.
+    /// action ([`taught::skill_fits`](super::taught::skill_fits)); empty when [`RecorderParams::learn_skills`] is off.
     pub skills: Vec<SkillFit>,
 }

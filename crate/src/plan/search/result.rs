@@ -95,7 +95,7 @@ pub struct SearchStats {
     pub time_secs: f64,
 }
 
-/// The result of [`search`].
+/// The result of [`search`](super::search()).
 #[derive(Clone, PartialEq, Debug)]
 pub struct SearchResult {
     /// Plan, proved unsolvable, or budget exhausted.
