@@ -7,7 +7,7 @@
 
 use std::collections::{BTreeSet, HashMap};
 
-use super::ast::{Domain, Formula, Name, Problem, TypedName};
+use super::ast::{Domain, Formula, Name, Problem, Term, TypedName};
 use super::error::{PddlError, SourceMap, Span};
 
 /// An object to declare: its name and the name of its type (lower case).
@@ -177,27 +177,22 @@ fn check_goal_objects(
     declared: &HashMap<&str, usize>,
     src: &SourceMap,
 ) -> Result<(), PddlError> {
-    let missing = |name: &Name| -> Result<(), PddlError> {
-        match declared.contains_key(name.text.as_str()) {
-            true => Ok(()),
-            false => Err(src.error(
+    // A variable never occurs in a ground goal; a constant must be declared.
+    let declared_term = |t: &Term| -> Result<(), PddlError> {
+        match t {
+            Term::Const(name) if !declared.contains_key(name.text.as_str()) => Err(src.error(
                 name.span,
                 format!(
                     "the goal names `{}`, which is no longer an object of the problem",
                     name.text
                 ),
             )),
+            _ => Ok(()),
         }
     };
     match goal {
-        Formula::Atom(a) => a.args.iter().try_for_each(|t| match t {
-            super::ast::Term::Const(n) => missing(n),
-            super::ast::Term::Var(..) => Ok(()),
-        }),
-        Formula::Eq(a, b, _) => [a, b].into_iter().try_for_each(|t| match t {
-            super::ast::Term::Const(n) => missing(n),
-            super::ast::Term::Var(..) => Ok(()),
-        }),
+        Formula::Atom(a) => a.args.iter().try_for_each(declared_term),
+        Formula::Eq(a, b, _) => [a, b].into_iter().try_for_each(declared_term),
         Formula::Not(f, _) => check_goal_objects(f, declared, src),
         Formula::And(fs, _) | Formula::Or(fs, _) => fs
             .iter()
