@@ -1,7 +1,7 @@
 //! Sets cfg `first_load` for the page's first-load wasm module: feature `wasm-core` without
 //! `wasm` (scripts/build-wasm.sh). That module runs B1's template task only and reads JSON
 //! without path tracking; the page opens everything else on the full module, which it fetches
-//! after its first frame (see `sim::benchmark::Benchmark::sources`).
+//! after its first frame (see `sim::Benchmark::sources`).
 fn main() {
     println!("cargo::rustc-check-cfg=cfg(first_load)");
     println!("cargo::rerun-if-changed=build.rs");

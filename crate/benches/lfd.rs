@@ -6,14 +6,14 @@
 #![allow(missing_docs)]
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use logic_lfd::lfd::model::DomainModel;
-use logic_lfd::lfd::session::{demo_actions, Session, SessionOptions, SkillKind};
+use logic_lfd::lfd::DomainModel;
+use logic_lfd::lfd::{demo_actions, Session, SessionOptions, SkillKind};
 use logic_lfd::lfd::{plan_logic_lfd, DemoTrace, Method, Mode, MultiGoalSpec, TaskBuilder};
 use logic_lfd::plan::{Algorithm, HeuristicKind, NoClock, SearchConfig};
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{SceneGraph, World};
 use logic_lfd::tamp::plan_from_scratch;
-use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
+use logic_lfd::tamp::{StreamBinder, StreamParams};
 use std::hint::black_box;
 
 fn planning(c: &mut Criterion) {

@@ -5,7 +5,7 @@
 
 use criterion::measurement::{Measurement, ValueFormatter};
 use criterion::{criterion_group, criterion_main, Criterion, SamplingMode, Throughput};
-use logic_lfd::lqt::task::{build_reference, Target, TargetRole, Tracking};
+use logic_lfd::lqt::{build_reference, Target, TargetRole, Tracking};
 use logic_lfd::lqt::{full_pipeline, Basis, Dmp, DmpParams, LqtConfig, LqtCp, Skill, SkillParams};
 use nalgebra::{DMatrix, Isometry3, Point3, Translation3, UnitQuaternion};
 use std::hint::black_box;

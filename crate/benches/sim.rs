@@ -8,9 +8,9 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use logic_lfd::experiments::hot_paths;
-use logic_lfd::sim::benchmark::Benchmark;
-use logic_lfd::sim::generate::tower_task;
 use logic_lfd::sim::panda::{self, IkParams};
+use logic_lfd::sim::tower_task;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{GripperCommand, SceneGraph};
 use nalgebra::Isometry3;
 use std::hint::black_box;

@@ -12,10 +12,10 @@
 //! Each demo is checked while it is recorded (invariants after every step, goal at the end).
 
 use logic_lfd::pddl::{parse_domain, parse_problem};
-use logic_lfd::sim::benchmark::{goal_facts, Benchmark};
 use logic_lfd::sim::demo::{self, ExpertParams};
-use logic_lfd::sim::motions::Motions;
+use logic_lfd::sim::Motions;
 use logic_lfd::sim::World;
+use logic_lfd::sim::{goal_facts, Benchmark};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::Arc;

@@ -468,26 +468,6 @@ fn no_two_files_of_a_module_import_each_other() {
 }
 
 #[test]
-fn a_module_with_submodules_is_a_folder_with_its_mod_rs() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut paths = Vec::new();
-    rust_files(&src, &mut paths);
-    let beside: Vec<String> = paths
-        .iter()
-        .filter(|p| {
-            p.file_name()
-                .is_some_and(|n| n != "mod.rs" && n != "main.rs" && n != "lib.rs")
-        })
-        .filter(|p| p.with_extension("").is_dir())
-        .map(|p| p.strip_prefix(&src).unwrap().display().to_string())
-        .collect();
-    assert!(
-        beside.is_empty(),
-        "one module style: move these to NAME/mod.rs: {beside:?}"
-    );
-}
-
-#[test]
 fn the_circle_finder_resolves_reexports_and_finds_a_circle() {
     let modules: BTreeSet<Vec<String>> = [
         vec![],

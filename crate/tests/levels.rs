@@ -4,12 +4,13 @@
 
 use std::collections::BTreeSet;
 
-use logic_lfd::experiments::tasks::{demo_trace, initial_scene};
-use logic_lfd::experiments::{run_episode, EpisodeSpec, Level};
-use logic_lfd::lfd::session::{Session, SessionOptions, SessionParams, SkillKind};
+use logic_lfd::experiments::{demo_trace, initial_scene};
+use logic_lfd::experiments::{run_episode, EpisodeSpec};
+use logic_lfd::lfd::Level;
 use logic_lfd::lfd::{Method, Mode};
+use logic_lfd::lfd::{Session, SessionOptions, SessionParams, SkillKind};
 use logic_lfd::plan::{validate_names, NoClock, Outcome};
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{SceneGraph, Violation, World};
 
 /// Ticks into an action, after the first action, at which the test's L1 comes.
@@ -239,7 +240,7 @@ fn a_level_the_injector_cannot_produce_is_refused_not_replaced() {
     let trace = demo_trace(b).unwrap();
     let mut w = b.scene();
     let before = w.snapshot();
-    let e = logic_lfd::lfd::disturb::inject(&mut w, Level::L4, &trace, &[0], 1).unwrap_err();
+    let e = logic_lfd::lfd::inject(&mut w, Level::L4, &trace, &[0], 1).unwrap_err();
     assert!(e.starts_with("L4"), "{e}");
     assert_eq!(w.snapshot(), before);
 }

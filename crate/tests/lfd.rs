@@ -4,14 +4,15 @@
 //! and failure reason per method), replay identity, prioritised vs paper mode, and the multi-goal
 //! specification on the real B1 PDDL.
 
-use logic_lfd::experiments::{EpisodeSpec, Level};
-use logic_lfd::lfd::control::FailReason;
-use logic_lfd::lfd::session::{mix, Session, SessionOptions, SessionParams, SkillKind, StatusKind};
+use logic_lfd::experiments::EpisodeSpec;
+use logic_lfd::lfd::FailReason;
+use logic_lfd::lfd::Level;
 use logic_lfd::lfd::{
     logic_in, plan_logic_lfd, DemoTrace, Method, Mode, MultiGoalSpec, PlanSource, TaskBuilder,
 };
+use logic_lfd::lfd::{mix_seed, Session, SessionOptions, SessionParams, SkillKind, StatusKind};
 use logic_lfd::plan::{validate_names, Algorithm, HeuristicKind, NoClock, SearchConfig};
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{SceneGraph, Violation};
 
 use crate::support::invariants::{broken, tolerated, HOOK_SHELF_DEPTH};
@@ -82,7 +83,7 @@ fn episode(b: Benchmark, level: Level, method: Method, mode: Mode, seed: u64) ->
     };
     let mut s = Session::new(opts).expect("session");
     let n = s.controller().trace().len().max(3);
-    let mut next_try = 1 + (mix(seed, 77) % (n as u64 - 2)) as usize;
+    let mut next_try = 1 + (mix_seed(seed, 77) % (n as u64 - 2)) as usize;
     let mut injected = false;
     let mut checked = 0;
     for _ in 0..40_000 {
@@ -422,7 +423,7 @@ fn multi_goal_plan_plus_suffix_reaches_the_goal_in_the_pddl_model() {
     let world = logic_lfd::sim::World::from_json(&files.scene)
         .unwrap()
         .with_motions(b.motions());
-    let model = logic_lfd::lfd::model::DomainModel::new(
+    let model = logic_lfd::lfd::DomainModel::new(
         &files.domain,
         "domain.pddl",
         &files.problem,
@@ -433,7 +434,7 @@ fn multi_goal_plan_plus_suffix_reaches_the_goal_in_the_pddl_model() {
     let objs = SceneGraph::objects(&world);
     let facts = SceneGraph::from_world(&world).to_strings();
     let template = model.build(&objs, &facts).unwrap();
-    let demo = logic_lfd::lfd::session::demo_actions(&files.demo).unwrap();
+    let demo = logic_lfd::lfd::demo_actions(&files.demo).unwrap();
     let trace = DemoTrace::derive(&template, &demo).unwrap();
     // Hand-made states: unseen (needs a prefix), seen (LogicIn), and the goal.
     let cases: [(&[&str], Option<PlanSource>); 3] = [

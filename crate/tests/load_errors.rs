@@ -4,10 +4,10 @@
 
 use std::process::Command;
 
-use logic_lfd::lfd::session::{Session, SessionOptions};
-use logic_lfd::recorder::synth::Edit;
+use logic_lfd::lfd::{Session, SessionOptions};
+use logic_lfd::recorder::Edit;
 use logic_lfd::recorder::{taught, Recorder};
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 use serde_json::json;
 
 /// `text` pretty-printed with `value` set at `pointer`, and the 1-based line and column where

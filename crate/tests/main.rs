@@ -13,6 +13,7 @@ mod lfd;
 mod lfd_cli;
 mod load_errors;
 mod lqt;
+mod module_style;
 mod multigoal;
 mod observed_states;
 mod pddl;

@@ -5,14 +5,14 @@
 //! no demonstration state matches, each for the paper's reason); and the rule that redraws an
 //! infeasible Table I state accepts the templates and refuses worlds no arm can work.
 
-use logic_lfd::experiments::tables::{
+use logic_lfd::experiments::{
     infeasible, table1, table1_scene, table1_task_seed, table2, Table2Cell,
 };
-use logic_lfd::experiments::Level;
-use logic_lfd::lfd::session::SessionParams;
+use logic_lfd::lfd::Level;
 use logic_lfd::lfd::Method;
+use logic_lfd::lfd::SessionParams;
 use logic_lfd::plan::{Clock, NoClock};
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::World;
 use nalgebra::Vector3;
 
@@ -28,7 +28,7 @@ impl Clock for Ticking {
     }
 }
 
-fn run(tamp_fallback: bool) -> logic_lfd::experiments::tables::Table1 {
+fn run(tamp_fallback: bool) -> logic_lfd::experiments::Table1 {
     let mut params = SessionParams::default();
     params.control.tamp_fallback = tamp_fallback;
     let clock = Ticking(std::cell::Cell::new(0.0));
@@ -230,8 +230,7 @@ fn an_infeasible_table1_draw_is_redrawn() {
         .unwrap()
         .with_motions(Benchmark::B2.motions());
     assert_eq!(infeasible(&kept), None);
-    let first =
-        logic_lfd::experiments::tasks::initial_scene(Benchmark::B2, Level::L3, seed).unwrap();
+    let first = logic_lfd::experiments::initial_scene(Benchmark::B2, Level::L3, seed).unwrap();
     let first = World::from_json(&first)
         .unwrap()
         .with_motions(Benchmark::B2.motions());

@@ -15,17 +15,17 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::lfd::control::{FailReason, Replan};
-pub use crate::lfd::disturb::Level;
+use crate::lfd::Level;
+use crate::lfd::{FailReason, Replan};
 use nalgebra::Vector3;
 
-use crate::lfd::session::{
-    mix, sources_for, EpisodeLog, Injection, Session, SessionError, SessionOptions, SessionParams,
-    SkillKind,
+use crate::lfd::{
+    mix_seed, sources_for, EpisodeLog, Injection, Session, SessionError, SessionOptions,
+    SessionParams, SkillKind,
 };
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
-use crate::sim::benchmark::{Benchmark, BenchmarkSources};
+use crate::sim::{Benchmark, BenchmarkSources};
 
 /// The draw of the episode's seed that picks the action after which the disturbance comes.
 const INJECT_AFTER_DRAW: u64 = 77;
@@ -224,12 +224,13 @@ struct Schedule {
 impl Schedule {
     fn new(spec: &EpisodeSpec, n: usize) -> Schedule {
         let n = n.max(3) as u64;
-        let after = 1 + (mix(spec.seed, INJECT_AFTER_DRAW) % (n - 2)) as usize;
+        let after = 1 + (mix_seed(spec.seed, INJECT_AFTER_DRAW) % (n - 2)) as usize;
         let span = INJECT_DELAY_TICKS.end - INJECT_DELAY_TICKS.start;
-        let mid = spec.level == Some(Level::L1) || mix(spec.seed, MID_MOTION_DRAW) % 2 == 0;
+        let mid = spec.level == Some(Level::L1) || mix_seed(spec.seed, MID_MOTION_DRAW) % 2 == 0;
         Schedule {
             next_try: after,
-            delay: mid.then(|| INJECT_DELAY_TICKS.start + mix(spec.seed, INJECT_DELAY_DRAW) % span),
+            delay: mid
+                .then(|| INJECT_DELAY_TICKS.start + mix_seed(spec.seed, INJECT_DELAY_DRAW) % span),
         }
     }
 
@@ -346,7 +347,7 @@ fn motion_effect(run: &Driven, calm: &Driven) -> Option<MotionEffect> {
         .iter()
         .map(|p| distance_to_path(p, &nominal))
         .fold(0.0, f64::max);
-    let ticks = |a: &crate::lfd::session::ActionRecord| {
+    let ticks = |a: &crate::lfd::ActionRecord| {
         a.end_tick
             .unwrap_or(a.start_tick)
             .saturating_sub(a.start_tick) as f64

@@ -16,14 +16,14 @@
 //! times it. Each row also reports a digest of the work done (plan lengths, expansions, facts),
 //! so two builds can be checked to have done the same work.
 
-use crate::lfd::control::ControlParams;
-use crate::lfd::session::{Session, SessionOptions, SkillKind};
+use crate::lfd::ControlParams;
 use crate::lfd::{LogicLfd, Method, Mode};
-use crate::lqt::task::{build_reference, Target, TargetRole, Tracking};
+use crate::lfd::{Session, SessionOptions, SkillKind};
+use crate::lqt::{build_reference, Target, TargetRole, Tracking};
 use crate::lqt::{full_pipeline, Basis, LqtConfig};
 use crate::plan::{self, Algorithm, Clock, HeuristicKind, NoClock, SearchConfig, SearchOutcome};
-use crate::sim::benchmark::Benchmark;
 use crate::sim::panda::{self, IkParams};
+use crate::sim::Benchmark;
 use crate::sim::{GripperCommand, SceneGraph};
 use nalgebra::{DMatrix, Isometry3, Translation3};
 use serde::{Deserialize, Serialize};

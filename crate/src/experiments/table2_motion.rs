@@ -2,13 +2,13 @@
 //! TCP's deviation from the undisturbed path, the time lost, and the trials a level could not
 //! be injected into (`docs/levels.md`).
 
-use super::episode::Level;
-use super::tables::{stats, Table2};
+use super::tables::{summary, Table2};
+use crate::lfd::Level;
 
 /// `mean ± sd` with `digits` decimals, or `—`.
 fn fmt_mean_sd(v: &[f64], digits: usize) -> String {
-    match stats(v) {
-        Some((m, sd, _)) => format!("{m:.digits$} ± {sd:.digits$}"),
+    match summary(v) {
+        Some(s) => format!("{:.digits$} ± {:.digits$}", s.mean, s.sd),
         None => "—".into(),
     }
 }

@@ -8,12 +8,12 @@
 //! needs, or, in B2, in the hand). A level the injector cannot produce is an error naming it,
 //! never a task of another level (`docs/levels.md`).
 
-use crate::lfd::demo::DemoTrace;
-use crate::lfd::disturb::{self, Level};
-use crate::lfd::session::{demo_actions, mix, sources_for, SessionError};
+use crate::lfd::DemoTrace;
 use crate::lfd::TaskBuilder as _;
+use crate::lfd::{self, Level};
+use crate::lfd::{demo_actions, mix_seed, sources_for, SessionError};
 use crate::plan::Task;
-use crate::sim::benchmark::Benchmark;
+use crate::sim::Benchmark;
 use crate::sim::{SceneGraph, World};
 
 /// Seeded attempts at a level before the generator gives up with an error.
@@ -39,7 +39,7 @@ pub fn template_task_for(
 ) -> Result<(Task, DemoTrace), SessionError> {
     let files = sources_for(b, blocks)?;
     let template = World::from_json(&files.scene)?.with_motions(b.motions());
-    let model = crate::lfd::model::DomainModel::new(
+    let model = crate::lfd::DomainModel::new(
         &files.domain,
         "domain.pddl",
         &files.problem,
@@ -71,13 +71,13 @@ pub fn initial_scene_for(
     // Up to a few attempts with derived seeds: a level may be impossible from some draws.
     let mut last = String::new();
     for attempt in 0..ATTEMPTS {
-        let s = mix(seed, attempt);
+        let s = mix_seed(seed, attempt);
         let mut w = world.clone();
-        match disturb::inject(&mut w, level, &trace, &[], s) {
+        match lfd::inject(&mut w, level, &trace, &[], s) {
             Ok(_) => {
                 // L1 tasks get a second motion-level variation for spread.
                 if level == Level::L1 {
-                    let _ = disturb::inject(&mut w, Level::L1, &trace, &[], mix(s, 1));
+                    let _ = lfd::inject(&mut w, Level::L1, &trace, &[], mix_seed(s, 1));
                 }
                 world = w;
                 return serde_json::to_string(&world.snapshot())

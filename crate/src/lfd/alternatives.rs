@@ -159,12 +159,12 @@ pub(crate) fn after_logic_in(spec: &MultiGoalSpec, k: usize) -> Vec<Alternative>
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lfd::control::ControlParams;
-    use crate::lfd::logic::PlanSource;
-    use crate::lfd::session::{Session, SessionOptions};
+    use crate::lfd::ControlParams;
+    use crate::lfd::PlanSource;
     use crate::lfd::{LogicLfd, Method, Mode};
+    use crate::lfd::{Session, SessionOptions};
     use crate::plan::{self, replay, MultiGoalMode, NoClock, State};
-    use crate::sim::benchmark::Benchmark;
+    use crate::sim::Benchmark;
 
     fn lfd_of(benchmark: Benchmark) -> LogicLfd {
         let session = Session::new(SessionOptions {

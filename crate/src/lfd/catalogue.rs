@@ -9,7 +9,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::sim::benchmark::Benchmark;
+use crate::sim::Benchmark;
 
 /// The method that closes the loop (the paper's method and its baselines).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]

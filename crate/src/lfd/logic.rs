@@ -311,8 +311,8 @@ pub(crate) fn plan_with(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lfd::demo::{DemoTrace, MultiGoalSpec};
     use crate::lfd::testing::{b1_template, state};
+    use crate::lfd::{DemoTrace, MultiGoalSpec};
 
     fn spec() -> (Task, MultiGoalSpec) {
         let (task, demo) = b1_template();
@@ -353,11 +353,8 @@ mod tests {
 
     #[test]
     fn demo_action_spelling_is_normalised() {
-        assert_eq!(
-            crate::lfd::demo::normalize_action("  STACK  a B "),
-            "(stack a b)"
-        );
-        assert_eq!(crate::lfd::demo::normalize_action("(pick c)"), "(pick c)");
+        assert_eq!(crate::lfd::normalize_action("  STACK  a B "), "(stack a b)");
+        assert_eq!(crate::lfd::normalize_action("(pick c)"), "(pick c)");
     }
 
     #[test]

@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use super::{fact_args, Operator, State, Task};
 
 /// Whether an operator of a task moves a body (grasps it or pulls it in): the physical reading
-/// of the task, given by the layer that knows what actions do (`tamp::action::moves_body`).
+/// of the task, given by the layer that knows what actions do (`tamp::moves_body`).
 pub type MovesBody<'a> = dyn Fn(&Task, &Operator, &str) -> bool + 'a;
 
 /// Makes operator `o` inapplicable everywhere.

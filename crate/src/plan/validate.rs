@@ -172,14 +172,15 @@ impl fmt::Display for ValidationReport {
 
 type GroundAtom = (usize, Vec<u32>);
 
-struct World<'a> {
+/// The lifted state a plan is replayed in: the objects by name and the true ground atoms.
+struct LiftedState<'a> {
     domain: &'a Domain,
     names: Vec<&'a str>,
     index: HashMap<&'a str, (u32, usize)>,
     state: HashSet<GroundAtom>,
 }
 
-impl World<'_> {
+impl LiftedState<'_> {
     fn obj(&self, t: &Term, b: &[u32]) -> u32 {
         match t {
             Term::Var(i, _) => b.get(*i).copied().unwrap_or(u32::MAX),
@@ -258,7 +259,7 @@ pub fn validate(domain: &Domain, problem: &Problem, plan: &[PlanStep]) -> Valida
         .enumerate()
         .map(|(i, o)| (o.name.text.as_str(), (i as u32, o.ty)))
         .collect();
-    let mut w = World {
+    let mut w = LiftedState {
         domain,
         names,
         index,

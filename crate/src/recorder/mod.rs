@@ -3,10 +3,10 @@
 //!
 //! # What the recorder does
 //!
-//! A recording is a stream of *edits* of a world (a [`WorldSnapshot`](crate::sim::snapshot::WorldSnapshot)): gripper samples (the user
+//! A recording is a stream of *edits* of a world (a [`WorldSnapshot`](crate::sim::WorldSnapshot)): gripper samples (the user
 //! moves the gripper — a 3-D handle with a position, a yaw and open/close — and the arm follows by
 //! IK), hand moves of a block (the user displaces a block directly), or, in the quicker mode, block
-//! drags and hook pulls for which the recorder synthesises the arm motion ([`synth`]). Each edit is
+//! drags and hook pulls for which the recorder synthesises the arm motion ([`recording_from_demo`], [`drag_samples`]). Each edit is
 //! replayed in the simulator ([`World::step`](crate::sim::World::step): the arm follows by IK, a
 //! closing gripper grasps, an opening one releases and the body settles) and after **every** step
 //! the scene graph's facts `S_C` are compared with the current logical state `S`:
@@ -53,14 +53,18 @@
 //! [`Recorder::finish`] either returns a complete demonstration or an error.
 
 mod engine;
-pub mod recording;
-pub mod synth;
+mod recording;
+mod synth;
 pub mod taught;
 mod types;
 
+pub use recording::{
+    ArmRef, GripperPose, GripperState, HandMove, RawRecording, RawSample, RecordingScene,
+};
+pub use synth::{drag_samples, pull_samples, recording_from_demo, Edit, HookGrip, SynthParams};
+
 use crate::pddl::Source;
 pub use engine::{GripperHandle, Recorder, RecorderOptions};
-pub use recording::{ArmRef, GripperPose, RawRecording, RawSample, RecordingScene};
 pub(crate) use types::change_text;
 pub use types::{
     RecorderError, RecorderEvent, RecorderParams, Segment, SkillFit, Taught, TaughtDemo,

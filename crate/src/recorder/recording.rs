@@ -27,8 +27,8 @@
 //!   another support is an unexplained change.
 
 use super::RecorderError;
-use crate::sim::benchmark::Benchmark;
-use crate::sim::snapshot::WorldSnapshot;
+use crate::sim::Benchmark;
+use crate::sim::WorldSnapshot;
 use crate::sim::{GripperCommand, World};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;

@@ -19,16 +19,15 @@
 use serde::{Deserialize, Serialize};
 
 use super::{RecorderError, SkillFit, TaughtDemo};
-use crate::lfd::catalogue::{Level, Method, Mode};
-use crate::lfd::demo::DemoTrace;
-use crate::lfd::model::DomainModel;
-use crate::lfd::session::{
-    mix, BenchmarkSources, Session, SessionOptions, SessionParams, SkillKind,
-};
+use crate::lfd::DemoTrace;
+use crate::lfd::DomainModel;
 use crate::lfd::TaskBuilder as _;
+use crate::lfd::{mix_seed, Session, SessionOptions, SessionParams, SkillKind};
+use crate::lfd::{Level, Method, Mode};
 use crate::lqt::{Skill, SkillParams};
-use crate::sim::benchmark::Benchmark;
 use crate::sim::demo::Demonstration;
+use crate::sim::Benchmark;
+use crate::sim::BenchmarkSources;
 use crate::sim::{SceneGraph, World};
 use nalgebra::{Isometry3, Point3};
 
@@ -74,7 +73,7 @@ fn refused(m: impl Into<String>) -> RecorderError {
 /// Parses a taught `demo.json` (errors name the key path of a wrong value with its line and
 /// column, or the line and column of malformed JSON).
 pub fn parse(demo_json: &str) -> Result<TaughtDemo, RecorderError> {
-    let v: serde_json::Value = crate::sim::json_input::from_str(demo_json).map_err(json_input)?;
+    let v: serde_json::Value = crate::sim::parse_json(demo_json).map_err(json_input)?;
     for key in ["actions", "scene", "goal", "initial_facts"] {
         if v.get(key).is_none() {
             return Err(RecorderError::Input {
@@ -89,11 +88,11 @@ pub fn parse(demo_json: &str) -> Result<TaughtDemo, RecorderError> {
             });
         }
     }
-    crate::sim::json_input::from_str(demo_json).map_err(json_input)
+    crate::sim::parse_json(demo_json).map_err(json_input)
 }
 
 /// A JSON error as an input error: the path of the value at fault (or the line and column).
-fn json_input(e: crate::sim::json_input::JsonError) -> RecorderError {
+fn json_input(e: crate::sim::JsonError) -> RecorderError {
     let (path, message) = e.into_parts();
     RecorderError::Input { path, message }
 }
@@ -282,10 +281,10 @@ pub fn random_scene(demo_json: &str, seed: u64) -> Result<String, RecorderError>
     let (_, template, trace) = model_and_trace(&files, &info.actions)?;
     let mut last = String::new();
     for attempt in 0..8u64 {
-        let s = mix(seed, attempt);
+        let s = mix_seed(seed, attempt);
         let mut w = template.clone();
         let changed = [Level::L3, Level::L2].into_iter().any(|level| {
-            match crate::lfd::disturb::inject(&mut w, level, &trace, &[], s) {
+            match crate::lfd::inject(&mut w, level, &trace, &[], s) {
                 Ok(_) => true,
                 Err(e) => {
                     last = e;
@@ -294,7 +293,7 @@ pub fn random_scene(demo_json: &str, seed: u64) -> Result<String, RecorderError>
             }
         });
         if changed {
-            let _ = crate::lfd::disturb::inject(&mut w, Level::L1, &trace, &[], mix(s, 1));
+            let _ = crate::lfd::inject(&mut w, Level::L1, &trace, &[], mix_seed(s, 1));
             return serde_json::to_string(&w.snapshot())
                 .map_err(|e| RecorderError::Model(e.to_string()));
         }
@@ -320,7 +319,7 @@ pub fn session(demo_json: &str, options: &TaughtRunOptions) -> Result<Session, R
         (None, false) => None,
     };
     if let Some(s) = &scene {
-        let w = crate::sim::json_input::world_from_json(s).map_err(|e| RecorderError::Input {
+        let w = crate::sim::world_from_json(s).map_err(|e| RecorderError::Input {
             path: format!("scene.{}", e.path),
             message: e.message,
         })?;
@@ -375,7 +374,7 @@ pub fn replay(episode_json: &str) -> Result<Session, RecorderError> {
 
 /// How well the skills the loop learns from a taught demo reproduce the recorded motions: every
 /// action is split at its gripper event into the approach (start → grasp/release) and the retreat
-/// (→ end), as [`crate::lfd::skill::SkillLibrary`] does, an LQT-CP skill is learned from each part
+/// (→ end), as [`crate::lfd::SkillLibrary`] does, an LQT-CP skill is learned from each part
 /// (object-centric samples) and planned from the part's first sample. One fit per part, named
 /// `(action) approach` / `(action) retreat`.
 pub fn skill_fits(demo: &Demonstration) -> Result<Vec<SkillFit>, RecorderError> {

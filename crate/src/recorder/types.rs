@@ -2,8 +2,8 @@
 //! skill fits and the taught demonstration.
 
 use crate::sim::demo::Demonstration;
-use crate::sim::snapshot::WorldSnapshot;
 use crate::sim::WorldEvent;
+use crate::sim::WorldSnapshot;
 use serde::{Deserialize, Serialize};
 
 /// Tunables of the recorder (metres, seconds).

@@ -59,7 +59,7 @@ impl std::error::Error for JsonError {}
 /// The page's first-load wasm module (cfg `first_load`) reads only the documents embedded in it
 /// (the page loads users' files on the full module), so there errors carry the line and column
 /// but no path: path tracking would add its own copy of every reader, 15 KB gzipped.
-pub fn from_str<T: DeserializeOwned>(text: &str) -> Result<T, JsonError> {
+pub fn parse_json<T: DeserializeOwned>(text: &str) -> Result<T, JsonError> {
     let mut de = serde_json::Deserializer::from_str(text);
     #[cfg(not(first_load))]
     let value = serde_path_to_error::deserialize(&mut de).map_err(|e| {
@@ -87,7 +87,7 @@ fn json_error(path: String, e: &serde_json::Error) -> JsonError {
 /// A world from scene JSON (a `WorldSnapshot`), as [`World::from_json`] reads it, but a value of
 /// the wrong type is named by its path: `bodies[2].pose.position[1]: invalid type: …`.
 pub fn world_from_json(text: &str) -> Result<World, SceneError> {
-    let snapshot = from_str(text).map_err(|e| {
+    let snapshot = parse_json(text).map_err(|e| {
         let (path, message) = e.into_parts();
         SceneError { path, message }
     })?;
@@ -114,7 +114,7 @@ mod tests {
     #[test]
     fn a_wrong_type_deep_inside_is_named_by_its_path_and_position() {
         let text = "{\"steps\": [\n  {\"pose\": [0, 0, 0]},\n  {\"pose\": [1, \"x\", 0]}\n]}";
-        let e = from_str::<Demo>(text).unwrap_err();
+        let e = parse_json::<Demo>(text).unwrap_err();
         assert_eq!(e.path, "steps[1].pose[1]");
         assert_eq!(
             e.to_string(),
@@ -124,19 +124,16 @@ mod tests {
 
     #[test]
     fn malformed_json_names_where_it_stopped() {
-        let e = from_str::<Demo>("{\"steps\": [{\"pose\": [1, 2,]}]}").unwrap_err();
+        let e = parse_json::<Demo>("{\"steps\": [{\"pose\": [1, 2,]}]}").unwrap_err();
         assert_eq!(e.path, "steps[0].pose");
         assert_eq!((e.line, e.column), (1, 27));
-        let e = from_str::<Demo>("{\"steps\": []} x").unwrap_err();
+        let e = parse_json::<Demo>("{\"steps\": []} x").unwrap_err();
         assert_eq!(e.to_string(), "trailing characters at line 1 column 15");
     }
 
     #[test]
     fn a_scene_error_names_the_body_field() {
-        let scene = crate::sim::benchmark::Benchmark::B1
-            .sources()
-            .unwrap()
-            .scene;
+        let scene = crate::sim::Benchmark::B1.sources().unwrap().scene;
         let mut s: serde_json::Value = serde_json::from_str(&scene).unwrap();
         s["bodies"][2]["pose"]["position"][1] = serde_json::json!("x");
         let e = world_from_json(&serde_json::to_string_pretty(&s).unwrap()).unwrap_err();

@@ -39,7 +39,7 @@
 //! # Example
 //!
 //! ```
-//! use logic_lfd::sim::{benchmark::Benchmark, geometry, GripperCommand, SceneGraph};
+//! use logic_lfd::sim::{Benchmark, geometry, GripperCommand, SceneGraph};
 //!
 //! let mut world = Benchmark::B1.scene();
 //! assert!(SceneGraph::from_world(&world).contains("(ontable c)"));
@@ -65,22 +65,40 @@
 // Index loops mirror the maths (joint k, coordinate i) in this module.
 #![allow(clippy::needless_range_loop)]
 
-pub mod benchmark;
+mod benchmark;
 pub mod collide;
 pub mod demo;
 mod fast_math;
-pub mod generate;
+mod generate;
 pub mod geometry;
-pub mod json_input;
-pub mod motions;
+mod json_input;
+mod motions;
 pub mod panda;
-pub mod reach;
-pub mod scene_graph;
-pub mod snapshot;
+mod reach;
+mod scene_graph;
+mod snapshot;
 mod world;
 
-pub(crate) use geometry::yaw_of;
+pub use benchmark::{goal_facts, Benchmark, BenchmarkSources, BLOCK_COLORS, BLOCK_SIZE};
+pub use generate::{
+    block_names, block_range, block_ranges_text, tower_goal, tower_heights, tower_task, MAX_BLOCKS,
+    MAX_BLOCKS_B3, MAX_TOWER_HEIGHT, MIN_BLOCKS_B1, MIN_BLOCKS_B3, SPOT_SPACING, TOWER_SPACING,
+};
+pub use json_input::{parse_json, world_from_json, JsonError};
+pub use motions::{
+    ActionMotion, FactSpec, MotionKind, Motions, MotionsError, ObjectKind, ObjectSpec, Onto,
+    Relation, Slot,
+};
+pub use reach::{handleable, hook_can_pull};
 pub use scene_graph::{Fact, SceneGraph};
+pub use snapshot::{
+    ArmSnapshot, BodyKind, BodySnapshot, CapsuleSnapshot, CuboidSnapshot, PartSnapshot,
+    PoseSnapshot, ReachSnapshot, RegionSnapshot, ShapeSnapshot, WorldSnapshot, SNAPSHOT_VERSION,
+};
+
+pub(crate) use benchmark::block;
+pub(crate) use geometry::yaw_of;
+pub(crate) use scene_graph::normalise;
 pub(crate) use world::LINK_TOLERANCE;
 pub use world::{
     GripperCommand, MoveOutcome, Refused, SceneError, SimError, Violation, World, WorldEvent,

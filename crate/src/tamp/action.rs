@@ -3,9 +3,9 @@
 //! bind for it.
 
 use crate::plan::Operator;
-use crate::sim::motions::{MotionKind, Motions, Onto};
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
 use crate::sim::World;
+use crate::sim::{MotionKind, Motions, Onto};
 
 /// What the streams bound for one action of a plan.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -105,7 +105,7 @@ impl ActionKind {
 }
 
 /// Classifies a grounded operator by its schema's declared motion (`motions.json`, see
-/// [`crate::sim::motions`]). `None` for an action without a physical effect or whose objects
+/// [`crate::sim::Motions`]). `None` for an action without a physical effect or whose objects
 /// the world does not have.
 pub fn classify(op: &Operator, world: &World) -> Option<ActionKind> {
     let (m, args) = world.motions().action(&op.name)?;

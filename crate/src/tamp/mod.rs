@@ -14,16 +14,23 @@
 //! ```
 //!
 //! This is what Logic-LfD uses to bind the actions it adds, and the "plan from scratch" baseline
-//! of the paper's Table I (the PDDLStream column). Streams live in [`streams`].
+//! of the paper's Table I (the PDDLStream column). Streams live in [`StreamBinder`].
 
-pub mod action;
+mod action;
 mod binder;
-pub mod motion;
-pub mod streams;
+mod motion;
+mod streams;
 
 pub use action::{
     classify, moves_body, release_target, ActionKind, Binding, Placement, PlanarPose, ReleaseTarget,
 };
+pub use motion::MotionParams;
+pub(crate) use motion::{
+    grasp_pose, joint_recovery, release_turns, rise_before_action, transit_height, JointMoves,
+    LiveArm, RecoveryRoute,
+};
+pub use streams::{StreamBinder, StreamParams, StreamStats, WIDEN_LIMIT};
+
 pub use binder::{BindFailure, Binder, TimedBinder};
 
 use crate::plan::{

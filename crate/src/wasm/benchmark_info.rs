@@ -3,7 +3,7 @@
 
 use super::args::string_arg;
 use super::convert::{js_err, to_js};
-use crate::sim::benchmark::Benchmark;
+use crate::sim::Benchmark;
 use serde::Serialize;
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
@@ -16,7 +16,7 @@ pub struct BenchmarkInfo {
     /// The directory name, e.g. `b1-tower`.
     pub name: &'static str,
     /// The initial world, as the page draws it.
-    pub scene: crate::sim::snapshot::WorldSnapshot,
+    pub scene: crate::sim::WorldSnapshot,
     /// `domains/<name>/domain.pddl`.
     pub domain: &'static str,
     /// `domains/<name>/problem.pddl`.
@@ -40,7 +40,7 @@ pub fn benchmark(
         scene: b.scene_snapshot(),
         domain: b.domain_pddl(),
         problem: b.problem_pddl(),
-        demo_plan: crate::lfd::session::demo_actions(b.demo_json())
+        demo_plan: crate::lfd::demo_actions(b.demo_json())
             .map_err(js_err)?
             .iter()
             .map(|a| format!("{a}\n"))
@@ -49,7 +49,7 @@ pub fn benchmark(
 }
 
 /// The block counts `[fewest, most]` that a benchmark's generated N-block tower task takes (the
-/// `blocks` option of `Session`, from `sim::generate::block_range`), or `null` for a benchmark
+/// `blocks` option of `Session`, from `sim::block_range`), or `null` for a benchmark
 /// without one (B2). Rejects an unknown id.
 #[wasm_bindgen(js_name = blockRange, unchecked_return_type = "[number, number] | null")]
 pub fn block_range(
@@ -57,7 +57,7 @@ pub fn block_range(
 ) -> Result<JsValue, JsValue> {
     let b = benchmark_arg("blockRange", &id)?;
     // B2's "no N-block variant" is an answer here, not an error.
-    let range = crate::sim::generate::block_range(b)
+    let range = crate::sim::block_range(b)
         .ok()
         .map(|r| [*r.start(), *r.end()]);
     to_js(&range)

@@ -9,5 +9,5 @@ use wasm_bindgen::prelude::*;
 /// short label and a one-line description, each list in the order the page shows it.
 #[wasm_bindgen(unchecked_return_type = "Catalogue")]
 pub fn catalogue() -> Result<JsValue, JsValue> {
-    to_js(&crate::lfd::catalogue::catalogue())
+    to_js(&crate::lfd::catalogue())
 }

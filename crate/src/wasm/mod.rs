@@ -31,7 +31,7 @@ mod logic_lfd;
 #[cfg(feature = "wasm")]
 mod pddl;
 #[cfg(feature = "wasm")]
-pub mod reliability;
+mod reliability;
 mod session;
 #[cfg(feature = "wasm")]
 mod teach;
@@ -80,7 +80,7 @@ pub fn version() -> String {
 pub fn lqt(
     #[wasm_bindgen(unchecked_param_type = "LqtCase | string")] case: JsValue,
 ) -> Result<JsValue, JsValue> {
-    use crate::lqt::case::{run_case, CaseInput};
+    use crate::lqt::{run_case, CaseInput};
     let input = match case.as_string() {
         Some(text) => CaseInput::from_json_str(&text),
         None => {

@@ -3,10 +3,11 @@
 
 use super::args::string_arg;
 use super::convert::{js_err, PerformanceClock};
-use crate::experiments::{run_episode, EpisodeSpec, Level};
-use crate::lfd::catalogue::{Listed, Method, Mode};
-use crate::lfd::session::SessionParams;
-use crate::sim::benchmark::Benchmark;
+use crate::experiments::{run_episode, EpisodeSpec};
+use crate::lfd::Level;
+use crate::lfd::SessionParams;
+use crate::lfd::{Listed, Method, Mode};
+use crate::sim::Benchmark;
 use serde::Deserialize;
 use wasm_bindgen::prelude::*;
 

@@ -4,9 +4,8 @@
 
 use super::args::{number_arg, object_arg, string_arg, type_error, type_name};
 use super::convert::{from_js, js_err, seed_of, to_js, PerformanceClock};
-use crate::lfd::control;
-use crate::lfd::session::{self as core, EePoint, Status};
-use crate::sim::snapshot::WorldSnapshot;
+use crate::lfd::{self as core, EePoint, Status};
+use crate::sim::WorldSnapshot;
 use serde::Serialize;
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
@@ -76,7 +75,7 @@ struct Replan<'a> {
     fallback: bool,
     /// Logic-LfD: every candidate L_k (k null: G) with the costs its search found; empty for the
     /// other methods.
-    alternatives: &'a [crate::lfd::alternatives::Alternative],
+    alternatives: &'a [crate::lfd::Alternative],
 }
 
 /// An accepted drag: where the block went, what it rests on, what settled after it left (the
@@ -99,7 +98,7 @@ struct PerturbOutcome<'a> {
 
 /// A frame as plain JS data, camelCase.
 fn frame_js(f: &core::Frame) -> Result<JsValue, JsValue> {
-    let last_replan = f.last_replan.as_ref().map(|r: &control::Replan| Replan {
+    let last_replan = f.last_replan.as_ref().map(|r: &crate::lfd::Replan| Replan {
         reason: &r.reason,
         time_ms: r.time_ms,
         k: r.k,
@@ -144,7 +143,7 @@ fn perturb_js(o: &core::PerturbOutcome) -> Result<JsValue, JsValue> {
 pub(super) fn session_options(
     func: &str,
     options: &JsValue,
-) -> Result<crate::lfd::session::SessionOptions, JsValue> {
+) -> Result<crate::lfd::SessionOptions, JsValue> {
     object_arg(func, "options", options, false)?;
     Ok(from_js(options).map_err(|e| js_err(format!("options: {e}")))?)
 }
@@ -153,7 +152,7 @@ pub(super) fn session_options(
 /// disturb it. Wraps `lfd::Session` 1:1; every method returns plain data (see `Frame`).
 #[wasm_bindgen(js_name = Session)]
 pub struct WasmSession {
-    pub(super) inner: crate::lfd::session::Session,
+    pub(super) inner: crate::lfd::Session,
 }
 
 #[wasm_bindgen(js_class = Session)]
@@ -165,7 +164,7 @@ impl WasmSession {
         #[wasm_bindgen(unchecked_param_type = "SessionOptions")] options: JsValue,
     ) -> Result<WasmSession, JsValue> {
         let o = session_options("new Session", &options)?;
-        let inner = crate::lfd::session::Session::new(o).map_err(js_err)?;
+        let inner = crate::lfd::Session::new(o).map_err(js_err)?;
         Ok(WasmSession { inner })
     }
 
@@ -184,8 +183,7 @@ impl WasmSession {
         let o = session_options(F, &options)?;
         let scene = string_arg(F, "scene", &scene)?;
         let demo = super::args::optional_string_arg(F, "demo", demo)?;
-        let inner =
-            crate::lfd::session::Session::from_scene(o, &scene, demo.as_deref()).map_err(js_err)?;
+        let inner = crate::lfd::Session::from_scene(o, &scene, demo.as_deref()).map_err(js_err)?;
         Ok(WasmSession { inner })
     }
 
@@ -195,7 +193,7 @@ impl WasmSession {
         #[wasm_bindgen(unchecked_param_type = "string")] episode: JsValue,
     ) -> Result<WasmSession, JsValue> {
         let episode = string_arg("Session.replay", "episode", &episode)?;
-        let inner = crate::lfd::session::Session::replay(&episode).map_err(js_err)?;
+        let inner = crate::lfd::Session::replay(&episode).map_err(js_err)?;
         Ok(WasmSession { inner })
     }
 

@@ -8,10 +8,10 @@ use super::args::{
 };
 use super::convert::{from_js, js_err, seed_of, to_js};
 use super::session::WasmSession;
-use crate::recorder::synth::Edit;
 use crate::recorder::taught::{self, TaughtRunOptions};
+use crate::recorder::Edit;
 use crate::recorder::{self as rec, GripperHandle, Recorder, RecorderError, RecorderEvent};
-use crate::sim::benchmark::Benchmark;
+use crate::sim::Benchmark;
 use serde::Serialize;
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
@@ -101,7 +101,7 @@ struct TeachState {
     /// The current facts (fluents, sorted).
     facts: Vec<String>,
     /// The world now.
-    world: crate::sim::snapshot::WorldSnapshot,
+    world: crate::sim::WorldSnapshot,
     /// Each arm's gripper handle.
     handles: Vec<GripperHandle>,
     /// The taught goal, once set (default: every fact of the last state).
@@ -285,7 +285,7 @@ impl Teacher {
         let snapshot = match scene {
             None => b.scene_snapshot(),
             Some(text) => {
-                let w = crate::sim::json_input::world_from_json(&text)
+                let w = crate::sim::world_from_json(&text)
                     .map_err(js_err)?
                     .with_motions(b.motions());
                 if w.name() != b.dir_name() {

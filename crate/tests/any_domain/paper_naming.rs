@@ -6,17 +6,18 @@
 
 use std::sync::Arc;
 
-use logic_lfd::experiments::tables::table1_task_seed;
-use logic_lfd::experiments::tasks::initial_scene;
-use logic_lfd::experiments::{run_episode, run_episode_with, EpisodeSpec, Level};
-use logic_lfd::lfd::session::SessionParams;
+use logic_lfd::experiments::initial_scene;
+use logic_lfd::experiments::table1_task_seed;
+use logic_lfd::experiments::{run_episode, run_episode_with, EpisodeSpec};
+use logic_lfd::lfd::Level;
+use logic_lfd::lfd::SessionParams;
 use logic_lfd::lfd::{Method, Mode};
 use logic_lfd::pddl::{parse_domain, parse_problem};
 use logic_lfd::plan::NoClock;
-use logic_lfd::sim::benchmark::{goal_facts, Benchmark, BenchmarkSources};
 use logic_lfd::sim::demo::{self, ExpertParams, Script};
-use logic_lfd::sim::motions::Motions;
+use logic_lfd::sim::Motions;
 use logic_lfd::sim::World;
+use logic_lfd::sim::{goal_facts, Benchmark, BenchmarkSources};
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../domains/b1-paper-naming");
 

@@ -1,18 +1,18 @@
 //! The executor does what the streams certified: a transit over a tower, the end and the turn of a
 //! pull stroke, the hand's turn at a release; a stroke the simulator stops is not certified.
 
-use logic_lfd::lfd::exec::{ActionExec, ExecParams, ExecStatus};
-use logic_lfd::lfd::session::SkillKind;
-use logic_lfd::lfd::skill::SkillLibrary;
+use logic_lfd::lfd::SkillKind;
+use logic_lfd::lfd::SkillLibrary;
+use logic_lfd::lfd::{ActionExec, ExecParams, ExecStatus};
 use logic_lfd::plan::Task;
-use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::demo::PULL_TARGET_RADIUS;
 use logic_lfd::sim::geometry::hand_hits;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{SceneGraph, World};
-use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
 use logic_lfd::tamp::Binder;
 use logic_lfd::tamp::PlanarPose;
 use logic_lfd::tamp::{classify, ActionKind};
+use logic_lfd::tamp::{StreamBinder, StreamParams};
 use nalgebra::Vector3;
 
 use crate::support::bench::{b1_skills, b2_skills, model_and_task, op, saved_world, template};
@@ -215,9 +215,7 @@ fn a_stroke_whose_hook_presses_into_the_shelf_is_neither_planned_nor_possible() 
     // simulator does.
     let world = saved_world("b2-hook-held-a-beside-shelf-corner");
     assert_eq!(world.held_by(0), Some("hook"));
-    assert!(!logic_lfd::sim::reach::hook_can_pull(
-        &world, 0, "hook", "a"
-    ));
+    assert!(!logic_lfd::sim::hook_can_pull(&world, 0, "hook", "a"));
     let (_, task) = model_and_task(Benchmark::B2, &world);
     let ops = [op(&task, "(pull panda hook a)")];
     let mut binder = StreamBinder::new(&world, 1, StreamParams::default());

@@ -2,13 +2,13 @@
 //! the shelf, grasps a block beside the shelf along it, first unwinds an arm wound to a joint
 //! limit, and puts back a block whose lift an overhang stops.
 
-use logic_lfd::lfd::exec::{ActionExec, ExecParams, ExecStatus};
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::lfd::{ActionExec, ExecParams, ExecStatus};
 use logic_lfd::sim::geometry::{grasp_pose, hand_hits};
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::SceneGraph;
 use logic_lfd::tamp::classify;
-use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
 use logic_lfd::tamp::Binder;
+use logic_lfd::tamp::{StreamBinder, StreamParams};
 use nalgebra::Vector3;
 
 use crate::support::bench::{

@@ -1,4 +1,4 @@
-//! The executor (`lfd::exec::ActionExec`) running single actions in the simulated world: it does
+//! The executor (`lfd::ActionExec`) running single actions in the simulated world: it does
 //! what the streams certified, grasps and lifts where a learned path would hit something, and
 //! carries and puts down loads from cramped arm postures.
 

@@ -2,8 +2,8 @@
 //! at its limit, inside the minimum reach, the hand pressed against the shelf), recoveries that
 //! go where a segment is judged, and no release onto a block in a scene without `on`.
 
-use logic_lfd::lfd::exec::ExecStatus;
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::lfd::ExecStatus;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{SceneGraph, World};
 use logic_lfd::tamp::Placement;
 use nalgebra::Vector3;

@@ -2,7 +2,7 @@
 //! the domain's names; schemas the demo does not show move as the first demonstrated schema with
 //! the same declared motion.
 
-use logic_lfd::lfd::skill::{skill_key, SegmentKind};
+use logic_lfd::lfd::{skill_key, SegmentKind};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 
 use crate::support::bench::{b1_skills, b2_skills};

@@ -3,13 +3,13 @@
 //! error's line; an accepted case solves or fails with a typed numerical error (oracle:
 //! `experiments::fuzz::check`, target `case`).
 
-use logic_lfd::experiments::fuzz::Target;
+use logic_lfd::experiments::fuzz::FuzzTarget;
 
 use super::run_target;
 
 #[test]
 fn mutated_cases_never_panic_and_refusals_name_their_key() {
-    let (accepted, refused) = run_target(Target::Case, 1200, 13, 3);
+    let (accepted, refused) = run_target(FuzzTarget::Case, 1200, 13, 3);
     assert!(
         accepted > 0 && refused > 0,
         "{accepted} accepted, {refused} refused"

@@ -24,7 +24,7 @@ mod world_ops;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-use logic_lfd::experiments::fuzz::{self, Target, Verdict};
+use logic_lfd::experiments::fuzz::{self, FuzzTarget, Verdict};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
@@ -60,7 +60,7 @@ pub(crate) fn no_panic<T>(what: &str, f: impl FnOnce() -> T) -> Result<T, TestCa
 
 /// `cases` inputs of `target` (the library's mutator, `max_edits` edits at most, case seeds
 /// drawn by proptest), each through the library's oracle. Returns (accepted, refused).
-pub(crate) fn run_target(target: Target, cases: u32, seed: u8, max_edits: usize) -> (u32, u32) {
+pub(crate) fn run_target(target: FuzzTarget, cases: u32, seed: u8, max_edits: usize) -> (u32, u32) {
     let bases = fuzz::base_inputs(target).unwrap();
     let counts = std::cell::Cell::new((0u32, 0u32));
     runner(cases, seed)

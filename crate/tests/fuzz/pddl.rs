@@ -5,14 +5,14 @@
 //! Asserts no panic, errors located inside the text (`file:line:col`), and that whatever parses
 //! also grounds (or fails with a typed error) without panicking.
 
-use logic_lfd::experiments::fuzz::{pddl_error_in_bounds as in_bounds, Target};
+use logic_lfd::experiments::fuzz::{pddl_error_in_bounds as in_bounds, FuzzTarget};
 use logic_lfd::pddl::parse_domain;
 
 use super::run_target;
 
 #[test]
 fn structurally_mutated_benchmark_domains_and_problems_never_panic_and_errors_are_located() {
-    let (accepted, refused) = run_target(Target::Pddl, 1600, 14, 3);
+    let (accepted, refused) = run_target(FuzzTarget::Pddl, 1600, 14, 3);
     assert!(
         accepted > 0 && refused > 0,
         "{accepted} accepted, {refused} refused"

@@ -3,7 +3,7 @@
 //! names a 1-based step that exists and its location; a valid report applied every step
 //! (oracle: `experiments::fuzz::check_plan_against`).
 
-use logic_lfd::experiments::fuzz::{check_plan_against, mutate_plan, PlanEdit, Target};
+use logic_lfd::experiments::fuzz::{check_plan_against, mutate_plan, FuzzTarget, PlanEdit};
 use logic_lfd::pddl::{parse_domain, parse_problem};
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
@@ -17,7 +17,7 @@ fn rooms(file: &str) -> String {
 
 #[test]
 fn mutated_benchmark_demo_plans_never_panic_and_failures_are_located() {
-    let (accepted, refused) = run_target(Target::Plan, 2800, 12, 4);
+    let (accepted, refused) = run_target(FuzzTarget::Plan, 2800, 12, 4);
     assert!(
         accepted > 0 && refused > 0,
         "{accepted} accepted, {refused} refused"

@@ -2,10 +2,10 @@
 //! protects, regenerates its input from the saved `<target>-<seed>-<index>` and replays it
 //! through the same oracle.
 
-use logic_lfd::experiments::fuzz::{base_inputs, check_catching, generate, Target};
+use logic_lfd::experiments::fuzz::{base_inputs, check_catching, generate, FuzzTarget};
 
 /// Regenerates input `index` of a `logic-lfd fuzz --target T --seed S --max-edits K` run.
-fn input(target: Target, seed: u64, index: u64, max_edits: usize) -> String {
+fn input(target: FuzzTarget, seed: u64, index: u64, max_edits: usize) -> String {
     generate(
         target,
         &base_inputs(target).unwrap(),
@@ -19,7 +19,12 @@ fn input(target: Target, seed: u64, index: u64, max_edits: usize) -> String {
 /// so a regression test may name its input by seed and index instead of embedding it.
 #[test]
 fn fuzz_inputs_are_regenerated_from_their_name() {
-    for t in [Target::Pddl, Target::Plan, Target::Scene, Target::WorldOps] {
+    for t in [
+        FuzzTarget::Pddl,
+        FuzzTarget::Plan,
+        FuzzTarget::Scene,
+        FuzzTarget::WorldOps,
+    ] {
         let a = input(t, 2026, 17, 4);
         assert_eq!(a, input(t, 2026, 17, 4));
         assert!(check_catching(t, &a).is_ok(), "{t:?}");

@@ -3,13 +3,13 @@
 //! world (invariants hold) that round-trips through its snapshot (oracle:
 //! `experiments::fuzz::check`, target `scene`).
 
-use logic_lfd::experiments::fuzz::Target;
+use logic_lfd::experiments::fuzz::FuzzTarget;
 
 use super::run_target;
 
 #[test]
 fn mutated_scenes_never_panic_refusals_are_located_accepted_scenes_are_valid() {
-    let (accepted, refused) = run_target(Target::Scene, 1500, 11, 3);
+    let (accepted, refused) = run_target(FuzzTarget::Scene, 1500, 11, 3);
     assert!(
         accepted > 0 && refused > 0,
         "{accepted} accepted, {refused} refused"

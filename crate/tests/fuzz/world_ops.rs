@@ -3,9 +3,9 @@
 //! byte-identical (nothing partially applied); an accepted one leaves a world whose invariants
 //! hold (oracle: `experiments::fuzz::check`, target `world-ops`).
 
-use logic_lfd::experiments::fuzz::{Target, WorldOp};
-use logic_lfd::lfd::session::{Session, SessionOptions};
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::experiments::fuzz::{FuzzTarget, WorldOp};
+use logic_lfd::lfd::{Session, SessionOptions};
+use logic_lfd::sim::Benchmark;
 use proptest::prelude::*;
 use rand::SeedableRng;
 
@@ -13,7 +13,7 @@ use super::{no_panic, run_target, runner};
 
 #[test]
 fn refused_world_operations_change_nothing_accepted_ones_keep_the_invariants() {
-    let (accepted, refused) = run_target(Target::WorldOps, 400, 16, 3);
+    let (accepted, refused) = run_target(FuzzTarget::WorldOps, 400, 16, 3);
     assert!(
         accepted > 0 && refused > 0,
         "{accepted} accepted, {refused} refused"

@@ -3,7 +3,7 @@
 //! formula on `s_j = j/(N-1)`, A/B of orders 1–3 against the closed forms, and the shared
 //! example against a dense solve transcribed here from the contract.
 
-use logic_lfd::lqt::case::{run_case, CaseInput, CaseOutput};
+use logic_lfd::lqt::{run_case, CaseInput, CaseOutput};
 use logic_lfd::lqt::{Basis, LqtConfig};
 use nalgebra::{DMatrix, DVector};
 use serde_json::{json, Value};

@@ -2,8 +2,8 @@
 //! equal the backward Riccati recursion, a heavy via-point is passed within its derived
 //! tolerance, feedback rejects a perturbation, and the task builder reproduces the example.
 
-use logic_lfd::lqt::reference::{gains_recursive_dense, rollout_dense, solve_dense};
-use logic_lfd::lqt::task::{build_reference, Target, TargetRole, Tracking};
+use logic_lfd::lqt::{build_reference, Target, TargetRole, Tracking};
+use logic_lfd::lqt::{gains_recursive_dense, rollout_dense, solve_dense};
 use logic_lfd::lqt::{Basis, LqtConfig, LqtCp, Perturbation};
 use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
@@ -389,7 +389,7 @@ fn feedback_rejects_perturbation_open_loop_does_not() {
 #[test]
 fn builder_reproduces_example_reference() {
     let text = std::fs::read_to_string(EXAMPLE).unwrap();
-    let case = logic_lfd::lqt::case::CaseInput::from_json_str(&text).unwrap();
+    let case = logic_lfd::lqt::CaseInput::from_json_str(&text).unwrap();
     let (mu, q) = build_reference(&case.config, &case.targets, case.tracking.as_ref()).unwrap();
     assert_eq!(mu, case.mu);
     assert_eq!(q, case.q_diag);

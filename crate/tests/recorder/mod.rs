@@ -9,12 +9,12 @@ mod teaching;
 
 use std::path::PathBuf;
 
-use logic_lfd::recorder::recording::GripperState;
-use logic_lfd::recorder::synth::Edit;
+use logic_lfd::recorder::Edit;
+use logic_lfd::recorder::GripperState;
 use logic_lfd::recorder::{
     segment_recording, ArmRef, RawRecording, RecorderError, RecorderParams, Taught,
 };
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{geometry, World};
 
 fn quick_params() -> RecorderParams {

@@ -4,10 +4,10 @@
 
 use std::process::Command;
 
-use logic_lfd::recorder::recording::GripperState;
-use logic_lfd::recorder::synth::recording_from_demo;
+use logic_lfd::recorder::recording_from_demo;
+use logic_lfd::recorder::GripperState;
 use logic_lfd::recorder::{RawRecording, Recorder, RecorderError};
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{demo, SceneGraph};
 
 use super::{data, domain_file, drag, grasp_yaw, gripper, segment};

@@ -4,9 +4,9 @@
 
 use std::path::PathBuf;
 
-use logic_lfd::recorder::synth::Edit;
+use logic_lfd::recorder::Edit;
 use logic_lfd::recorder::Recorder;
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{SceneGraph, World};
 
 use super::drag;

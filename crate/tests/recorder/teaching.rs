@@ -6,10 +6,10 @@ use std::process::Command;
 
 use logic_lfd::pddl::{parse_domain, parse_problem};
 use logic_lfd::plan::{parse_plan, validate};
-use logic_lfd::recorder::recording::GripperState;
-use logic_lfd::recorder::synth::Edit;
+use logic_lfd::recorder::Edit;
+use logic_lfd::recorder::GripperState;
 use logic_lfd::recorder::Recorder;
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{demo, SceneGraph};
 
 use super::{domain_file, drag, grasp_yaw, gripper};

@@ -2,8 +2,8 @@
 //! problem's init, the committed demos replay to the goal, the committed scene files match the
 //! builders, and the PDDL models follow the simulated demos.
 
-use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::demo;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{SceneGraph, World};
 
 /// The fluent facts of a PDDL problem's `:init`, read naively (one `(pred args…)` per fact),

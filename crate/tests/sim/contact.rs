@@ -2,8 +2,8 @@
 //! neighbour, an open hand around a block rises first, the release check, and a carried block
 //! stops at one the other arm holds.
 
-use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::geometry;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::GripperCommand;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 

@@ -1,15 +1,15 @@
 //! Disturbance injection (`lfd::disturb`) and the Table I task generator (`experiments::tasks`).
 
-use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::demo;
-use logic_lfd::sim::reach;
+use logic_lfd::sim::handleable;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{SceneGraph, World};
 
 mod disturbances {
     //! Every injector delivers its promise (the injector of Tables I/II, the soak and the page).
     use super::*;
-    use logic_lfd::experiments::tasks::demo_trace;
-    use logic_lfd::lfd::disturb::{self, Level};
+    use logic_lfd::experiments::demo_trace;
+    use logic_lfd::lfd::{self, Level};
     use std::collections::BTreeSet;
 
     fn fset(w: &World) -> BTreeSet<String> {
@@ -28,7 +28,7 @@ mod disturbances {
                     let mut w = b.scene();
                     let before = fset(&w);
                     let nblocks = w.block_names().len();
-                    let d = match disturb::inject(&mut w, level, &trace, &[], seed) {
+                    let d = match lfd::inject(&mut w, level, &trace, &[], seed) {
                         Ok(d) => d,
                         // Refused with the reason when no candidate qualifies: the world is
                         // left as it was.
@@ -46,7 +46,7 @@ mod disturbances {
                     assert!(!d.description.is_empty());
                     assert_eq!(d.moved.len(), 1, "{b:?} {level:?} seed {seed}");
                     for (body, _) in &d.moved {
-                        assert_eq!(reach::handleable(&w, body), Ok(()), "{b:?} {level:?}");
+                        assert_eq!(handleable(&w, body), Ok(()), "{b:?} {level:?}");
                     }
                     match level {
                         Level::L1 => {
@@ -94,7 +94,7 @@ mod disturbances {
         let trace = demo_trace(Benchmark::B3).unwrap();
         let run = |seed| {
             let mut w = Benchmark::B3.scene();
-            disturb::inject(&mut w, Level::L3, &trace, &[], seed).unwrap();
+            lfd::inject(&mut w, Level::L3, &trace, &[], seed).unwrap();
             w.snapshot()
         };
         assert_eq!(run(5), run(5));
@@ -105,9 +105,9 @@ mod disturbances {
 mod task_generator {
     //! Table I tasks: the promised level, valid worlds, solvable PDDL problems.
     use super::*;
-    use logic_lfd::experiments::tables::table1_task_seed;
-    use logic_lfd::experiments::tasks::initial_scene;
-    use logic_lfd::experiments::Level;
+    use logic_lfd::experiments::initial_scene;
+    use logic_lfd::experiments::table1_task_seed;
+    use logic_lfd::lfd::Level;
     use logic_lfd::plan::{self, NoClock, SearchConfig, SearchOutcome};
 
     #[test]

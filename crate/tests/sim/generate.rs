@@ -2,12 +2,12 @@
 //! invariants, their demonstrations reach the goal in the PDDL model, sessions on them succeed,
 //! and the disturbance levels L1–L4 work on them.
 
-use logic_lfd::lfd::session::{Session, SessionOptions, SessionParams, SkillKind};
 use logic_lfd::lfd::{Method, Mode};
+use logic_lfd::lfd::{Session, SessionOptions, SessionParams, SkillKind};
 use logic_lfd::plan::{validate_names, NoClock};
-use logic_lfd::sim::benchmark::{Benchmark, BenchmarkSources};
-use logic_lfd::sim::generate::{block_names, tower_task};
 use logic_lfd::sim::World;
+use logic_lfd::sim::{block_names, tower_task};
+use logic_lfd::sim::{Benchmark, BenchmarkSources};
 
 /// Checks that `src`'s scene loads with its invariants and that its demonstration is a valid
 /// plan of its problem.
@@ -18,7 +18,7 @@ fn check_task(b: Benchmark, n: usize, src: &BenchmarkSources) {
         .snapshot()
         .bodies
         .iter()
-        .filter(|x| x.kind == logic_lfd::sim::snapshot::BodyKind::Block)
+        .filter(|x| x.kind == logic_lfd::sim::BodyKind::Block)
         .count();
     assert_eq!(blocks, n, "{b:?}-{n}");
     let domain = logic_lfd::pddl::parse_domain(&src.domain, "domain.pddl").unwrap();
@@ -107,7 +107,8 @@ fn undisturbed_episodes_on_tall_towers_succeed() {
 
 #[test]
 fn every_disturbance_level_ends_in_success_on_8_and_12_blocks() {
-    use logic_lfd::experiments::{run_episode_with_blocks, EpisodeSpec, Level};
+    use logic_lfd::experiments::{run_episode_with_blocks, EpisodeSpec};
+    use logic_lfd::lfd::Level;
     for n in [8, 12] {
         for (i, level) in Level::ALL.into_iter().enumerate() {
             let spec = EpisodeSpec {
@@ -128,8 +129,8 @@ fn every_disturbance_level_ends_in_success_on_8_and_12_blocks() {
 
 #[test]
 fn every_disturbance_level_generates_tasks_on_5_blocks() {
-    use logic_lfd::experiments::tasks::initial_scene_for;
-    use logic_lfd::lfd::disturb::Level;
+    use logic_lfd::experiments::initial_scene_for;
+    use logic_lfd::lfd::Level;
     for level in [Level::L1, Level::L2, Level::L3, Level::L4] {
         let scene = initial_scene_for(Benchmark::B1, Some(5), level, 3)
             .unwrap_or_else(|e| panic!("{level:?}: {e}"));
@@ -151,7 +152,7 @@ fn a_session_with_blocks_uses_the_generated_task() {
     let s = Session::new(opts).unwrap();
     // Two actions per block put on the tower.
     assert_eq!(s.controller().trace().len(), 8);
-    let e = logic_lfd::lfd::session::sources_for(Benchmark::B1, Some(40))
+    let e = logic_lfd::lfd::sources_for(Benchmark::B1, Some(40))
         .err()
         .map(|e| e.to_string())
         .unwrap_or_default();
@@ -161,7 +162,7 @@ fn a_session_with_blocks_uses_the_generated_task() {
 #[test]
 fn the_scaling_study_s_default_counts_are_b1_tasks() {
     use logic_lfd::experiments::scaling::DEFAULT_BLOCKS;
-    use logic_lfd::sim::generate::{block_range, block_ranges_text};
+    use logic_lfd::sim::{block_range, block_ranges_text};
     let r = block_range(Benchmark::B1).unwrap();
     assert!(
         DEFAULT_BLOCKS.iter().all(|n| r.contains(n)),

@@ -2,10 +2,10 @@
 //! stops rather than push one block into another, and whether it can pull a block depends on the
 //! stroke, not on how the hand is tilted now.
 
-use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::demo;
 use logic_lfd::sim::geometry;
-use logic_lfd::sim::reach;
+use logic_lfd::sim::Benchmark;
+use logic_lfd::sim::{handleable, hook_can_pull};
 use logic_lfd::sim::{GripperCommand, World};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
@@ -149,20 +149,20 @@ fn at_stroke_start(w: &mut World, bp: &Isometry3<f64>) -> (Isometry3<f64>, Isome
 fn the_hook_pulls_only_along_strokes_clear_of_the_shelf_and_within_the_arms_reach() {
     let mut w = Benchmark::B2.scene();
     // The template's far block: the radial stroke is clear.
-    assert!(reach::hook_can_pull(&w, 0, "hook", "b"));
-    assert_eq!(reach::handleable(&w, "b"), Ok(()));
+    assert!(hook_can_pull(&w, 0, "hook", "b"));
+    assert_eq!(handleable(&w, "b"), Ok(()));
     // Right behind the shelf, 0.73 m out: every stroke towards the base drags b into the shelf
     // or lowers the blade onto it.
     w.move_block("b", Vector3::new(0.38, -0.625, 0.03)).unwrap();
-    assert!(!reach::hook_can_pull(&w, 0, "hook", "b"));
-    assert!(reach::handleable(&w, "b").is_err());
+    assert!(!hook_can_pull(&w, 0, "hook", "b"));
+    assert!(handleable(&w, "b").is_err());
     // The same distance out on the open table is fine.
     w.move_block("b", Vector3::new(0.73, 0.0, 0.03)).unwrap();
-    assert!(reach::hook_can_pull(&w, 0, "hook", "b"));
+    assert!(hook_can_pull(&w, 0, "hook", "b"));
     // 1.15 m out the hook still reaches the block on the table, but the hand cannot come down
     // from the stroke's lifted pose.
     w.move_block("b", Vector3::new(1.14, -0.14, 0.03)).unwrap();
-    assert!(!reach::hook_can_pull(&w, 0, "hook", "b"));
+    assert!(!hook_can_pull(&w, 0, "hook", "b"));
 }
 
 #[test]
@@ -182,9 +182,9 @@ fn whether_the_hook_can_pull_does_not_depend_on_how_the_carrying_hand_is_tilted_
                 continue;
             }
             w.set_joints(0, level).unwrap();
-            let a = reach::hook_can_pull(&w, 0, "hook", "b");
+            let a = hook_can_pull(&w, 0, "hook", "b");
             w.set_joints(0, tilted).unwrap();
-            let b = reach::hook_can_pull(&w, 0, "hook", "b");
+            let b = hook_can_pull(&w, 0, "hook", "b");
             pullable += a as usize;
             if a != b {
                 differ.push(p);

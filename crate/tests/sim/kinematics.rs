@@ -1,9 +1,9 @@
 //! Arm kinematics and motion: IK round trips, refusals and restarts, a level path at the joints'
 //! speed limits, links stopped at the table top, and what a joint-space move sweeps through.
 
-use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::geometry;
 use logic_lfd::sim::panda::{self, IkParams};
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::GripperCommand;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rand::{Rng, SeedableRng};

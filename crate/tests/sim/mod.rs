@@ -11,8 +11,8 @@ mod scene_graph;
 mod scenes;
 mod towers;
 
-use logic_lfd::sim::benchmark::Benchmark;
 use logic_lfd::sim::geometry;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{GripperCommand, SceneGraph, World};
 use nalgebra::{Isometry3, Vector3};
 

@@ -1,7 +1,7 @@
 //! The scene graph reads each benchmark's predicates from geometry: on, ontable, clear, holding,
 //! handempty, onshelf, inreach and regions.
 
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::GripperCommand;
 use nalgebra::{Isometry3, Translation3, Vector3};
 

@@ -1,9 +1,9 @@
 //! Scenes and user moves: snapshots round-trip, bad scene JSON names the body and the field (also
 //! through `logic-lfd scene`), and user moves are refused unchanged or settle onto a support.
 
-use logic_lfd::sim::benchmark::Benchmark;
-use logic_lfd::sim::snapshot::WorldSnapshot;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::World;
+use logic_lfd::sim::WorldSnapshot;
 use nalgebra::Vector3;
 
 use super::{b1_with, facts};

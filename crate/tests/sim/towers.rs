@@ -5,10 +5,10 @@
 use std::collections::BTreeMap;
 
 use logic_lfd::plan::validate_names;
-use logic_lfd::sim::benchmark::{goal_facts, Benchmark, BenchmarkSources};
 use logic_lfd::sim::collide;
-use logic_lfd::sim::generate::{block_range, tower_task, TOWER_SPACING};
-use logic_lfd::sim::reach::handleable;
+use logic_lfd::sim::handleable;
+use logic_lfd::sim::{block_range, tower_task, TOWER_SPACING};
+use logic_lfd::sim::{goal_facts, Benchmark, BenchmarkSources};
 use logic_lfd::sim::{SceneGraph, World};
 use nalgebra::Isometry3;
 

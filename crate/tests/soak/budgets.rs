@@ -4,16 +4,17 @@
 
 use std::cell::Cell;
 
-use logic_lfd::experiments::{run_episode, EpisodeSpec, Level};
-use logic_lfd::lfd::control::FailReason;
-use logic_lfd::lfd::session::SessionParams;
+use logic_lfd::experiments::{run_episode, EpisodeSpec};
+use logic_lfd::lfd::FailReason;
+use logic_lfd::lfd::Level;
+use logic_lfd::lfd::SessionParams;
 use logic_lfd::lfd::{Method, Mode};
 use logic_lfd::pddl::{parse_domain, parse_problem};
 use logic_lfd::plan::{
     ground, search, search_multi_goal, Algorithm, Budget, Clock, HeuristicKind, MultiGoalMode,
     NoClock, SearchConfig, SearchOutcome, Task,
 };
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 
 /// A clock that advances by `step` seconds every time it is read.
 struct SteppingClock {

@@ -2,12 +2,13 @@
 //! logged episode replays to the byte-identical JSON, and a soak's report is a function of its
 //! seed. (The wasm/node half of the check is in the npm package's tests.)
 
-use logic_lfd::experiments::soak::{soak, SoakParams};
-use logic_lfd::experiments::{run_episode, EpisodeSpec, Level};
-use logic_lfd::lfd::session::{Session, SessionParams};
+use logic_lfd::experiments::{run_episode, EpisodeSpec};
+use logic_lfd::experiments::{soak, SoakParams};
+use logic_lfd::lfd::Level;
 use logic_lfd::lfd::{Method, Mode};
+use logic_lfd::lfd::{Session, SessionParams};
 use logic_lfd::plan::NoClock;
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 
 fn episode_json(b: Benchmark, level: Option<Level>, seed: u64) -> String {
     let spec = EpisodeSpec {
@@ -93,7 +94,7 @@ fn every_f64_round_trips_through_json_bit_for_bit() {
 /// page's pointer produces) and injections between them.
 #[test]
 fn an_episode_with_full_precision_drags_replays_to_identical_json() {
-    use logic_lfd::lfd::session::SessionOptions;
+    use logic_lfd::lfd::SessionOptions;
     use rand::{Rng, SeedableRng};
     for (b, seed) in [(Benchmark::B1, 21), (Benchmark::B3, 22)] {
         let mut s = Session::new(SessionOptions {

@@ -2,7 +2,7 @@
 //! holds, no budget runs out, every failure carries its proof, and most episodes succeed;
 //! docs/reliability.md reports the large run.
 
-use logic_lfd::experiments::soak::{soak, SoakParams, SoakReport};
+use logic_lfd::experiments::{soak, SoakParams, SoakReport};
 
 /// Fewest successes per episode a soak must reach. The large runs reach about 0.85
 /// (docs/reliability.md); random drags out of every arm's reach make most of the rest.

@@ -2,13 +2,13 @@
 //! its operators, the skills learned from a benchmark's demonstration, and scenes built from a
 //! template.
 
-use logic_lfd::lfd::model::DomainModel;
-use logic_lfd::lfd::session::SkillKind;
-use logic_lfd::lfd::skill::SkillLibrary;
+use logic_lfd::lfd::DomainModel;
+use logic_lfd::lfd::SkillKind;
+use logic_lfd::lfd::SkillLibrary;
 use logic_lfd::lfd::TaskBuilder;
 use logic_lfd::plan::Task;
-use logic_lfd::sim::benchmark::Benchmark;
-use logic_lfd::sim::snapshot::ShapeSnapshot;
+use logic_lfd::sim::Benchmark;
+use logic_lfd::sim::ShapeSnapshot;
 use logic_lfd::sim::{SceneGraph, World};
 use nalgebra::Vector3;
 
@@ -113,7 +113,7 @@ pub(crate) fn b1_with_c_overhanging_a() -> World {
 }
 
 /// The hook's boxes in its frame.
-pub(crate) fn hook_parts(world: &World) -> Vec<logic_lfd::sim::snapshot::PartSnapshot> {
+pub(crate) fn hook_parts(world: &World) -> Vec<logic_lfd::sim::PartSnapshot> {
     let snap = world.snapshot();
     let hook = snap.bodies.iter().find(|x| x.name == "hook").unwrap();
     let ShapeSnapshot::Compound { parts } = &hook.shape else {

@@ -2,14 +2,14 @@
 //! skills, or the streams' bindings (placements, transits, hand turns); every tick checks the
 //! world's invariants.
 
-use logic_lfd::lfd::exec::{ActionExec, ExecParams, ExecStatus};
-use logic_lfd::lfd::skill::SkillLibrary;
+use logic_lfd::lfd::SkillLibrary;
+use logic_lfd::lfd::{ActionExec, ExecParams, ExecStatus};
 use logic_lfd::plan::Task;
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::World;
-use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
 use logic_lfd::tamp::Binder;
 use logic_lfd::tamp::{classify, ActionKind};
+use logic_lfd::tamp::{StreamBinder, StreamParams};
 
 use super::bench::{b2_skills, model_and_task, op, template};
 

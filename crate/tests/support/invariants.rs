@@ -1,7 +1,7 @@
 //! The world's invariants as the closed-loop tests hold them: every violation counts except the
 //! carried hook sweeping through the shelf's edge, and only to a stated depth.
 
-use logic_lfd::sim::snapshot::BodyKind;
+use logic_lfd::sim::BodyKind;
 use logic_lfd::sim::{Violation, World};
 
 /// Deepest the hook may pass through the shelf (m). The hook's stroke along the shelf edge is

@@ -2,15 +2,15 @@
 //! action a movable body blocked is banned until that body itself has moved, so a plan moves it
 //! first.
 
-use logic_lfd::lfd::control::FailReason;
-use logic_lfd::lfd::session::{Session, SessionOptions, SkillKind};
+use logic_lfd::lfd::FailReason;
 use logic_lfd::lfd::{Method, Mode};
+use logic_lfd::lfd::{Session, SessionOptions, SkillKind};
 use logic_lfd::plan::replay;
 use logic_lfd::plan::{search, Algorithm, HeuristicKind, NoClock, SearchConfig};
 use logic_lfd::plan::{BannedTask, Operator, Task};
-use logic_lfd::sim::benchmark::Benchmark;
-use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
+use logic_lfd::sim::Benchmark;
 use logic_lfd::tamp::{moves_body, Binder};
+use logic_lfd::tamp::{StreamBinder, StreamParams};
 
 use crate::support::bench::{model_and_task, op, saved_world, template};
 

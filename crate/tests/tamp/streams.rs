@@ -3,17 +3,17 @@
 //! its joint limits and the hook clear of a shelf, and find room beside a tower in a region;
 //! widening the samples is bounded.
 
-use logic_lfd::lfd::session::SkillKind;
-use logic_lfd::lfd::skill::SkillLibrary;
+use logic_lfd::lfd::SkillKind;
+use logic_lfd::lfd::SkillLibrary;
 use logic_lfd::plan::replay;
 use logic_lfd::plan::{Algorithm, HeuristicKind, NoClock, SearchConfig};
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::SceneGraph;
 use logic_lfd::tamp::plan_from_scratch;
-use logic_lfd::tamp::streams::{StreamBinder, StreamParams};
 use logic_lfd::tamp::Binder;
 use logic_lfd::tamp::Placement;
 use logic_lfd::tamp::PlanarPose;
+use logic_lfd::tamp::{StreamBinder, StreamParams};
 use nalgebra::Vector3;
 
 use crate::support::bench::{
@@ -108,7 +108,7 @@ fn two_blocks_side_by_side_beyond_reach_block_each_others_pulls_and_the_check_ag
         assert_eq!(failure.blockers, [other], "pull {x}");
         // The soak's and the disturbances' check says so too (the hook's sweep is checked).
         assert!(
-            !logic_lfd::sim::reach::hook_can_pull(&world, 0, "hook", x),
+            !logic_lfd::sim::hook_can_pull(&world, 0, "hook", x),
             "hook_can_pull says {x} can be pulled"
         );
     }
@@ -175,7 +175,7 @@ fn widening_the_samples_after_failed_skeletons_is_bounded() {
     }
     assert_eq!(
         binder.params().placement_samples,
-        logic_lfd::tamp::streams::WIDEN_LIMIT * params.placement_samples
+        logic_lfd::tamp::WIDEN_LIMIT * params.placement_samples
     );
 }
 

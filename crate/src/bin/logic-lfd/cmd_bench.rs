@@ -104,7 +104,7 @@ fn report<T: serde::Serialize>(
 /// Arguments of `bench scaling`.
 #[derive(clap::Args)]
 pub struct ScalingArgs {
-    /// Comma-separated block counts of B1's generated tower tasks (`sim::generate::block_range`).
+    /// Comma-separated block counts of B1's generated tower tasks (`sim::block_range`).
     #[arg(long, help = scaling_blocks_help(), value_delimiter = ',',
           default_value = default_scaling_blocks())]
     blocks: Vec<usize>,
@@ -136,7 +136,7 @@ fn default_scaling_blocks() -> &'static str {
 
 /// Help of `bench scaling --blocks`, with the block counts B1 takes.
 fn scaling_blocks_help() -> String {
-    use logic_lfd::sim::{benchmark::Benchmark, generate::block_range};
+    use logic_lfd::sim::{block_range, Benchmark};
     match block_range(Benchmark::B1) {
         Ok(r) => format!(
             "Comma-separated block counts (B1: {} to {})",

@@ -14,7 +14,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use logic_lfd::experiments::fuzz::{self, FuzzParams, Target};
+use logic_lfd::experiments::fuzz::{self, FuzzParams, FuzzTarget};
 
 use crate::exit;
 
@@ -49,10 +49,10 @@ pub struct Args {
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> ExitCode {
-    let targets: Vec<Target> = if args.target == "all" {
-        Target::ALL.to_vec()
+    let targets: Vec<FuzzTarget> = if args.target == "all" {
+        FuzzTarget::ALL.to_vec()
     } else {
-        match Target::parse(&args.target) {
+        match FuzzTarget::parse(&args.target) {
             Some(t) => vec![t],
             None => {
                 eprintln!(

@@ -1,8 +1,8 @@
 //! `logic-lfd lqt CASE.json [--pretty]`: the LQT-CP contract (`docs/formats.md`).
 
 use crate::exit;
-use logic_lfd::lqt::case::{run_case, CaseInput};
 use logic_lfd::lqt::LqtError;
+use logic_lfd::lqt::{run_case, CaseInput};
 use std::path::PathBuf;
 use std::process::ExitCode;
 

@@ -15,8 +15,8 @@ use serde::de::DeserializeOwned;
 use serde_json::Value;
 
 use logic_lfd::experiments::scaling::ScalingSweep;
-use logic_lfd::experiments::soak::SoakParams;
-use logic_lfd::experiments::tables::{Table1Sweep, Table2Sweep};
+use logic_lfd::experiments::SoakParams;
+use logic_lfd::experiments::{Table1Sweep, Table2Sweep};
 
 use crate::exit;
 use crate::sweep::{ShardFile, FORMAT, FORMAT_VERSION};

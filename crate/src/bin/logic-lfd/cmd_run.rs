@@ -12,11 +12,12 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use logic_lfd::experiments::{
-    run_episode_with, run_episode_with_blocks, EpisodeReport, EpisodeSpec, Level,
+    run_episode_with, run_episode_with_blocks, EpisodeReport, EpisodeSpec,
 };
-use logic_lfd::lfd::session::{EpisodeLog, Session, SessionParams};
+use logic_lfd::lfd::Level;
+use logic_lfd::lfd::{EpisodeLog, Session, SessionParams};
 use logic_lfd::lfd::{Method, Mode};
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::sim::Benchmark;
 
 use crate::cmd_plan::WallClock;
 use crate::{exit, listed};
@@ -48,7 +49,7 @@ pub struct Args {
     #[arg(long, conflicts_with = "blocks")]
     domain: Option<PathBuf>,
     /// Run the benchmark's generated tower task with N blocks (the counts each benchmark takes
-    /// come from `sim::generate::block_range`).
+    /// come from `sim::block_range`).
     #[arg(long, help = blocks_help())]
     blocks: Option<usize>,
     /// Print the report and the full episode log as JSON.
@@ -63,7 +64,7 @@ pub struct Args {
 fn blocks_help() -> String {
     format!(
         "Run the benchmark's generated tower task with N blocks ({})",
-        logic_lfd::sim::generate::block_ranges_text()
+        logic_lfd::sim::block_ranges_text()
     )
 }
 
@@ -202,14 +203,14 @@ fn replay(path: &PathBuf) -> ExitCode {
         Err(e) => return bad(format!("{}: {e}", path.display())),
     };
     // Accept the whole `--json` report or the bare log; errors name the JSON path and position.
-    let value: serde_json::Value = match logic_lfd::sim::json_input::from_str(&text) {
+    let value: serde_json::Value = match logic_lfd::sim::parse_json(&text) {
         Ok(v) => v,
         Err(e) => return bad(format!("{}: {e}", path.display())),
     };
     let log = if value.get("log").is_some() {
-        logic_lfd::sim::json_input::from_str::<Report>(&text).map(|r| r.log)
+        logic_lfd::sim::parse_json::<Report>(&text).map(|r| r.log)
     } else {
-        logic_lfd::sim::json_input::from_str::<EpisodeLog>(&text)
+        logic_lfd::sim::parse_json::<EpisodeLog>(&text)
     };
     let log = match log {
         Ok(l) => l,

@@ -9,9 +9,9 @@
 //!   benchmark's demonstration), print `{"disturbance": …, "scene": …}`.
 
 use crate::{exit, listed};
-use logic_lfd::experiments::tasks::demo_trace;
-use logic_lfd::lfd::disturb::{inject, Level};
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::experiments::demo_trace;
+use logic_lfd::lfd::{inject, Level};
+use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{SceneGraph, World};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -77,7 +77,7 @@ fn load(path: &Path) -> Result<World, ExitCode> {
         eprintln!("{file}: cannot read: {e}");
         ExitCode::from(exit::BAD_INPUT)
     })?;
-    let world = logic_lfd::sim::json_input::world_from_json(&text).map_err(|e| {
+    let world = logic_lfd::sim::world_from_json(&text).map_err(|e| {
         eprintln!("{file}: {e}");
         ExitCode::from(exit::BAD_INPUT)
     })?;

@@ -14,7 +14,7 @@
 
 use std::process::ExitCode;
 
-use logic_lfd::experiments::soak::{SoakParams, SoakReport, SoakRunner};
+use logic_lfd::experiments::{SoakParams, SoakReport, SoakRunner};
 
 use crate::exit;
 use crate::sweep::{print_shard, SweepArgs};
@@ -46,7 +46,7 @@ pub struct Args {
     #[arg(long)]
     no_replay: bool,
     /// Run the generated tower tasks with N blocks instead of the template tasks, on the
-    /// benchmarks that take N (`sim::generate::block_range`).
+    /// benchmarks that take N (`sim::block_range`).
     #[arg(long, help = blocks_help())]
     blocks: Option<usize>,
     /// Print the report as JSON.
@@ -61,7 +61,7 @@ fn blocks_help() -> String {
     format!(
         "Run the generated tower tasks with N blocks instead of the template tasks, on the \
          benchmarks that take N ({})",
-        logic_lfd::sim::generate::block_ranges_text()
+        logic_lfd::sim::block_ranges_text()
     )
 }
 

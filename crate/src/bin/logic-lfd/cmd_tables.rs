@@ -6,12 +6,12 @@
 
 use std::process::ExitCode;
 
-use logic_lfd::experiments::tables::{
+use logic_lfd::experiments::{
     table1_scene, table1_task_seed, Table1, Table1Sweep, Table2, Table2Sweep,
 };
-use logic_lfd::experiments::Level;
-use logic_lfd::lfd::session::SessionParams;
-use logic_lfd::sim::benchmark::Benchmark;
+use logic_lfd::lfd::Level;
+use logic_lfd::lfd::SessionParams;
+use logic_lfd::sim::Benchmark;
 
 use crate::cmd_plan::WallClock;
 use crate::exit;

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use logic_lfd::sim::benchmark::{Benchmark, BenchmarkSources};
+use logic_lfd::sim::{Benchmark, BenchmarkSources};
 
 /// Reads the files of `dir`, the scene falling back to `benchmark`'s; the message names the file
 /// that is missing or unreadable.

@@ -7,7 +7,7 @@ use std::marker::PhantomData;
 
 use clap::builder::{PossibleValue, TypedValueParser};
 use clap::error::ErrorKind;
-use logic_lfd::lfd::catalogue::Listed;
+use logic_lfd::lfd::Listed;
 
 /// The value parser of a flag that takes one id of `T` (or, with [`or_none`], also `none`).
 #[derive(Clone)]

@@ -11,7 +11,7 @@
 //!   demo's pick, executed) above the contact pose of the radial stroke, the same start for all
 //!   three goals, turned along the stroke to come; the learned stroke (`pull/stroke`) is planned there with its two via-points
 //!   (the TCP where the blade passes the block's far top edge and where it is down behind its
-//!   far face, `lfd::skill::stroke`). Reported: the distance of the planned trajectory from each
+//!   far face, `lfd/skill/stroke.rs`). Reported: the distance of the planned trajectory from each
 //!   via-point at its step and from the goal (LQT-CP passes the via-points, the DMP cannot encode
 //!   them), the same distances for the TCP the simulator moved, and whether the simulated
 //!   stroke left the block within [`GOAL_TOLERANCE`] of its goal.
@@ -21,18 +21,18 @@ pub mod plot;
 use nalgebra::{Isometry3, Point3, Translation3, Vector3};
 use serde::Serialize;
 
-use crate::lfd::exec::{ActionExec, ExecParams, ExecStatus};
-use crate::lfd::session::SkillKind;
-use crate::lfd::skill::{skill_key, SegmentKind, SkillLibrary, SkillSegment};
-use crate::sim::benchmark::Benchmark;
+use crate::lfd::SkillKind;
+use crate::lfd::{skill_key, SegmentKind, SkillLibrary, SkillSegment};
+use crate::lfd::{ActionExec, ExecParams, ExecStatus};
 use crate::sim::demo::{
     self, pull_hook_poses_turned, pulled_block_position, AnchorPose, DemoAction, PULL_LIFT,
     PULL_TARGET_RADIUS,
 };
 use crate::sim::geometry::{grasp_pose, raised, tcp_for_body_pose};
-use crate::sim::motions::MotionKind;
+use crate::sim::Benchmark;
+use crate::sim::MotionKind;
 use crate::sim::World;
-use crate::tamp::action::ActionKind;
+use crate::tamp::ActionKind;
 
 /// A simulated pull reached its goal when the block's centre ends this close to it,
 /// horizontally (m).

@@ -4,7 +4,7 @@
 use rand::Rng;
 use rand_pcg::Pcg64Mcg;
 
-use crate::sim::benchmark::Benchmark;
+use crate::sim::Benchmark;
 
 /// What the parser under test did with an input that kept every guarantee.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -6,11 +6,11 @@ use rand_pcg::Pcg64Mcg;
 use serde_json::{json, Value};
 
 use super::common::{ensure, idx, Verdict};
-use crate::lfd::session::{EpisodeLog, Session, SessionError, SessionOptions};
-use crate::lqt::case::{run_case, CaseInput};
+use crate::lfd::{EpisodeLog, Session, SessionError, SessionOptions};
 use crate::lqt::LqtError;
+use crate::lqt::{run_case, CaseInput};
 use crate::plan::NoClock;
-use crate::sim::benchmark::Benchmark;
+use crate::sim::Benchmark;
 use crate::sim::{SceneGraph, Violation, World};
 
 // ------------------------------------------------------------------------------ base inputs

@@ -2,7 +2,7 @@
 //! CI property tests (`crate/tests/fuzz`) and the `logic-lfd fuzz` command, so both run the same
 //! mutators against the same guarantees.
 //!
-//! A [`Target`] names an input format. Each has *base inputs* (the benchmarks' own files, built
+//! A [`FuzzTarget`] names an input format. Each has *base inputs* (the benchmarks' own files, built
 //! into the library), a *mutator* (seeded edits: structural ones on the parsed form, then
 //! byte-level ones on the text) and an *oracle* ([`check`]) that states the guarantees:
 //!
@@ -20,7 +20,7 @@
 //! `; fuzz <benchmark-dir> [domain|problem]` naming the files they stand for; world-ops inputs
 //! are JSON (`{"benchmark":"b1","ops":[…]}`; coordinates may be strings `"nan"`, `"inf"`).
 //!
-//! Case `i` of a run with seed `S` draws everything from `Pcg64Mcg(mix(S, i))`.
+//! Case `i` of a run with seed `S` draws everything from `Pcg64Mcg(mix_seed(S, i))`.
 //!
 //! This file holds what every format shares: the targets, the base inputs, the seeded driver
 //! and its report. Each format's mutator and oracle live in a file of their own: PDDL text
@@ -47,12 +47,12 @@ use rand_pcg::Pcg64Mcg;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
 
-use crate::lfd::session::{demo_actions, mix};
+use crate::lfd::{demo_actions, mix_seed};
 
 /// An input format under test.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum Target {
+pub enum FuzzTarget {
     /// PDDL domain and problem files.
     Pddl,
     /// Plan files for `validate`.
@@ -67,39 +67,39 @@ pub enum Target {
     WorldOps,
 }
 
-impl Target {
+impl FuzzTarget {
     /// Every target.
-    pub const ALL: [Target; 6] = [
-        Target::Pddl,
-        Target::Plan,
-        Target::Scene,
-        Target::Case,
-        Target::Episode,
-        Target::WorldOps,
+    pub const ALL: [FuzzTarget; 6] = [
+        FuzzTarget::Pddl,
+        FuzzTarget::Plan,
+        FuzzTarget::Scene,
+        FuzzTarget::Case,
+        FuzzTarget::Episode,
+        FuzzTarget::WorldOps,
     ];
 
     /// `pddl`, `plan`, `scene`, `case`, `episode`, `world-ops`.
     pub fn as_str(self) -> &'static str {
         match self {
-            Target::Pddl => "pddl",
-            Target::Plan => "plan",
-            Target::Scene => "scene",
-            Target::Case => "case",
-            Target::Episode => "episode",
-            Target::WorldOps => "world-ops",
+            FuzzTarget::Pddl => "pddl",
+            FuzzTarget::Plan => "plan",
+            FuzzTarget::Scene => "scene",
+            FuzzTarget::Case => "case",
+            FuzzTarget::Episode => "episode",
+            FuzzTarget::WorldOps => "world-ops",
         }
     }
 
     /// Parses a target name.
-    pub fn parse(s: &str) -> Option<Target> {
-        Target::ALL.into_iter().find(|t| t.as_str() == s)
+    pub fn parse(s: &str) -> Option<FuzzTarget> {
+        FuzzTarget::ALL.into_iter().find(|t| t.as_str() == s)
     }
 
     /// File extension of a saved input.
     pub fn extension(self) -> &'static str {
         match self {
-            Target::Pddl => "pddl",
-            Target::Plan => "plan",
+            FuzzTarget::Pddl => "pddl",
+            FuzzTarget::Plan => "plan",
             _ => "json",
         }
     }
@@ -108,27 +108,27 @@ impl Target {
 // ------------------------------------------------------------------------------ base inputs
 
 /// The base inputs of a target (mutations start from one of them).
-pub fn base_inputs(target: Target) -> Result<Vec<String>, String> {
+pub fn base_inputs(target: FuzzTarget) -> Result<Vec<String>, String> {
     let mut out = Vec::new();
     for (dir, b) in BENCH_DIRS {
         let files = b.sources().map_err(|e| e.to_string())?;
         match target {
-            Target::Pddl => {
+            FuzzTarget::Pddl => {
                 out.push(format!("; fuzz {dir} domain\n{}", files.domain));
                 out.push(format!("; fuzz {dir} problem\n{}", files.problem));
             }
-            Target::Plan => {
+            FuzzTarget::Plan => {
                 let demo = demo_actions(&files.demo).map_err(|e| e.to_string())?;
                 out.push(format!("; fuzz {dir}\n{}\n", demo.join("\n")));
             }
-            Target::Scene => out.push(files.scene),
-            Target::Case | Target::Episode | Target::WorldOps => {}
+            FuzzTarget::Scene => out.push(files.scene),
+            FuzzTarget::Case | FuzzTarget::Episode | FuzzTarget::WorldOps => {}
         }
     }
     match target {
-        Target::Case => out.push(json::base_case()),
-        Target::Episode => out.push(json::base_episode()?),
-        Target::WorldOps => {
+        FuzzTarget::Case => out.push(json::base_case()),
+        FuzzTarget::Episode => out.push(json::base_episode()?),
+        FuzzTarget::WorldOps => {
             for b in ["b1", "b2", "b3"] {
                 out.push(json!({"benchmark": b, "ops": []}).to_string());
             }
@@ -141,7 +141,7 @@ pub fn base_inputs(target: Target) -> Result<Vec<String>, String> {
 // ------------------------------------------------------------------------------ mutate
 
 /// Mutates `base` for `target` with `1..=max_edits` random edits.
-pub fn mutate(target: Target, base: &str, max_edits: usize, rng: &mut Pcg64Mcg) -> String {
+pub fn mutate(target: FuzzTarget, base: &str, max_edits: usize, rng: &mut Pcg64Mcg) -> String {
     let k = rng.random_range(1..=max_edits.max(1));
     let header_split = |t: &str| -> (String, String) {
         match t.split_once('\n') {
@@ -150,21 +150,21 @@ pub fn mutate(target: Target, base: &str, max_edits: usize, rng: &mut Pcg64Mcg) 
         }
     };
     match target {
-        Target::Pddl => {
+        FuzzTarget::Pddl => {
             let (h, body) = header_split(base);
             let edits: Vec<PddlEdit> = (0..k).map(|_| PddlEdit::random(rng)).collect();
             h + &mutate_pddl(&body, &edits)
         }
-        Target::Plan => {
+        FuzzTarget::Plan => {
             let (h, body) = header_split(base);
             let edits: Vec<PlanEdit> = (0..k).map(|_| PlanEdit::random(rng)).collect();
             h + &mutate_plan(&body, &edits)
         }
-        Target::Scene | Target::Case | Target::Episode => {
+        FuzzTarget::Scene | FuzzTarget::Case | FuzzTarget::Episode => {
             let edits: Vec<JsonEdit> = (0..k).map(|_| JsonEdit::random(rng)).collect();
             String::from_utf8_lossy(&mutate_json(base, &edits)).into_owned()
         }
-        Target::WorldOps => {
+        FuzzTarget::WorldOps => {
             let mut ops: WorldOps = serde_json::from_str(base).unwrap_or(WorldOps {
                 benchmark: "b1".into(),
                 ops: vec![],
@@ -177,15 +177,15 @@ pub fn mutate(target: Target, base: &str, max_edits: usize, rng: &mut Pcg64Mcg) 
 }
 
 /// Case `index` of a run with `seed`: a base input picked and mutated from
-/// `Pcg64Mcg(mix(seed, index))`.
+/// `Pcg64Mcg(mix_seed(seed, index))`.
 pub fn generate(
-    target: Target,
+    target: FuzzTarget,
     bases: &[String],
     seed: u64,
     index: u64,
     max_edits: usize,
 ) -> String {
-    let mut rng = Pcg64Mcg::seed_from_u64(mix(seed, index));
+    let mut rng = Pcg64Mcg::seed_from_u64(mix_seed(seed, index));
     let base = if bases.is_empty() {
         ""
     } else {
@@ -199,14 +199,14 @@ pub fn generate(
 /// The oracle: runs `input` through the parser(s) of `target` and checks the guarantees of the
 /// module table. `Err` names a broken guarantee. It may panic (that is what fuzzing looks for):
 /// [`run`] catches panics.
-pub fn check(target: Target, input: &str) -> Result<Verdict, String> {
+pub fn check(target: FuzzTarget, input: &str) -> Result<Verdict, String> {
     match target {
-        Target::Pddl => pddl::check_pddl(input),
-        Target::Plan => plan::check_plan(input),
-        Target::Scene => json::check_scene(input),
-        Target::Case => json::check_case(input),
-        Target::Episode => json::check_episode(input),
-        Target::WorldOps => world_ops::check_world_ops(input),
+        FuzzTarget::Pddl => pddl::check_pddl(input),
+        FuzzTarget::Plan => plan::check_plan(input),
+        FuzzTarget::Scene => json::check_scene(input),
+        FuzzTarget::Case => json::check_case(input),
+        FuzzTarget::Episode => json::check_episode(input),
+        FuzzTarget::WorldOps => world_ops::check_world_ops(input),
     }
 }
 
@@ -216,10 +216,10 @@ pub fn check(target: Target, input: &str) -> Result<Verdict, String> {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FuzzParams {
     /// The target.
-    pub target: Target,
+    pub target: FuzzTarget,
     /// Inputs to try.
     pub iterations: u64,
-    /// Seed (case `i` draws from `mix(seed, i)`).
+    /// Seed (case `i` draws from `mix_seed(seed, i)`).
     pub seed: u64,
     /// Most edits per input.
     pub max_edits: usize,
@@ -261,11 +261,14 @@ impl FuzzReport {
 }
 
 /// Runs `input` through [`check`], turning a panic into `Err("panicked: …")`.
-pub fn check_catching(target: Target, input: &str) -> Result<Verdict, (String, String)> {
+pub fn check_catching(target: FuzzTarget, input: &str) -> Result<Verdict, (String, String)> {
     match catch_unwind(AssertUnwindSafe(|| check(target, input))) {
         Ok(Ok(v)) => Ok(v),
         Ok(Err(m)) => Err(("guarantee".into(), m)),
-        Err(p) => Err(("panic".into(), super::panic_message(p.as_ref()))),
+        Err(p) => Err((
+            "panic".into(),
+            crate::experiments::panic_message(p.as_ref()),
+        )),
     }
 }
 
@@ -308,33 +311,33 @@ mod tests {
 
     #[test]
     fn targets_parse_their_names() {
-        for t in Target::ALL {
-            assert_eq!(Target::parse(t.as_str()), Some(t));
+        for t in FuzzTarget::ALL {
+            assert_eq!(FuzzTarget::parse(t.as_str()), Some(t));
         }
-        assert_eq!(Target::parse("nope"), None);
+        assert_eq!(FuzzTarget::parse("nope"), None);
     }
 
     #[test]
     fn generation_is_a_function_of_seed_and_index() {
-        let bases = base_inputs(Target::Pddl).unwrap();
-        let a = generate(Target::Pddl, &bases, 7, 3, 4);
-        assert_eq!(a, generate(Target::Pddl, &bases, 7, 3, 4));
+        let bases = base_inputs(FuzzTarget::Pddl).unwrap();
+        let a = generate(FuzzTarget::Pddl, &bases, 7, 3, 4);
+        assert_eq!(a, generate(FuzzTarget::Pddl, &bases, 7, 3, 4));
         assert!(a.starts_with("; fuzz "), "the header is kept: {a:.40}");
-        assert!((0..20).any(|i| generate(Target::Pddl, &bases, 7, i, 4) != a));
+        assert!((0..20).any(|i| generate(FuzzTarget::Pddl, &bases, 7, i, 4) != a));
     }
 
     #[test]
     fn unmutated_bases_are_accepted() {
         for t in [
-            Target::Pddl,
-            Target::Plan,
-            Target::Scene,
-            Target::Case,
-            Target::WorldOps,
+            FuzzTarget::Pddl,
+            FuzzTarget::Plan,
+            FuzzTarget::Scene,
+            FuzzTarget::Case,
+            FuzzTarget::WorldOps,
         ] {
             for b in base_inputs(t).unwrap() {
                 let v = check(t, &b);
-                let want = if t == Target::WorldOps {
+                let want = if t == FuzzTarget::WorldOps {
                     Verdict::Refused // no op: nothing accepted
                 } else {
                     Verdict::Accepted
@@ -367,7 +370,7 @@ mod tests {
             }],
         };
         let s = serde_json::to_string(&ops).unwrap();
-        assert_eq!(check(Target::WorldOps, &s), Ok(Verdict::Accepted));
+        assert_eq!(check(FuzzTarget::WorldOps, &s), Ok(Verdict::Accepted));
         // Non-finite coordinates survive the JSON encoding.
         let nan = WorldOp::Move {
             body: "a".into(),
@@ -389,11 +392,11 @@ mod tests {
     #[test]
     fn a_short_campaign_per_target_is_clean() {
         for t in [
-            Target::Pddl,
-            Target::Plan,
-            Target::Scene,
-            Target::Case,
-            Target::WorldOps,
+            FuzzTarget::Pddl,
+            FuzzTarget::Plan,
+            FuzzTarget::Scene,
+            FuzzTarget::Case,
+            FuzzTarget::WorldOps,
         ] {
             let r = run(
                 &FuzzParams {

@@ -8,7 +8,7 @@ use rand_pcg::Pcg64Mcg;
 use serde::{Deserialize, Serialize};
 
 use super::common::{ensure, Verdict};
-use crate::sim::benchmark::Benchmark;
+use crate::sim::Benchmark;
 use crate::sim::World;
 
 /// A coordinate in a world-ops input: a number, or `"nan"`, `"inf"`, `"-inf"` (JSON has none).

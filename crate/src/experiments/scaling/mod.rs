@@ -9,11 +9,11 @@ use serde::{Deserialize, Serialize};
 
 use super::episode::{run_episode_with_blocks, EpisodeSpec};
 use super::tasks::initial_scene_for;
-use crate::lfd::disturb::Level;
-use crate::lfd::session::{mix, SessionError, SessionParams};
+use crate::lfd::Level;
+use crate::lfd::{mix_seed, SessionError, SessionParams};
 use crate::lfd::{Method, Mode};
 use crate::plan::{Algorithm, Clock, HeuristicKind};
-use crate::sim::benchmark::Benchmark;
+use crate::sim::Benchmark;
 
 /// The methods compared: label, method, multi-goal mode and whether the symbolic search is the
 /// satisficing lazy GBFS with h_FF instead of the loop's default (A* with LM-cut). Each search
@@ -47,7 +47,7 @@ pub const METHODS: [(&str, Method, Mode, bool); 6] = [
 const SAME_SEARCH: [(usize, usize); 2] = [(0, 2), (3, 5)];
 
 /// The block counts `logic-lfd bench scaling` runs by default: from the template's 4 blocks to
-/// B1's most ([`crate::sim::generate::MAX_BLOCKS`]), one and two towers.
+/// B1's most ([`crate::sim::MAX_BLOCKS`]), one and two towers.
 pub const DEFAULT_BLOCKS: [usize; 5] = [4, 8, 12, 16, 20];
 
 /// Wall-clock budget of one symbolic search in the study (s): a method that needs more has
@@ -128,7 +128,7 @@ pub struct ScalingTask {
 }
 
 /// The study as a sweep: `tasks` tasks per block count; item `i` is task `i mod tasks` of
-/// `blocks[i / tasks]`, seeded `mix(seed, task)` alone, so items run in any order (or on other
+/// `blocks[i / tasks]`, seeded `mix_seed(seed, task)` alone, so items run in any order (or on other
 /// machines) and [`ScalingSweep::report`] joins them.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ScalingSweep {
@@ -151,7 +151,7 @@ impl ScalingSweep {
     pub fn run(&self, index: usize, clock: &dyn Clock) -> Result<ScalingTask, SessionError> {
         let b = Benchmark::B1;
         let (n, t) = (self.blocks[index / self.tasks], index % self.tasks);
-        let seed = mix(self.seed, t as u64);
+        let seed = mix_seed(self.seed, t as u64);
         let scene = initial_scene_for(b, Some(n), Level::L3, seed)?;
         let mut runs = Vec::with_capacity(METHODS.len());
         for (_, method, mode, satisficing) in METHODS {

@@ -13,14 +13,14 @@ use super::reasons::{
     drag_proof, shelf_full_for, Check, Models, DRAGGED_AWAY, SHELF_FULL, UNSOLVABLE,
 };
 use super::report::{ExplainedFailure, SoakFinding, SoakParams, SoakReport};
-use crate::lfd::control::FailReason;
-use crate::lfd::session::{mix, Session, SessionOptions, SkillKind};
+use crate::lfd::FailReason;
+use crate::lfd::{mix_seed, Session, SessionOptions, SkillKind};
 use crate::lfd::{Method, Mode};
 use crate::plan::NoClock;
-use crate::sim::benchmark::Benchmark;
-use crate::sim::generate::block_range;
-use crate::sim::reach::handleable;
-use crate::sim::snapshot::BodyKind;
+use crate::sim::block_range;
+use crate::sim::handleable;
+use crate::sim::Benchmark;
+use crate::sim::BodyKind;
 use crate::sim::World;
 
 /// One scheduled disturbance.
@@ -201,7 +201,7 @@ pub(super) fn soak_episode(
     rep: &mut SoakReport,
     json_out: &mut String,
 ) -> Result<(), String> {
-    let mut rng = Pcg64Mcg::seed_from_u64(mix(params.seed, e as u64));
+    let mut rng = Pcg64Mcg::seed_from_u64(mix_seed(params.seed, e as u64));
     let draw = draw_episode(params, &mut rng);
     let options = SessionOptions {
         benchmark: draw.bench,

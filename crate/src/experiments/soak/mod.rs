@@ -1,10 +1,10 @@
 //! Closed-loop soak: many random Logic-LfD episodes over B1–B3 with random disturbances,
 //! checking the loop's guarantees at every step.
 //!
-//! Episode `e` of a soak with seed `S` draws everything from `Pcg64Mcg(mix(S, e))`: the benchmark,
+//! Episode `e` of a soak with seed `S` draws everything from `Pcg64Mcg(mix_seed(S, e))`: the benchmark,
 //! the multi-goal mode, the session seed, and a schedule of `0..=max_disturbances` disturbances at
 //! random ticks in `[0, horizon_ticks)`; each is an injected level `L1`–`L4` or a user-like drag
-//! through [`Session::perturb`](crate::lfd::session::Session::perturb) (onto another block, to a
+//! through [`Session::perturb`](crate::lfd::Session::perturb) (onto another block, to a
 //! table spot, a small nudge, or a hostile request: a held or fixed body, an unknown name, a
 //! non-finite or far-away position). Checked:
 //!
@@ -16,13 +16,13 @@
 //!   ([`crate::plan::validate_names`]) from the observed state it was planned in (the scene graph
 //!   of the world at that tick, as a PDDL problem) to the benchmark's goal;
 //! * **stated outcome**: every episode ends in success or in a
-//!   [`FailReason`](crate::lfd::control::FailReason) that is *legitimate*, each class with its
+//!   [`FailReason`](crate::lfd::FailReason) that is *legitimate*, each class with its
 //!   proof (kept in [`SoakReport::explained`]):
 //!   - "no plan", when breadth-first search of the observed task (the world's facts, the
 //!     benchmark's goal; no heuristic, duplicate detection) exhausts its reachable states within
 //!     [`SoakParams::check_nodes`] expansions without reaching the goal;
 //!   - a failure whose action (the failed one, or the one the planner could not bind) acts on a
-//!     block a user dragged, when IK ([`handleable`](crate::sim::reach::handleable): no arm can
+//!     block a user dragged, when IK ([`handleable`](crate::sim::handleable): no arm can
 //!     grasp it nor pull it in with a clear stroke of the hook) shows that block unworkable now
 //!     or right after its last drag (a block in a hand is judged where it is);
 //!   - a block the goal puts on a shelf finding no room on any (the footprints on its top all
@@ -45,7 +45,7 @@ mod episode;
 mod reasons;
 mod report;
 
-use crate::lfd::session::mix;
+use crate::lfd::mix_seed;
 
 use episode::soak_episode;
 use reasons::Models;
@@ -118,12 +118,12 @@ impl SoakRunner {
             Ok(Ok(())) => {}
             Ok(Err(msg)) => return Err(format!("episode {e}: {msg}")),
             Err(p) => {
-                let msg = super::panic_message(p.as_ref());
+                let msg = crate::experiments::panic_message(p.as_ref());
                 ep.panics += 1;
                 ep.find(SoakFinding {
                     episode: e,
                     benchmark: String::new(),
-                    session_seed: mix(params.seed, e as u64),
+                    session_seed: mix_seed(params.seed, e as u64),
                     tick: 0,
                     kind: "panic".into(),
                     detail: msg,

@@ -8,19 +8,19 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::query;
 use parry3d_f64::shape::Cuboid;
 
-use crate::lfd::control::FailReason;
+use crate::lfd::FailReason;
 use crate::pddl::{parse_domain, parse_problem, Domain, Problem};
 use crate::plan::fact_args;
 use crate::plan::{
     ground, search, validate_names, Algorithm, HeuristicKind, NoClock, Outcome, SearchConfig,
     SearchOutcome,
 };
-use crate::sim::benchmark::Benchmark;
-use crate::sim::generate::{block_names, tower_goal};
-use crate::sim::motions::{Relation, Slot};
-use crate::sim::reach::handleable;
-use crate::sim::snapshot::BodyKind;
+use crate::sim::handleable;
+use crate::sim::Benchmark;
+use crate::sim::BodyKind;
 use crate::sim::World;
+use crate::sim::{block_names, tower_goal};
+use crate::sim::{Relation, Slot};
 
 /// The block the failure `reason` acts on that a user drag left unworkable, with the proof: the
 /// failed action (or the action the planner could not bind) names a block in `dragged`, and IK

@@ -1,7 +1,15 @@
 //! What both tables share: summary statistics, the paper's numbers and failure counts.
 
-/// Mean, sample standard deviation and median of `v` (`None` when empty).
-pub fn stats(v: &[f64]) -> Option<(f64, f64, f64)> {
+/// Mean, sample standard deviation and median of a sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Summary {
+    pub(crate) mean: f64,
+    pub(crate) sd: f64,
+    pub(crate) median: f64,
+}
+
+/// The [`Summary`] of `v` (`None` when empty).
+pub(crate) fn summary(v: &[f64]) -> Option<Summary> {
     if v.is_empty() {
         return None;
     }
@@ -19,7 +27,11 @@ pub fn stats(v: &[f64]) -> Option<(f64, f64, f64)> {
     } else {
         0.5 * (s[s.len() / 2 - 1] + s[s.len() / 2])
     };
-    Some((mean, var.sqrt(), median))
+    Some(Summary {
+        mean,
+        sd: var.sqrt(),
+        median,
+    })
 }
 
 /// Mean ± sd (s); `None` = N/A.
@@ -105,7 +117,7 @@ pub const PAPER_TABLE2: [(&str, [[MeanSd; 3]; 4]); 3] = [
     ),
 ];
 
-pub(super) fn reason_kind(r: &crate::lfd::control::FailReason) -> String {
+pub(super) fn reason_kind(r: &crate::lfd::FailReason) -> String {
     serde_json::to_value(r)
         .ok()
         .and_then(|v| v.get("kind").and_then(|k| k.as_str()).map(str::to_string))

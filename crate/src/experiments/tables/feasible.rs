@@ -5,8 +5,8 @@ use nalgebra::{Isometry3, Translation3, Vector3};
 
 use crate::sim::demo::{pull_hook_poses, PULL_TARGET_RADIUS};
 use crate::sim::geometry::grasp_pose;
-use crate::sim::motions::Relation;
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
+use crate::sim::Relation;
 use crate::sim::World;
 
 /// Why no method could solve a task from `world` (`None`: it is feasible). The rule, the same for

@@ -9,7 +9,8 @@ mod feasible;
 mod table1;
 mod table2;
 
-pub use common::{stats, MeanSd, PAPER_TABLE1, PAPER_TABLE2};
+pub(crate) use common::summary;
+pub use common::{MeanSd, PAPER_TABLE1, PAPER_TABLE2};
 pub use feasible::infeasible;
 pub use table1::{
     table1, table1_scene, table1_task_seed, Redraw, Table1, Table1Cell, Table1Run, Table1Sweep,
@@ -22,11 +23,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn stats_are_mean_sample_sd_and_median() {
-        let (m, sd, med) = stats(&[1.0, 2.0, 3.0, 10.0]).unwrap();
-        assert!((m - 4.0).abs() < 1e-12);
-        assert!((sd - ((9.0_f64 + 4.0 + 1.0 + 36.0) / 3.0).sqrt()).abs() < 1e-12);
-        assert!((med - 2.5).abs() < 1e-12);
-        assert!(stats(&[]).is_none());
+    fn a_summary_is_the_mean_sample_sd_and_median() {
+        let s = summary(&[1.0, 2.0, 3.0, 10.0]).unwrap();
+        assert!((s.mean - 4.0).abs() < 1e-12);
+        assert!((s.sd - ((9.0_f64 + 4.0 + 1.0 + 36.0) / 3.0).sqrt()).abs() < 1e-12);
+        assert!((s.median - 2.5).abs() < 1e-12);
+        assert!(summary(&[]).is_none());
     }
 }

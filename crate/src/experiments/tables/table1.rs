@@ -4,15 +4,16 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::lfd::session::{mix, SessionError, SessionParams};
+use crate::lfd::{mix_seed, SessionError, SessionParams};
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
-use crate::sim::benchmark::Benchmark;
+use crate::sim::Benchmark;
 use crate::sim::World;
 
-use super::common::{count, reason_kind, stats, PAPER_TABLE1};
+use super::common::{count, reason_kind, summary, PAPER_TABLE1};
 use super::feasible::infeasible;
-use crate::experiments::episode::{run_episode, EpisodeSpec, Level};
+use crate::experiments::{run_episode, EpisodeSpec};
+use crate::lfd::Level;
 
 /// One method on one benchmark in Table I.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -72,7 +73,7 @@ pub struct Table1 {
     /// Tasks whose first draw was infeasible ([`infeasible`]) and were redrawn.
     pub redrawn: Vec<Redraw>,
     /// Whether Logic-LfD could fall back to TAMP from scratch
-    /// ([`ControlParams::tamp_fallback`](crate::lfd::control::ControlParams::tamp_fallback)).
+    /// ([`ControlParams::tamp_fallback`](crate::lfd::ControlParams::tamp_fallback)).
     #[serde(default)]
     pub tamp_fallback: bool,
 }
@@ -100,7 +101,7 @@ pub const TABLE1_METHODS: [(Method, Mode); 4] = [
 pub const MAX_DRAWS: usize = 16;
 
 /// The initial scene of Table I task `index` of benchmark `b` at `level`: the first feasible
-/// ([`infeasible`]) of up to [`MAX_DRAWS`] draws, draw `d` from seed `mix(task_seed, d)` (draw 0:
+/// ([`infeasible`]) of up to [`MAX_DRAWS`] draws, draw `d` from seed `mix_seed(task_seed, d)` (draw 0:
 /// `task_seed` itself). Returns the scene JSON and the draw used; an error names the task when
 /// every draw is infeasible (tasks are never dropped silently).
 pub fn table1_scene(
@@ -113,9 +114,9 @@ pub fn table1_scene(
         let seed = if draw == 0 {
             task_seed
         } else {
-            mix(task_seed, draw as u64)
+            mix_seed(task_seed, draw as u64)
         };
-        let scene = crate::experiments::tasks::initial_scene(b, level, seed)?;
+        let scene = crate::experiments::initial_scene(b, level, seed)?;
         let world = World::from_json(&scene)?.with_motions(b.motions());
         match infeasible(&world) {
             None => return Ok((scene, draw)),
@@ -131,7 +132,7 @@ pub fn table1_scene(
 
 /// The seed of Table I task `index` of benchmark `b` in a run seeded `seed`.
 pub fn table1_task_seed(b: Benchmark, index: usize, seed: u64) -> u64 {
-    mix(seed, (b as u64) << 32 | index as u64)
+    mix_seed(seed, (b as u64) << 32 | index as u64)
 }
 
 /// What one Table I task gave: the draw its initial state came from and every method's run
@@ -332,15 +333,15 @@ pub fn table1(
 
 /// Medians of the search and binding parts of the first plans: `0.21 / 0.09`.
 fn fmt_split(search: &[f64], bind: &[f64]) -> String {
-    match (stats(search), stats(bind)) {
-        (Some((_, _, s)), Some((_, _, b))) => format!("{s:.3} / {b:.3}"),
+    match (summary(search), summary(bind)) {
+        (Some(s), Some(b)) => format!("{:.3} / {:.3}", s.median, b.median),
         _ => "N/A".into(),
     }
 }
 
 fn fmt_ms(v: &[f64]) -> String {
-    match stats(v) {
-        Some((m, sd, med)) => format!("{m:.3} ± {sd:.3} (median {med:.3})"),
+    match summary(v) {
+        Some(s) => format!("{:.3} ± {:.3} (median {:.3})", s.mean, s.sd, s.median),
         None => "N/A".into(),
     }
 }
@@ -355,11 +356,11 @@ impl Table1 {
         ));
         if self.redrawn.is_empty() {
             out.push_str(&format!(
-                "Every first draw was feasible (rule: `experiments::tables::infeasible`, up to {MAX_DRAWS} draws).\n\n"
+                "Every first draw was feasible (rule: `experiments::infeasible`, up to {MAX_DRAWS} draws).\n\n"
             ));
         } else {
             out.push_str(&format!(
-                "Redrawn as infeasible (rule: `experiments::tables::infeasible`, up to {MAX_DRAWS} draws): {}.\n\n",
+                "Redrawn as infeasible (rule: `experiments::infeasible`, up to {MAX_DRAWS} draws): {}.\n\n",
                 self.redrawn
                     .iter()
                     .map(|r| format!("{} task {} ({} draws)", r.benchmark.as_str().to_uppercase(), r.task, r.draws))

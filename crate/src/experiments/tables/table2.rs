@@ -3,13 +3,14 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::lfd::session::{SessionError, SessionParams};
 use crate::lfd::{Method, Mode};
+use crate::lfd::{SessionError, SessionParams};
 use crate::plan::Clock;
-use crate::sim::benchmark::Benchmark;
+use crate::sim::Benchmark;
 
-use super::common::{count, reason_kind, stats, PAPER_TABLE2};
-use crate::experiments::episode::{run_episode, EpisodeSpec, Level};
+use super::common::{count, reason_kind, summary, PAPER_TABLE2};
+use crate::experiments::{run_episode, EpisodeSpec};
+use crate::lfd::Level;
 
 /// One (level, method, benchmark) cell of Table II.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -280,9 +281,11 @@ impl Table2 {
                         .iter()
                         .find(|c| c.level == level && c.method == *m && c.benchmark == *b);
                     let injected = cell.map_or(0, |c| c.trials - c.not_injected);
-                    let ours = match cell.and_then(|c| stats(&c.times)) {
-                        Some((mean, sd, _)) => format!(
-                            "{mean:.2} ± {sd:.2} [{}/{injected}]",
+                    let ours = match cell.and_then(|c| summary(&c.times)) {
+                        Some(s) => format!(
+                            "{:.2} ± {:.2} [{}/{injected}]",
+                            s.mean,
+                            s.sd,
                             cell.map_or(0, |c| c.times.len()),
                         ),
                         None => format!("N/A [0/{injected}]"),

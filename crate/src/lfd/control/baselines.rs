@@ -78,7 +78,7 @@ impl Controller {
             }
         }
         Err(FailReason::NoDemoStateMatches {
-            facts: crate::lfd::demo::state_names(self.task(), s),
+            facts: crate::lfd::state_names(self.task(), s),
         })
     }
 }

@@ -55,7 +55,7 @@ struct Planned {
     /// Planned from scratch after Logic-LfD's skeletons failed.
     fallback: bool,
     /// Logic-LfD's candidates L_k with their costs (empty for the other methods).
-    alternatives: Vec<crate::lfd::alternatives::Alternative>,
+    alternatives: Vec<crate::lfd::Alternative>,
 }
 
 /// The task-level controller of one episode.

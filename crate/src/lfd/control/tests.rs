@@ -1,8 +1,8 @@
 //! RLDS's backward check and Logic-LfD's TAMP fallback on a hand-grounded blocks world.
 
-use crate::lfd::control::{ControlParams, Controller, Decision, FailReason, TaskBuilder};
-use crate::lfd::demo::DemoTrace;
 use crate::lfd::testing::blocks_task;
+use crate::lfd::DemoTrace;
+use crate::lfd::{ControlParams, Controller, Decision, FailReason, TaskBuilder};
 use crate::lfd::{LfdError, Method, Mode};
 use crate::plan::{NoClock, Operator, Task};
 use crate::tamp::{BindFailure, Binder, Binding};

@@ -88,7 +88,7 @@ pub struct Replan {
     /// Logic-LfD: every candidate L_k with the prefix, suffix and total cost its search found,
     /// the joined one marked (empty for the other methods and the TAMP fallback).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub alternatives: Vec<crate::lfd::alternatives::Alternative>,
+    pub alternatives: Vec<crate::lfd::Alternative>,
 }
 
 /// What the controller asks the executor to do.

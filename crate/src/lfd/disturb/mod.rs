@@ -15,7 +15,7 @@
 //! scene cannot describe: a block on the hook, on a held block, or on a block where the domain
 //! has no `on`). A candidate whose resulting facts do not meet the level's definition, or that
 //! leaves the moved or new block where no arm can grasp or pull it
-//! ([`crate::sim::reach::handleable`], IK), is undone: an injection never makes
+//! ([`crate::sim::handleable`], IK), is undone: an injection never makes
 //! the task geometrically impossible; when no candidate qualifies it is refused with the reason.
 //!
 //! The same injector makes the Table I tasks (applied to the template scene), the disturbances
@@ -31,16 +31,16 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use serde::{Deserialize, Serialize};
 
-use crate::sim::benchmark::{BLOCK_COLORS, BLOCK_SIZE};
-use crate::sim::motions::{Motions, Relation, Slot};
-use crate::sim::reach::handleable;
-use crate::sim::snapshot::{BodyKind, BodySnapshot, PoseSnapshot, ShapeSnapshot};
+use crate::sim::handleable;
+use crate::sim::{BodyKind, BodySnapshot, PoseSnapshot, ShapeSnapshot};
+use crate::sim::{Motions, Relation, Slot};
 use crate::sim::{SceneGraph, World};
+use crate::sim::{BLOCK_COLORS, BLOCK_SIZE};
 
-pub use super::catalogue::Level;
+use super::catalogue::Level;
 use super::demo::DemoTrace;
 
-pub(crate) mod motion;
+pub(super) mod motion;
 
 /// A push of an arm's hand: its tool centre point displaced while the arm moves.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

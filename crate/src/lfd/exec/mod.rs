@@ -1,7 +1,7 @@
 //! Executing one grounded action in the simulator through its motion skill (Algorithm 1 line 14,
 //! τ = LQT-CP(a)).
 //!
-//! What an action does physically comes from [`crate::tamp::action::classify`] (its effects,
+//! What an action does physically comes from [`crate::tamp::classify`] (its effects,
 //! not its name).
 //!
 //! The motion is a chain of segments, each a skill trajectory τ from the current end-effector
@@ -24,9 +24,9 @@ mod via;
 
 use nalgebra::Vector3;
 
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
 use crate::sim::{GripperCommand, World};
-use crate::tamp::action::ActionKind;
+use crate::tamp::ActionKind;
 
 use super::skill::SkillLibrary;
 pub use params::ExecParams;
@@ -77,7 +77,7 @@ impl ActionExec {
     }
 
     /// Puts a released square block down with the hand at yaw `yaw` (of the TCP's x axis, as the
-    /// streams certified it; `tamp::motion::release_turns`) rather than the yaw nearest the
+    /// streams certified it; `tamp::release_turns`) rather than the yaw nearest the
     /// heading from the base. `None` keeps the heading.
     pub fn with_hand_yaw(mut self, yaw: Option<f64>) -> Self {
         self.hand_yaw = yaw;

@@ -1,7 +1,7 @@
 //! Tunables of action execution: speeds, tolerances and timeouts of the executor's segments
 //! and gripper events, in one struct with the few values derived from them.
 
-use crate::tamp::motion::MotionParams;
+use crate::tamp::MotionParams;
 
 /// Tunables of action execution (metres, seconds).
 #[derive(Clone, Copy, Debug, PartialEq)]

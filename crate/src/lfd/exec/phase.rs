@@ -6,10 +6,10 @@ use super::params::ExecParams;
 use super::steps::{Phase, Via};
 use super::ActionExec;
 use crate::sim::{GripperCommand, World};
-use crate::tamp::action::{ActionKind, Placement};
-use crate::tamp::motion::rise_before_action;
+use crate::tamp::rise_before_action;
+use crate::tamp::{ActionKind, Placement};
 
-use crate::lfd::skill::{skill_key, SegmentKind, SkillLibrary};
+use crate::lfd::{skill_key, SegmentKind, SkillLibrary};
 
 /// Below this [`panda::limit_margin`] (of a joint's range) an action starts by unwinding the
 /// arm ([`Via::Unwind`]).

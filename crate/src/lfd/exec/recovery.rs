@@ -7,8 +7,8 @@ use nalgebra::{Isometry3, Translation3};
 use super::steps::{no_transit, Via};
 use super::{ActionExec, Running};
 use crate::sim::World;
-use crate::tamp::action::ActionKind;
-use crate::tamp::motion::transit_height;
+use crate::tamp::transit_height;
+use crate::tamp::ActionKind;
 
 impl ActionExec {
     /// When the planned segment `r` would sweep a carried body into another body, or a learned

@@ -3,10 +3,10 @@
 use nalgebra::Isometry3;
 
 use super::steps::{Anchor, Phase};
-use crate::lfd::skill::SkillSegment;
+use crate::lfd::SkillSegment;
 use crate::sim::{GripperCommand, WorldEvent};
-use crate::tamp::action::ActionKind;
-use crate::tamp::motion::MotionParams;
+use crate::tamp::ActionKind;
+use crate::tamp::MotionParams;
 
 /// The running execution of one action.
 #[derive(Clone, Debug)]

@@ -3,7 +3,7 @@
 use nalgebra::Vector3;
 
 use crate::sim::GripperCommand;
-use crate::tamp::action::Placement;
+use crate::tamp::Placement;
 
 /// One step of an action's motion.
 #[derive(Clone, Debug, PartialEq)]

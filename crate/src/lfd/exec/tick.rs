@@ -8,10 +8,10 @@ use super::recovery::{rise_by_ready, stuck_lift, unwound};
 use super::steps::{no_transit, Phase, Via};
 use super::via::{anchor_frame, pull_stroke, ViaPose};
 use super::{ActionExec, ExecParams, ExecStatus, Running};
-use crate::lfd::skill::SkillLibrary;
+use crate::lfd::SkillLibrary;
 use crate::sim::{GripperCommand, World, WorldEvent};
-use crate::tamp::action::ActionKind;
-use crate::tamp::motion::{joint_recovery, transit_height, LiveArm, RecoveryRoute};
+use crate::tamp::ActionKind;
+use crate::tamp::{joint_recovery, transit_height, LiveArm, RecoveryRoute};
 
 impl ActionExec {
     /// Commands the arm for this tick, steps the world once, and reports.

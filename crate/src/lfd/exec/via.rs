@@ -5,11 +5,11 @@ use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 
 use super::steps::{Anchor, Via};
 use super::ActionExec;
-use crate::lfd::skill::stroke_frame;
+use crate::lfd::stroke_frame;
 use crate::sim::geometry::{raised, rest_pose, rest_pose_on, tcp_for_body_pose};
 use crate::sim::World;
-use crate::tamp::action::{ActionKind, Placement};
-use crate::tamp::motion::{grasp_pose, release_turns};
+use crate::tamp::{grasp_pose, release_turns};
+use crate::tamp::{ActionKind, Placement};
 
 /// Centre + yaw of a pose (the demo's anchor-frame convention).
 pub(super) fn anchor_frame(p: &Isometry3<f64>) -> Isometry3<f64> {
@@ -174,7 +174,7 @@ pub(super) struct PullStroke {
 }
 
 impl PullStroke {
-    /// The stroke's skill frame (`lfd::skill::stroke_frame`).
+    /// The stroke's skill frame (`lfd::stroke_frame`).
     pub(super) fn frame(&self) -> Isometry3<f64> {
         stroke_frame(
             &Point3::from(self.contact.translation.vector),

@@ -3,9 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::lfd::control::Replan;
-use crate::sim::snapshot::WorldSnapshot;
+use crate::lfd::Replan;
 use crate::sim::MoveOutcome;
+use crate::sim::WorldSnapshot;
 
 /// What the loop is doing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]

@@ -2,8 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::lfd::control::{FailReason, Replan};
-use crate::sim::snapshot::WorldSnapshot;
+use crate::lfd::{FailReason, Replan};
+use crate::sim::WorldSnapshot;
 
 use super::options::SessionOptions;
 

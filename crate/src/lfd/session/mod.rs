@@ -37,19 +37,20 @@ mod replay;
 mod tick;
 mod view;
 
-pub use super::disturb::motion::Moving;
-pub use super::disturb::{Injection, TcpPush};
-pub use super::skill::SkillKind;
-pub use crate::sim::benchmark::BenchmarkSources;
+use super::disturb::motion::{inject_during_motion, Moving};
+use super::disturb::Injection;
+use crate::sim::BenchmarkSources;
 pub use frame::{EePoint, Frame, PerturbOutcome, Status, StatusKind};
 pub use log::{ActionRecord, EpisodeEvent, EpisodeLog, EpisodeResult};
-pub use options::{demo_actions, mix, sources_for, SessionError, SessionOptions, SessionParams};
+pub use options::{
+    demo_actions, mix_seed, sources_for, SessionError, SessionOptions, SessionParams,
+};
 
 use nalgebra::Vector3;
 use std::sync::Arc;
 
 use crate::pddl::ObjectDecl;
-use crate::sim::snapshot::WorldSnapshot;
+use crate::sim::WorldSnapshot;
 use crate::sim::{Refused, SceneGraph, World};
 
 use super::catalogue::Level;
@@ -61,7 +62,7 @@ use super::skill::SkillLibrary;
 use crate::tamp::Binding;
 use options::{demo_hints, PlacementHints};
 
-/// The stream of seeds of injected disturbances: injection `n` is seeded `mix(seed, base + n)`.
+/// The stream of seeds of injected disturbances: injection `n` is seeded `mix_seed(seed, base + n)`.
 const INJECT_SEED_BASE: u64 = 1_000_003;
 
 /// A closed-loop episode stepped by the caller.
@@ -140,15 +141,15 @@ impl Session {
             Ok(m) => SessionError::Motions(m),
             Err(pddl) => SessionError::Lfd(super::LfdError::Model(pddl)),
         })?);
-        let world = crate::sim::json_input::world_from_json(scene_json.unwrap_or(&files.scene))?;
+        let world = crate::sim::world_from_json(scene_json.unwrap_or(&files.scene))?;
         let world = World::from_snapshot(&world.snapshot())?.with_motions(Arc::clone(&motions));
         motions
             .check_arms(world.arm_names().len())
             .map_err(SessionError::Json)?;
         // One JSON reader for scenes in the session: a second would add its own copy of the
         // scene's deserialiser to the page's first-load module.
-        let template = crate::sim::json_input::world_from_json(&files.scene)?
-            .with_motions(Arc::clone(&motions));
+        let template =
+            crate::sim::world_from_json(&files.scene)?.with_motions(Arc::clone(&motions));
         let model = DomainModel::new(
             &files.domain,
             &files.file("domain.pddl"),
@@ -274,11 +275,11 @@ impl Session {
     }
 
     /// Moves a block as a user drag does (refused with a reason if impossible, or if no arm
-    /// could work the block where it would lie: [`crate::sim::reach::handleable`]).
+    /// could work the block where it would lie: [`crate::sim::handleable`]).
     pub fn perturb(&mut self, body: &str, position: [f64; 3]) -> Result<PerturbOutcome, Refused> {
         let mut trial = self.world.clone();
         let out = trial.move_block(body, Vector3::new(position[0], position[1], position[2]))?;
-        crate::sim::reach::handleable(&trial, body).map_err(|_| Refused {
+        crate::sim::handleable(&trial, body).map_err(|_| Refused {
             body: body.to_string(),
             reason: if trial.hook_names().is_empty() {
                 "no arm could grasp it there (beyond every arm's reach)".into()
@@ -363,12 +364,10 @@ impl Session {
                 level.to_ascii_lowercase()
             )));
         };
-        let seed = mix(self.options.seed, INJECT_SEED_BASE + self.injections);
+        let seed = mix_seed(self.options.seed, INJECT_SEED_BASE + self.injections);
         match (parsed, self.moving()) {
             // While the arm moves, L1 acts on that motion: the approached body or the hand.
-            (Level::L1, Some(m)) => {
-                super::disturb::motion::inject_during_motion(world, &self.trace, &m, seed)
-            }
+            (Level::L1, Some(m)) => inject_during_motion(world, &self.trace, &m, seed),
             _ => {
                 let busy: Vec<usize> = self.exec.iter().map(ActionExec::arm).collect();
                 super::disturb::inject(world, parsed, &self.trace, &busy, seed)

@@ -6,16 +6,16 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use crate::lfd::catalogue::{Method, Mode};
-use crate::lfd::control::ControlParams;
-use crate::lfd::exec::ExecParams;
-use crate::lfd::skill::SkillKind;
+use crate::lfd::ControlParams;
+use crate::lfd::ExecParams;
 use crate::lfd::LfdError;
-use crate::sim::benchmark::Benchmark;
-use crate::sim::motions::{MotionKind, Onto};
-use crate::sim::snapshot::BodyKind;
+use crate::lfd::SkillKind;
+use crate::lfd::{Method, Mode};
+use crate::sim::Benchmark;
+use crate::sim::BodyKind;
 use crate::sim::World;
-use crate::tamp::streams::StreamParams;
+use crate::sim::{MotionKind, Onto};
+use crate::tamp::StreamParams;
 
 /// How a session is set up (JSON: snake_case keys, defaults for all but `benchmark`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -43,15 +43,15 @@ pub struct SessionOptions {
 }
 
 /// The files of benchmark `b`'s template task, or of its generated tower task with `blocks`
-/// blocks ([`crate::sim::generate::tower_task`]).
+/// blocks ([`crate::sim::tower_task`]).
 pub fn sources_for(
     b: Benchmark,
     blocks: Option<usize>,
-) -> Result<crate::sim::benchmark::BenchmarkSources, SessionError> {
+) -> Result<crate::sim::BenchmarkSources, SessionError> {
     Ok(match blocks {
         None => b.sources()?,
         #[cfg(not(first_load))]
-        Some(n) => crate::sim::generate::tower_task(b, n)?,
+        Some(n) => crate::sim::tower_task(b, n)?,
         // Recording a generated task's demonstration needs the scripted expert, which the page's
         // first-load module leaves out.
         #[cfg(first_load)]
@@ -74,7 +74,7 @@ pub enum SessionError {
     Scene(#[from] crate::sim::SceneError),
     /// The domain's `motions.json` is unusable.
     #[error(transparent)]
-    Motions(#[from] crate::sim::motions::MotionsError),
+    Motions(#[from] crate::sim::MotionsError),
     /// A JSON document (demo, episode) is malformed.
     #[error("{0}")]
     Json(String),
@@ -112,11 +112,11 @@ impl Default for SessionParams {
 /// a [`crate::sim::demo::Demonstration`]: a bad value anywhere in it, or malformed JSON, is refused
 /// with its path (`demo: actions[2].samples[5][1]: …`) rather than leaving its skills unlearned.
 pub fn demo_actions(demo_json: &str) -> Result<Vec<String>, SessionError> {
-    let refused = |e: crate::sim::json_input::JsonError| SessionError::Json(format!("demo: {e}"));
+    let refused = |e: crate::sim::JsonError| SessionError::Json(format!("demo: {e}"));
     let whole = match crate::sim::demo::parse(demo_json) {
         Ok(d) => {
             let normalize =
-                |a: &crate::sim::demo::DemoAction| crate::lfd::demo::normalize_action(&a.action);
+                |a: &crate::sim::demo::DemoAction| crate::lfd::normalize_action(&a.action);
             return Ok(d.actions.iter().map(normalize).collect());
         }
         Err(e) => e,
@@ -140,7 +140,7 @@ pub fn demo_actions(demo_json: &str) -> Result<Vec<String>, SessionError> {
                 .as_str()
                 .or_else(|| a.get("action").and_then(|x| x.as_str()))
                 .or_else(|| a.get("name").and_then(|x| x.as_str()));
-            s.map(crate::lfd::demo::normalize_action).ok_or_else(|| {
+            s.map(crate::lfd::normalize_action).ok_or_else(|| {
                 SessionError::Json(format!("demo: actions[{i}]: expected an action string"))
             })
         })
@@ -195,7 +195,7 @@ pub(super) fn demo_hints(demo_json: &str, world: &World) -> PlacementHints {
 }
 
 /// A seed for the `n`-th random draw of an episode (SplitMix64 of `seed ⊕ n·φ`).
-pub fn mix(seed: u64, n: u64) -> u64 {
+pub fn mix_seed(seed: u64, n: u64) -> u64 {
     let mut z = seed ^ n.wrapping_mul(0x9E37_79B9_7F4A_7C15);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);

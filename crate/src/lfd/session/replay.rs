@@ -3,12 +3,13 @@
 use crate::plan::NoClock;
 
 use super::log::{EpisodeEvent, EpisodeLog, EpisodeResult};
-use super::{facts_of, BenchmarkSources, Session, SessionError, SessionParams};
+use super::{facts_of, Session, SessionError, SessionParams};
+use crate::sim::BenchmarkSources;
 
 impl Session {
     /// Re-runs a logged episode tick by tick (see [`Session::replay_with_sources`]).
     pub fn replay(episode_json: &str) -> Result<Session, SessionError> {
-        let log: EpisodeLog = crate::sim::json_input::from_str(episode_json)
+        let log: EpisodeLog = crate::sim::parse_json(episode_json)
             .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
         let files = super::sources_for(log.options.benchmark, log.options.blocks)?;
         Session::replay_with_sources(&files, episode_json)
@@ -49,7 +50,7 @@ impl Session {
         files: &BenchmarkSources,
         episode_json: &str,
     ) -> Result<Session, SessionError> {
-        let log: EpisodeLog = crate::sim::json_input::from_str(episode_json)
+        let log: EpisodeLog = crate::sim::parse_json(episode_json)
             .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
         let scene = serde_json::to_string(&log.scene)
             .map_err(|e| SessionError::Json(format!("episode: scene: {e}")))?;

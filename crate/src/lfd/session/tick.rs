@@ -2,16 +2,16 @@
 //! and start the next action when none runs, else advance the running skill by one tick and
 //! check the scene; `step` and `run_to_end` repeat it.
 
-use crate::lfd::catalogue::Method;
-use crate::lfd::control::{Controller, Decision, FailReason};
-use crate::lfd::exec::{ActionExec, ExecStatus};
+use crate::lfd::Method;
+use crate::lfd::{ActionExec, ExecStatus};
+use crate::lfd::{Controller, Decision, FailReason};
 use crate::plan::Clock;
 use crate::sim::World;
-use crate::tamp::streams::{StreamBinder, StreamParams};
 use crate::tamp::{classify, ActionKind, Binder, Binding, Placement};
+use crate::tamp::{StreamBinder, StreamParams};
 
 use super::options::PlacementHints;
-use super::{facts_of, mix, objects_of, ActionRecord, Frame, Session};
+use super::{facts_of, mix_seed, objects_of, ActionRecord, Frame, Session};
 
 /// Added to `dt_secs / dt` before it is floored to whole ticks, so a `dt` that is a whole number
 /// of ticks up to rounding runs that number.
@@ -159,7 +159,7 @@ impl Session {
         };
         let mut binder = StreamBinder::new(
             &self.world,
-            mix(self.options.seed, before as u64 + 1),
+            mix_seed(self.options.seed, before as u64 + 1),
             streams,
         )
         .with_hints(&self.hints);

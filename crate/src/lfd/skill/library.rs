@@ -7,7 +7,7 @@ use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
 
 use crate::lqt::{Dmp, DmpParams, FeedbackController, Skill, SkillParams, Trajectory, ViaPoint};
 use crate::sim::demo::DemoAction;
-use crate::sim::motions::{MotionKind, Motions};
+use crate::sim::{MotionKind, Motions};
 
 use super::kind::SkillKind;
 use super::stroke;

@@ -16,7 +16,7 @@
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 
-use crate::lfd::exec::ExecParams;
+use crate::lfd::ExecParams;
 use crate::lqt::{Basis, SkillParams, Trajectory};
 use crate::sim::demo::DemoAction;
 

@@ -13,10 +13,10 @@ use super::{RecorderError, RecorderEvent, RecorderParams, Segment};
 use crate::pddl;
 use crate::pddl::Source;
 use crate::plan::{self, State, Task};
-use crate::sim::benchmark::Benchmark;
 pub(crate) use crate::sim::geometry::gripper_yaw;
-use crate::sim::motions::Motions;
-use crate::sim::snapshot::{BodyKind, WorldSnapshot};
+use crate::sim::Benchmark;
+use crate::sim::Motions;
+use crate::sim::{BodyKind, WorldSnapshot};
 use crate::sim::{GripperCommand, SceneGraph, World, WorldEvent};
 use nalgebra::Isometry3;
 use std::sync::Arc;
@@ -99,8 +99,8 @@ pub(super) struct Checkpoint {
 ///
 /// ```
 /// use logic_lfd::recorder::{Recorder, RecorderOptions};
-/// use logic_lfd::recorder::synth::Edit;
-/// use logic_lfd::sim::benchmark::Benchmark;
+/// use logic_lfd::recorder::Edit;
+/// use logic_lfd::sim::Benchmark;
 /// let b = Benchmark::B1;
 /// let mut rec = Recorder::new(&b.scene_snapshot(), b.domain_pddl(), RecorderOptions::default()).unwrap();
 /// // Quick mode: drag block c onto block d; the arm motion is synthesised and segmented.
@@ -436,7 +436,7 @@ impl Recorder {
     pub fn set_goal(&mut self, goal: Vec<String>) -> Result<(), RecorderError> {
         let mut norm = Vec::with_capacity(goal.len());
         for (i, g) in goal.iter().enumerate() {
-            let n = crate::sim::scene_graph::normalise(g);
+            let n = crate::sim::normalise(g);
             if self.task.fact_id(&n).is_none() && !self.task.static_facts.contains(&n) {
                 return Err(RecorderError::Input {
                     path: format!("[{i}]"),

@@ -4,8 +4,8 @@
 
 use super::{model_err, sorted_facts, ActionRec, Cause, Recorder};
 use crate::plan::State;
-use crate::recorder::recording::{ArmRef, GripperPose, GripperState, HandMove, RawSample};
 use crate::recorder::RecorderError;
+use crate::recorder::{ArmRef, GripperPose, GripperState, HandMove, RawSample};
 use crate::sim::panda;
 use crate::sim::{GripperCommand, WorldEvent};
 use nalgebra::{Isometry3, Translation3, Vector3};

@@ -5,7 +5,7 @@
 use super::{gripper_yaw, ActionRec, Cause, Recorder};
 use crate::plan::State;
 use crate::recorder::{RecorderError, Segment, Taught, TaughtDemo};
-use crate::sim::demo::{AnchorPose, DemoAction, Demonstration, GripperEvent, KeyPoint};
+use crate::sim::demo::{AnchorPose, DemoAction, Demonstration, GripperChange, KeyPoint};
 use crate::sim::geometry::wrap;
 use crate::sim::WorldEvent;
 use nalgebra::{Isometry3, Point3};
@@ -217,15 +217,15 @@ impl Recorder {
     }
 
     /// `arm`'s gripper command at `start` and every change up to `end` (steps from `start`).
-    fn gripper_events(&self, arm: usize, start: usize, end: usize) -> Vec<GripperEvent> {
-        let mut gripper = vec![GripperEvent {
+    fn gripper_events(&self, arm: usize, start: usize, end: usize) -> Vec<GripperChange> {
+        let mut gripper = vec![GripperChange {
             step: 0,
             command: self.log_grip[start][arm],
         }];
         for k in start + 1..=end {
             let g = self.log_grip[k][arm];
             if g != self.log_grip[k - 1][arm] {
-                gripper.push(GripperEvent {
+                gripper.push(GripperChange {
                     step: k - start,
                     command: g,
                 });

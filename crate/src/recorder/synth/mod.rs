@@ -35,10 +35,10 @@ use super::recording::{
     ArmRef, GripperPose, GripperState, HandMove, RawRecording, RawSample, RecordingScene,
 };
 use super::{Recorder, RecorderError, RecorderEvent};
-use crate::sim::benchmark::Benchmark;
 use crate::sim::demo::{self, Demonstration};
 use crate::sim::geometry;
-use crate::sim::snapshot::BodyKind;
+use crate::sim::Benchmark;
+use crate::sim::BodyKind;
 use crate::sim::World;
 use serde::{Deserialize, Serialize};
 

@@ -3,7 +3,7 @@
 
 use super::params::{refused, SynthParams};
 use crate::recorder::engine::gripper_sample;
-use crate::recorder::recording::{ArmRef, RawSample};
+use crate::recorder::{ArmRef, RawSample};
 use crate::recorder::{Recorder, RecorderError};
 use crate::sim::demo::min_jerk;
 use crate::sim::geometry;

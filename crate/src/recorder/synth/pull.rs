@@ -5,11 +5,11 @@ use super::motion::{
     at_height, highest_top, motion_start, reaches, resolve_arms, PUT_DOWN_CLEARANCE,
 };
 use super::params::{refused, SynthParams};
-use crate::recorder::recording::{ArmRef, RawSample};
+use crate::recorder::{ArmRef, RawSample};
 use crate::recorder::{Recorder, RecorderError};
 use crate::sim::demo::{pull_hook_poses, PULL_TARGET_RADIUS};
 use crate::sim::geometry;
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
 use crate::sim::{GripperCommand, World};
 use nalgebra::{Isometry3, Vector3};
 

@@ -1,8 +1,8 @@
 //! A demonstration as data: actions, key points, via-points and anchors, its errors and JSON.
 
-use crate::sim::benchmark::Benchmark;
 use crate::sim::geometry::{gripper_yaw, wrap, yaw_of};
 use crate::sim::world::{GripperCommand, Violation};
+use crate::sim::Benchmark;
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
 
@@ -35,7 +35,7 @@ impl AnchorPose {
 
 /// A gripper command at a sample index.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct GripperEvent {
+pub struct GripperChange {
     /// Sample index (0-based, within the action).
     pub step: usize,
     /// The command from that step on.
@@ -83,7 +83,7 @@ pub struct DemoAction {
     /// `[x, y, z, yaw]` of the TCP in the anchor frame, one per 10 ms step (see the module docs).
     pub samples: Vec<[f64; 4]>,
     /// Gripper commands and the samples they start at.
-    pub gripper: Vec<GripperEvent>,
+    pub gripper: Vec<GripperChange>,
     /// Named samples (via-points).
     pub key_points: Vec<KeyPoint>,
     /// The via-points of the action's skill (a pull's; empty for the others).
@@ -186,15 +186,15 @@ pub(super) fn anchor_sample(
 }
 
 /// Parses a demo JSON text; a value of the wrong type is named by its path and position
-/// (`actions[2].samples[5][1]: invalid type: …`, see [`crate::sim::json_input`]).
+/// (`actions[2].samples[5][1]: invalid type: …`, see [`crate::sim::parse_json`]).
 pub fn from_json(text: &str) -> Result<Demonstration, DemoError> {
     parse(text).map_err(|e| DemoError::Json(e.to_string()))
 }
 
 /// [`from_json`] with the error's path and position apart. The only reader of demonstrations:
 /// a second one would add its own copy of the deserialiser to the page's first-load module.
-pub fn parse(text: &str) -> Result<Demonstration, crate::sim::json_input::JsonError> {
-    crate::sim::json_input::from_str(text)
+pub fn parse(text: &str) -> Result<Demonstration, crate::sim::JsonError> {
+    crate::sim::parse_json(text)
 }
 
 /// The committed demonstration of a benchmark (`domains/<dir>/demo.json`).

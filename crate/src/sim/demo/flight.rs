@@ -3,7 +3,7 @@
 //! joint-space recovery of a grasp or release pose Cartesian tracking cannot reach, and the
 //! approach height that still fits under the top of the workspace.
 
-use super::data::{anchor_sample, fail, min_jerk, DemoAction, DemoError, GripperEvent, KeyPoint};
+use super::data::{anchor_sample, fail, min_jerk, DemoAction, DemoError, GripperChange, KeyPoint};
 use super::segment::{Seg, MIN_TRANSFER_TIME};
 use crate::sim::geometry::yaw_of;
 use crate::sim::world::{GripperCommand, World, WorldEvent};
@@ -123,7 +123,7 @@ pub(super) fn execute(
         let n = ((seg.duration / dt).round() as usize).max(1);
         if let Some(g) = seg.gripper {
             grip = g;
-            out.gripper.push(GripperEvent {
+            out.gripper.push(GripperChange {
                 step: out.samples.len(),
                 command: g,
             });

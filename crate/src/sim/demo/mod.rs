@@ -32,7 +32,7 @@ mod template;
 pub(crate) use data::min_jerk;
 pub use data::{
     committed, from_json, parse, AnchorPose, DemoAction, DemoError, DemoViaPoint, Demonstration,
-    GripperEvent, KeyPoint,
+    GripperChange, KeyPoint,
 };
 pub use expert::{record, record_script, ExpertParams};
 pub use pull::{

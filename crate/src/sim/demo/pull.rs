@@ -1,7 +1,7 @@
 //! The hook's pull strokes: where the hook lies at contact behind a block and after pulling
 //! it towards an arm, shared by the expert, the disturbances, the executor and the streams.
 
-use crate::sim::benchmark::BLOCK_SIZE;
+use crate::sim::BLOCK_SIZE;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
 /// Distance from the arm's base axis (m) to which the expert pulls a block with the hook: inside

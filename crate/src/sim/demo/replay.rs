@@ -2,12 +2,12 @@
 //! scene graph sees them.
 
 use super::data::{committed, fail, AnchorPose, DemoAction, DemoError, Demonstration};
-use crate::sim::benchmark::Benchmark;
 use crate::sim::geometry::yaw_of;
-use crate::sim::motions::MotionKind;
 use crate::sim::panda;
-use crate::sim::scene_graph::SceneGraph;
 use crate::sim::world::World;
+use crate::sim::Benchmark;
+use crate::sim::MotionKind;
+use crate::sim::SceneGraph;
 use nalgebra::{Isometry3, Translation3};
 
 /// Replays a demonstration in `world` (which should be the template scene): each action's

@@ -18,9 +18,9 @@ use serde::{Deserialize, Serialize};
 
 use super::data::{fail, DemoError};
 use super::segment::Step;
-use crate::sim::motions::{MotionKind, Onto};
-use crate::sim::snapshot::BodyKind;
 use crate::sim::world::World;
+use crate::sim::BodyKind;
+use crate::sim::{MotionKind, Onto};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 
 /// One step of an expert script.

@@ -11,10 +11,10 @@
 //! tower, not in a tower's shadow ([`in_shadow`]), no other tower in the way.
 
 use super::names::err;
-use crate::sim::benchmark::{block, Benchmark, BLOCK_SIZE};
-use crate::sim::snapshot::{ArmSnapshot, BodyKind, BodySnapshot, ShapeSnapshot, WorldSnapshot};
 use crate::sim::world::World;
 use crate::sim::SceneError;
+use crate::sim::{block, Benchmark, BLOCK_SIZE};
+use crate::sim::{ArmSnapshot, BodyKind, BodySnapshot, ShapeSnapshot, WorldSnapshot};
 
 /// Distance between neighbouring spots of the layout grid (m): a 6 cm block plus room for the
 /// open fingers on both sides.
@@ -158,7 +158,7 @@ fn in_shadow(s: &WorldSnapshot, t: [f64; 2], p: [f64; 2]) -> bool {
 }
 
 /// Whether some arm can grasp the top of a tower of `h` blocks on spot `p` and come down onto
-/// it ([`crate::sim::reach::handleable`], IK), in the template scene without its blocks.
+/// it ([`crate::sim::handleable`], IK), in the template scene without its blocks.
 fn top_reached(s: &WorldSnapshot, p: [f64; 2], h: usize) -> bool {
     let mut probe = s.clone();
     probe.bodies.retain(|b| b.kind != BodyKind::Block);
@@ -168,7 +168,7 @@ fn top_reached(s: &WorldSnapshot, p: [f64; 2], h: usize) -> bool {
         body.pose.position[2] += (h - 1 - i) as f64 * BLOCK_SIZE;
         probe.bodies.push(body);
     }
-    World::from_snapshot(&probe).is_ok_and(|w| crate::sim::reach::handleable(&w, &names[0]).is_ok())
+    World::from_snapshot(&probe).is_ok_and(|w| crate::sim::handleable(&w, &names[0]).is_ok())
 }
 
 /// The grid spots of `area` that some arm works, nearest the area's centre first.

@@ -4,13 +4,13 @@
 use super::layout::{spots, start_area, Area, TAKEN_RADIUS};
 use super::names::err;
 use crate::plan::{Algorithm, HeuristicKind, NoClock, SearchConfig};
-use crate::sim::benchmark::Benchmark;
 use crate::sim::demo::{Script, ScriptStep};
-use crate::sim::motions::{MotionKind, Onto};
-use crate::sim::scene_graph::Fact;
-use crate::sim::snapshot::{BodyKind, WorldSnapshot};
 use crate::sim::world::World;
+use crate::sim::Benchmark;
+use crate::sim::Fact;
 use crate::sim::SceneError;
+use crate::sim::{BodyKind, WorldSnapshot};
+use crate::sim::{MotionKind, Onto};
 
 /// Expansions allowed to the planner of a generated demonstration.
 const PLAN_MAX_NODES: u64 = 20_000;
@@ -174,7 +174,7 @@ pub(super) fn tower_script(
                                 .all(|(_, q)| libm::hypot(p[0] - q[0], p[1] - q[1]) >= TAKEN_RADIUS)
                         })
                         .ok_or_else(|| err(format!("{action}: no free spot")))?;
-                    step.to = Some([p[0], p[1], 0.5 * crate::sim::benchmark::BLOCK_SIZE]);
+                    step.to = Some([p[0], p[1], 0.5 * crate::sim::BLOCK_SIZE]);
                     if let Some(x) = &x {
                         at.push((x.clone(), p));
                     }

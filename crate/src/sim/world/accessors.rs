@@ -2,9 +2,9 @@
 //! arms, inverse kinematics from an arm's joints, overlaps and heights for planners.
 
 use super::{World, WorldParams};
-use crate::sim::motions::Motions;
 use crate::sim::panda::{self, IkParams, IkSolution, Unreachable, DOF};
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
+use crate::sim::Motions;
 use nalgebra::{Isometry3, Point3, Vector3};
 use parry3d_f64::shape::{Capsule, Cuboid};
 use std::sync::Arc;

@@ -3,7 +3,7 @@
 //! penetration depth with another body.
 
 use crate::sim::collide;
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
 use nalgebra::{Isometry3, Point3, Vector3};
 use parry3d_f64::shape::Cuboid;
 

@@ -4,7 +4,7 @@
 use super::settle::Settle;
 use super::{World, WorldEvent};
 use crate::sim::collide;
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
 use nalgebra::{Isometry3, Vector3};
 use parry3d_f64::query::ShapeCastOptions;
 

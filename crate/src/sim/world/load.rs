@@ -4,7 +4,10 @@
 use super::state::{scene_err, SceneError, LIMIT_SLACK};
 use super::{Arm, Body, GripperCommand, Region, Violation, World, WorldParams};
 use crate::sim::panda::{self, DOF};
-use crate::sim::snapshot::*;
+use crate::sim::{
+    ArmSnapshot, BodyKind, BodySnapshot, CapsuleSnapshot, CuboidSnapshot, PartSnapshot,
+    PoseSnapshot, RegionSnapshot, ShapeSnapshot, WorldSnapshot, SNAPSHOT_VERSION,
+};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::shape::Cuboid;
 
@@ -451,7 +454,7 @@ impl World {
             floor_z: s.floor_z,
             // A shipped benchmark's world reads its facts through that benchmark's declaration
             // until another is installed (`World::with_motions`).
-            motions: crate::sim::benchmark::Benchmark::parse(&s.name)
+            motions: crate::sim::Benchmark::parse(&s.name)
                 .map(|b| b.motions())
                 .unwrap_or_default(),
             regions,

@@ -5,7 +5,7 @@ use super::state::DEPTH_EPSILON;
 use super::{Body, World, LINK_TOLERANCE};
 use crate::sim::collide;
 use crate::sim::panda::{self, DOF};
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
 use nalgebra::{Isometry3, Point3};
 use parry3d_f64::shape::{Capsule, Cuboid};
 

@@ -5,8 +5,8 @@
 use super::{World, WorldEvent};
 use crate::sim::collide;
 use crate::sim::geometry::yaw_of;
-use crate::sim::motions::Relation;
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
+use crate::sim::Relation;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::query::ShapeCastOptions;
 

@@ -1,9 +1,9 @@
 //! The world's state: the [`World`] itself, its tunables and the small types its stages share.
 
 use super::body::Body;
-use crate::sim::motions::Motions;
 use crate::sim::panda::{self, IkParams, DOF};
-use crate::sim::snapshot::ReachSnapshot;
+use crate::sim::Motions;
+use crate::sim::ReachSnapshot;
 use nalgebra::Isometry3;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;

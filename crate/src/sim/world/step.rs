@@ -7,7 +7,7 @@ use super::{Body, GripperCommand, SimError, World, LINK_TOLERANCE};
 use crate::sim::collide;
 use crate::sim::fast_math::norm3;
 use crate::sim::panda::{self, DOF};
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
 use nalgebra::{Isometry3, Point3, Vector3};
 use serde::{Deserialize, Serialize};
 use std::fmt;

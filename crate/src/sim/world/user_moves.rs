@@ -7,7 +7,7 @@ use super::settle::Settle;
 use super::{Body, World};
 use crate::sim::collide;
 use crate::sim::geometry::yaw_of;
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::shape::Cuboid;
 use serde::{Deserialize, Serialize};
@@ -232,7 +232,7 @@ impl World {
         {
             return Err(refuse("the name is taken".into()));
         }
-        let h = 0.5 * crate::sim::benchmark::BLOCK_SIZE;
+        let h = 0.5 * crate::sim::BLOCK_SIZE;
         let mut trial = self.clone();
         trial.bodies.push(Body {
             name: name.to_string(),

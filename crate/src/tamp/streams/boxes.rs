@@ -3,7 +3,7 @@
 use nalgebra::{Isometry3, Vector3};
 use parry3d_f64::shape::Cuboid;
 
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
 
 /// A table or shelf: no action moves it.
 #[derive(Clone, Debug)]

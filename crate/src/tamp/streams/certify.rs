@@ -13,7 +13,7 @@ use super::{fmt_point, Geo, Predicted, StreamBinder};
 use crate::sim::geometry::{link_capsules, HAND_LINK};
 use crate::sim::panda::{self, DOF};
 use crate::sim::LINK_TOLERANCE;
-use crate::tamp::motion::{joint_recovery, transit_height, JointMoves, RecoveryRoute};
+use crate::tamp::{joint_recovery, transit_height, JointMoves, RecoveryRoute};
 
 /// Why a candidate was not certified (counted in [`StreamStats`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -9,7 +9,7 @@ use super::boxes::box_aabb;
 use super::obstacles::shrunk_by;
 use super::{Geo, Held, Predicted, StreamBinder, Transit};
 use crate::sim::geometry::raised;
-use crate::tamp::motion::grasp_pose;
+use crate::tamp::grasp_pose;
 
 impl StreamBinder<'_> {
     /// Certifies `arm` grasping `body` (approach from above, close, lift) and rolls `geo` on:

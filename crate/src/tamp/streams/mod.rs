@@ -32,7 +32,7 @@
 //!
 //! **Transits.** When an action's approach (from where the arm is to its pre-grasp, pre-release
 //! or pre-stroke pose) hits something, it is certified again as a transit: straight up to the
-//! TCP height `z` of `tamp::motion::transit_height` (what the arm carries 3 cm above every top
+//! TCP height `z` of `tamp::transit_height` (what the arm carries 3 cm above every top
 //! between the two), across, straight down. The binding records `z` and the executor flies
 //! exactly that (`ActionExec::with_transit`).
 //!
@@ -58,7 +58,7 @@ use super::{BindFailure, Binder};
 use crate::plan::{Operator, Task};
 use crate::sim::demo::PULL_LIFT;
 use crate::sim::panda::{self, IkParams, DOF};
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
 use crate::sim::World;
 
 mod boxes;
@@ -170,8 +170,8 @@ pub struct StreamBinder<'w> {
     fixed: Vec<FixedBody>,
     /// Boxes of every movable body in its own frame.
     local: BTreeMap<String, Vec<(Isometry3<f64>, Cuboid)>>,
-    regions: Vec<crate::sim::snapshot::RegionSnapshot>,
-    reach: Vec<crate::sim::snapshot::ReachSnapshot>,
+    regions: Vec<crate::sim::RegionSnapshot>,
+    reach: Vec<crate::sim::ReachSnapshot>,
     rng: Pcg64Mcg,
     params: StreamParams,
     track_ik: IkParams,

@@ -6,7 +6,7 @@ use parry3d_f64::shape::Cuboid;
 
 use super::boxes::{box_aabb, Obstacle};
 use super::{Geo, StreamBinder};
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
 
 impl StreamBinder<'_> {
     /// Half the size of block `body` (its world AABB's), or [`NON_BLOCK_HALF_EXTENT`] each way

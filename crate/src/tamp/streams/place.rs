@@ -9,11 +9,11 @@ use rand::Rng;
 use super::boxes::box_aabb;
 use super::{Geo, Held, StreamBinder, Transit};
 use crate::sim::geometry::{grasp_pose_at, hand_within, raised};
-use crate::sim::snapshot::BodyKind;
 use crate::sim::yaw_of;
-use crate::tamp::action::PlanarPose;
-use crate::tamp::action::ReleaseTarget;
-use crate::tamp::motion::release_turns;
+use crate::sim::BodyKind;
+use crate::tamp::release_turns;
+use crate::tamp::PlanarPose;
+use crate::tamp::ReleaseTarget;
 
 /// A support surface a body may be put down on: its top face's x and y ranges and its height
 /// (m).

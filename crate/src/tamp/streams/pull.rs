@@ -9,7 +9,7 @@ use super::boxes::Obstacle;
 use super::{Geo, Held, StreamBinder, Transit};
 use crate::sim::demo::{pull_hook_poses_turned, PULL_TARGET_RADIUS, PULL_TURNS};
 use crate::sim::geometry::raised;
-use crate::sim::snapshot::BodyKind;
+use crate::sim::BodyKind;
 
 impl StreamBinder<'_> {
     /// The pose a pull stroke of `arm` leaves `body` at (shape cast of the carried hook along
