@@ -69,6 +69,7 @@ mod benchmark;
 pub mod collide;
 pub mod demo;
 mod fast_math;
+mod folder;
 mod generate;
 pub mod geometry;
 mod json_input;
@@ -80,6 +81,9 @@ mod snapshot;
 mod world;
 
 pub use benchmark::{goal_facts, Benchmark, BenchmarkSources, BLOCK_COLORS, BLOCK_SIZE};
+pub use folder::{
+    content_hash, FileDifference, FolderError, TaskFolder, FOLDER_FILES, REQUIRED_FILES,
+};
 pub use generate::{
     block_names, block_range, block_ranges_text, tower_goal, tower_heights, tower_task, MAX_BLOCKS,
     MAX_BLOCKS_B3, MAX_TOWER_HEIGHT, MIN_BLOCKS_B1, MIN_BLOCKS_B3, SPOT_SPACING, TOWER_SPACING,
