@@ -155,6 +155,7 @@ fn sources_with_goal(
     );
     let scene = serde_json::to_string(&t.scene).map_err(|e| RecorderError::Model(e.to_string()))?;
     Ok(BenchmarkSources {
+        folder: None,
         dir: files.dir,
         domain: files.domain,
         problem,

@@ -174,6 +174,7 @@ impl Benchmark {
             message: e.to_string(),
         })?;
         Ok(BenchmarkSources {
+            folder: None,
             dir: self.dir_name().to_string(),
             domain: self.domain_pddl().to_string(),
             problem: self.problem_pddl().to_string(),
@@ -364,6 +365,8 @@ impl Benchmark {
 /// The text of a benchmark's files (a taught task's too: its own problem, scene and demo).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct BenchmarkSources {
+    /// The task folder the files come from (`None`: a shipped benchmark or a generated task).
+    pub folder: Option<super::folder::FolderRecord>,
     /// Directory name under `domains/`, or a directory's path (for error messages, see
     /// [`BenchmarkSources::file`]).
     pub dir: String,

@@ -48,6 +48,20 @@ pub struct FolderError {
     pub message: String,
 }
 
+/// What an episode log keeps of the task folder it ran on: where it was and each file's hash,
+/// and the files themselves when the log must replay without the folder (the page's Save).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
+pub struct FolderRecord {
+    /// The folder as messages name it.
+    pub dir: String,
+    /// [`content_hash`] of each file but `README.md`, by file name.
+    pub hashes: BTreeMap<String, String>,
+    /// The files' text, by name (absent: replay needs the folder).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub files: Option<BTreeMap<String, String>>,
+}
+
 /// What a folder's file says differs from a record of it (an episode log's hashes).
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct FileDifference {
@@ -124,6 +138,11 @@ impl TaskFolder {
             None => self.record_demo(1)?,
         };
         Ok(BenchmarkSources {
+            folder: Some(FolderRecord {
+                dir: self.dir.clone(),
+                hashes: self.hashes(),
+                files: None,
+            }),
             dir: self.dir.clone(),
             domain: self.text("domain.pddl")?.to_string(),
             problem: self.text("problem.pddl")?.to_string(),
@@ -157,6 +176,43 @@ impl TaskFolder {
             .filter(|(name, _)| name.as_str() != "README.md")
             .map(|(name, text)| (name.clone(), content_hash(text)))
             .collect()
+    }
+
+    /// The folder an episode log recorded with its files (`None` when it kept only hashes).
+    pub fn from_record(record: &FolderRecord) -> Option<TaskFolder> {
+        record.files.as_ref().map(|files| TaskFolder {
+            dir: record.dir.clone(),
+            files: files.clone(),
+        })
+    }
+
+    /// Refuses the folder when a file differs from `record` (an episode log's), naming each
+    /// file with both hashes.
+    pub fn check_against(&self, record: &FolderRecord) -> Result<(), FolderError> {
+        let d = self.differences(&record.hashes);
+        if d.is_empty() {
+            return Ok(());
+        }
+        let hash = |h: &Option<String>| h.clone().unwrap_or_else(|| "no file".into());
+        let files: Vec<String> = d
+            .iter()
+            .map(|d| {
+                format!(
+                    "{} (episode: {}, now: {})",
+                    self.path(&d.file),
+                    hash(&d.recorded),
+                    hash(&d.now)
+                )
+            })
+            .collect();
+        Err(FolderError {
+            path: self.dir.clone(),
+            message: format!(
+                "differs from the folder the episode ran on (from {}): {}",
+                record.dir,
+                files.join(", ")
+            ),
+        })
     }
 
     /// The files whose hash differs from `recorded` (a file on one side only included).

@@ -82,7 +82,8 @@ mod world;
 
 pub use benchmark::{goal_facts, Benchmark, BenchmarkSources, BLOCK_COLORS, BLOCK_SIZE};
 pub use folder::{
-    content_hash, FileDifference, FolderError, TaskFolder, FOLDER_FILES, REQUIRED_FILES,
+    content_hash, FileDifference, FolderError, FolderRecord, TaskFolder, FOLDER_FILES,
+    REQUIRED_FILES,
 };
 pub use generate::{
     block_names, block_range, block_ranges_text, tower_goal, tower_heights, tower_task, MAX_BLOCKS,

@@ -11,6 +11,7 @@
 //!   Dijkstra over every reachable state whenever LogicIn does not hold (when it does, the
 //!   paper's rule follows the demonstration: its cost is c_k, never below the minimum).
 
+mod folder_replay;
 mod paper_naming;
 
 use std::collections::BTreeSet;

@@ -17,7 +17,7 @@ use logic_lfd::plan::NoClock;
 use logic_lfd::sim::demo::{self, ExpertParams, Script};
 use logic_lfd::sim::Motions;
 use logic_lfd::sim::World;
-use logic_lfd::sim::{goal_facts, Benchmark, BenchmarkSources};
+use logic_lfd::sim::{goal_facts, Benchmark, BenchmarkSources, TaskFolder};
 
 const DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../domains/b1-paper-naming");
 
@@ -26,14 +26,9 @@ fn read(file: &str) -> String {
 }
 
 fn sources() -> BenchmarkSources {
-    BenchmarkSources {
-        dir: "b1-paper-naming".into(),
-        domain: read("domain.pddl"),
-        problem: read("problem.pddl"),
-        scene: read("scene.json"),
-        demo: read("demo.json"),
-        motions: read("motions.json"),
-    }
+    TaskFolder::read(std::path::Path::new(DIR))
+        .and_then(|f| f.sources())
+        .unwrap()
 }
 
 /// `(pick-up c panda)` → `(pick panda c)`, `(put-on c d panda)` → `(stack panda c d)`.

@@ -18,6 +18,7 @@ pub fn read(dir: &Path, benchmark: Benchmark) -> Result<BenchmarkSources, String
         benchmark.sources().map_err(|e| e.to_string())?.scene
     };
     Ok(BenchmarkSources {
+        folder: None,
         dir: dir.display().to_string(),
         domain: file("domain.pddl")?,
         problem: file("problem.pddl")?,

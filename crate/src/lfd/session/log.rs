@@ -147,6 +147,9 @@ pub struct EpisodeLog {
     pub scene: WorldSnapshot,
     /// The demonstration JSON if not the benchmark's own.
     pub demo_json: Option<String>,
+    /// The task folder the episode ran on (absent for a benchmark's task).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub folder: Option<crate::sim::FolderRecord>,
     /// External events.
     pub events: Vec<EpisodeEvent>,
     /// Every replan.

@@ -75,6 +75,9 @@ pub enum SessionError {
     /// The domain's `motions.json` is unusable.
     #[error(transparent)]
     Motions(#[from] crate::sim::MotionsError),
+    /// A task folder is incomplete, unreadable or not the one an episode ran on.
+    #[error(transparent)]
+    Folder(#[from] crate::sim::FolderError),
     /// A JSON document (demo, episode) is malformed.
     #[error("{0}")]
     Json(String),

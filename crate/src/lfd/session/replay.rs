@@ -4,15 +4,46 @@ use crate::plan::NoClock;
 
 use super::log::{EpisodeEvent, EpisodeLog, EpisodeResult};
 use super::{facts_of, Session, SessionError, SessionParams};
-use crate::sim::BenchmarkSources;
+use crate::sim::{BenchmarkSources, TaskFolder};
 
 impl Session {
     /// Re-runs a logged episode tick by tick (see [`Session::replay_with_sources`]).
     pub fn replay(episode_json: &str) -> Result<Session, SessionError> {
         let log: EpisodeLog = crate::sim::parse_json(episode_json)
             .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
-        let files = super::sources_for(log.options.benchmark, log.options.blocks)?;
+        let files = match &log.folder {
+            None => super::sources_for(log.options.benchmark, log.options.blocks)?,
+            Some(record) => match TaskFolder::from_record(record) {
+                Some(folder) => folder.sources()?,
+                None => {
+                    return Err(SessionError::Json(format!(
+                        "episode: it ran on the task folder {}, which the log does not carry: \
+                         replay it with that folder",
+                        record.dir
+                    )))
+                }
+            },
+        };
         Session::replay_with_sources(&files, episode_json)
+    }
+
+    /// Re-runs a logged episode on `folder`, after checking the folder's files are those the
+    /// episode ran on (each file that differs is named).
+    pub fn replay_in_folder(
+        folder: &TaskFolder,
+        episode_json: &str,
+    ) -> Result<Session, SessionError> {
+        let log: EpisodeLog = crate::sim::parse_json(episode_json)
+            .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
+        let Some(record) = &log.folder else {
+            return Err(SessionError::Json(format!(
+                "episode: it ran on benchmark {}'s task, not on a task folder: replay it without {}",
+                log.options.benchmark.as_str(),
+                folder.dir
+            )));
+        };
+        folder.check_against(record)?;
+        Session::replay_with_sources(&folder.sources()?, episode_json)
     }
 
     /// The full log of the episode so far.
@@ -30,6 +61,7 @@ impl Session {
             options: self.options.clone(),
             scene: self.initial.clone(),
             demo_json: self.demo_json.clone(),
+            folder: self.sources.folder.clone(),
             events: self.events.clone(),
             replans: self.controller.replans().to_vec(),
             actions: self.actions.clone(),

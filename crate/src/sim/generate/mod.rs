@@ -143,6 +143,7 @@ pub fn tower_task(b: Benchmark, n: usize) -> Result<BenchmarkSources, SceneError
     let scene = serde_json::to_string(&snap).map_err(|e| err(e.to_string()))?;
     let template = b.sources()?;
     Ok(BenchmarkSources {
+        folder: None,
         scene,
         problem,
         demo,
