@@ -201,12 +201,15 @@ export class SessionControls {
       this.p.status.notice(withLevel(level, r.message), 'info');
       this.p.history.view(null);
       this.p.history.mark(level, withLevel(level, r.message), was, r.frame);
-      // Small moves (L1's few centimetres) are easy to miss: mark where each body was.
-      for (const name of r.moved) {
-        const from = before?.find((b) => b.name === name)?.pose.position;
-        if (from) this.p.view.markMove(name, from);
+      // Small moves (L1's few centimetres) are easy to miss: mark what the notice names — the
+      // pushed hand (a body it nudged on the way is not what was disturbed), else each moved body.
+      if (r.push) this.p.view.markPush(r.push.arm, r.push.from, r.push.to);
+      else {
+        for (const name of r.moved) {
+          const from = before?.find((b) => b.name === name)?.pose.position;
+          if (from) this.p.view.markMove(name, from);
+        }
       }
-      if (r.push && !r.moved.length) this.p.view.markPush(r.push.arm, r.push.from, r.push.to);
       this.p.renderer.render(r.frame);
       if (!this.p.state.playing) await this.play();
     } catch (e) {
