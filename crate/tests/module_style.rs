@@ -13,7 +13,7 @@ use crate::support::source::rust_files;
 
 /// Public submodules below the layers: namespaces for items with generic names (`run`, `plot`,
 /// `record`) or a family of constants and functions read as one (`panda::DOF`).
-const NAMESPACES: [&str; 12] = [
+const NAMESPACES: [&str; 11] = [
     "sim::collide",
     "sim::demo",
     "sim::geometry",
@@ -25,7 +25,6 @@ const NAMESPACES: [&str; 12] = [
     "experiments::hot_paths",
     "experiments::scaling",
     "experiments::scaling::plot",
-    "wasm::reliability",
 ];
 
 /// The library's files (the binary is a crate of its own, with no public surface).
