@@ -358,16 +358,16 @@ struct RawAction {
 impl Motions {
     /// Reads a motions file and checks it against `domain` (see the module documentation).
     pub fn parse(text: &str, file: &str, domain: &Domain) -> Result<Motions, MotionsError> {
-        let raw: RawFile = crate::sim::parse_json(text).map_err(|e| MotionsError {
-            file: file.into(),
-            line: e.line.max(1),
-            column: e.column.max(1),
-            path: if e.path.is_empty() {
-                "$".into()
-            } else {
-                e.path.clone()
-            },
-            message: e.message,
+        let raw = read_raw(text).map_err(|(path, e)| {
+            let full = e.to_string();
+            let suffix = format!(" at line {} column {}", e.line(), e.column());
+            MotionsError {
+                file: file.into(),
+                line: e.line().max(1),
+                column: e.column().max(1),
+                path: if path.is_empty() { "$".into() } else { path },
+                message: full.strip_suffix(&suffix).unwrap_or(&full).to_string(),
+            }
         })?;
         let at = |path: &[&str], message: String| {
             let (line, column) = locate(text, path);
@@ -596,6 +596,25 @@ impl Motions {
         let (name, args) = crate::plan::fact_args(action);
         self.actions.get(name).map(|m| (m, args))
     }
+}
+
+/// The file's entries, an error with the JSON path of the value at fault (`facts.clear`; empty
+/// for the document). The page's first-load module reads the embedded files without paths,
+/// as `sim::parse_json` does there.
+fn read_raw(text: &str) -> Result<RawFile, (String, serde_json::Error)> {
+    let mut de = serde_json::Deserializer::from_str(text);
+    #[cfg(not(first_load))]
+    let raw = serde_path_to_error::deserialize(&mut de).map_err(|e| {
+        let path = e.path().to_string();
+        (
+            if path == "." { String::new() } else { path },
+            e.into_inner(),
+        )
+    })?;
+    #[cfg(first_load)]
+    let raw = RawFile::deserialize(&mut de).map_err(|e| (String::new(), e))?;
+    de.end().map_err(|e| (String::new(), e))?;
+    Ok(raw)
 }
 
 /// The JSON key of an object kind (`arm`, `block`, `hook`, `region`).

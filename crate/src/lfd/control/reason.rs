@@ -77,3 +77,38 @@ pub(super) fn predicate(fact: &str) -> &str {
         .next()
         .unwrap_or("")
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lfd::testing::blocks_task;
+
+    fn decls(names: &[&str]) -> Vec<ObjectDecl> {
+        names
+            .iter()
+            .map(|n| ObjectDecl {
+                name: n.to_string(),
+                ty: "block".into(),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_regrounding_reason_names_only_what_the_scene_shows() {
+        let task = blocks_task(&["a", "b"], &["(handempty)", "(ontable a)"], &["(on a b)"]);
+        let known = decls(&["a", "b"]);
+        let facts = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        // A fact the task has no atom for, with the same objects: no "new objects".
+        let why = reground_reason(&task, &known, &known, &facts(&["(handempty)", "(weird a)"]));
+        assert_eq!(why, "fact the task had no atom for: (weird a)");
+        // A new block and a block gone.
+        let why = reground_reason(&task, &known, &decls(&["a", "e"]), &facts(&["(handempty)"]));
+        assert_eq!(
+            why,
+            "new object in the scene: e; object gone from the scene: b"
+        );
+        // The same objects in another order.
+        let why = reground_reason(&task, &known, &decls(&["b", "a"]), &facts(&["(handempty)"]));
+        assert_eq!(why, "the scene's objects were listed anew");
+    }
+}
