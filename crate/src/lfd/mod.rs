@@ -36,9 +36,9 @@ pub use logic::{
 };
 pub use model::DomainModel;
 pub use session::{
-    demo_actions, mix_seed, sources_for, ActionRecord, EePoint, EpisodeEvent, EpisodeLog,
-    EpisodeResult, Frame, PerturbOutcome, Session, SessionError, SessionOptions, SessionParams,
-    Status, StatusKind,
+    check_folder, demo_actions, demo_trace_of, mix_seed, sources_for, ActionRecord, EePoint,
+    EpisodeEvent, EpisodeLog, EpisodeResult, Frame, PerturbOutcome, Session, SessionError,
+    SessionOptions, SessionParams, Status, StatusKind,
 };
 pub use skill::{
     skill_key, stroke_frame, LearnedSkill, SegmentKind, SkillKind, SkillLibrary, SkillSegment,

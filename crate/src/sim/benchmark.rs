@@ -20,6 +20,7 @@ use super::world::World;
 use super::SceneError;
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::sync::{Arc, OnceLock};
 
 /// Side of a block (m).
@@ -362,11 +363,25 @@ impl Benchmark {
     }
 }
 
+/// What an episode log keeps of the task folder it ran on: where it was and each file's hash,
+/// and the files themselves when the log must replay without the folder (the page's Save).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
+pub struct FolderRecord {
+    /// The folder as messages name it.
+    pub dir: String,
+    /// The content hash (`sim::content_hash`) of each file but `README.md`, by file name.
+    pub hashes: BTreeMap<String, String>,
+    /// The files' text, by name (absent: replay needs the folder).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub files: Option<BTreeMap<String, String>>,
+}
+
 /// The text of a benchmark's files (a taught task's too: its own problem, scene and demo).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct BenchmarkSources {
     /// The task folder the files come from (`None`: a shipped benchmark or a generated task).
-    pub folder: Option<super::folder::FolderRecord>,
+    pub folder: Option<FolderRecord>,
     /// Directory name under `domains/`, or a directory's path (for error messages, see
     /// [`BenchmarkSources::file`]).
     pub dir: String,

@@ -12,7 +12,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use super::benchmark::BenchmarkSources;
+use super::benchmark::{BenchmarkSources, FolderRecord};
 
 /// The files a task folder must hold.
 pub const REQUIRED_FILES: [&str; 4] = ["domain.pddl", "problem.pddl", "motions.json", "scene.json"];
@@ -46,20 +46,6 @@ pub struct FolderError {
     pub path: String,
     /// What is wrong or missing.
     pub message: String,
-}
-
-/// What an episode log keeps of the task folder it ran on: where it was and each file's hash,
-/// and the files themselves when the log must replay without the folder (the page's Save).
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
-pub struct FolderRecord {
-    /// The folder as messages name it.
-    pub dir: String,
-    /// [`content_hash`] of each file but `README.md`, by file name.
-    pub hashes: BTreeMap<String, String>,
-    /// The files' text, by name (absent: replay needs the folder).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub files: Option<BTreeMap<String, String>>,
 }
 
 /// What a folder's file says differs from a record of it (an episode log's hashes).

@@ -66,6 +66,7 @@
 #![allow(clippy::needless_range_loop)]
 
 mod benchmark;
+mod check;
 pub mod collide;
 pub mod demo;
 mod fast_math;
@@ -80,10 +81,12 @@ mod scene_graph;
 mod snapshot;
 mod world;
 
-pub use benchmark::{goal_facts, Benchmark, BenchmarkSources, BLOCK_COLORS, BLOCK_SIZE};
+pub use benchmark::{
+    goal_facts, Benchmark, BenchmarkSources, FolderRecord, BLOCK_COLORS, BLOCK_SIZE,
+};
+pub use check::{check_names, check_scene_against_problem, check_sources, Finding, MIN_GAP_MM};
 pub use folder::{
-    content_hash, FileDifference, FolderError, FolderRecord, TaskFolder, FOLDER_FILES,
-    REQUIRED_FILES,
+    content_hash, FileDifference, FolderError, TaskFolder, FOLDER_FILES, REQUIRED_FILES,
 };
 pub use generate::{
     block_names, block_range, block_ranges_text, tower_goal, tower_heights, tower_task, MAX_BLOCKS,

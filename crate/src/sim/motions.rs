@@ -256,18 +256,89 @@ pub struct MotionsError {
 #[serde(deny_unknown_fields)]
 struct RawFile {
     #[serde(default)]
-    objects: BTreeMap<ObjectKind, ObjectSpec>,
+    objects: BTreeMap<String, ObjectSpec>,
     #[serde(default)]
-    facts: BTreeMap<Relation, RawFact>,
+    facts: BTreeMap<String, RawFact>,
     #[serde(default)]
     actions: BTreeMap<String, RawAction>,
 }
 
-#[derive(Deserialize)]
-#[serde(untagged)]
+/// A `facts` entry: a predicate name, or `{"predicate": …, "args": […]}`.
 enum RawFact {
     Name(String),
     Spec(FactSpec),
+}
+
+/// What a `facts` entry must look like, for its errors.
+const FACT_FORM: &str =
+    r#"a predicate name ("on") or an object {"predicate": "on", "args": ["body", "below"]}"#;
+
+impl<'de> Deserialize<'de> for RawFact {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let v = serde_json::Value::deserialize(d)?;
+        let what = |v: &serde_json::Value| match v {
+            serde_json::Value::Null => "null".to_string(),
+            serde_json::Value::Bool(b) => format!("the boolean {b}"),
+            serde_json::Value::Number(n) => format!("the number {n}"),
+            serde_json::Value::String(s) => format!("the string {s:?}"),
+            serde_json::Value::Array(_) => "an array".to_string(),
+            serde_json::Value::Object(_) => "an object".to_string(),
+        };
+        match v {
+            // A fact written as PDDL (`"(on ?b ?c)"`) is not a predicate name.
+            serde_json::Value::String(s) if s.contains(['(', ' ', '?']) => Err(D::Error::custom(
+                format!("expected {FACT_FORM}, got the string {s:?}"),
+            )),
+            serde_json::Value::String(s) => Ok(RawFact::Name(s)),
+            serde_json::Value::Object(ref o) => {
+                if let Some(k) = o.keys().find(|k| *k != "predicate" && *k != "args") {
+                    return Err(D::Error::custom(format!(
+                        "unknown field `{k}`: expected {FACT_FORM}"
+                    )));
+                }
+                let predicate = match o.get("predicate") {
+                    Some(serde_json::Value::String(p)) => p.clone(),
+                    Some(x) => {
+                        return Err(D::Error::custom(format!(
+                            "`predicate` must be a predicate name, got {}: expected {FACT_FORM}",
+                            what(x)
+                        )))
+                    }
+                    None => {
+                        return Err(D::Error::custom(format!(
+                            "missing `predicate`: expected {FACT_FORM}"
+                        )))
+                    }
+                };
+                let args = match o.get("args") {
+                    Some(a @ serde_json::Value::Array(_)) => {
+                        serde_json::from_value::<Vec<Slot>>(a.clone()).map_err(|e| {
+                            D::Error::custom(format!(
+                                "`args` must list argument names (`body`, `below`, `arm`, `region`): {e}"
+                            ))
+                        })?
+                    }
+                    Some(x) => {
+                        return Err(D::Error::custom(format!(
+                            "`args` must be an array of argument names like [\"body\", \"below\"], got {}",
+                            what(x)
+                        )))
+                    }
+                    None => {
+                        return Err(D::Error::custom(format!(
+                            "missing `args`: expected {FACT_FORM}"
+                        )))
+                    }
+                };
+                Ok(RawFact::Spec(FactSpec { predicate, args }))
+            }
+            other => Err(D::Error::custom(format!(
+                "expected {FACT_FORM}, got {}",
+                what(&other)
+            ))),
+        }
+    }
 }
 
 #[derive(Deserialize)]
@@ -287,12 +358,16 @@ struct RawAction {
 impl Motions {
     /// Reads a motions file and checks it against `domain` (see the module documentation).
     pub fn parse(text: &str, file: &str, domain: &Domain) -> Result<Motions, MotionsError> {
-        let raw: RawFile = serde_json::from_str(text).map_err(|e| MotionsError {
-            file: file.into(),
-            line: e.line().max(1),
-            column: e.column().max(1),
-            path: "$".into(),
-            message: e.to_string(),
+        let raw = read_raw(text).map_err(|(path, e)| {
+            let full = e.to_string();
+            let suffix = format!(" at line {} column {}", e.line(), e.column());
+            MotionsError {
+                file: file.into(),
+                line: e.line().max(1),
+                column: e.column().max(1),
+                path: if path.is_empty() { "$".into() } else { path },
+                message: full.strip_suffix(&suffix).unwrap_or(&full).to_string(),
+            }
         })?;
         let at = |path: &[&str], message: String| {
             let (line, column) = locate(text, path);
@@ -305,9 +380,16 @@ impl Motions {
             }
         };
         let mut m = Motions::default();
-        for (kind, spec) in raw.objects {
-            let key = serde_json::to_value(kind).ok();
-            let key = key.as_ref().and_then(|v| v.as_str()).unwrap_or("?");
+        // Keys are read as strings, so an error inside an entry is named by its key.
+        for (key, spec) in &raw.objects {
+            let key = key.as_str();
+            let Some(kind) = ObjectKind::ALL.into_iter().find(|k| kind_key(*k) == key) else {
+                return Err(at(
+                    &["objects", key],
+                    format!("unknown object kind `{key}`: expected one of `arm`, `block`, `hook`, `region`"),
+                ));
+            };
+            let spec = spec.clone();
             if let Some(t) = &spec.ty {
                 if domain.type_index(t).is_none() {
                     return Err(at(
@@ -322,7 +404,17 @@ impl Motions {
             }
             m.objects.insert(kind, spec);
         }
-        for (rel, raw) in raw.facts {
+        for (key, raw) in raw.facts {
+            let Some(rel) = Relation::ALL.into_iter().find(|r| r.key() == key) else {
+                let keys: Vec<&str> = Relation::ALL.iter().map(|r| r.key()).collect();
+                return Err(at(
+                    &["facts", &key],
+                    format!(
+                        "unknown relation `{key}`: expected one of {}",
+                        keys.join(", ")
+                    ),
+                ));
+            };
             let spec = match raw {
                 RawFact::Name(p) => FactSpec {
                     predicate: p,
@@ -506,6 +598,35 @@ impl Motions {
     }
 }
 
+/// The file's entries, an error with the JSON path of the value at fault (`facts.clear`; empty
+/// for the document). The page's first-load module reads the embedded files without paths,
+/// as `sim::parse_json` does there.
+fn read_raw(text: &str) -> Result<RawFile, (String, serde_json::Error)> {
+    let mut de = serde_json::Deserializer::from_str(text);
+    #[cfg(not(first_load))]
+    let raw = serde_path_to_error::deserialize(&mut de).map_err(|e| {
+        let path = e.path().to_string();
+        (
+            if path == "." { String::new() } else { path },
+            e.into_inner(),
+        )
+    })?;
+    #[cfg(first_load)]
+    let raw = RawFile::deserialize(&mut de).map_err(|e| (String::new(), e))?;
+    de.end().map_err(|e| (String::new(), e))?;
+    Ok(raw)
+}
+
+/// The JSON key of an object kind (`arm`, `block`, `hook`, `region`).
+fn kind_key(kind: ObjectKind) -> &'static str {
+    match kind {
+        ObjectKind::Arm => "arm",
+        ObjectKind::Block => "block",
+        ObjectKind::Hook => "hook",
+        ObjectKind::Region => "region",
+    }
+}
+
 fn check_predicate(domain: &Domain, p: &str, arity: usize) -> Result<(), String> {
     match domain.predicates.iter().find(|s| s.name.text == p) {
         None => Err(format!("the domain declares no predicate `{p}`")),
@@ -603,7 +724,33 @@ mod tests {
         let e = parse(&GOOD.replace("\"lift\"", "\"raise\"")).unwrap_err();
         assert!(e.message.contains("no action `raise`"), "{e}");
         let e = parse("{ \"facts\": { \"held\": 3 } }").unwrap_err();
-        assert_eq!(e.path, "$");
+        assert_eq!(e.path, "facts.held");
+    }
+
+    #[test]
+    fn a_fact_of_the_wrong_form_says_what_was_expected_at_its_path() {
+        let text = GOOD.replace(
+            "\"held\": \"grip\"",
+            "\"held\": { \"predicate\": \"grip\", \"args\": \"arm body\" }",
+        );
+        let e = parse(&text).unwrap_err();
+        assert_eq!(
+            (e.file.as_str(), e.path.as_str(), e.line),
+            ("m.json", "facts.held", 2)
+        );
+        assert!(e.message.contains("`args` must be an array"), "{e}");
+        assert!(!e.message.contains("untagged"), "{e}");
+        let e = parse(&GOOD.replace("\"grip\"", "\"(grip ?a ?b)\"")).unwrap_err();
+        assert_eq!(e.path, "facts.held");
+        assert!(e.message.contains("got the string \"(grip ?a ?b)\""), "{e}");
+        let e = parse(&GOOD.replace("\"held\": \"grip\"", "\"held\": [\"grip\"]")).unwrap_err();
+        assert_eq!(e.path, "facts.held");
+        assert!(
+            e.message.contains(
+                r#"an object {"predicate": "on", "args": ["body", "below"]}, got an array"#
+            ),
+            "{e}"
+        );
     }
 
     #[test]

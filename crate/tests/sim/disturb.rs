@@ -158,3 +158,66 @@ mod task_generator {
         );
     }
 }
+
+mod descriptions {
+    //! An L2/L3 disturbance says where the moved block came to rest, as the scene graph shows
+    //! it after settling (a block dropped over a table spot can land on another block).
+    use super::*;
+    use logic_lfd::experiments::demo_trace;
+    use logic_lfd::lfd::{self, Level};
+    use logic_lfd::sim::{Relation, Slot};
+
+    #[test]
+    fn every_l2_and_l3_description_says_where_the_scene_graph_has_the_block() {
+        let mut checked = 0;
+        let mut onto_blocks = 0;
+        for b in [Benchmark::B1, Benchmark::B3] {
+            let trace = demo_trace(b).unwrap();
+            for seed in 0..25 {
+                for level in [Level::L2, Level::L3] {
+                    let mut w = b.scene();
+                    let Ok(d) = lfd::inject(&mut w, level, &trace, &[], seed) else {
+                        continue;
+                    };
+                    let facts = SceneGraph::from_world(&w).to_strings();
+                    let m = w.motions();
+                    let (x, _) = &d.moved[0];
+                    let prefix = format!("{}: moved {x} ", level.as_str().to_uppercase());
+                    let rest = d
+                        .description
+                        .strip_prefix(&prefix)
+                        .unwrap_or_else(|| panic!("{}", d.description));
+                    let place = rest.split(':').next().unwrap();
+                    let want = if let Some(y) = place.strip_prefix("onto ") {
+                        onto_blocks += 1;
+                        m.fact(Relation::OnBlock)
+                            .unwrap()
+                            .render(&[(Slot::Body, x), (Slot::Below, y)])
+                    } else {
+                        assert!(place.starts_with("to the table"), "{}", d.description);
+                        m.fact(Relation::OnTable)
+                            .unwrap()
+                            .render(&[(Slot::Body, x)])
+                    };
+                    let want = want.unwrap();
+                    assert!(
+                        facts.contains(&want),
+                        "{b:?} {level:?} seed {seed}: `{}` but the scene graph has {facts:?}",
+                        d.description
+                    );
+                    if let Some(r) = place.strip_prefix("to the table in ") {
+                        let at = m
+                            .fact(Relation::InRegion)
+                            .unwrap()
+                            .render(&[(Slot::Body, x), (Slot::Region, r)])
+                            .unwrap();
+                        assert!(facts.contains(&at), "{}: {facts:?}", d.description);
+                    }
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked >= 90, "{checked} of 100 injections made");
+        assert!(onto_blocks > 0);
+    }
+}

@@ -29,8 +29,10 @@ use super::catalogue::{Method, Mode};
 use super::demo::DemoTrace;
 use super::symbolic::LogicLfd;
 use super::LfdError;
+use reason::{predicate, reground_reason};
 
 mod baselines;
+mod reason;
 #[cfg(test)]
 mod tests;
 mod types;
@@ -102,13 +104,6 @@ fn observe(task: &Task, facts: &[String]) -> Option<State> {
         }
     }
     Some(s)
-}
-
-fn predicate(fact: &str) -> &str {
-    fact.trim_start_matches('(')
-        .split([' ', ')'])
-        .next()
-        .unwrap_or("")
 }
 
 impl Controller {
@@ -257,16 +252,17 @@ impl Controller {
         tick: u64,
     ) -> Decision {
         let t0 = clock.now_secs();
-        let mut regrounded = false;
+        let mut regrounded = None;
         let s = match observe(self.task(), facts) {
             Some(s) if objects == self.objects.as_slice() => s,
             _ => {
                 // New objects or facts outside the task: re-ground from the scene.
+                let why = reground_reason(self.task(), &self.objects, objects, facts);
                 match builder.build(objects, facts) {
                     Ok(task) => {
                         self.lfd = LogicLfd::from_task(task, self.lfd.trace().clone());
                         self.objects = objects.to_vec();
-                        regrounded = true;
+                        regrounded = Some(why);
                         // Re-express the plan in the new task's operator indices.
                         let ops: Option<Vec<usize>> = self
                             .plan_names
@@ -306,14 +302,14 @@ impl Controller {
             "start".to_string()
         } else if let Some(r) = self.replan_because.take() {
             r
-        } else if regrounded {
-            "new objects in the scene".to_string()
+        } else if let Some(why) = regrounded.clone() {
+            why
         } else if self.plan.is_empty() {
             "no plan (cancelled)".to_string()
         } else if self.cursor >= self.plan.len() {
             "the plan ended but the goal does not hold".to_string()
         } else {
-            let expected = if regrounded {
+            let expected = if regrounded.is_some() {
                 None
             } else {
                 self.expected().cloned()
@@ -337,7 +333,6 @@ impl Controller {
                         .collect::<Vec<_>>()
                         .join(" ")
                 ),
-                None if regrounded => "new objects in the scene".to_string(),
                 None => "unknown state".to_string(),
             }
         };

@@ -146,6 +146,47 @@ fn is_about(m: &Motions, f: &str, rel: Relation, slot: Slot, value: &str) -> boo
     matches!(m.relation_of(f), Some((r, spec, args)) if r == rel && spec.value(&args, slot) == Some(value))
 }
 
+/// Where block `b` rests, as the scene graph's facts `after` state it (`onto c`, `to the table`,
+/// `onto the shelf`, with the region it lies in), else from its height in `world`.
+fn resting_place(world: &World, after: &BTreeSet<String>, b: &str) -> String {
+    let m = world.motions();
+    let about = |rel: Relation| {
+        after.iter().find_map(|f| match m.relation_of(f) {
+            Some((r, spec, args)) if r == rel && spec.value(&args, Slot::Body) == Some(b) => {
+                Some((
+                    spec.clone(),
+                    args.iter().map(|a| a.to_string()).collect::<Vec<_>>(),
+                ))
+            }
+            _ => None,
+        })
+    };
+    let region = about(Relation::InRegion)
+        .and_then(|(spec, args)| {
+            let args: Vec<&str> = args.iter().map(String::as_str).collect();
+            spec.value(&args, Slot::Region).map(|r| format!(" in {r}"))
+        })
+        .unwrap_or_default();
+    if let Some((spec, args)) = about(Relation::OnBlock) {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        if let Some(below) = spec.value(&args, Slot::Below) {
+            return format!("onto {below}");
+        }
+    }
+    if about(Relation::OnShelf).is_some() {
+        return "onto the shelf".into();
+    }
+    if about(Relation::OnTable).is_some() {
+        return format!("to the table{region}");
+    }
+    // The domain states none of these: read the height (a block on the table top stands half
+    // its side above it).
+    match centre(world, b) {
+        Some(c) if c[2] > BLOCK_SIZE => format!("onto another body{region}"),
+        _ => format!("to the table{region}"),
+    }
+}
+
 /// A table spot for a block: random (x, y) over a table top, in reach of some arm unless
 /// `anywhere`.
 fn table_spot(world: &World, rng: &mut Pcg64Mcg, anywhere: bool) -> Option<[f64; 2]> {
@@ -393,10 +434,9 @@ fn task_level(
                 // The moved block stays where an arm can grasp or pull it.
                 if ok && handleable(world, b).is_ok() {
                     let to = centre(world, b).unwrap_or([0.0; 3]);
-                    let place = onto
-                        .as_ref()
-                        .map(|o| format!("onto {o}"))
-                        .unwrap_or_else(|| "to the table".into());
+                    // Where it came to rest, not where it was dropped: a table spot can be
+                    // over another block.
+                    let place = resting_place(world, &after, b);
                     let what = if want_seen {
                         "a state of the demonstration"
                     } else {

@@ -43,7 +43,8 @@ use crate::sim::BenchmarkSources;
 pub use frame::{EePoint, Frame, PerturbOutcome, Status, StatusKind};
 pub use log::{ActionRecord, EpisodeEvent, EpisodeLog, EpisodeResult};
 pub use options::{
-    demo_actions, mix_seed, sources_for, SessionError, SessionOptions, SessionParams,
+    check_folder, demo_actions, demo_trace_of, mix_seed, sources_for, SessionError, SessionOptions,
+    SessionParams,
 };
 
 use nalgebra::Vector3;
@@ -159,9 +160,14 @@ impl Session {
         )?;
         // The demonstration is derived on the template task (its initial state is the template
         // scene's facts).
-        let template_task = model.build(&objects_of(&template), &facts_of(&template))?;
-        let actions = demo_actions(demo_json.unwrap_or(&files.demo))?;
-        let trace = DemoTrace::derive(&template_task, &actions)?;
+        // A scene that contradicts its problem would show only as an inapplicable step.
+        options::check_scene(files)?;
+        let template_objects = objects_of(&template);
+        let template_task = model.build(&template_objects, &facts_of(&template))?;
+        let label = options::demo_label(files, demo_json.is_some());
+        let actions = options::demo_actions_in(demo_json.unwrap_or(&files.demo), &label)?;
+        let trace = DemoTrace::derive(&template_task, &actions)
+            .map_err(|e| options::trace_error(e, model.domain(), &template_objects, &label))?;
         let objects = objects_of(&world);
         let task = model.build(&objects, &facts_of(&world))?;
         let controller = Controller::new(
