@@ -17,7 +17,6 @@ mod cmd_scene;
 mod cmd_soak;
 mod cmd_tables;
 mod cmd_validate;
-mod domain_dir;
 mod exit;
 mod listed;
 mod sweep;
