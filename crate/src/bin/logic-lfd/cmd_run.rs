@@ -95,9 +95,9 @@ pub fn run(args: Args) -> ExitCode {
         ));
     }
     let folder = match &args.domain {
-        Some(dir) => match TaskFolder::read(dir) {
+        Some(dir) => match crate::domain_dir::read(dir) {
             Ok(f) => Some(f),
-            Err(e) => return bad(e.to_string()),
+            Err(e) => return bad(e),
         },
         None => None,
     };
@@ -258,9 +258,9 @@ fn replay(path: &Path, domain: Option<&Path>) -> ExitCode {
         (Some(record), _) => {
             let folder = match (TaskFolder::from_record(record), domain) {
                 (Some(carried), _) => carried,
-                (None, Some(dir)) => match TaskFolder::read(dir) {
+                (None, Some(dir)) => match crate::domain_dir::read(dir) {
                     Ok(f) => f,
-                    Err(e) => return bad(e.to_string()),
+                    Err(e) => return bad(e),
                 },
                 (None, None) => match TaskFolder::read(Path::new(&record.dir)) {
                     Ok(f) => f,

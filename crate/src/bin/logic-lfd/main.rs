@@ -17,6 +17,7 @@ mod cmd_scene;
 mod cmd_soak;
 mod cmd_tables;
 mod cmd_validate;
+mod domain_dir;
 mod exit;
 mod listed;
 mod sweep;
