@@ -5,6 +5,7 @@ mod circles;
 mod declared_names;
 mod exec;
 mod fig4;
+mod folder_cli;
 mod fuzz;
 mod ground;
 mod layers;

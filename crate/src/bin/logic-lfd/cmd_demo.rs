@@ -122,7 +122,10 @@ fn record(a: RecordArgs) -> ExitCode {
             eprintln!("{}", summary("stdout"));
         }
         out => {
-            let to = out.map_or_else(|| a.dir.join("demo.json"), Path::to_path_buf);
+            let to = out.map_or_else(
+                || PathBuf::from(folder.path("demo.json")),
+                Path::to_path_buf,
+            );
             if let Err(e) = std::fs::write(&to, text + "\n") {
                 return bad(format!("{}: {e}", to.display()));
             }

@@ -20,8 +20,8 @@ use crate::plan::NoClock;
 use crate::sim::block_range;
 use crate::sim::handleable;
 use crate::sim::BodyKind;
-use crate::sim::{Benchmark, BenchmarkSources};
 use crate::sim::World;
+use crate::sim::{Benchmark, BenchmarkSources};
 
 /// One scheduled disturbance.
 #[derive(Clone, Debug)]

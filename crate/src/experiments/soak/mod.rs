@@ -149,7 +149,14 @@ impl SoakRunner {
         let mut ep = SoakReport::default();
         let mut json = String::new();
         let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            soak_episode(params, e, &self.models, self.folder.as_ref(), &mut ep, &mut json)
+            soak_episode(
+                params,
+                e,
+                &self.models,
+                self.folder.as_ref(),
+                &mut ep,
+                &mut json,
+            )
         }));
         match r {
             Ok(Ok(())) => {}

@@ -472,7 +472,9 @@ mod tests {
             "{c:?}"
         );
         // A budget too small to finish proves nothing.
-        let c = models.check_solvable(Some(Benchmark::B1), &world, 2).unwrap();
+        let c = models
+            .check_solvable(Some(Benchmark::B1), &world, 2)
+            .unwrap();
         assert!(
             matches!(c, Check::Undecided { expanded } if expanded <= 3),
             "{c:?}"
