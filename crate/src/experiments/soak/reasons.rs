@@ -480,4 +480,37 @@ mod tests {
             "{c:?}"
         );
     }
+
+    #[test]
+    fn a_task_folders_plans_are_checked_on_its_own_domain_and_goal() {
+        let dir =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../domains/b1-paper-naming");
+        let sources = crate::sim::TaskFolder::read(&dir)
+            .unwrap()
+            .sources()
+            .unwrap();
+        let models = Models::in_folder(&sources).unwrap();
+        let motions = std::sync::Arc::new(sources.parse_motions().unwrap());
+        let world = World::from_json(&sources.scene)
+            .unwrap()
+            .with_motions(motions);
+        let demo = crate::sim::demo::parse(&sources.demo).unwrap();
+        let plan: Vec<String> = demo.plan().iter().map(|a| a.to_string()).collect();
+        assert!(plan[0].starts_with("(pick-up "), "{plan:?}");
+        models.validate(None, &world, &plan).unwrap();
+        let short = models
+            .validate(None, &world, &plan[..plan.len() - 1])
+            .unwrap_err();
+        assert!(short.starts_with("goal not reached"), "{short}");
+        let c = models.check_solvable(None, &world, 1_000_000).unwrap();
+        assert!(
+            matches!(c, Check::Solvable { length } if length <= plan.len()),
+            "{c:?}"
+        );
+        // A soak over the benchmarks has no folder to check against.
+        assert!(Models::new(None)
+            .unwrap()
+            .validate(None, &world, &plan)
+            .is_err());
+    }
 }
