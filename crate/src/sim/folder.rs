@@ -266,21 +266,25 @@ mod record {
                 "missing: give demo.json, or expert.json to record it from".into(),
             )
         })?;
+        let pddl = |e: crate::pddl::PddlError| FolderError {
+            path: format!("{}:{}:{}", e.file, e.line, e.col),
+            message: e.message,
+        };
         let domain_file = folder.path("domain.pddl");
         let problem_file = folder.path("problem.pddl");
-        let domain = crate::pddl::parse_domain(folder.text("domain.pddl")?, &domain_file)
-            .map_err(|e| at("domain.pddl", e.to_string()))?;
+        let domain =
+            crate::pddl::parse_domain(folder.text("domain.pddl")?, &domain_file).map_err(pddl)?;
         let problem =
             crate::pddl::parse_problem(folder.text("problem.pddl")?, &problem_file, &domain)
-                .map_err(|e| at("problem.pddl", e.to_string()))?;
+                .map_err(pddl)?;
         let motions = Motions::parse(
             folder.text("motions.json")?,
             &folder.path("motions.json"),
             &domain,
         )
         .map_err(|e| FolderError {
-            path: folder.path("motions.json"),
-            message: e.to_string(),
+            path: format!("{}:{}:{}", e.file, e.line, e.column),
+            message: format!("{}: {}", e.path, e.message),
         })?;
         let script: Script = crate::sim::parse_json(expert).map_err(|e| FolderError {
             path: folder.path("expert.json"),
@@ -317,41 +321,26 @@ mod record {
             .filter(|l| !l.is_empty())
             .map(normalize)
             .collect();
-        for (i, step) in script.steps.iter().enumerate() {
-            let want = normalize(&step.action);
-            match steps.get(i) {
-                Some(s) if *s == want => {}
-                Some(s) => {
-                    return Err(FolderError {
-                        path: folder.path("demo.plan"),
-                        message: format!(
-                            "step {}: `{s}`, but expert.json's step {} is `{want}`",
-                            i + 1,
-                            i + 1
-                        ),
-                    })
-                }
-                None => {
-                    return Err(FolderError {
-                        path: folder.path("demo.plan"),
-                        message: format!(
-                            "{} steps, but expert.json has {}",
-                            steps.len(),
-                            script.steps.len()
-                        ),
-                    })
-                }
-            }
+        let expert: Vec<String> = script.steps.iter().map(|s| normalize(&s.action)).collect();
+        let refused = |message: String| FolderError {
+            path: folder.path("demo.plan"),
+            message,
+        };
+        if let Some(i) = (0..steps.len().min(expert.len())).find(|&i| steps[i] != expert[i]) {
+            return Err(refused(format!(
+                "step {}: `{}`, but expert.json's step {} is `{}`",
+                i + 1,
+                steps[i],
+                i + 1,
+                expert[i]
+            )));
         }
-        if steps.len() > script.steps.len() {
-            return Err(FolderError {
-                path: folder.path("demo.plan"),
-                message: format!(
-                    "{} steps, but expert.json has {}",
-                    steps.len(),
-                    script.steps.len()
-                ),
-            });
+        if steps.len() != expert.len() {
+            return Err(refused(format!(
+                "{} steps, but expert.json has {}",
+                steps.len(),
+                expert.len()
+            )));
         }
         Ok(())
     }
@@ -405,6 +394,17 @@ mod tests {
         g.files.remove("demo.json");
         let recorded = g.sources().unwrap().demo;
         assert_eq!(recorded.trim(), f.files["demo.json"].trim());
+    }
+
+    #[test]
+    fn a_broken_domain_met_while_recording_is_located() {
+        let mut f = shipped("b1-paper-naming");
+        f.files.remove("demo.json");
+        let d = f.files.get_mut("domain.pddl").unwrap();
+        *d = d.replacen("(:action", "(:actoin", 1);
+        let e = f.record_demo(1).unwrap_err();
+        assert!(e.path.contains("b1-paper-naming/domain.pddl:"), "{e}");
+        assert_eq!(e.path.matches("domain.pddl").count(), 1, "{e}");
     }
 
     #[test]

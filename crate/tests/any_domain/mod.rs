@@ -12,6 +12,7 @@
 //!   paper's rule follows the demonstration: its cost is c_k, never below the minimum).
 
 mod folder_replay;
+mod gallery;
 mod paper_naming;
 
 use std::collections::BTreeSet;
