@@ -3,22 +3,19 @@
 //! ```sh
 //! cargo run --release --example record_demos            # all benchmarks, seed 1
 //! cargo run --release --example record_demos -- b2 7    # one benchmark, another seed
-//! cargo run --release --example record_demos -- domains/b1-paper-naming   # a domain directory
+//! cargo run --release --example record_demos -- domains/b1-paper-naming   # a task folder
 //! ```
 //!
-//! A domain directory holds `domain.pddl`, `problem.pddl` (its goal is checked), `scene.json`,
-//! `motions.json` and the expert's `expert.json`; its `demo.json` is written.
+//! A task folder's `demo.json` is recorded from its `expert.json` by
+//! [`TaskFolder::record_demo`], the code behind `logic-lfd demo record DIR`, which needs no
+//! checkout of the sources.
 //!
 //! Each demo is checked while it is recorded (invariants after every step, goal at the end).
 
-use logic_lfd::pddl::{parse_domain, parse_problem};
 use logic_lfd::sim::demo::{self, ExpertParams};
-use logic_lfd::sim::Motions;
-use logic_lfd::sim::World;
-use logic_lfd::sim::{goal_facts, Benchmark};
+use logic_lfd::sim::{Benchmark, TaskFolder};
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::sync::Arc;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -26,7 +23,7 @@ fn main() -> ExitCode {
         return match record_dir(&dir, args.get(1).and_then(|s| s.parse().ok()).unwrap_or(1)) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
-                eprintln!("{}: {e}", dir.display());
+                eprintln!("{e}");
                 ExitCode::from(1)
             }
         };
@@ -83,27 +80,12 @@ fn main() -> ExitCode {
     ExitCode::SUCCESS
 }
 
-/// Records the demonstration of a domain directory's `expert.json` in its scene.
+/// Records a task folder's `demo.json` from its `expert.json` (as `logic-lfd demo record DIR`).
 fn record_dir(dir: &std::path::Path, seed: u64) -> Result<(), String> {
-    let read = |f: &str| std::fs::read_to_string(dir.join(f)).map_err(|e| format!("{f}: {e}"));
-    let domain = parse_domain(&read("domain.pddl")?, "domain.pddl").map_err(|e| e.to_string())?;
-    let problem = parse_problem(&read("problem.pddl")?, "problem.pddl", &domain)
-        .map_err(|e| e.to_string())?;
-    let motions = Motions::parse(&read("motions.json")?, "motions.json", &domain)
-        .map_err(|e| e.to_string())?;
-    let script: demo::Script =
-        serde_json::from_str(&read("expert.json")?).map_err(|e| format!("expert.json: {e}"))?;
-    let world = World::from_json(&read("scene.json")?)
-        .map_err(|e| format!("scene.json: {e}"))?
-        .with_motions(Arc::new(motions));
-    let name = dir
-        .file_name()
-        .map_or(String::new(), |n| n.to_string_lossy().to_string());
-    let goal = goal_facts(&domain, &problem);
-    let d = demo::record_script(world, &script, &goal, &name, seed, &ExpertParams::default())
-        .map_err(|e| format!("recording failed: {e}"))?;
-    let text = serde_json::to_string(&d).map_err(|e| e.to_string())?;
+    let folder = TaskFolder::read(dir).map_err(|e| e.to_string())?;
+    let text = folder.record_demo(seed).map_err(|e| e.to_string())?;
+    let d = demo::parse(&text).map_err(|e| e.to_string())?;
     std::fs::write(dir.join("demo.json"), text + "\n").map_err(|e| e.to_string())?;
-    println!("{name}: {} actions", d.actions.len());
+    println!("{}: {} actions", folder.dir, d.actions.len());
     Ok(())
 }

@@ -176,12 +176,13 @@ fn the_cli_names_the_path_in_a_domain_directorys_demo() {
         ("domain.pddl", &files.domain),
         ("problem.pddl", &files.problem),
         ("motions.json", &files.motions),
+        ("scene.json", &files.scene),
         ("demo.json", &bad),
     ] {
         std::fs::write(dir.join(name), text).unwrap();
     }
     let out = Command::new(env!("CARGO_BIN_EXE_logic-lfd"))
-        .args(["run", "--benchmark", "b1", "--domain"])
+        .args(["run", "--domain"])
         .arg(&dir)
         .output()
         .unwrap();

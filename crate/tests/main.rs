@@ -6,6 +6,7 @@ mod declared_names;
 mod exec;
 mod fig4;
 mod folder_checks;
+mod folder_cli;
 mod fuzz;
 mod ground;
 mod layers;

@@ -81,13 +81,23 @@ pub fn segment_recording(
     problem: Option<&Source>,
     params: RecorderParams,
 ) -> Result<Taught, RecorderError> {
-    let scene = recording.scene.snapshot()?;
     let options = RecorderOptions {
         domain_file: domain_file.to_string(),
         problem_pddl: problem.cloned(),
         motions_json: None,
         params,
     };
+    segment_recording_with(recording, domain_pddl, options)
+}
+
+/// [`segment_recording`] with every option given: a task folder's `motions.json` tells what the
+/// domain's names mean when the recording's scene is no benchmark's or the names are not its.
+pub fn segment_recording_with(
+    recording: &RawRecording,
+    domain_pddl: &str,
+    options: RecorderOptions,
+) -> Result<Taught, RecorderError> {
+    let scene = recording.scene.snapshot()?;
     let mut rec = Recorder::new(&scene, domain_pddl, options)?;
     rec.set_seed(recording.seed);
     for (i, s) in recording.samples.iter().enumerate() {

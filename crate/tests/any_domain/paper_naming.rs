@@ -127,16 +127,7 @@ fn the_paper_named_b1_runs_every_level_to_success_like_b1() {
 #[test]
 fn run_with_a_domain_directory_succeeds_and_a_bad_declaration_is_refused_with_its_line() {
     let (code, stdout, stderr) = crate::support::cli::run_cli(&[
-        "run",
-        "--domain",
-        DIR,
-        "--benchmark",
-        "b1",
-        "--level",
-        "l3",
-        "--seed",
-        "2",
-        "--json",
+        "run", "--domain", DIR, "--level", "l3", "--seed", "2", "--json",
     ]);
     assert_eq!(code, 0, "{stderr}");
     let report: serde_json::Value = serde_json::from_str(&stdout).unwrap();
@@ -153,13 +144,8 @@ fn run_with_a_domain_directory_succeeds_and_a_bad_declaration_is_refused_with_it
         "",
     );
     std::fs::write(dir.join("motions.json"), motions).unwrap();
-    let (code, _, stderr) = crate::support::cli::run_cli(&[
-        "run",
-        "--domain",
-        dir.to_str().unwrap(),
-        "--benchmark",
-        "b1",
-    ]);
+    let (code, _, stderr) =
+        crate::support::cli::run_cli(&["run", "--domain", dir.to_str().unwrap()]);
     assert_eq!(code, 2);
     assert!(
         stderr.contains(

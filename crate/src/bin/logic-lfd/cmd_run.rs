@@ -1,14 +1,17 @@
-//! `logic-lfd run --benchmark b1|b2|b3 --level l1..l4 --method logic-lfd|linear|rlds|tamp
-//! [--mode paper|prioritised] --seed N [--scene SCENE.json] [--blocks N | --domain DIR] [--json]`
-//! — one closed-loop episode
-//! with a disturbance injected during execution at a seeded time; prints success, actions
-//! executed, replans, planning times and simulated execution time; `--json` prints the report
-//! with the full episode log (it replays exactly: `logic-lfd run --replay EPISODE.json`).
+//! `logic-lfd run [--benchmark b1|b2|b3 | --domain DIR] --level l1..l4
+//! --method logic-lfd|linear|rlds|tamp [--mode paper|prioritised] --seed N [--scene SCENE.json]
+//! [--blocks N] [--json]` — one closed-loop episode with a disturbance injected during execution
+//! at a seeded time; prints success, actions executed, replans, planning times and simulated
+//! execution time; `--json` prints the report with the full episode log (it replays exactly:
+//! `logic-lfd run --replay EPISODE.json [--domain DIR]`).
+//!
+//! `--domain DIR` runs a task folder (`sim::TaskFolder`): its own scene, and the disturbances
+//! drawn in it.
 //!
 //! Exit codes: 0 the episode ran (success or not, see the output), 2 bad input, 5 a replay that
 //! does not reproduce its log.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use logic_lfd::experiments::{
@@ -17,7 +20,7 @@ use logic_lfd::experiments::{
 use logic_lfd::lfd::Level;
 use logic_lfd::lfd::{EpisodeLog, Session, SessionParams};
 use logic_lfd::lfd::{Method, Mode};
-use logic_lfd::sim::Benchmark;
+use logic_lfd::sim::{Benchmark, TaskFolder};
 
 use crate::cmd_plan::WallClock;
 use crate::{exit, listed};
@@ -25,9 +28,10 @@ use crate::{exit, listed};
 /// Arguments of `run`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Benchmark.
-    #[arg(long, default_value = "b1", value_parser = listed::one::<Benchmark>())]
-    benchmark: Benchmark,
+    /// Benchmark (default: b1). Not with --domain: a task folder's own scene and the
+    /// disturbances drawn in it define the episode.
+    #[arg(long, value_parser = listed::one::<Benchmark>())]
+    benchmark: Option<Benchmark>,
     /// Disturbance level injected during execution.
     // A qualified `Option`: clap reads `none` as a value, not as a missing flag.
     #[arg(long, default_value = "none", value_parser = listed::or_none::<Level>("No disturbance."))]
@@ -41,11 +45,13 @@ pub struct Args {
     /// Seed of every random choice of the episode.
     #[arg(long, default_value_t = 0)]
     seed: u64,
-    /// Initial scene (a world snapshot JSON); default: the benchmark's template scene.
+    /// Initial scene (a world snapshot JSON); default: the benchmark's template scene, or the
+    /// task folder's scene.json.
     #[arg(long)]
     scene: Option<PathBuf>,
-    /// Run a domain directory of its own (domain.pddl, problem.pddl, demo.json, motions.json,
-    /// optional scene.json) in the benchmark's workcell, with the benchmark's disturbances.
+    /// Run a task folder (domain.pddl, problem.pddl, motions.json, scene.json, and demo.json or
+    /// expert.json) with the disturbances drawn in its own scene. With --replay: the folder the
+    /// episode ran on, when its log does not carry the files.
     #[arg(long, conflicts_with = "blocks")]
     domain: Option<PathBuf>,
     /// Run the benchmark's generated tower task with N blocks (the counts each benchmark takes
@@ -55,7 +61,9 @@ pub struct Args {
     /// Print the report and the full episode log as JSON.
     #[arg(long)]
     json: bool,
-    /// Replay an episode JSON (the `log` of `--json`, or the whole report) and check it.
+    /// Replay an episode JSON (the `log` of `--json`, or the whole report) and check it. A task
+    /// folder's episode replays on the files its log carries, else on --domain DIR, else on the
+    /// folder it recorded; a file that differs from the episode's is named.
     #[arg(long)]
     replay: Option<PathBuf>,
 }
@@ -76,12 +84,23 @@ fn bad(msg: String) -> ExitCode {
 /// Runs the subcommand.
 pub fn run(args: Args) -> ExitCode {
     if let Some(path) = &args.replay {
-        if args.domain.is_some() {
-            return bad("--replay replays the shipped benchmarks' episodes; drop --domain".into());
-        }
-        return replay(path);
+        return replay(path, args.domain.as_deref());
     }
-    let (benchmark, level, method, mode) = (args.benchmark, args.level, args.method, args.mode);
+    if let (Some(b), Some(dir)) = (args.benchmark, &args.domain) {
+        return bad(format!(
+            "--benchmark {} --domain {}: a task folder's own scene and the disturbances drawn in \
+             it define the episode; drop --benchmark",
+            b.as_str(),
+            dir.display()
+        ));
+    }
+    let folder = match &args.domain {
+        Some(dir) => match crate::domain_dir::read(dir) {
+            Ok(f) => Some(f),
+            Err(e) => return bad(e),
+        },
+        None => None,
+    };
     let scene = match &args.scene {
         Some(p) => match std::fs::read_to_string(p) {
             Ok(t) => Some(t),
@@ -90,18 +109,18 @@ pub fn run(args: Args) -> ExitCode {
         None => None,
     };
     let spec = EpisodeSpec {
-        benchmark,
-        level,
-        method,
-        mode,
+        benchmark: args.benchmark.unwrap_or(Benchmark::B1),
+        level: args.level,
+        method: args.method,
+        mode: args.mode,
         seed: args.seed,
         scene,
     };
     let clock = WallClock::start();
-    let sources = match &args.domain {
-        Some(dir) => match crate::domain_dir::read(dir, benchmark) {
+    let sources = match &folder {
+        Some(f) => match f.sources() {
             Ok(s) => Some(s),
-            Err(e) => return bad(e),
+            Err(e) => return bad(e.to_string()),
         },
         None => None,
     };
@@ -112,14 +131,14 @@ pub fn run(args: Args) -> ExitCode {
     let report = match result {
         Ok(r) => r,
         Err(e) => {
-            if let Some(dir) = &args.domain {
-                return bad(in_domain_file(dir, &e.to_string()));
-            }
             let file = args
                 .scene
                 .as_ref()
                 .map(|p| format!("{}: ", p.display()))
                 .unwrap_or_default();
+            if let (Some(f), None) = (&folder, &args.scene) {
+                return bad(in_folder_file(f, &e.to_string()));
+            }
             return bad(format!("{file}{e}"));
         }
     };
@@ -129,26 +148,35 @@ pub fn run(args: Args) -> ExitCode {
             Err(e) => return bad(format!("cannot write JSON: {e}")),
         }
     } else {
-        print_summary(&spec, &report);
+        let task = match &folder {
+            Some(f) => format!("folder {}", f.dir),
+            None => format!("benchmark {}", spec.benchmark.as_str()),
+        };
+        print_summary(&task, &spec, &report);
     }
     ExitCode::from(exit::OK)
 }
 
-/// An error about a domain directory's demonstration or scene, named by its file
-/// (`demo: actions[2]…` → `DIR/demo.json: actions[2]…`).
-fn in_domain_file(dir: &std::path::Path, e: &str) -> String {
-    for (prefix, name) in [("demo: ", "demo.json"), ("scene: ", "scene.json")] {
+/// An error about a task folder's demonstration or scene, named by its file
+/// (`demo: actions[2]…` → `DIR/demo.json: actions[2]…`; a demonstration recorded from
+/// `expert.json` is that file's).
+fn in_folder_file(folder: &TaskFolder, e: &str) -> String {
+    let demo = if folder.files.contains_key("demo.json") {
+        "demo.json"
+    } else {
+        "expert.json"
+    };
+    for (prefix, name) in [("demo: ", demo), ("scene: ", "scene.json")] {
         if let Some(rest) = e.strip_prefix(prefix) {
-            return format!("{}: {rest}", dir.join(name).display());
+            return format!("{}: {rest}", folder.path(name));
         }
     }
     e.to_string()
 }
 
-fn print_summary(spec: &EpisodeSpec, r: &EpisodeReport) {
+fn print_summary(task: &str, spec: &EpisodeSpec, r: &EpisodeReport) {
     println!(
-        "benchmark {}  level {}  method {}  mode {}  seed {}",
-        spec.benchmark.as_str(),
+        "{task}  level {}  method {}  mode {}  seed {}",
         spec.level.map_or("none", |l| l.as_str()),
         spec.method.as_str(),
         spec.mode.as_str(),
@@ -197,7 +225,7 @@ struct Report {
     log: EpisodeLog,
 }
 
-fn replay(path: &PathBuf) -> ExitCode {
+fn replay(path: &Path, domain: Option<&Path>) -> ExitCode {
     let text = match std::fs::read_to_string(path) {
         Ok(t) => t,
         Err(e) => return bad(format!("{}: {e}", path.display())),
@@ -217,10 +245,45 @@ fn replay(path: &PathBuf) -> ExitCode {
         Err(e) => return bad(format!("{}: {e}", path.display())),
     };
     let log_text = serde_json::to_string(&log).unwrap_or_default();
-    let replayed = match Session::replay(&log_text) {
+    let session = match (&log.folder, domain) {
+        (None, Some(dir)) => {
+            return bad(format!(
+                "{}: an episode of benchmark {}, not of a task folder: drop --domain {}",
+                path.display(),
+                log.options.benchmark.as_str(),
+                dir.display()
+            ))
+        }
+        (None, None) => Session::replay(&log_text),
+        (Some(record), _) => {
+            let folder = match (TaskFolder::from_record(record), domain) {
+                (Some(carried), _) => carried,
+                (None, Some(dir)) => match crate::domain_dir::read(dir) {
+                    Ok(f) => f,
+                    Err(e) => return bad(e),
+                },
+                (None, None) => match TaskFolder::read(Path::new(&record.dir)) {
+                    Ok(f) => f,
+                    Err(e) => {
+                        return bad(format!(
+                            "{}: the episode ran on the task folder {}, which cannot be read \
+                             ({e}); give it with --domain DIR",
+                            path.display(),
+                            record.dir
+                        ))
+                    }
+                },
+            };
+            Session::replay_in_folder(&folder, &log_text)
+        }
+    };
+    let mut replayed = match session {
         Ok(s) => s.log(),
         Err(e) => return bad(format!("{}: {e}", path.display())),
     };
+    // The folder's files were checked against the log's hashes: where they were read from (or
+    // whether the log carried them) is no part of the episode.
+    replayed.folder.clone_from(&log.folder);
     if replayed.canonical() == log.canonical() {
         println!(
             "replayed exactly: {} ticks, {} replans, success {}",

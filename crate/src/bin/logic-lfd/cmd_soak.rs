@@ -1,7 +1,7 @@
-//! `logic-lfd soak --episodes N --seed S [--max-disturbances K] [--blocks N] [--no-replay] [--json]
-//! [--threads N] [--shard K/N]` — random
-//! closed-loop Logic-LfD episodes over B1–B3 with random disturbances (levels L1–L4 and user-like
-//! drags), checking world invariants every tick, every adopted plan with the PDDL validator, that
+//! `logic-lfd soak --episodes N --seed S [--max-disturbances K] [--blocks N | --domain DIR]
+//! [--no-replay] [--json] [--threads N] [--shard K/N]` — random
+//! closed-loop Logic-LfD episodes over B1–B3, or on a task folder's task in its own scene, with
+//! random disturbances (levels L1–L4 and user-like drags), checking world invariants every tick, every adopted plan with the PDDL validator, that
 //! refusals change nothing, that every episode succeeds or states a legitimate reason, and that
 //! each episode replays byte-identically (see `experiments::soak`).
 //!
@@ -49,6 +49,11 @@ pub struct Args {
     /// benchmarks that take N (`sim::block_range`).
     #[arg(long, help = blocks_help())]
     blocks: Option<usize>,
+    /// Soak a task folder's task (domain.pddl, problem.pddl, motions.json, scene.json, and
+    /// demo.json or expert.json) instead of the benchmarks': every episode starts in its
+    /// scene.json, with the disturbances drawn in it. Shards record the folder's file hashes.
+    #[arg(long, conflicts_with = "blocks")]
+    domain: Option<std::path::PathBuf>,
     /// Print the report as JSON.
     #[arg(long, conflicts_with = "shard")]
     json: bool,
@@ -82,13 +87,19 @@ pub fn run(args: Args) -> ExitCode {
             return ExitCode::from(exit::BAD_INPUT);
         }
     }
-    let runner = match SoakRunner::new(&params) {
+    let runner = match &args.domain {
+        Some(dir) => crate::domain_dir::read(dir).and_then(|f| SoakRunner::in_folder(&params, &f)),
+        None => SoakRunner::new(&params),
+    };
+    let runner = match runner {
         Ok(r) => r,
         Err(e) => {
             eprintln!("soak: {e}");
             return ExitCode::from(exit::BAD_INPUT);
         }
     };
+    // With the task folder it runs, if any.
+    let params = runner.params();
     let indices = args.sweep.indices(params.episodes);
     let episodes = args.sweep.map(&indices, |i| {
         let (ep, json) = runner.episode(i)?;
@@ -111,7 +122,7 @@ pub fn run(args: Args) -> ExitCode {
         }
     };
     match args.sweep.shard {
-        Some(shard) => print_shard(COMMAND, &params, params.episodes, shard, &indices, episodes),
+        Some(shard) => print_shard(COMMAND, params, params.episodes, shard, &indices, episodes),
         None => print_report(&params.report(episodes), args.json),
     }
 }

@@ -1,29 +1,21 @@
-//! A domain directory as the robot runs it: `domain.pddl`, `problem.pddl`, `demo.json`,
-//! `motions.json` and, optionally, `scene.json` (default: the benchmark's scene).
+//! A task folder given on the command line (`--domain DIR`, `demo record DIR`).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use logic_lfd::sim::{Benchmark, BenchmarkSources};
+use logic_lfd::sim::TaskFolder;
 
-/// Reads the files of `dir`, the scene falling back to `benchmark`'s; the message names the file
-/// that is missing or unreadable.
-pub fn read(dir: &Path, benchmark: Benchmark) -> Result<BenchmarkSources, String> {
-    let file = |name: &str| {
-        let p = dir.join(name);
-        std::fs::read_to_string(&p).map_err(|e| format!("{}: {e}", p.display()))
-    };
-    let scene = if dir.join("scene.json").exists() {
-        file("scene.json")?
+/// Reads the task folder `dir`. A bare name is read as `./NAME`, so no message names it as if it
+/// were one of the shipped `domains/`.
+pub fn read(dir: &Path) -> Result<TaskFolder, String> {
+    let mut parts = dir.components();
+    let bare = matches!(
+        (parts.next(), parts.next()),
+        (Some(std::path::Component::Normal(_)), None)
+    );
+    let dir: PathBuf = if bare {
+        Path::new(".").join(dir)
     } else {
-        benchmark.sources().map_err(|e| e.to_string())?.scene
+        dir.to_path_buf()
     };
-    Ok(BenchmarkSources {
-        folder: None,
-        dir: dir.display().to_string(),
-        domain: file("domain.pddl")?,
-        problem: file("problem.pddl")?,
-        scene,
-        demo: file("demo.json")?,
-        motions: file("motions.json")?,
-    })
+    TaskFolder::read(&dir).map_err(|e| e.to_string())
 }

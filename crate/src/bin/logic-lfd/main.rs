@@ -50,11 +50,13 @@ enum Command {
     Bench(cmd_bench::Args),
     /// Inspect and perturb simulator scenes: facts, check, template, problem, disturb.
     Scene(cmd_scene::Args),
-    /// One closed-loop episode: a benchmark, a disturbance level, a method, a seed.
+    /// One closed-loop episode: a benchmark or a task folder, a disturbance level, a method, a seed.
     Run(cmd_run::Args),
-    /// Demonstrations: `demo segment` turns a raw recording into a demo.json.
+    /// Demonstrations: `demo record` runs a task folder's scripted expert, `demo segment` turns a
+    /// raw recording into a demo.json.
     Demo(cmd_demo::Args),
-    /// Random closed-loop episodes with random disturbances, checking every guarantee.
+    /// Random closed-loop episodes with random disturbances (B1–B3 or a task folder), checking
+    /// every guarantee.
     Soak(cmd_soak::Args),
     /// Mutation fuzzing of an input parser (same mutators and checks as the CI property tests).
     Fuzz(cmd_fuzz::Args),

@@ -1,5 +1,5 @@
-//! One soak episode: draw its benchmark, mode, session seed and disturbance schedule from the
-//! episode's seed, run the session tick by tick applying the disturbances when due, and check
+//! One soak episode: draw its benchmark (none for a task folder's soak), mode, session seed and
+//! disturbance schedule from the episode's seed, run the session tick by tick applying the disturbances when due, and check
 //! every guarantee on the way (invariants, nothing partially applied, adopted plans valid, the
 //! outcome stated and legitimate, the replay identical).
 
@@ -14,14 +14,14 @@ use super::reasons::{
 };
 use super::report::{ExplainedFailure, SoakFinding, SoakParams, SoakReport};
 use crate::lfd::FailReason;
-use crate::lfd::{mix_seed, Session, SessionOptions, SkillKind};
+use crate::lfd::{mix_seed, Session, SessionOptions, SessionParams, SkillKind};
 use crate::lfd::{Method, Mode};
 use crate::plan::NoClock;
 use crate::sim::block_range;
 use crate::sim::handleable;
-use crate::sim::Benchmark;
 use crate::sim::BodyKind;
 use crate::sim::World;
+use crate::sim::{Benchmark, BenchmarkSources};
 
 /// One scheduled disturbance.
 #[derive(Clone, Debug)]
@@ -130,7 +130,8 @@ fn draw_drag(world: &World, kind: DragKind, rng: &mut Pcg64Mcg) -> (String, [f64
 
 /// What an episode draws from its seed before it starts, in this order.
 struct EpisodeDraw {
-    bench: Benchmark,
+    /// The benchmark (`None`: the task folder's task, nothing drawn).
+    bench: Option<Benchmark>,
     mode: Mode,
     session_seed: u64,
     /// Disturbances by tick, sorted.
@@ -139,15 +140,18 @@ struct EpisodeDraw {
 
 fn draw_episode(params: &SoakParams, rng: &mut Pcg64Mcg) -> EpisodeDraw {
     let bench = match params.blocks {
-        None => Benchmark::ALL[rng.random_range(0..3)],
+        _ if params.folder.is_some() => None,
+        None => Some(Benchmark::ALL[rng.random_range(0..3)]),
         Some(n) => {
             let fits: Vec<Benchmark> = Benchmark::ALL
                 .into_iter()
                 .filter(|&b| block_range(b).is_ok_and(|r| r.contains(&n)))
                 .collect();
-            fits.get(rng.random_range(0..fits.len().max(1)))
-                .copied()
-                .unwrap_or(Benchmark::B1)
+            Some(
+                fits.get(rng.random_range(0..fits.len().max(1)))
+                    .copied()
+                    .unwrap_or(Benchmark::B1),
+            )
         }
     };
     let mode = if rng.random_bool(0.5) {
@@ -179,7 +183,10 @@ struct EpisodeRun<'a> {
     models: &'a Models,
     /// Episode index within the soak.
     e: usize,
-    bench: Benchmark,
+    /// The benchmark (`None`: the task folder's task).
+    bench: Option<Benchmark>,
+    /// The benchmark's name or the task folder's, as findings name the task.
+    task: String,
     session_seed: u64,
     s: Session,
     /// The episode's generator (drags draw their targets from it when they happen).
@@ -193,34 +200,43 @@ struct EpisodeRun<'a> {
 }
 
 /// Runs episode `e` of a soak into `rep` (an empty report) and its episode JSON into
-/// `json_out`.
+/// `json_out`; `folder`: the task folder's files, when the soak runs its task.
 pub(super) fn soak_episode(
     params: &SoakParams,
     e: usize,
     models: &Models,
+    folder: Option<&BenchmarkSources>,
     rep: &mut SoakReport,
     json_out: &mut String,
 ) -> Result<(), String> {
     let mut rng = Pcg64Mcg::seed_from_u64(mix_seed(params.seed, e as u64));
     let draw = draw_episode(params, &mut rng);
     let options = SessionOptions {
-        benchmark: draw.bench,
+        // A task folder's session takes its files from the folder; the benchmark is unused.
+        benchmark: draw.bench.unwrap_or(Benchmark::B1),
         method: Method::LogicLfd,
         mode: draw.mode,
         seed: draw.session_seed,
         skill: SkillKind::Lqt,
         blocks: params.blocks,
     };
-    let s = Session::new(options).map_err(|e| e.to_string())?;
+    let (s, task) = match (draw.bench, folder) {
+        (None, Some(f)) => (
+            Session::with_sources(options, f, None, None, SessionParams::default()),
+            f.dir.clone(),
+        ),
+        (Some(b), _) => (Session::new(options), b.as_str().to_string()),
+        (None, None) => return Err("a task folder's soak needs the folder's files".into()),
+    };
+    let s = s.map_err(|e| e.to_string())?;
     rep.episodes = 1;
-    *rep.per_benchmark
-        .entry(draw.bench.as_str().into())
-        .or_default() += 1;
+    *rep.per_benchmark.entry(task.clone()).or_default() += 1;
     let mut run = EpisodeRun {
         params,
         models,
         e,
         bench: draw.bench,
+        task,
         session_seed: draw.session_seed,
         s,
         rng,
@@ -234,7 +250,7 @@ pub(super) fn soak_episode(
     let json = run.s.episode_json();
     *json_out = json.clone();
     if params.check_replay {
-        run.check_replay(&json, rep);
+        run.check_replay(&json, folder, rep);
     }
     Ok(())
 }
@@ -243,7 +259,7 @@ impl EpisodeRun<'_> {
     fn finding(&self, tick: u64, kind: &str, detail: String) -> SoakFinding {
         SoakFinding {
             episode: self.e,
-            benchmark: self.bench.as_str().into(),
+            benchmark: self.task.clone(),
             session_seed: self.session_seed,
             tick,
             kind: kind.into(),
@@ -405,7 +421,7 @@ impl EpisodeRun<'_> {
         *rep.legitimate_failures.entry(class.into()).or_default() += 1;
         rep.explain(ExplainedFailure {
             episode: self.e,
-            benchmark: self.bench.as_str().into(),
+            benchmark: self.task.clone(),
             session_seed: self.session_seed,
             reason: reason.to_string(),
             class: class.into(),
@@ -513,10 +529,15 @@ impl EpisodeRun<'_> {
         rep.find(self.finding(tick, "unexplained_failure", detail));
     }
 
-    /// Replays the episode JSON and compares the replay's JSON byte for byte.
-    fn check_replay(&self, json: &str, rep: &mut SoakReport) {
+    /// Replays the episode JSON (on the task folder's files, if any) and compares the replay's
+    /// JSON byte for byte.
+    fn check_replay(&self, json: &str, folder: Option<&BenchmarkSources>, rep: &mut SoakReport) {
         rep.replays_checked += 1;
-        match Session::replay(json) {
+        let replayed = match folder {
+            Some(f) => Session::replay_with_sources(f, json),
+            None => Session::replay(json),
+        };
+        match replayed {
             Ok(r) if r.episode_json() == json => {}
             Ok(_) => {
                 rep.replay_mismatches += 1;

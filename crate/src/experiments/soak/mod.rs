@@ -1,8 +1,9 @@
 //! Closed-loop soak: many random Logic-LfD episodes over B1–B3 with random disturbances,
 //! checking the loop's guarantees at every step.
 //!
-//! Episode `e` of a soak with seed `S` draws everything from `Pcg64Mcg(mix_seed(S, e))`: the benchmark,
-//! the multi-goal mode, the session seed, and a schedule of `0..=max_disturbances` disturbances at
+//! Episode `e` of a soak with seed `S` draws everything from `Pcg64Mcg(mix_seed(S, e))`: the benchmark
+//! (unless the soak runs a task folder's task, [`SoakRunner::in_folder`], in the folder's own
+//! scene), the multi-goal mode, the session seed, and a schedule of `0..=max_disturbances` disturbances at
 //! random ticks in `[0, horizon_ticks)`; each is an injected level `L1`–`L4` or a user-like drag
 //! through [`Session::perturb`](crate::lfd::Session::perturb) (onto another block, to a
 //! table spot, a small nudge, or a hostile request: a held or fixed body, an unknown name, a
@@ -46,12 +47,13 @@ mod reasons;
 mod report;
 
 use crate::lfd::mix_seed;
+use crate::sim::{BenchmarkSources, TaskFolder};
 
 use episode::soak_episode;
 use reasons::Models;
 pub use report::{ExplainedFailure, SoakFinding, SoakParams, SoakReport};
 
-/// Runs a soak (see the module documentation). Every episode runs under `catch_unwind` on
+/// Runs a soak over the benchmarks (see the module documentation). Every episode runs under `catch_unwind` on
 /// native targets, so a panic is counted as a finding instead of ending the soak.
 pub fn soak(params: &SoakParams) -> Result<SoakReport, String> {
     soak_with(params, |_, _, _| {})
@@ -78,7 +80,7 @@ impl SoakParams {
     /// which findings and proofs the report keeps).
     pub fn report(&self, episodes: impl IntoIterator<Item = SoakReport>) -> SoakReport {
         let mut report = SoakReport {
-            params: Some(*self),
+            params: Some(self.clone()),
             ..SoakReport::default()
         };
         for ep in episodes {
@@ -93,15 +95,50 @@ impl SoakParams {
 pub struct SoakRunner {
     params: SoakParams,
     models: Models,
+    /// The task folder's files (`None`: the benchmarks').
+    folder: Option<BenchmarkSources>,
 }
 
 impl SoakRunner {
-    /// Builds the checks' models for `params`.
+    /// Builds the checks' models for `params` (a soak over the benchmarks).
     pub fn new(params: &SoakParams) -> Result<SoakRunner, String> {
+        if let Some(f) = &params.folder {
+            return Err(format!(
+                "the soak runs the task folder {}: start it with SoakRunner::in_folder",
+                f.dir
+            ));
+        }
         Ok(SoakRunner {
-            params: *params,
+            params: params.clone(),
             models: Models::new(params.blocks)?,
+            folder: None,
         })
+    }
+
+    /// A soak of `folder`'s task: every episode starts in the folder's scene, with random
+    /// disturbances drawn in it; the parameters record the folder ([`SoakRunner::params`]).
+    pub fn in_folder(params: &SoakParams, folder: &TaskFolder) -> Result<SoakRunner, String> {
+        if params.blocks.is_some() {
+            return Err(format!(
+                "{}: a task folder runs its own task, not a generated tower of N blocks",
+                folder.dir
+            ));
+        }
+        let sources = folder.sources().map_err(|e| e.to_string())?;
+        let models = Models::in_folder(&sources)?;
+        Ok(SoakRunner {
+            params: SoakParams {
+                folder: sources.folder.clone(),
+                ..params.clone()
+            },
+            models,
+            folder: Some(sources),
+        })
+    }
+
+    /// The soak's parameters (with its task folder, if it runs one).
+    pub fn params(&self) -> &SoakParams {
+        &self.params
     }
 
     /// Runs the soak's `i`-th episode (episode `first_episode + i`, seeded from the soak's seed
@@ -112,7 +149,14 @@ impl SoakRunner {
         let mut ep = SoakReport::default();
         let mut json = String::new();
         let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            soak_episode(params, e, &self.models, &mut ep, &mut json)
+            soak_episode(
+                params,
+                e,
+                &self.models,
+                self.folder.as_ref(),
+                &mut ep,
+                &mut json,
+            )
         }));
         match r {
             Ok(Ok(())) => {}

@@ -8,6 +8,7 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::query;
 use parry3d_f64::shape::Cuboid;
 
+use crate::lfd::DomainModel;
 use crate::lfd::FailReason;
 use crate::pddl::{parse_domain, parse_problem, Domain, Problem};
 use crate::plan::fact_args;
@@ -20,6 +21,7 @@ use crate::sim::Benchmark;
 use crate::sim::BodyKind;
 use crate::sim::World;
 use crate::sim::{block_names, tower_goal};
+use crate::sim::{BenchmarkSources, SceneGraph};
 use crate::sim::{Relation, Slot};
 
 /// The block the failure `reason` acts on that a user drag left unworkable, with the proof: the
@@ -190,11 +192,14 @@ pub(super) enum Check {
     Undecided { expanded: u64 },
 }
 
-/// Parsed benchmark domains (for the validator and the unsolvability check).
+/// Parsed benchmark domains, or a task folder's model (for the validator and the unsolvability
+/// check).
 pub(super) struct Models {
     domains: Vec<(Benchmark, Domain)>,
     /// The soak's N-block tower tasks, if it runs them.
     blocks: Option<usize>,
+    /// The task folder's domain and problem, if the soak runs its task.
+    folder: Option<DomainModel>,
 }
 
 impl Models {
@@ -218,7 +223,32 @@ impl Models {
                     .map_err(|e| e.to_string())
             })
             .collect::<Result<_, _>>()?;
-        Ok(Models { domains, blocks })
+        Ok(Models {
+            domains,
+            blocks,
+            folder: None,
+        })
+    }
+
+    /// The models of a task folder's task (`sources`: its files).
+    pub(super) fn in_folder(sources: &BenchmarkSources) -> Result<Models, String> {
+        let motions = sources.parse_motions().map_err(|e| match e {
+            Ok(m) => m.to_string(),
+            Err(pddl) => pddl,
+        })?;
+        let model = DomainModel::new(
+            &sources.domain,
+            &sources.file("domain.pddl"),
+            &sources.problem,
+            &sources.file("problem.pddl"),
+            &motions.scene_predicates(),
+        )
+        .map_err(|e| e.to_string())?;
+        Ok(Models {
+            domains: Vec::new(),
+            blocks: None,
+            folder: Some(model),
+        })
     }
 
     fn domain(&self, b: Benchmark) -> &Domain {
@@ -230,9 +260,20 @@ impl Models {
             .1
     }
 
-    /// The benchmark's domain and the parsed problem "reach its goal from the world's observed
-    /// state".
-    fn observed(&self, b: Benchmark, world: &World) -> Result<(&Domain, Problem), String> {
+    /// The domain and the parsed problem "reach the task's goal from the world's observed
+    /// state": benchmark `b`'s (`None`: the task folder's).
+    fn observed(&self, b: Option<Benchmark>, world: &World) -> Result<(&Domain, Problem), String> {
+        let b = match (b, &self.folder) {
+            (Some(b), _) => b,
+            (None, Some(m)) => {
+                let facts = SceneGraph::from_world(world).to_strings();
+                let p = m
+                    .problem(&SceneGraph::objects(world), &facts)
+                    .map_err(|e| e.to_string())?;
+                return Ok((m.domain(), p));
+            }
+            (None, None) => return Err("a soak over the benchmarks has no task folder".into()),
+        };
         let text = self.problem_text(b, world).ok_or_else(|| {
             format!(
                 "no {}-block task of {}",
@@ -248,7 +289,7 @@ impl Models {
     /// Validates `plan` from the world's observed state to the benchmark's goal.
     pub(super) fn validate(
         &self,
-        b: Benchmark,
+        b: Option<Benchmark>,
         world: &World,
         plan: &[String],
     ) -> Result<(), String> {
@@ -278,7 +319,7 @@ impl Models {
     /// written, parsed or grounded.
     pub(super) fn check_solvable(
         &self,
-        b: Benchmark,
+        b: Option<Benchmark>,
         world: &World,
         nodes: u64,
     ) -> Result<Check, String> {
@@ -424,17 +465,52 @@ mod tests {
         let models = Models::new(None).unwrap();
         let world = Benchmark::B1.scene();
         let c = models
-            .check_solvable(Benchmark::B1, &world, 1_000_000)
+            .check_solvable(Some(Benchmark::B1), &world, 1_000_000)
             .unwrap();
         assert!(
             matches!(c, Check::Solvable { length } if length > 0),
             "{c:?}"
         );
         // A budget too small to finish proves nothing.
-        let c = models.check_solvable(Benchmark::B1, &world, 2).unwrap();
+        let c = models
+            .check_solvable(Some(Benchmark::B1), &world, 2)
+            .unwrap();
         assert!(
             matches!(c, Check::Undecided { expanded } if expanded <= 3),
             "{c:?}"
         );
+    }
+
+    #[test]
+    fn a_task_folders_plans_are_checked_on_its_own_domain_and_goal() {
+        let dir =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../domains/b1-paper-naming");
+        let sources = crate::sim::TaskFolder::read(&dir)
+            .unwrap()
+            .sources()
+            .unwrap();
+        let models = Models::in_folder(&sources).unwrap();
+        let motions = std::sync::Arc::new(sources.parse_motions().unwrap());
+        let world = World::from_json(&sources.scene)
+            .unwrap()
+            .with_motions(motions);
+        let demo = crate::sim::demo::parse(&sources.demo).unwrap();
+        let plan: Vec<String> = demo.plan().iter().map(|a| a.to_string()).collect();
+        assert!(plan[0].starts_with("(pick-up "), "{plan:?}");
+        models.validate(None, &world, &plan).unwrap();
+        let short = models
+            .validate(None, &world, &plan[..plan.len() - 1])
+            .unwrap_err();
+        assert!(short.starts_with("goal not reached"), "{short}");
+        let c = models.check_solvable(None, &world, 1_000_000).unwrap();
+        assert!(
+            matches!(c, Check::Solvable { length } if length <= plan.len()),
+            "{c:?}"
+        );
+        // A soak over the benchmarks has no folder to check against.
+        assert!(Models::new(None)
+            .unwrap()
+            .validate(None, &world, &plan)
+            .is_err());
     }
 }

@@ -4,11 +4,13 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use crate::sim::FolderRecord;
+
 /// Most findings a report keeps.
 const MAX_FINDINGS: usize = 100;
 
 /// Tunables of a soak.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SoakParams {
     /// Number of episodes.
     pub episodes: usize,
@@ -32,6 +34,11 @@ pub struct SoakParams {
     /// the template tasks.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub blocks: Option<usize>,
+    /// The task folder whose task every episode runs, in its own scene (`None`: the
+    /// benchmarks'); set by [`SoakRunner::in_folder`](super::SoakRunner::in_folder). Its file
+    /// hashes tell the shards of one folder's soak from another's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub folder: Option<FolderRecord>,
 }
 
 impl Default for SoakParams {
@@ -46,6 +53,7 @@ impl Default for SoakParams {
             check_replay: true,
             first_episode: 0,
             blocks: None,
+            folder: None,
         }
     }
 }
@@ -56,7 +64,7 @@ impl Default for SoakParams {
 pub struct SoakFinding {
     /// Episode index within the soak.
     pub episode: usize,
-    /// Benchmark.
+    /// Benchmark, or the task folder.
     pub benchmark: String,
     /// The session seed of that episode.
     pub session_seed: u64,
@@ -74,7 +82,7 @@ pub struct SoakFinding {
 pub struct ExplainedFailure {
     /// Episode index within the soak.
     pub episode: usize,
-    /// Benchmark.
+    /// Benchmark, or the task folder.
     pub benchmark: String,
     /// The session seed of that episode.
     pub session_seed: u64,
@@ -93,7 +101,7 @@ pub struct SoakReport {
     pub params: Option<SoakParams>,
     /// Episodes run.
     pub episodes: usize,
-    /// Episodes per benchmark.
+    /// Episodes per benchmark (a task folder's soak: per folder).
     pub per_benchmark: BTreeMap<String, usize>,
     /// Simulated 10 ms ticks in total.
     pub ticks: u64,
