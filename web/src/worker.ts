@@ -99,6 +99,15 @@ const handlers: Handlers = {
     if (scene !== undefined) return replace((await teachModule()).Session.fromScene(options, scene));
     return replace(new (await moduleFor(options)).Session(options));
   },
+  // Task folders run on the full module (recording a demonstration, JSON paths in errors).
+  openFolder: async ({ files, options }) => replace((await teachModule()).Session.fromFolder(files, options)),
+  task: async () => {
+    const s = need();
+    // A first-load session runs B1's template task, which the full module describes as well.
+    if ('taskFiles' in s) return s.taskFiles();
+    const b = (await teachModule()).benchmark('b1');
+    return { domain: b.domain, problem: b.problem, demoPlan: b.demoPlan, dir: `domains/${b.name}` };
+  },
   speedUp: () => {
     speedUp(
       () => session,
@@ -166,7 +175,7 @@ const handlers: Handlers = {
     const appliedAt = performance.timeOrigin + performance.now();
     return { frame: s.frame(), appliedAt };
   },
-  episode: () => need().episodeJson(),
+  episode: ({ withFiles }) => need().episodeJson(withFiles ? { withFiles } : undefined),
   scene: () => need().sceneJson(),
   memory: () => ({ wasmBytes: (wasmMemory?.buffer.byteLength ?? 0) + teachMemoryBytes() }),
   ...teachHandlers(replace),

@@ -27,6 +27,8 @@ mod benchmark_info;
 mod catalogue;
 mod convert;
 #[cfg(feature = "wasm")]
+mod folder;
+#[cfg(feature = "wasm")]
 mod logic_lfd;
 #[cfg(feature = "wasm")]
 mod pddl;
