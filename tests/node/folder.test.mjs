@@ -101,7 +101,7 @@ describe('task folders', () => {
     delete files['motions.json'];
     assert.throws(
       () => lfd.Session.fromFolder(files, { dir: 'mine' }),
-      (e) => e.message.startsWith('./mine/motions.json: missing: a task folder holds domain.pddl, problem.pddl, motions.json, scene.json'),
+      (/** @type {Error} */ e) => e.message.startsWith('./mine/motions.json: missing: a task folder holds domain.pddl, problem.pddl, motions.json, scene.json'),
     );
     assert.throws(() => lfd.runEpisode(JSON.stringify({ folder: files, dir: 'mine' })), /^Error: \.\/mine\/motions\.json: missing/);
     const noDemo = folderFiles();

@@ -72,9 +72,10 @@ export async function folderFromFiles(list: File[]): Promise<OpenFolder> {
     const what = zip ? list[0].name : list.length === 1 ? list[0].name : `the ${list.length} files`;
     throw new Error(`${what}: no task folder files in it (a task folder holds domain.pddl, problem.pddl, motions.json, scene.json and demo.json or expert.json)`);
   }
-  // A zip of a directory names the folder after that directory.
+  // A zip of a directory names the folder after that directory; a bare name reads `./NAME`, as
+  // the core names it in messages.
   if (dir) name = baseName(dir);
-  return { name, files, url: null };
+  return { name: `./${name}`, files, url: null };
 }
 
 /**

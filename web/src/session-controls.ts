@@ -118,6 +118,9 @@ export class SessionControls {
   /** The Run runs a taught task: no permalink can restore it, so the URL and the top bar say so. */
   taught(f: Frame): void {
     this.p.state.taught = true;
+    // Teach mode teaches in a benchmark's workcell: the Run leaves the task folder.
+    this.p.state.folder = null;
+    this.folderChoices();
     history.replaceState(null, '', location.pathname);
     this.p.ui.taskTag.textContent = `taught task · ${f.world.name}`;
     this.p.ui.taskTag.hidden = false;
@@ -197,7 +200,10 @@ export class SessionControls {
     this.p.state.autoplay = false;
     await this.open();
     this.p.state.autoplay = autoplay;
+    // After the opened frame is drawn (next animation frame), so the reason stays on the line.
+    await new Promise((r) => requestAnimationFrame(r));
     this.p.status.fail(`Could not open the task folder ${url}: ${why}`);
+    this.p.status.notice(`Could not open the task folder ${url}: ${sentence(why)}`, 'error', 15000);
   }
 
   /** Opens `folder`; resolves to null, or to why it could not (the status line says so too). */
@@ -222,7 +228,7 @@ export class SessionControls {
     } catch (e) {
       const why = (e as Error).message;
       status.fail(`Could not open the task folder: ${why}`);
-      status.notice(`The task folder ${folder.name} was not opened: ${sentence(why)}`, 'error');
+      status.notice(`The task folder ${folder.name} was not opened: ${sentence(why)}`, 'error', 15000);
       if (was) await this.play();
       return why;
     }
@@ -276,7 +282,7 @@ export class SessionControls {
     try {
       folder = await folderFromFiles(files);
     } catch (e) {
-      this.p.status.notice(`No task folder was opened: ${sentence((e as Error).message)}`, 'error');
+      this.p.status.notice(`No task folder was opened: ${sentence((e as Error).message)}`, 'error', 15000);
       this.p.status.fail(`Could not open the task folder: ${(e as Error).message}`);
       return;
     }

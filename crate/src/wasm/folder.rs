@@ -64,6 +64,13 @@ pub struct TaskFiles {
     pub dir: String,
 }
 
+#[wasm_bindgen]
+extern "C" {
+    /// `Session.fromFolder`'s optional options.
+    #[wasm_bindgen(typescript_type = "FolderOptions")]
+    pub type FolderOptionsArg;
+}
+
 /// A folder's files from JS: a plain object mapping file names to their text. Names outside
 /// [`FOLDER_FILES`] are ignored, as a directory's other files are.
 pub(super) fn folder_files(
@@ -162,14 +169,15 @@ impl WasmSession {
     /// A session on a task folder given as its files: an object mapping `domain.pddl`,
     /// `problem.pddl`, `motions.json`, `scene.json` and `demo.json` or `expert.json` (optionally
     /// `demo.plan`, `README.md`) to their text. Rejects a missing or broken file with an `Error`
-    /// naming it (`./mine/scene.json: …`), as `logic-lfd run --folder` does.
+    /// naming it (`./mine/scene.json: …`), as the CLI does.
     #[wasm_bindgen(js_name = fromFolder)]
     pub fn from_folder(
         #[wasm_bindgen(unchecked_param_type = "Record<string, string>")] files: JsValue,
-        #[wasm_bindgen(unchecked_param_type = "FolderOptions | undefined")] options: JsValue,
+        options: Option<FolderOptionsArg>,
     ) -> Result<WasmSession, JsValue> {
         const F: &str = "Session.fromFolder";
         let files = folder_files(F, &files)?;
+        let options = options.map(JsValue::from).unwrap_or(JsValue::UNDEFINED);
         object_arg(F, "options", &options, true)?;
         let o: FolderOptions = if options.is_undefined() || options.is_null() {
             FolderOptions::deserialize(serde_json::json!({})).map_err(js_err)?
