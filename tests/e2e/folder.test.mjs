@@ -152,6 +152,17 @@ describe('task folder on the page', () => {
     await page.close();
   });
 
+  test('the PDDL tab of a generated N-block task holds its own problem, not the template', async () => {
+    const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&blocks=7&autoplay=0');
+    await page.click('#tab-pddl');
+    await page.click('#pddl-tab-problem');
+    const visible = '#panel-pddl .cm-host:not([hidden]) .cm-content';
+    // Seven blocks a … g (the template has four, a … d).
+    await page.waitForFunction((sel) => /\(:objects[^)]*\bg\b/.test(document.querySelector(sel)?.textContent ?? ''), visible, { timeout: 60000 });
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
+
   test('a broken folder is refused naming the file; the Run keeps what it had', async () => {
     // Served without motions.json: the page says which file is missing and opens the benchmark paused.
     const rest = { ...FILES };

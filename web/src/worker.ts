@@ -5,8 +5,8 @@
  * size-built first load ('logic-lfd-page': the Session on B1's template task, `benchmark`,
  * `blockRange` and `catalogue`, whose block counts and catalogue it sends with its `ready` message);
  * teach-worker.ts fetches the full one (built for speed) when Teach mode, `Session.replay`, the
- * PDDL tab's calls, a loaded scene, B2, B3 or an N-block task need it, and speed-up.ts moves the
- * session onto it after the first frame.
+ * PDDL tab's calls, a loaded scene, a task folder, B2, B3 or an N-block task need it, and
+ * speed-up.ts moves the session onto it after the first frame.
  */
 import init, * as lfd from 'logic-lfd-page';
 import type { Frame, Level, SessionOptions } from 'logic-lfd';
