@@ -91,7 +91,12 @@ describe('task folder on the page', () => {
 
   test('a picked directory runs; Save writes the run with its files and Load restores the folder; Link says Save', async () => {
     const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&autoplay=0');
-    await page.setInputFiles('#folder-dir', DIR);
+    // The benchmark select's last item opens the directory picker.
+    const chooser = page.waitForEvent('filechooser');
+    await page.selectOption('#benchmark', 'open-folder');
+    const picker = await chooser;
+    assert.equal(await picker.element().getAttribute('id'), 'folder-dir');
+    await picker.setFiles(DIR);
     await page.waitForFunction(() => document.getElementById('task-tag')?.textContent?.includes('b1-paper-naming'), null, { timeout: 60000 });
     assert.equal(await page.inputValue('#benchmark'), 'folder');
     assert.ok(await page.isDisabled('#blocks'));

@@ -28,9 +28,7 @@ export interface Controls {
   saveBtn: HTMLButtonElement;
   loadBtn: HTMLButtonElement;
   fileIn: HTMLInputElement;
-  /** Opens a task folder: a directory, several of its files or a `.zip`. */
-  folderBtn: HTMLButtonElement;
-  /** The directory picker behind `folderBtn`. */
+  /** The directory picker behind the benchmark select's "Open folder…". */
   dirIn: HTMLInputElement;
   linkBtn: HTMLButtonElement;
   helpBtn: HTMLButtonElement;
@@ -131,8 +129,12 @@ export const FOLDER = 'folder';
  * one. */
 export function setFolderChoice(sel: HTMLSelectElement, folder: string | null, benchmark: Benchmark): void {
   for (const v of [FOLDER, OPEN_FOLDER]) sel.querySelector(`option[value="${v}"]`)?.remove();
-  if (folder !== null) sel.append(el('option', { value: FOLDER, title: `The task folder ${folder}` }, `folder · ${folder.replace(/^\.\//, '').split('/').filter(Boolean).pop() ?? folder}`));
-  sel.append(el('option', { value: OPEN_FOLDER, title: 'Open a task folder of your own' }, 'Open a task folder…'));
+  if (folder !== null) {
+    // The folder's last name, short: the select is as wide as its longest item.
+    const name = folder.split('/').filter((p) => p && p !== '.').pop() ?? folder;
+    sel.append(el('option', { value: FOLDER, title: `The task folder ${folder}` }, `folder · ${name.length > 14 ? `${name.slice(0, 13)}…` : name}`));
+  }
+  sel.append(el('option', { value: OPEN_FOLDER, title: 'Open a task folder of your own: pick its directory' }, 'Open folder…'));
   sel.value = folder !== null ? FOLDER : benchmark;
 }
 
@@ -176,7 +178,6 @@ function buildControls(s: PageState): Controls {
       hidden: '',
       'aria-label': 'Scene or saved run (JSON), or a task folder’s files or .zip',
     }),
-    folderBtn: button('open-folder', 'Open a task folder of your own (domain.pddl, problem.pddl, motions.json, scene.json, demo.json or expert.json)', 'Folder'),
     dirIn: el('input', { id: 'folder-dir', type: 'file', webkitdirectory: '', multiple: '', hidden: '', 'aria-label': 'Task folder' }),
     linkBtn: button('permalink', 'Copy a link to this benchmark, block count, method, mode and seed', 'Link'),
     helpBtn: button('help', 'Keyboard shortcuts and help (?)', '?'),
@@ -230,7 +231,7 @@ function buildTopBar(c: Controls, version: HTMLElement, taskTag: HTMLElement): H
     el('div', { class: 'group', role: 'group', 'aria-label': 'Scenario' }, c.benchSel, c.blocksSel, c.methodSel, c.modeSel, el('label', { class: 'seed' }, 'seed', c.seedIn), c.resetBtn),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Playback' }, c.playBtn, c.stepBtn, c.speedSel),
     c.levelGroup,
-    el('div', { class: 'group right', role: 'group', 'aria-label': 'Scene and link' }, c.saveBtn, c.loadBtn, c.fileIn, c.folderBtn, c.dirIn, c.linkBtn, c.helpBtn),
+    el('div', { class: 'group right', role: 'group', 'aria-label': 'Scene and link' }, c.saveBtn, c.loadBtn, c.fileIn, c.dirIn, c.linkBtn, c.helpBtn),
   );
 }
 

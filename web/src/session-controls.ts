@@ -238,7 +238,11 @@ export class SessionControls {
   private folderChoices(): void {
     const { state, ui } = this.p;
     setFolderChoice(ui.controls.benchSel, state.folder?.name ?? null, state.options.benchmark);
-    ui.controls.blocksSel.disabled = state.folder !== null;
+    // A folder is its own task: no generated N-block variant.
+    if (state.folder) {
+      ui.controls.blocksSel.disabled = true;
+      ui.controls.blocksSel.title = 'A task folder is its own task: it has no N-block variant';
+    } else setBlockChoices(ui.controls.blocksSel, state.options.benchmark, state.options.blocks);
   }
 
   /** States the task's goal in words (a generated tower's from its demonstration's last state). */
@@ -306,7 +310,6 @@ export class SessionControls {
       c.methodSel.value = o.method;
       c.modeSel.value = o.mode;
       c.seedIn.value = String(o.seed);
-      setBlockChoices(c.blocksSel, o.benchmark, o.blocks);
       this.folderChoices();
       this.showTaskTag();
       updateUrl(state);
@@ -498,13 +501,12 @@ export class SessionControls {
         c.benchSel.value = state.folder ? FOLDER : o.benchmark;
         return;
       }
-      state.folder = null;
-      this.folderChoices();
       o.benchmark = c.benchSel.value as Benchmark;
+      state.folder = null;
       // A count the new benchmark does not allow falls back to its template task.
       const blocks = blocksFor(o.benchmark, o.blocks);
       if (blocks === undefined) delete o.blocks;
-      setBlockChoices(c.blocksSel, o.benchmark, blocks);
+      this.folderChoices();
       this.p.tabs().teach?.reset();
       void this.open();
     };
@@ -550,7 +552,6 @@ export class SessionControls {
         c.fileIn.value = '';
         if (files.length) await this.loadFiles(files);
       });
-    c.folderBtn.onclick = () => c.dirIn.click();
     c.dirIn.onchange = () =>
       void this.guard(async () => {
         const files = [...(c.dirIn.files ?? [])];
