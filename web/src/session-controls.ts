@@ -271,7 +271,8 @@ export class SessionControls {
    */
   async loadFiles(files: File[]): Promise<void> {
     const one = files.length === 1 ? files[0] : null;
-    if (one && !/\.zip$/i.test(one.name) && (/\.json$/i.test(one.name) || one.type === 'application/json') && !/^(motions|expert|demo)\.json$/.test(one.name)) {
+    // One file is a scene or a saved run unless it is a zip or one of a folder's other files.
+    if (one && !/\.(zip|pddl|plan|md)$/i.test(one.name) && !/^(motions|expert|demo)\.json$/.test(one.name)) {
       const text = await one.text();
       let parsed: unknown = null;
       try {
