@@ -63,4 +63,11 @@ describe("the page's first-load module", () => {
     assert.equal(page.Session.fromScene, undefined);
     assert.equal(typeof full.Session.fromScene, 'function');
   });
+
+  test('leaves task folders to the full module', () => {
+    assert.equal(page.Session.fromFolder, undefined);
+    assert.equal(page.Session.prototype.taskFiles, undefined);
+    assert.equal(typeof full.Session.fromFolder, 'function');
+    assert.equal(typeof full.Session.prototype.taskFiles, 'function');
+  });
 });

@@ -59,6 +59,8 @@ export interface CompareScript {
   scene?: string;
   /** Applied in order, each at its tick. */
   disturbances: Disturbance[];
+  /** The task folder every method runs (its name and files) instead of the benchmark's task. */
+  folder?: { name: string; files: Record<string, string> } | null;
 }
 
 /** Where a comparison's disturbances come from. */
@@ -69,7 +71,10 @@ const finished = (f: Frame) => f.status.kind === 'done' || f.status.kind === 'fa
 /** Runs one method on the script in `client`'s worker. */
 async function runOne(client: WorkerClient, script: CompareScript, { method, mode, name }: Run): Promise<CompareResult> {
   const options: SessionOptions = { ...script.options, method, mode };
-  const opened = await client.call('open', script.scene === undefined ? { options } : { options, scene: script.scene });
+  const { folder } = script;
+  const opened = folder
+    ? await client.call('openFolder', { files: folder.files, options: { dir: folder.name, method, mode, seed: options.seed, skill: options.skill, scene: script.scene } })
+    : await client.call('open', script.scene === undefined ? { options } : { options, scene: script.scene });
   const applied = await applyAll(client, opened, script.disturbances);
   let f = applied.frame;
   while (!finished(f) && f.t < MAX_SIM_S) f = await client.call('step', { dt: CHUNK_S });
@@ -88,6 +93,8 @@ async function runOne(client: WorkerClient, script: CompareScript, { method, mod
 /** What a comparison needs of the page: the Run's benchmark, blocks and seed, and its episode log. */
 export interface CompareHost {
   scenario(): CompareScript['options'];
+  /** The task folder the Run runs (null: the benchmark's task). */
+  folder(): CompareScript['folder'];
   /** The Run's episode log (`Session.episodeJson()`). */
   episode(): Promise<string>;
 }
@@ -172,17 +179,18 @@ export class ComparePanel {
       await this.refresh();
       const r = this.recorded;
       if (typeof r === 'string') return null;
-      return { options: r.options, scene: r.scene, disturbances: recordedDisturbances(r) };
+      return { options: r.options, scene: r.scene, disturbances: recordedDisturbances(r), folder: this.host.folder() };
     }
     const level = this.levelSel.value as Level;
     const at = Math.max(0, Number(this.atIn.value) || 0);
-    return { options: this.host.scenario(), disturbances: [scriptedDisturbance(level, at)] };
+    return { options: this.host.scenario(), disturbances: [scriptedDisturbance(level, at)], folder: this.host.folder() };
   }
 
   /** The comparison's one-line description: the scenario and its disturbances. */
   private describe(script: CompareScript): string {
     const o = script.options;
-    const head = `${o.benchmark.toUpperCase()}${o.blocks ? ` · ${o.blocks} blocks` : ''} · seed ${o.seed}`;
+    const task = script.folder ? `task folder ${script.folder.name}` : `${o.benchmark.toUpperCase()}${o.blocks ? ` · ${o.blocks} blocks` : ''}`;
+    const head = `${task} · seed ${o.seed}`;
     const r = this.recorded;
     if (this.sourceSel.value === 'recorded' && typeof r !== 'string') return `${head} · the Run’s recorded disturbances: ${r.events.map((e) => eventLabel(e, r.dt)).join(', ')}`;
     return `${head} · ${this.levelSel.value.toUpperCase()} at ${Math.max(0, Number(this.atIn.value) || 0)} s`;

@@ -121,7 +121,7 @@ export class EditorPanel {
       el(
         'p',
         { id: 'pddl-own', class: 'pddl-own' },
-        'A sandbox: this tab plans on its own. Edits here never change the robot’s task in the Run (edits are kept per benchmark).',
+        'A sandbox: this tab plans on its own. Edits here never change the robot’s task in the Run (edits are kept per task: benchmark, block count or task folder).',
       ),
       el(
         'div',

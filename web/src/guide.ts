@@ -18,9 +18,9 @@ export function goalFacts(problem: string): string[] {
 /** One fact in words: `(on a b)` → "a on b", `(onshelf a)` → "a on the shelf". */
 export function factWords(fact: string): string {
   const [p, ...args] = fact.slice(1, -1).split(' ');
-  if (p === 'on' && args.length === 2) return `${args[0]} on ${args[1]}`;
+  if ((p === 'on' || p === 'on-block') && args.length === 2) return `${args[0]} on ${args[1]}`;
   if (p === 'onshelf' && args.length === 1) return `${args[0]} on the shelf`;
-  if (p === 'ontable' && args.length === 1) return `${args[0]} on the table`;
+  if ((p === 'ontable' || p === 'on-table') && args.length === 1) return `${args[0]} on the table`;
   if (p === 'at' && args.length === 2) return `${args[0]} at ${args[1]}`;
   return fact;
 }

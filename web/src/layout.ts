@@ -28,6 +28,8 @@ export interface Controls {
   saveBtn: HTMLButtonElement;
   loadBtn: HTMLButtonElement;
   fileIn: HTMLInputElement;
+  /** The directory picker behind the benchmark select's "Open folder…". */
+  dirIn: HTMLInputElement;
   linkBtn: HTMLButtonElement;
   helpBtn: HTMLButtonElement;
 }
@@ -119,10 +121,28 @@ function fill<T extends string>(sel: HTMLSelectElement, choices: [T, string][], 
   sel.disabled = false;
 }
 
+/** The benchmark select's item that opens a task folder, and the one of the open folder. */
+export const OPEN_FOLDER = 'open-folder';
+export const FOLDER = 'folder';
+
+/** Adds to the benchmark select the open folder (selected; null: none) and the item that opens
+ * one. */
+export function setFolderChoice(sel: HTMLSelectElement, folder: string | null, benchmark: Benchmark): void {
+  for (const v of [FOLDER, OPEN_FOLDER]) sel.querySelector(`option[value="${v}"]`)?.remove();
+  if (folder !== null) {
+    // The folder's last name, short: the select is as wide as its longest item.
+    const name = folder.split('/').filter((p) => p && p !== '.').pop() ?? folder;
+    sel.append(el('option', { value: FOLDER, title: `The task folder ${folder}` }, `folder · ${name.length > 14 ? `${name.slice(0, 13)}…` : name}`));
+  }
+  sel.append(el('option', { value: OPEN_FOLDER, title: 'Open a task folder of your own: pick its directory' }, 'Open folder…'));
+  sel.value = folder !== null ? FOLDER : benchmark;
+}
+
 /** Fills the benchmark, method and mode selects and makes the L1–L4 buttons from the catalogue
  * the worker sent, the selects set to scenario `o`. */
 export function setCatalogueChoices(c: Controls, cat: Catalogue, o: Scenario): void {
   fill(c.benchSel, items(cat.benchmarks), o.benchmark);
+  setFolderChoice(c.benchSel, null, o.benchmark);
   fill(c.methodSel, items(cat.methods), o.method);
   fill(c.modeSel, items(cat.modes), o.mode);
   const buttons = cat.levels.map(({ id, label, description }, i) => {
@@ -149,8 +169,16 @@ function buildControls(s: PageState): Controls {
     levelGroup: el('div', { class: 'group', role: 'group', 'aria-label': 'Inject a disturbance' }, el('span', { class: 'muted small' }, 'inject')),
     levelBtns: [],
     saveBtn: button('save-scene', 'Save the current scene as JSON', 'Save'),
-    loadBtn: button('load-scene', 'Load a scene JSON file', 'Load'),
-    fileIn: el('input', { type: 'file', accept: 'application/json,.json', hidden: '', 'aria-label': 'Scene JSON file' }),
+    loadBtn: button('load-scene', 'Load a scene or a saved run (JSON), or a task folder’s files or .zip', 'Load'),
+    fileIn: el('input', {
+      id: 'load-file',
+      type: 'file',
+      multiple: '',
+      accept: 'application/json,.json,.zip,application/zip,.pddl,.plan,.md',
+      hidden: '',
+      'aria-label': 'Scene or saved run (JSON), or a task folder’s files or .zip',
+    }),
+    dirIn: el('input', { id: 'folder-dir', type: 'file', webkitdirectory: '', multiple: '', hidden: '', 'aria-label': 'Task folder' }),
     linkBtn: button('permalink', 'Copy a link to this benchmark, block count, method, mode and seed', 'Link'),
     helpBtn: button('help', 'Keyboard shortcuts and help (?)', '?'),
   };
@@ -203,7 +231,7 @@ function buildTopBar(c: Controls, version: HTMLElement, taskTag: HTMLElement): H
     el('div', { class: 'group', role: 'group', 'aria-label': 'Scenario' }, c.benchSel, c.blocksSel, c.methodSel, c.modeSel, el('label', { class: 'seed' }, 'seed', c.seedIn), c.resetBtn),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Playback' }, c.playBtn, c.stepBtn, c.speedSel),
     c.levelGroup,
-    el('div', { class: 'group right', role: 'group', 'aria-label': 'Scene and link' }, c.saveBtn, c.loadBtn, c.fileIn, c.linkBtn, c.helpBtn),
+    el('div', { class: 'group right', role: 'group', 'aria-label': 'Scene and link' }, c.saveBtn, c.loadBtn, c.fileIn, c.dirIn, c.linkBtn, c.helpBtn),
   );
 }
 

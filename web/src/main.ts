@@ -63,7 +63,8 @@ client.ready.then(
     if (blocks === undefined) delete state.options.blocks;
     setBlockChoices(ui.controls.blocksSel, state.options.benchmark, blocks);
     view.start();
-    await session.open();
+    if (state.folderUrl) await session.openFolderAt(state.folderUrl);
+    else await session.open();
     window.lfd.loadedAt = performance.now();
     ui.app.dataset.ready = 'true';
     // The first frame is drawn: the worker now fetches the full-speed module and moves onto it.

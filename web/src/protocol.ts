@@ -8,6 +8,7 @@ import type {
   BenchmarkInfo,
   Catalogue,
   Diagnostic,
+  FolderOptions,
   Frame,
   LogicLfdInput,
   LogicLfdPerturbInput,
@@ -17,6 +18,7 @@ import type {
   PlanOptions,
   PlanOutcome,
   SessionOptions,
+  TaskFiles,
 } from 'logic-lfd';
 import type { SpeedUpState } from './speed-up';
 import type { TeachApi } from './teach-protocol';
@@ -46,7 +48,11 @@ export interface Api extends TeachApi {
   logicLfdPerturb: { args: { input: LogicLfdPerturbInput }; result: LogicLfdPerturbResult };
   benchmark: { args: { id: Benchmark }; result: BenchmarkInfo };
   open: { args: { options: SessionOptions; scene?: string }; result: Frame };
+  /** A session on a task folder given by its files (`Session.fromFolder`). */
+  openFolder: { args: { files: Record<string, string>; options: FolderOptions }; result: Frame };
   replay: { args: { episode: string }; result: Frame };
+  /** The domain, problem and demonstration plan the session runs (a folder's, a generated task's). */
+  task: { args: Record<string, never>; result: TaskFiles };
   play: { args: { speed: number }; result: null };
   pause: { args: Record<string, never>; result: Frame | null };
   step: { args: { dt: number }; result: Frame };
@@ -58,7 +64,8 @@ export interface Api extends TeachApi {
   reset: { args: { seed: number }; result: Frame };
   /** `appliedAt`: when the worker dropped the plan (ms, `performance.timeOrigin + performance.now()`). */
   cancel: { args: Record<string, never>; result: { frame: Frame; appliedAt: number } };
-  episode: { args: Record<string, never>; result: string };
+  /** The episode log; `withFiles`: a folder's log carries its files. */
+  episode: { args: { withFiles?: boolean }; result: string };
   /** The worker's wasm linear memory (bytes; it grows, never shrinks), for the page soak test. */
   memory: { args: Record<string, never>; result: { wasmBytes: number } };
   scene: { args: Record<string, never>; result: string };

@@ -4,15 +4,16 @@
  * block, save the scene, copy the permalink; and the frames the worker pushes while it plays.
  */
 import type { Benchmark, Frame, Level, Method, Mode } from 'logic-lfd';
+import { folderFromFiles, folderFromUrl, folderOfLog, isEpisodeLog, type OpenFolder } from './folder';
 import type { DropRequest, View } from './view';
 import type { WorkerClient } from './client';
 import { downloadJson, guard } from './dom';
 import type { FirstVisitHint } from './guide';
 import type { FrameRenderer } from './frame-renderer';
 import type { History } from './history';
-import { setBlockChoices, type Layout } from './layout';
+import { FOLDER, OPEN_FOLDER, setBlockChoices, setFolderChoice, type Layout } from './layout';
 import type { FromWorker } from './protocol';
-import { blocksFor, parseSeed, recordStep, updateUrl, type PageState } from './state';
+import { blocksFor, parseSeed, recordStep, taskKey, updateUrl, type PageState } from './state';
 import type { StatusBar } from './status-bar';
 import type { Tabs } from './tabs';
 
@@ -117,27 +118,37 @@ export class SessionControls {
   /** The Run runs a taught task: no permalink can restore it, so the URL and the top bar say so. */
   taught(f: Frame): void {
     this.p.state.taught = true;
+    // Teach mode teaches in a benchmark's workcell: the Run leaves the task folder.
+    this.p.state.folder = null;
+    this.folderChoices();
     history.replaceState(null, '', location.pathname);
     this.p.ui.taskTag.textContent = `taught task · ${f.world.name}`;
     this.p.ui.taskTag.hidden = false;
     this.p.ui.run.goal.textContent = 'the taught goal (Teach tab)';
   }
 
-  /** Opens a session of the chosen scenario (or of a scene file's world). */
+  /** Opens a session of the chosen scenario (or of a scene file's world), on the open task folder
+   * if there is one. */
   async open(scene?: string): Promise<void> {
     const { state, client, renderer, status, view } = this.p;
     state.taught = false;
-    this.p.ui.taskTag.hidden = true;
+    this.showTaskTag();
     this.setPlaying(false);
     updateUrl(state);
-    status.say('Loading the benchmark…');
+    const { folder } = state;
+    status.say(folder ? 'Loading the task folder…' : 'Loading the benchmark…');
     try {
-      const f = await client.call('open', { options: { ...state.options }, scene });
+      const f = folder ? await this.openFolderSession(folder, scene) : await client.call('open', { options: { ...state.options }, scene });
       renderer.restart(f);
       void this.guard(() => this.showGoal(f));
-      if (state.editorBenchmark !== state.options.benchmark && !this.p.ui.editorHost.hidden) void this.p.tabs().loadEditor();
+      if (state.editorTask !== taskKey(state) && !this.p.ui.editorHost.hidden) void this.p.tabs().loadEditor();
       if (state.autoplay) await this.play();
     } catch (e) {
+      if (folder) {
+        // The worker keeps the session it had; the error names the folder's file at fault.
+        status.fail(`Could not open the task folder: ${(e as Error).message}`);
+        return;
+      }
       // Still show the benchmark's scene, and say why nothing moves.
       try {
         view.update((await client.call('benchmark', { id: state.options.benchmark })).scene);
@@ -148,11 +159,101 @@ export class SessionControls {
     }
   }
 
+  /** A session on `folder` with the scenario's method, mode and seed (the worker's `openFolder`). */
+  private openFolderSession(folder: OpenFolder, scene?: string): Promise<Frame> {
+    const { method, mode, seed, skill } = this.p.state.options;
+    return this.p.client.call('openFolder', { files: folder.files, options: { dir: folder.name, method, mode, seed, skill, scene } });
+  }
+
+  /** The top bar's tag: the task folder the Run runs (hidden for a benchmark). */
+  private showTaskTag(): void {
+    const { ui, state } = this.p;
+    ui.taskTag.hidden = !state.folder;
+    if (state.folder) {
+      ui.taskTag.textContent = `task folder · ${state.folder.name}`;
+      ui.taskTag.title = state.folder.url ? `Served at ${state.folder.url}` : 'Opened from this computer: Save keeps it with the run';
+    }
+  }
+
+  /**
+   * Opens the task folder `folder` in the Run (`?folder=URL`, a picked directory, files or zip,
+   * a saved run's files). A folder the core refuses changes nothing and says which file is at
+   * fault; resolves to whether it opened.
+   */
+  async openFolder(folder: OpenFolder): Promise<boolean> {
+    return (await this.tryFolder(folder)) === null;
+  }
+
+  /**
+   * Opens the task folder served at `url` (`?folder=URL`). When it cannot be fetched or the core
+   * refuses it, the benchmark opens paused beneath and the status line keeps the reason.
+   */
+  async openFolderAt(url: string): Promise<void> {
+    let why: string | null;
+    try {
+      why = await this.tryFolder(await folderFromUrl(url));
+    } catch (e) {
+      why = (e as Error).message;
+    }
+    if (why === null) return;
+    const autoplay = this.p.state.autoplay;
+    this.p.state.autoplay = false;
+    await this.open();
+    this.p.state.autoplay = autoplay;
+    // After the opened frame is drawn (next animation frame), so the reason stays on the line.
+    await new Promise((r) => requestAnimationFrame(r));
+    this.p.status.fail(`Could not open the task folder ${url}: ${why}`);
+    this.p.status.notice(`Could not open the task folder ${url}: ${sentence(why)}`, 'error', 15000);
+  }
+
+  /** Opens `folder`; resolves to null, or to why it could not (the status line says so too). */
+  private async tryFolder(folder: OpenFolder): Promise<string | null> {
+    const { state, status, renderer } = this.p;
+    const was = state.playing;
+    if (was) await this.pause();
+    try {
+      const f = await this.openFolderSession(folder);
+      state.folder = folder;
+      state.taught = false;
+      this.p.tabs().teach?.reset();
+      this.folderChoices();
+      this.showTaskTag();
+      updateUrl(state);
+      renderer.restart(f);
+      void this.guard(() => this.showGoal(f));
+      if (!this.p.ui.editorHost.hidden) void this.p.tabs().loadEditor();
+      status.notice(`Opened the task folder ${folder.name}.`, 'info');
+      if (state.autoplay) await this.play();
+      return null;
+    } catch (e) {
+      const why = (e as Error).message;
+      status.fail(`Could not open the task folder: ${why}`);
+      status.notice(`The task folder ${folder.name} was not opened: ${sentence(why)}`, 'error', 15000);
+      if (was) await this.play();
+      return why;
+    }
+  }
+
+  /** The benchmark select and the block select for the open folder (none: the benchmarks). */
+  private folderChoices(): void {
+    const { state, ui } = this.p;
+    setFolderChoice(ui.controls.benchSel, state.folder?.name ?? null, state.options.benchmark);
+    // A folder is its own task: no generated N-block variant.
+    if (state.folder) {
+      ui.controls.blocksSel.disabled = true;
+      ui.controls.blocksSel.title = 'A task folder is its own task: it has no N-block variant';
+    } else setBlockChoices(ui.controls.blocksSel, state.options.benchmark, state.options.blocks);
+  }
+
   /** States the task's goal in words (a generated tower's from its demonstration's last state). */
   private async showGoal(f: Frame): Promise<void> {
-    const [b, { goalFacts, goalWords }] = await Promise.all([this.p.client.call('benchmark', { id: this.p.state.options.benchmark }), import('./guide')]);
-    let facts = goalFacts(b.problem);
-    if (this.p.state.options.blocks != null) {
+    const { folder } = this.p.state;
+    const [problem, { goalFacts, goalWords }] = await Promise.all([
+      folder ? (folder.files['problem.pddl'] ?? '') : this.p.client.call('benchmark', { id: this.p.state.options.benchmark }).then((b) => b.problem),
+      import('./guide'),
+    ]);
+    let facts = goalFacts(problem);
+    if (this.p.state.options.blocks != null && !folder) {
       const preds = new Set(facts.map((x) => x.slice(1).split(' ')[0]));
       facts = (f.demoStates[f.demoStates.length - 1] ?? []).filter((x) => preds.has(x.slice(1).split(/[ )]/)[0]));
     }
@@ -163,13 +264,72 @@ export class SessionControls {
     this.hint?.setGoal(words);
   }
 
+  /**
+   * What Load opens: one JSON file is a scene or a saved run (an episode log, replayed; one that
+   * carries its task folder's files opens that folder); a `.zip` or several files are a task
+   * folder.
+   */
+  async loadFiles(files: File[]): Promise<void> {
+    const one = files.length === 1 ? files[0] : null;
+    // One file is a scene or a saved run unless it is a zip or one of a folder's other files.
+    if (one && !/\.(zip|pddl|plan|md)$/i.test(one.name) && !/^(motions|expert|demo)\.json$/.test(one.name)) {
+      const text = await one.text();
+      let parsed: unknown = null;
+      try {
+        parsed = JSON.parse(text);
+      } catch {
+        /* the scene loader names the position of the error */
+      }
+      if (isEpisodeLog(parsed)) return this.loadEpisode(one.name, text, folderOfLog(parsed));
+      return this.loadScene(one.name, text);
+    }
+    let folder: OpenFolder;
+    try {
+      folder = await folderFromFiles(files);
+    } catch (e) {
+      this.p.status.notice(`No task folder was opened: ${sentence((e as Error).message)}`, 'error', 15000);
+      this.p.status.fail(`Could not open the task folder: ${(e as Error).message}`);
+      return;
+    }
+    await this.openFolder(folder);
+  }
+
+  /** Replays a saved run; one that carries its folder's files opens that folder with it. */
+  private async loadEpisode(name: string, text: string, folder: OpenFolder | null): Promise<void> {
+    const { state, client, renderer, status } = this.p;
+    if (state.playing) await this.pause();
+    try {
+      const f = await client.call('replay', { episode: text });
+      const log = JSON.parse(text) as { options: { benchmark: Benchmark; method: Method; mode: Mode; seed: number; blocks?: number | null } };
+      const o = state.options;
+      Object.assign(o, { benchmark: log.options.benchmark, method: log.options.method, mode: log.options.mode, seed: log.options.seed });
+      if (log.options.blocks != null && !folder) o.blocks = log.options.blocks;
+      else delete o.blocks;
+      state.folder = folder;
+      state.taught = false;
+      const c = this.p.ui.controls;
+      c.methodSel.value = o.method;
+      c.modeSel.value = o.mode;
+      c.seedIn.value = String(o.seed);
+      this.folderChoices();
+      this.showTaskTag();
+      updateUrl(state);
+      renderer.restart(f);
+      void this.guard(() => this.showGoal(f));
+      if (!this.p.ui.editorHost.hidden) void this.p.tabs().loadEditor();
+      status.notice(`Loaded the run ${name}${folder ? ` on the task folder ${folder.name}` : ''}: replayed to its end.`, 'info');
+    } catch (e) {
+      status.notice(`${name} was not loaded: ${sentence((e as Error).message)}`, 'error');
+    }
+  }
+
   /** Opens a scene file's world; a file the core refuses changes nothing and says why. */
   async loadScene(name: string, text: string): Promise<void> {
     const { state, client, renderer, status } = this.p;
     const was = state.playing;
     if (was) await this.pause();
     try {
-      const f = await client.call('open', { options: { ...state.options }, scene: text });
+      const f = state.folder ? await this.openFolderSession(state.folder, text) : await client.call('open', { options: { ...state.options }, scene: text });
       renderer.restart(f);
       status.notice(`Loaded the scene ${name}.`, 'info');
       if (state.autoplay) await this.play();
@@ -283,7 +443,9 @@ export class SessionControls {
   nextBenchmark(): void {
     const sel = this.p.ui.controls.benchSel;
     if (sel.disabled) return;
-    sel.selectedIndex = (sel.selectedIndex + 1) % sel.options.length;
+    // The benchmarks only: the open folder and the item that opens one are not in the cycle.
+    const ids = [...sel.options].map((o) => o.value).filter((v) => v !== FOLDER && v !== OPEN_FOLDER);
+    sel.value = ids[(ids.indexOf(sel.value) + 1) % ids.length];
     sel.dispatchEvent(new Event('change'));
   }
 
@@ -296,7 +458,16 @@ export class SessionControls {
     sel.dispatchEvent(new Event('change'));
   }
 
+  /** Saves the scene; on a task folder, the run itself with the folder's files (Load opens it
+   * again, folder and all). */
   private async save(): Promise<void> {
+    const { folder } = this.p.state;
+    if (folder) {
+      const name = folder.name.replace(/^\.\//, '').split('/').filter(Boolean).pop() || 'folder';
+      downloadJson(await this.p.client.call('episode', { withFiles: true }), `${name}-run.json`);
+      this.p.status.notice('Saved the run with the task folder’s files: Load opens it again.', 'info');
+      return;
+    }
     downloadJson(await this.p.client.call('scene', {}), `${this.p.state.options.benchmark}-scene.json`);
   }
 
@@ -305,10 +476,18 @@ export class SessionControls {
       this.p.status.notice('A taught task has no link: save its demonstration in the Teach tab to share it.', 'info');
       return;
     }
+    const { folder } = this.p.state;
+    if (folder && !folder.url) {
+      this.p.status.notice(
+        `A link cannot carry the files of ${folder.name}: they are on this computer, not on a server. Save keeps the run with its folder’s files (Load opens it again), or serve the folder beside the page and open ?folder=URL.`,
+        'info',
+      );
+      return;
+    }
     updateUrl(this.p.state);
     try {
       await navigator.clipboard.writeText(location.href);
-      this.p.status.notice('Link copied: it restores this benchmark, blocks, method, mode and seed', 'info');
+      this.p.status.notice(folder ? `Link copied: it restores the task folder at ${folder.url}, method, mode and seed` : 'Link copied: it restores this benchmark, blocks, method, mode and seed', 'info');
     } catch {
       this.p.status.notice(location.href, 'info');
     }
@@ -320,11 +499,18 @@ export class SessionControls {
     const c = this.p.ui.controls;
     const o = state.options;
     c.benchSel.onchange = () => {
+      if (c.benchSel.value === OPEN_FOLDER || c.benchSel.value === FOLDER) {
+        // Picking a folder happens in the browser's dialog; the select shows the Run's task meanwhile.
+        if (c.benchSel.value === OPEN_FOLDER) c.dirIn.click();
+        c.benchSel.value = state.folder ? FOLDER : o.benchmark;
+        return;
+      }
       o.benchmark = c.benchSel.value as Benchmark;
+      state.folder = null;
       // A count the new benchmark does not allow falls back to its template task.
       const blocks = blocksFor(o.benchmark, o.blocks);
       if (blocks === undefined) delete o.blocks;
-      setBlockChoices(c.blocksSel, o.benchmark, blocks);
+      this.folderChoices();
       this.p.tabs().teach?.reset();
       void this.open();
     };
@@ -366,9 +552,15 @@ export class SessionControls {
     c.loadBtn.onclick = () => c.fileIn.click();
     c.fileIn.onchange = () =>
       void this.guard(async () => {
-        const file = c.fileIn.files?.[0];
+        const files = [...(c.fileIn.files ?? [])];
         c.fileIn.value = '';
-        if (file) await this.loadScene(file.name, await file.text());
+        if (files.length) await this.loadFiles(files);
+      });
+    c.dirIn.onchange = () =>
+      void this.guard(async () => {
+        const files = [...(c.dirIn.files ?? [])];
+        c.dirIn.value = '';
+        if (files.length) await this.loadFiles(files);
       });
     c.linkBtn.onclick = () => void this.copyLink();
   }

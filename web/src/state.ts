@@ -7,6 +7,7 @@
  */
 import type { Benchmark, Catalogue, Frame, Method, Mode, SessionOptions } from 'logic-lfd';
 import { entryOf } from './catalogue';
+import type { OpenFolder } from './folder';
 import type { BlockRanges } from './protocol';
 
 export type TabId = 'run' | 'teach' | 'charts' | 'pddl' | 'compare';
@@ -86,6 +87,10 @@ export interface PageState {
   resumeAfterDrag: boolean;
   /** Whether the Run runs a task taught in Teach mode (no permalink restores it). */
   taught: boolean;
+  /** The task folder the Run runs instead of a benchmark (null: the benchmark's task). */
+  folder: OpenFolder | null;
+  /** The folder URL the page was opened with (`?folder=URL`), until it is opened. */
+  folderUrl: string | null;
   /** Whether the user is dragging a block (the world is paused meanwhile). */
   dragging: boolean;
   /** The latest frame: session status, plan, demo states, facts. */
@@ -94,8 +99,8 @@ export interface PageState {
   lastStepMs: number;
   stepTimes: number[];
   currentTab: TabId;
-  /** The benchmark whose PDDL the editor holds (null: none loaded yet). */
-  editorBenchmark: Benchmark | null;
+  /** The task whose PDDL the editor holds (`taskKey`; null: none loaded yet). */
+  editorTask: string | null;
   lastCancel: CancelTiming | null;
 }
 
@@ -124,13 +129,21 @@ export function initialState(search: string): PageState {
     resumeAfterDrag: false,
     dragging: false,
     taught: false,
+    folder: null,
+    folderUrl: params.get('folder') || null,
     frame: null,
     lastStepMs: 0,
     stepTimes: [],
     currentTab: 'run',
-    editorBenchmark: null,
+    editorTask: null,
     lastCancel: null,
   };
+}
+
+/** The task the Run runs, as a key: `folder:NAME`, `b1:8` (a generated task) or `b1`. */
+export function taskKey(s: PageState): string {
+  if (s.folder) return `folder:${s.folder.name}`;
+  return s.options.blocks != null ? `${s.options.benchmark}:${s.options.blocks}` : s.options.benchmark;
 }
 
 /** Replaces a benchmark, method or mode the catalogue does not list (a mistyped link) by the
@@ -159,11 +172,15 @@ export function meanStepMs(s: PageState): number {
 export function updateUrl(s: PageState): void {
   if (s.taught) return;
   const p = new URLSearchParams();
-  p.set('benchmark', s.options.benchmark);
+  if (s.folder) {
+    // An uploaded folder has no address: no link restores it (Save keeps it with the run).
+    if (!s.folder.url) return history.replaceState(null, '', location.pathname);
+    p.set('folder', s.folder.url);
+  } else p.set('benchmark', s.options.benchmark);
   p.set('method', s.options.method);
   p.set('mode', s.options.mode);
   p.set('seed', String(s.options.seed));
-  if (s.options.blocks != null) p.set('blocks', String(s.options.blocks));
+  if (s.options.blocks != null && !s.folder) p.set('blocks', String(s.options.blocks));
   if (s.speed !== 1) p.set('speed', String(s.speed));
   history.replaceState(null, '', `${location.pathname}?${p}`);
 }

@@ -42,13 +42,13 @@ export class StatusBar {
     this.ui.hud.textContent = `t = ${f.t.toFixed(2)} s · tick ${f.tick} · step ${s.lastStepMs.toFixed(2)} ms (mean ${meanStepMs(s).toFixed(2)}) · ${f.replans} replans`;
   }
 
-  /** A short message over the view; errors stay longer. */
-  notice(text: string, kind: 'info' | 'error'): void {
+  /** A short message over the view; errors stay longer (`ms`: how long, when not the default). */
+  notice(text: string, kind: 'info' | 'error', ms = NOTICE_MS[kind]): void {
     const n = this.ui.notice;
     n.textContent = text;
     n.className = `notice ${kind}`;
     n.hidden = false;
     clearTimeout(this.noticeTimer);
-    this.noticeTimer = window.setTimeout(() => (n.hidden = true), NOTICE_MS[kind]);
+    this.noticeTimer = window.setTimeout(() => (n.hidden = true), ms);
   }
 }

@@ -11,7 +11,7 @@ import type { ComparePanel } from './compare';
 import type { EditorPanel } from './editor';
 import type { FrameRenderer } from './frame-renderer';
 import type { Layout } from './layout';
-import type { PageState, TabId } from './state';
+import { taskKey, type PageState, type TabId } from './state';
 import type { StatusBar } from './status-bar';
 import type { TeachPanel } from './teach';
 import type { View } from './view';
@@ -72,26 +72,32 @@ export class Tabs {
     if (id === 'compare') void this.loadCompare().then((c) => c.refresh());
   }
 
-  /** Loads the benchmark's PDDL into the editor, unless it holds it already. */
+  /** Loads the PDDL of the task the Run runs into the editor, unless it holds it already: a
+   * benchmark's template files, a generated N-block task's own problem, a task folder's files. */
   async loadEditor(): Promise<void> {
     const { state, client } = this.p;
-    if (state.editorBenchmark === state.options.benchmark) return;
-    const left = state.editorBenchmark;
-    const id = state.options.benchmark;
-    state.editorBenchmark = id;
+    const key = taskKey(state);
+    if (state.editorTask === key) return;
+    const left = state.editorTask;
+    state.editorTask = key;
     const editor = await this.getEditor();
-    // The user's edits of the benchmark left behind come back when it is chosen again.
+    // The user's edits of the task left behind come back when it is chosen again.
     if (left) this.edits.set(left, [editor.text('domain'), editor.text('problem'), editor.text('demo')]);
-    const kept = this.edits.get(id);
+    const kept = this.edits.get(key);
     if (kept) return editor.setTexts(...kept);
-    const b = await client.call('benchmark', { id });
-    editor.setTexts(b.domain, b.problem, b.demoPlan);
+    if (state.folder || state.options.blocks != null) {
+      const t = await client.call('task', {});
+      editor.setTexts(t.domain, t.problem, t.demoPlan);
+    } else {
+      const b = await client.call('benchmark', { id: state.options.benchmark });
+      editor.setTexts(b.domain, b.problem, b.demoPlan);
+    }
   }
 
   /** Opens the PDDL tab holding `domain`, `problem` and, when given, the demonstration `demo`
    * (the benchmark's texts are not loaded over them). */
   async setPddl(domain: string, problem: string, demo?: string): Promise<void> {
-    this.p.state.editorBenchmark = this.p.state.options.benchmark;
+    this.p.state.editorTask = taskKey(this.p.state);
     this.select('pddl');
     (await this.getEditor()).setTexts(domain, problem, demo);
   }
@@ -103,8 +109,9 @@ export class Tabs {
         {
           scenario: () => {
             const o = this.p.state.options;
-            return { benchmark: o.benchmark, seed: o.seed, ...(o.blocks != null ? { blocks: o.blocks } : {}) };
+            return { benchmark: o.benchmark, seed: o.seed, ...(o.blocks != null && !this.p.state.folder ? { blocks: o.blocks } : {}) };
           },
+          folder: () => this.p.state.folder,
           episode: () => this.p.client.call('episode', {}),
         },
         catalogue,

@@ -5,8 +5,8 @@
  * size-built first load ('logic-lfd-page': the Session on B1's template task, `benchmark`,
  * `blockRange` and `catalogue`, whose block counts and catalogue it sends with its `ready` message);
  * teach-worker.ts fetches the full one (built for speed) when Teach mode, `Session.replay`, the
- * PDDL tab's calls, a loaded scene, B2, B3 or an N-block task need it, and speed-up.ts moves the
- * session onto it after the first frame.
+ * PDDL tab's calls, a loaded scene, a task folder, B2, B3 or an N-block task need it, and
+ * speed-up.ts moves the session onto it after the first frame.
  */
 import init, * as lfd from 'logic-lfd-page';
 import type { Frame, Level, SessionOptions } from 'logic-lfd';
@@ -99,6 +99,15 @@ const handlers: Handlers = {
     if (scene !== undefined) return replace((await teachModule()).Session.fromScene(options, scene));
     return replace(new (await moduleFor(options)).Session(options));
   },
+  // Task folders run on the full module (recording a demonstration, JSON paths in errors).
+  openFolder: async ({ files, options }) => replace((await teachModule()).Session.fromFolder(files, options)),
+  task: async () => {
+    const s = need();
+    // A first-load session runs B1's template task, which the full module describes as well.
+    if ('taskFiles' in s) return s.taskFiles();
+    const b = (await teachModule()).benchmark('b1');
+    return { domain: b.domain, problem: b.problem, demoPlan: b.demoPlan, dir: `domains/${b.name}` };
+  },
   speedUp: () => {
     speedUp(
       () => session,
@@ -166,7 +175,7 @@ const handlers: Handlers = {
     const appliedAt = performance.timeOrigin + performance.now();
     return { frame: s.frame(), appliedAt };
   },
-  episode: () => need().episodeJson(),
+  episode: ({ withFiles }) => need().episodeJson(withFiles ? { withFiles } : undefined),
   scene: () => need().sceneJson(),
   memory: () => ({ wasmBytes: (wasmMemory?.buffer.byteLength ?? 0) + teachMemoryBytes() }),
   ...teachHandlers(replace),

@@ -12,9 +12,9 @@
 //! `build.rs`): the closed-loop `Session` on B1's template task, `benchmark`, `blockRange` and
 //! `catalogue`, without Teach mode (`Teacher`, taught tasks), `Session.replay`,
 //! `Session.fromScene`, B2, B3, N-block tasks, JSON paths in load errors, the PDDL tab's `plan`,
-//! `check`, `logicLfd` and `logicLfdPerturb`, and the npm-only `lqt`, `validate`, `runEpisode` and
-//! `LogicLfd` class; `wasm` adds them (the npm package, and the module the page loads after its
-//! first frame).
+//! `check`, `logicLfd` and `logicLfdPerturb`, task folders (`Session.fromFolder`,
+//! `Session.taskFiles`), and the npm-only `lqt`, `validate`, `runEpisode` and `LogicLfd` class;
+//! `wasm` adds them (the npm package, and the module the page loads after its first frame).
 
 #[cfg(feature = "wasm")]
 use convert::{from_js, js_err, to_js};
@@ -26,6 +26,8 @@ mod bench;
 mod benchmark_info;
 mod catalogue;
 mod convert;
+#[cfg(feature = "wasm")]
+mod folder;
 #[cfg(feature = "wasm")]
 mod logic_lfd;
 #[cfg(feature = "wasm")]

@@ -153,6 +153,35 @@ pub(super) fn session_options(
 #[wasm_bindgen(js_name = Session)]
 pub struct WasmSession {
     pub(super) inner: crate::lfd::Session,
+    /// The task folder the session runs on (its files, for a log that carries them).
+    pub(super) folder: Option<crate::sim::TaskFolder>,
+}
+
+impl From<crate::lfd::Session> for WasmSession {
+    fn from(inner: crate::lfd::Session) -> WasmSession {
+        WasmSession {
+            inner,
+            folder: None,
+        }
+    }
+}
+
+/// The options of `Session.episodeJson`.
+#[derive(Tsify)]
+#[serde(rename_all = "camelCase")]
+#[allow(dead_code)]
+struct EpisodeJsonOptions {
+    /// A task folder's episode carries the folder's files (`log.folder.files`), so
+    /// `Session.replay` re-runs it without the folder; no effect on a benchmark's episode.
+    #[tsify(optional)]
+    with_files: bool,
+}
+
+#[wasm_bindgen]
+extern "C" {
+    /// `episodeJson`'s optional options (`{ withFiles: true }`).
+    #[wasm_bindgen(typescript_type = "EpisodeJsonOptions")]
+    pub type EpisodeJsonOptionsArg;
 }
 
 #[wasm_bindgen(js_class = Session)]
@@ -165,7 +194,7 @@ impl WasmSession {
     ) -> Result<WasmSession, JsValue> {
         let o = session_options("new Session", &options)?;
         let inner = crate::lfd::Session::new(o).map_err(js_err)?;
-        Ok(WasmSession { inner })
+        Ok(WasmSession::from(inner))
     }
 
     /// A session on a benchmark's task in a different starting scene (a saved `WorldSnapshot`
@@ -184,7 +213,7 @@ impl WasmSession {
         let scene = string_arg(F, "scene", &scene)?;
         let demo = super::args::optional_string_arg(F, "demo", demo)?;
         let inner = crate::lfd::Session::from_scene(o, &scene, demo.as_deref()).map_err(js_err)?;
-        Ok(WasmSession { inner })
+        Ok(WasmSession::from(inner))
     }
 
     /// Re-runs a logged episode (from `episodeJson()`) and returns the session at its end.
@@ -194,7 +223,12 @@ impl WasmSession {
     ) -> Result<WasmSession, JsValue> {
         let episode = string_arg("Session.replay", "episode", &episode)?;
         let inner = crate::lfd::Session::replay(&episode).map_err(js_err)?;
-        Ok(WasmSession { inner })
+        // A folder episode replays on the files it carries: keep them for the next log.
+        let folder = crate::sim::parse_json::<crate::lfd::EpisodeLog>(&episode)
+            .ok()
+            .and_then(|log| log.folder)
+            .and_then(|record| crate::sim::TaskFolder::from_record(&record));
+        Ok(WasmSession { inner, folder })
     }
 
     /// Advances the episode by `dt` simulated seconds (whole 10 ms ticks; replans happen inside)
@@ -292,10 +326,34 @@ impl WasmSession {
     }
 
     /// The full episode log as JSON (the CLI's format, snake_case); `Session.replay` reproduces
-    /// it exactly.
+    /// it exactly. With `{ withFiles: true }` a task folder's log carries the folder's files
+    /// (`folder.files`), so it replays without the folder.
     #[wasm_bindgen(js_name = episodeJson)]
-    pub fn episode_json(&self) -> String {
-        self.inner.episode_json()
+    pub fn episode_json(&self, options: Option<EpisodeJsonOptionsArg>) -> Result<String, JsValue> {
+        let with_files = match options.map(JsValue::from) {
+            Some(v) if !v.is_undefined() && !v.is_null() => {
+                object_arg("Session.episodeJson", "options", &v, false)?;
+                let w = js_sys::Reflect::get(&v, &JsValue::from_str("withFiles"))?;
+                if !w.is_undefined() && w.as_bool().is_none() {
+                    return Err(type_error(&format!(
+                        "Session.episodeJson: options.withFiles must be a boolean, got {}",
+                        type_name(&w)
+                    )));
+                }
+                w.as_bool().unwrap_or(false)
+            }
+            _ => false,
+        };
+        match (&self.folder, with_files) {
+            (Some(folder), true) => {
+                let mut log = self.inner.log();
+                if let Some(record) = log.folder.as_mut() {
+                    record.files = Some(folder.files.clone());
+                }
+                serde_json::to_string(&log).map_err(|e| js_err(e).into())
+            }
+            _ => Ok(self.inner.episode_json()),
+        }
     }
 
     /// The current world as scene JSON (loadable with `Session.fromScene`).

@@ -451,7 +451,7 @@ impl WasmSession {
             from_js(&options).map_err(|e| js_err(format!("options: {e}")))?
         };
         let inner = taught::session(&demo_json, &o).map_err(js_err)?;
-        Ok(WasmSession { inner })
+        Ok(WasmSession::from(inner))
     }
 
     /// Re-runs the logged episode of a taught task (from `episodeJson()`) exactly.
@@ -461,6 +461,6 @@ impl WasmSession {
     ) -> Result<WasmSession, JsValue> {
         let episode = string_arg("Session.replayTaught", "episode", &episode)?;
         let inner = taught::replay(&episode).map_err(js_err)?;
-        Ok(WasmSession { inner })
+        Ok(WasmSession::from(inner))
     }
 }
