@@ -20,6 +20,7 @@ mod multigoal;
 mod observed_states;
 mod pddl;
 mod recorder;
+mod robot;
 mod search;
 mod sim;
 mod soak;

@@ -77,6 +77,7 @@ mod json_input;
 mod motions;
 pub mod panda;
 mod reach;
+mod robot;
 mod scene_graph;
 mod snapshot;
 mod world;
@@ -98,6 +99,10 @@ pub use motions::{
     Relation, Slot,
 };
 pub use reach::{handleable, hook_can_pull};
+pub use robot::{
+    parse_urdf, Chain, ChainJoint, Collision, Geometry, GripperSpec, JointKind, JointLimits, Robot,
+    RobotError, TcpSpec, Urdf, UrdfError, UrdfJoint, UrdfLink,
+};
 pub use scene_graph::{Fact, SceneGraph};
 pub use snapshot::{
     ArmSnapshot, BodyKind, BodySnapshot, CapsuleSnapshot, CuboidSnapshot, PartSnapshot,

@@ -1,4 +1,4 @@
-//! `logic-lfd` — the scriptable face of the library (contract: DESIGN.md §4).
+//! `logic-lfd` — the scriptable face of the library (every command and its flags: `logic-lfd --help`).
 //!
 //! Exit codes: 0 success, 2 bad input, 3 proved unsolvable, 4 budget exhausted, 5 invalid plan.
 //! Errors go to stderr as `file:line:col: message`; `--json` output goes to stdout.
@@ -12,6 +12,7 @@ mod cmd_lfd_perturb;
 mod cmd_lqt;
 mod cmd_merge;
 mod cmd_plan;
+mod cmd_robot;
 mod cmd_run;
 mod cmd_scene;
 mod cmd_soak;
@@ -60,6 +61,8 @@ enum Command {
     Soak(cmd_soak::Args),
     /// Mutation fuzzing of an input parser (same mutators and checks as the CI property tests).
     Fuzz(cmd_fuzz::Args),
+    /// A robot from its URDF: `robot check` its file, `robot fk` the TCP for a joint vector.
+    Robot(cmd_robot::Args),
     /// Join the shard files of a sweep (`--shard K/N` runs) into the whole sweep's report.
     Merge(cmd_merge::Args),
 }
@@ -108,5 +111,6 @@ fn main() -> ExitCode {
         Command::Soak(args) => cmd_soak::run(args),
         Command::Fuzz(args) => cmd_fuzz::run(args),
         Command::Merge(args) => cmd_merge::run(args),
+        Command::Robot(args) => cmd_robot::run(args),
     }
 }

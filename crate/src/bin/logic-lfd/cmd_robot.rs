@@ -1,0 +1,292 @@
+//! `logic-lfd robot …`: a robot from its URDF (the robot file `robot.json` beside it).
+//!
+//! * `robot check ROBOT.json [--json]` — load and check the robot file and its URDF; print the
+//!   chain's joints and limits, the links with their collision shapes, the TCP at home and the
+//!   reach (sampled);
+//! * `robot fk ROBOT.json --q q1,q2,… [--json]` — the TCP's pose in the base link's frame
+//!   (metres; `--json`: `{"position": [x, y, z], "rotation": [[…], […], […]]}`).
+//!
+//! Exit codes: 0 success, 2 bad input (the message names the file and the JSON path or URDF line).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use logic_lfd::sim::{Geometry, Robot};
+use nalgebra::Isometry3;
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+use serde::Serialize;
+
+use crate::exit;
+
+/// Arguments of `logic-lfd robot`.
+#[derive(clap::Args)]
+pub struct Args {
+    #[command(subcommand)]
+    action: Action,
+}
+
+#[derive(clap::Subcommand)]
+enum Action {
+    /// Load and check a robot file and its URDF; print its joints, links, TCP and reach.
+    Check {
+        /// The robot file (robot.json).
+        robot: PathBuf,
+        /// Print the summary as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// The TCP's pose in the base link's frame for a joint vector.
+    Fk {
+        /// The robot file (robot.json).
+        robot: PathBuf,
+        /// Joint values (rad or m), comma-separated, one per moving joint of the chain.
+        #[arg(long, allow_hyphen_values = true)]
+        q: String,
+        /// Print `{"position": [x, y, z], "rotation": [[…], […], […]]}`.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// Postures sampled for the reach.
+const REACH_SAMPLES: usize = 4000;
+
+#[derive(Serialize)]
+struct Pose {
+    position: [f64; 3],
+    rotation: [[f64; 3]; 3],
+}
+
+impl Pose {
+    fn of(t: &Isometry3<f64>) -> Pose {
+        let m = t.rotation.to_rotation_matrix();
+        let m = m.matrix();
+        Pose {
+            position: [t.translation.x, t.translation.y, t.translation.z],
+            rotation: std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)])),
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct JointRow {
+    name: String,
+    kind: &'static str,
+    lower: f64,
+    upper: f64,
+    velocity: f64,
+}
+
+#[derive(Serialize)]
+struct LinkRow {
+    name: String,
+    collision: Vec<String>,
+}
+
+#[derive(Serialize)]
+struct Reach {
+    samples: usize,
+    /// Largest horizontal distance of the TCP from the base's z axis (m).
+    max_radius: f64,
+    /// Lowest and highest TCP height (m).
+    min_z: f64,
+    max_z: f64,
+}
+
+#[derive(Serialize)]
+struct Summary {
+    name: String,
+    urdf: String,
+    base_link: String,
+    tip_link: String,
+    dof: usize,
+    joints: Vec<JointRow>,
+    links: Vec<LinkRow>,
+    gripper_joints: Vec<String>,
+    max_opening: f64,
+    home_tcp: Pose,
+    reach: Reach,
+}
+
+fn bad(msg: String) -> ExitCode {
+    eprintln!("{msg}");
+    ExitCode::from(exit::BAD_INPUT)
+}
+
+/// Runs the subcommand.
+pub fn run(args: Args) -> ExitCode {
+    match args.action {
+        Action::Check { robot, json } => check(&robot, json),
+        Action::Fk { robot, q, json } => fk(&robot, &q, json),
+    }
+}
+
+fn shape(g: &Geometry) -> String {
+    match g {
+        Geometry::Box { size } => format!("box {} × {} × {} m", size[0], size[1], size[2]),
+        Geometry::Cylinder { radius, length } => {
+            format!("cylinder r {radius} m, length {length} m")
+        }
+        Geometry::Sphere { radius } => format!("sphere r {radius} m"),
+        Geometry::Mesh { filename, .. } => {
+            format!("mesh {}", filename.rsplit('/').next().unwrap_or(filename))
+        }
+    }
+}
+
+/// The TCP's reach over seeded random postures within the joint limits (continuous joints: ±π).
+fn reach(r: &Robot) -> Reach {
+    let mut rng = Pcg64Mcg::seed_from_u64(1);
+    let bounds: Vec<(f64, f64)> = r
+        .chain
+        .moving()
+        .map(|j| {
+            (
+                j.lower.max(-std::f64::consts::PI),
+                j.upper.min(std::f64::consts::PI),
+            )
+        })
+        .collect();
+    let mut out = Reach {
+        samples: REACH_SAMPLES,
+        max_radius: 0.0,
+        min_z: f64::INFINITY,
+        max_z: f64::NEG_INFINITY,
+    };
+    for _ in 0..REACH_SAMPLES {
+        let q: Vec<f64> = bounds
+            .iter()
+            .map(|&(lo, hi)| {
+                if hi > lo {
+                    rng.random_range(lo..hi)
+                } else {
+                    lo
+                }
+            })
+            .collect();
+        let p = (r.chain.tip_frame(&q) * r.tcp).translation.vector;
+        out.max_radius = out.max_radius.max(p.x.hypot(p.y));
+        out.min_z = out.min_z.min(p.z);
+        out.max_z = out.max_z.max(p.z);
+    }
+    out
+}
+
+fn check(path: &std::path::Path, json: bool) -> ExitCode {
+    let r = match Robot::load(path) {
+        Ok(r) => r,
+        Err(e) => return bad(e.to_string()),
+    };
+    let chain_links: Vec<&str> = std::iter::once(r.chain.base.as_str())
+        .chain(r.chain.joints.iter().map(|j| j.child.as_str()))
+        .collect();
+    let summary = Summary {
+        name: r.name.clone(),
+        urdf: r.urdf_file.display().to_string(),
+        base_link: r.chain.base.clone(),
+        tip_link: r.chain.tip.clone(),
+        dof: r.chain.dof(),
+        joints: r
+            .chain
+            .moving()
+            .map(|j| JointRow {
+                name: j.name.clone(),
+                kind: j.kind.as_str(),
+                lower: j.lower,
+                upper: j.upper,
+                velocity: j.velocity,
+            })
+            .collect(),
+        links: r
+            .urdf
+            .links
+            .iter()
+            .filter(|l| chain_links.contains(&l.name.as_str()))
+            .map(|l| LinkRow {
+                name: l.name.clone(),
+                collision: l.collisions.iter().map(|c| shape(&c.geometry)).collect(),
+            })
+            .collect(),
+        gripper_joints: r.gripper.joints.clone(),
+        max_opening: r.gripper.max_opening,
+        home_tcp: Pose::of(&(r.chain.tip_frame(&r.home) * r.tcp)),
+        reach: reach(&r),
+    };
+    if json {
+        return match serde_json::to_string_pretty(&summary) {
+            Ok(s) => {
+                println!("{s}");
+                ExitCode::from(exit::OK)
+            }
+            Err(e) => bad(format!("cannot write JSON: {e}")),
+        };
+    }
+    let s = &summary;
+    println!(
+        "{}: {} joints from {} to {} ({})",
+        s.name, s.dof, s.base_link, s.tip_link, s.urdf
+    );
+    for j in &s.joints {
+        println!(
+            "  {:<16} {:<10} [{:>8.4}, {:>8.4}]  ≤ {:.3}/s",
+            j.name, j.kind, j.lower, j.upper, j.velocity
+        );
+    }
+    for l in &s.links {
+        let shapes = if l.collision.is_empty() {
+            "no collision shape".to_string()
+        } else {
+            l.collision.join(", ")
+        };
+        println!("  link {:<14} {shapes}", l.name);
+    }
+    let p = s.home_tcp.position;
+    println!("  TCP at home: ({:.4}, {:.4}, {:.4}) m", p[0], p[1], p[2]);
+    println!(
+        "  gripper: {} (opens to {} m)",
+        if s.gripper_joints.is_empty() {
+            "kinematic fingers".to_string()
+        } else {
+            s.gripper_joints.join(", ")
+        },
+        s.max_opening
+    );
+    println!(
+        "  reach ({} sampled postures): radius ≤ {:.3} m, height {:.3} to {:.3} m",
+        s.reach.samples, s.reach.max_radius, s.reach.min_z, s.reach.max_z
+    );
+    ExitCode::from(exit::OK)
+}
+
+fn fk(path: &std::path::Path, q: &str, json: bool) -> ExitCode {
+    let r = match Robot::load(path) {
+        Ok(r) => r,
+        Err(e) => return bad(e.to_string()),
+    };
+    let mut values = Vec::new();
+    for (i, v) in q.split(',').enumerate() {
+        match v.trim().parse::<f64>() {
+            Ok(x) if x.is_finite() => values.push(x),
+            _ => return bad(format!("--q: value {} is `{v}`, expected a number", i + 1)),
+        }
+    }
+    let t = match r.tcp_pose(&values) {
+        Ok(t) => t,
+        Err(m) => return bad(format!("--q: {m}")),
+    };
+    let pose = Pose::of(&t);
+    if json {
+        match serde_json::to_string(&pose) {
+            Ok(s) => println!("{s}"),
+            Err(e) => return bad(format!("cannot write JSON: {e}")),
+        }
+    } else {
+        let p = pose.position;
+        println!("position: {:.6} {:.6} {:.6}", p[0], p[1], p[2]);
+        for row in pose.rotation {
+            println!("rotation: {:.6} {:.6} {:.6}", row[0], row[1], row[2]);
+        }
+    }
+    ExitCode::from(exit::OK)
+}

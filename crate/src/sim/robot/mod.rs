@@ -1,0 +1,27 @@
+//! A robot from its URDF: the robot file (`robot.json`) beside a URDF, the kinematic chain from
+//! the base link to the tip link, the tool centre point, the home posture and the gripper.
+//!
+//! ```json
+//! { "name": "panda",
+//!   "urdf": "example-robot-data/robots/panda_description/urdf/panda.urdf",
+//!   "packages": { "example-robot-data": "example-robot-data" },
+//!   "base_link": "panda_link0", "tip_link": "panda_link8",
+//!   "tcp": { "xyz": [0, 0, 0.1034], "rpy": [0, 0, -0.7854] },
+//!   "home": [0, -0.785, 0, -2.356, 0, 1.571, 0.785],
+//!   "gripper": { "joints": ["panda_finger_joint1", "panda_finger_joint2"], "max_opening": 0.08 } }
+//! ```
+//!
+//! Paths are relative to the robot file; `packages` maps the ROS package names of
+//! `package://NAME/…` mesh paths to folders. The TCP frame is the tip link's frame moved by `tcp`:
+//! its z axis points from the hand towards the object, its y axis along the fingers' closing
+//! direction.
+
+mod chain;
+mod file;
+mod urdf;
+
+pub use chain::{Chain, ChainJoint};
+pub use file::{GripperSpec, Robot, RobotError, TcpSpec};
+pub use urdf::{
+    parse_urdf, Collision, Geometry, JointKind, JointLimits, Urdf, UrdfError, UrdfJoint, UrdfLink,
+};
