@@ -166,7 +166,7 @@ fn reach(r: &Robot) -> Reach {
             })
             .collect();
         let p = (r.chain.tip_frame(&q) * r.tcp).translation.vector;
-        out.max_radius = out.max_radius.max(p.x.hypot(p.y));
+        out.max_radius = out.max_radius.max(libm::hypot(p.x, p.y));
         out.min_z = out.min_z.min(p.z);
         out.max_z = out.max_z.max(p.z);
     }
