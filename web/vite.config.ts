@@ -50,9 +50,37 @@ function projectDocs(): Plugin {
   };
 }
 
+/** The gallery's task folders (`domains/NAME`), served and copied beside the page as
+ * `tasks/NAME/`, where the benchmark select opens them (`?folder=tasks/NAME`). */
+export const GALLERY = ['sorting', 'shelf-tower'];
+const TASK_FILES = ['domain.pddl', 'problem.pddl', 'motions.json', 'scene.json', 'demo.json', 'expert.json', 'demo.plan', 'README.md'];
+
+function galleryTasks(): Plugin {
+  const dir = join(repo, 'domains');
+  return {
+    name: 'logic-lfd-gallery',
+    configureServer(server) {
+      server.middlewares.use('/tasks', (req, res, next) => {
+        const [task, file] = decodeURIComponent((req.url ?? '').split('?')[0]).replace(/^\//, '').split('/');
+        if (!GALLERY.includes(task) || !TASK_FILES.includes(file) || !existsSync(join(dir, task, file))) return next();
+        res.setHeader('content-type', 'text/plain; charset=utf-8');
+        res.end(readFileSync(join(dir, task, file)));
+      });
+    },
+    generateBundle() {
+      for (const task of GALLERY) {
+        for (const f of TASK_FILES) {
+          const file = join(dir, task, f);
+          if (existsSync(file)) this.emitFile({ type: 'asset', fileName: `tasks/${task}/${f}`, source: readFileSync(file) });
+        }
+      }
+    },
+  };
+}
+
 export default defineConfig({
   base: './',
-  plugins: [projectDocs()],
+  plugins: [projectDocs(), galleryTasks()],
   resolve: {
     alias: {
       // The npm package's full API (the page imports only its types).

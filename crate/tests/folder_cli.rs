@@ -5,10 +5,11 @@
 //! `domains/b1-paper-naming` outside the repository, run by a bare relative name.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use logic_lfd::lfd::EpisodeLog;
 use logic_lfd::sim::{content_hash, TaskFolder};
+
+use crate::support::cli::run_cli_in;
 
 const SHIPPED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../domains/b1-paper-naming");
 const NAME: &str = "b1-paper-naming";
@@ -30,23 +31,9 @@ fn copy_folder(from: &Path, to: &Path) {
     }
 }
 
-/// Runs `logic-lfd args…` in `cwd`: its exit code, stdout and stderr.
-fn cli_in(cwd: &Path, args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_logic-lfd"))
-        .current_dir(cwd)
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
 /// Stdout of a run that must exit with `code`.
 fn stdout_in(cwd: &Path, args: &[&str], code: i32) -> String {
-    let (c, out, err) = cli_in(cwd, args);
+    let (c, out, err) = run_cli_in(cwd, args);
     assert_eq!(c, code, "logic-lfd {args:?}: {err}");
     out
 }
@@ -79,7 +66,7 @@ fn a_task_folder_runs_at_every_level_under_a_bare_name() {
 #[test]
 fn a_bare_folder_name_is_never_named_as_a_shipped_domain() {
     let dir = workdir("names");
-    let (code, _, err) = cli_in(&dir, &["run", "--domain", "nope"]);
+    let (code, _, err) = run_cli_in(&dir, &["run", "--domain", "nope"]);
     assert_eq!(code, 2);
     assert!(err.starts_with("./nope: not a directory"), "{err}");
     assert!(!err.contains("domains/"), "{err}");
@@ -87,7 +74,7 @@ fn a_bare_folder_name_is_never_named_as_a_shipped_domain() {
     // A folder brings its own scene: a missing one is named, no benchmark's stands in.
     copy_folder(&dir.join(NAME), &dir.join("mine"));
     std::fs::remove_file(dir.join("mine/scene.json")).unwrap();
-    let (code, _, err) = cli_in(&dir, &["run", "--domain", "mine", "--level", "l1"]);
+    let (code, _, err) = run_cli_in(&dir, &["run", "--domain", "mine", "--level", "l1"]);
     assert_eq!(code, 2);
     assert!(err.starts_with("./mine/scene.json: missing"), "{err}");
     std::fs::remove_dir_all(dir).ok();
@@ -96,7 +83,7 @@ fn a_bare_folder_name_is_never_named_as_a_shipped_domain() {
 #[test]
 fn a_benchmark_is_refused_beside_a_task_folder() {
     let dir = workdir("benchmark");
-    let (code, out, err) = cli_in(&dir, &["run", "--benchmark", "b2", "--domain", NAME]);
+    let (code, out, err) = run_cli_in(&dir, &["run", "--benchmark", "b2", "--domain", NAME]);
     assert_eq!(code, 2);
     assert!(out.is_empty());
     assert!(
@@ -124,7 +111,7 @@ fn a_folder_episode_replays_from_its_path_from_domain_and_from_the_files_it_carr
 
     // Moved away: the recorded path no longer holds it; --domain gives it.
     std::fs::rename(dir.join(NAME), dir.join("moved")).unwrap();
-    let (code, _, err) = cli_in(&dir, &replay);
+    let (code, _, err) = run_cli_in(&dir, &replay);
     assert_eq!(code, 2);
     assert!(
         err.contains(&format!("the task folder ./{NAME}")) && err.contains("--domain"),
@@ -155,7 +142,7 @@ fn a_folder_episode_replays_from_its_path_from_domain_and_from_the_files_it_carr
         serde_json::to_string(&wrong).unwrap(),
     )
     .unwrap();
-    let (code, _, err) = cli_in(&dir, &["run", "--replay", "wrong.json"]);
+    let (code, _, err) = run_cli_in(&dir, &["run", "--replay", "wrong.json"]);
     assert_eq!(code, 5, "{err}");
     assert!(err.contains("the replay differs from the log"), "{err}");
 
@@ -164,7 +151,7 @@ fn a_folder_episode_replays_from_its_path_from_domain_and_from_the_files_it_carr
     let before = content_hash(&std::fs::read_to_string(&problem).unwrap());
     append(&problem, "\n; edited\n");
     let after = content_hash(&std::fs::read_to_string(&problem).unwrap());
-    let (code, _, err) = cli_in(&dir, &from_domain);
+    let (code, _, err) = run_cli_in(&dir, &from_domain);
     assert_eq!(code, 2);
     assert!(
         err.contains(&format!(
@@ -177,7 +164,7 @@ fn a_folder_episode_replays_from_its_path_from_domain_and_from_the_files_it_carr
     // A benchmark's episode is not replayed in a task folder.
     let bench = stdout_in(&dir, &["run", "--benchmark", "b1", "--json"], 0);
     std::fs::write(dir.join("b1.json"), bench).unwrap();
-    let (code, _, err) = cli_in(&dir, &["run", "--replay", "b1.json", "--domain", "moved"]);
+    let (code, _, err) = run_cli_in(&dir, &["run", "--replay", "b1.json", "--domain", "moved"]);
     assert_eq!(code, 2);
     assert!(
         err.contains("benchmark b1") && err.contains("drop --domain moved"),
@@ -249,7 +236,7 @@ fn a_folder_soak_is_the_same_on_any_number_of_threads_and_from_merged_shards() {
     let second = dir.join("second.json");
     let b: Vec<&str> = args.iter().copied().chain(["--shard", "2/2"]).collect();
     std::fs::write(&second, stdout_in(&dir, &b, 0)).unwrap();
-    let (code, _, err) = cli_in(
+    let (code, _, err) = run_cli_in(
         &dir,
         &["merge", first.to_str().unwrap(), second.to_str().unwrap()],
     );
@@ -265,7 +252,7 @@ fn a_folder_soak_is_the_same_on_any_number_of_threads_and_from_merged_shards() {
 fn demo_record_writes_the_committed_demonstration() {
     let dir = workdir("record");
     let committed = std::fs::read_to_string(Path::new(SHIPPED).join("demo.json")).unwrap();
-    let (code, out, err) = cli_in(&dir, &["demo", "record", NAME, "-o", "-"]);
+    let (code, out, err) = run_cli_in(&dir, &["demo", "record", NAME, "-o", "-"]);
     assert_eq!(code, 0, "{err}");
     assert_eq!(out, committed);
     assert!(err.starts_with("stdout: 6 actions, "), "{err}");
@@ -283,7 +270,7 @@ fn demo_record_writes_the_committed_demonstration() {
     let other = stdout_in(&dir, &["demo", "record", NAME, "--seed", "2", "-o", "-"], 0);
     assert_ne!(other, committed);
 
-    let (code, _, err) = cli_in(&dir, &["demo", "record", "nope"]);
+    let (code, _, err) = run_cli_in(&dir, &["demo", "record", "nope"]);
     assert_eq!(code, 2);
     assert!(err.starts_with("./nope: not a directory"), "{err}");
     std::fs::remove_dir_all(dir).ok();
@@ -313,7 +300,7 @@ fn demo_segment_reads_a_task_folders_domain_problem_and_motions() {
 
     // The domain file alone does not say what its names mean in a benchmark's scene.
     let domain = format!("{NAME}/domain.pddl");
-    let (code, _, err) = cli_in(
+    let (code, _, err) = run_cli_in(
         &dir,
         &[
             "demo",

@@ -56,6 +56,34 @@ async function save(page) {
 const fileOf = (name, text, mimeType = 'text/plain') => ({ name, mimeType, buffer: Buffer.from(text) });
 
 describe('task folder on the page', () => {
+  test('the gallery tasks in the benchmark select open from beside the page and run to success', async () => {
+    const page = await ctx.browser.newPage({ viewport: { width: 1440, height: 900 } });
+    const errors = [];
+    page.on('console', (m) => {
+      // A gallery folder's absent optional files (demo.plan) are 404s the browser logs.
+      if (m.type() === 'error' && !/404/.test(m.text())) errors.push(m.text());
+    });
+    page.on('pageerror', (e) => errors.push(String(e)));
+    await page.goto(`${ctx.server.url}?benchmark=b1&autoplay=0`);
+    await page.waitForSelector('#app[data-ready="true"]', { timeout: 60000 });
+    const goals = {
+      'tasks/sorting': ['(on r1 r2)', '(at r2 red-tray)', '(on b1 b2)', '(at b2 blue-tray)'],
+      'tasks/shelf-tower': ['(on a b)', '(on b c)', '(onshelf c)', '(ontable d)'],
+    };
+    for (const [value, goal] of Object.entries(goals)) {
+      await page.selectOption('#benchmark', value);
+      await page.waitForFunction((v) => document.getElementById('task-tag')?.textContent?.includes(v), value, { timeout: 60000 });
+      assert.equal(await page.inputValue('#benchmark'), 'folder');
+      if ((await page.getAttribute('#play', 'aria-pressed')) !== 'true') await page.click('#play');
+      const f = await finish(page);
+      assert.equal(f.status.kind, 'done', `${value}: ${f.status.message}`);
+      for (const g of goal) assert.ok(f.facts.includes(g), `${value}: ${g} missing from ${f.facts.join(' ')}`);
+    }
+    await page.screenshot({ path: join(screenshots, 'gallery-shelf-tower-1440.png') });
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
+
   test('?folder=URL opens a folder of its own names: it runs, survives an L3, shows its PDDL and keeps its link', async () => {
     const { page, errors } = await openWithFolder('paper-naming', FILES, '?folder=task-folders/paper-naming');
     assert.equal(await page.inputValue('#benchmark'), 'folder');

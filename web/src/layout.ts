@@ -124,15 +124,25 @@ function fill<T extends string>(sel: HTMLSelectElement, choices: [T, string][], 
 /** The benchmark select's item that opens a task folder, and the one of the open folder. */
 export const OPEN_FOLDER = 'open-folder';
 export const FOLDER = 'folder';
+/** The gallery's task folders, served beside the page at `tasks/NAME/` (web/vite.config.ts). */
+export const GALLERY: { name: string; label: string; title: string }[] = [
+  { name: 'sorting', label: 'Sorting task', title: 'Sorting: cubes of two colours from a mixed pile into two trays, one stack per tray' },
+  { name: 'shelf-tower', label: 'Shelf tower', title: 'Shelf tower: a tower in a given order on a shelf another block occupies' },
+];
+/** The select's value of gallery task `name`. */
+export const galleryValue = (name: string): string => `tasks/${name}`;
 
 /** Adds to the benchmark select the open folder (selected; null: none) and the item that opens
  * one. */
 export function setFolderChoice(sel: HTMLSelectElement, folder: string | null, benchmark: Benchmark): void {
-  for (const v of [FOLDER, OPEN_FOLDER]) sel.querySelector(`option[value="${v}"]`)?.remove();
+  for (const v of [FOLDER, OPEN_FOLDER, ...GALLERY.map((g) => galleryValue(g.name))]) sel.querySelector(`option[value="${v}"]`)?.remove();
   if (folder !== null) {
     // The folder's last name, short: the select is as wide as its longest item.
     const name = folder.split('/').filter((p) => p && p !== '.').pop() ?? folder;
     sel.append(el('option', { value: FOLDER, title: `The task folder ${folder}` }, `folder · ${name.length > 14 ? `${name.slice(0, 13)}…` : name}`));
+  }
+  for (const g of GALLERY) {
+    if (folder !== galleryValue(g.name)) sel.append(el('option', { value: galleryValue(g.name), title: g.title }, g.label));
   }
   sel.append(el('option', { value: OPEN_FOLDER, title: 'Open a task folder of your own: pick its directory' }, 'Open folder…'));
   sel.value = folder !== null ? FOLDER : benchmark;

@@ -11,7 +11,7 @@ import { downloadJson, guard } from './dom';
 import type { FirstVisitHint } from './guide';
 import type { FrameRenderer } from './frame-renderer';
 import type { History } from './history';
-import { FOLDER, OPEN_FOLDER, setBlockChoices, setFolderChoice, type Layout } from './layout';
+import { FOLDER, GALLERY, OPEN_FOLDER, galleryValue, setBlockChoices, setFolderChoice, type Layout } from './layout';
 import type { FromWorker } from './protocol';
 import { blocksFor, parseSeed, recordStep, taskKey, updateUrl, type PageState } from './state';
 import type { StatusBar } from './status-bar';
@@ -444,7 +444,7 @@ export class SessionControls {
     const sel = this.p.ui.controls.benchSel;
     if (sel.disabled) return;
     // The benchmarks only: the open folder and the item that opens one are not in the cycle.
-    const ids = [...sel.options].map((o) => o.value).filter((v) => v !== FOLDER && v !== OPEN_FOLDER);
+    const ids = [...sel.options].map((o) => o.value).filter((v) => v !== FOLDER && v !== OPEN_FOLDER && !GALLERY.some((g) => galleryValue(g.name) === v));
     sel.value = ids[(ids.indexOf(sel.value) + 1) % ids.length];
     sel.dispatchEvent(new Event('change'));
   }
@@ -499,6 +499,12 @@ export class SessionControls {
     const c = this.p.ui.controls;
     const o = state.options;
     c.benchSel.onchange = () => {
+      const gallery = GALLERY.find((g) => galleryValue(g.name) === c.benchSel.value);
+      if (gallery) {
+        c.benchSel.value = state.folder ? FOLDER : o.benchmark;
+        void this.openFolderAt(galleryValue(gallery.name));
+        return;
+      }
       if (c.benchSel.value === OPEN_FOLDER || c.benchSel.value === FOLDER) {
         // Picking a folder happens in the browser's dialog; the select shows the Run's task meanwhile.
         if (c.benchSel.value === OPEN_FOLDER) c.dirIn.click();

@@ -137,27 +137,15 @@ impl Session {
         demo_json: Option<&str>,
         params: SessionParams,
     ) -> Result<Session, SessionError> {
-        // Through the snapshot once, so the logged initial scene reloads to this very world.
-        let motions = Arc::new(files.parse_motions().map_err(|e| match e {
-            Ok(m) => SessionError::Motions(m),
-            Err(pddl) => SessionError::Lfd(super::LfdError::Model(pddl)),
-        })?);
+        let (motions, template, model) = options::template_of(files)?;
+        // Through the snapshot once, so the logged initial scene reloads to this very world. One
+        // JSON reader for scenes in the session: a second would add its own copy of the scene's
+        // deserialiser to the page's first-load module.
         let world = crate::sim::world_from_json(scene_json.unwrap_or(&files.scene))?;
         let world = World::from_snapshot(&world.snapshot())?.with_motions(Arc::clone(&motions));
         motions
             .check_arms(world.arm_names().len())
             .map_err(SessionError::Json)?;
-        // One JSON reader for scenes in the session: a second would add its own copy of the
-        // scene's deserialiser to the page's first-load module.
-        let template =
-            crate::sim::world_from_json(&files.scene)?.with_motions(Arc::clone(&motions));
-        let model = DomainModel::new(
-            &files.domain,
-            &files.file("domain.pddl"),
-            &files.problem,
-            &files.file("problem.pddl"),
-            &motions.scene_predicates(),
-        )?;
         // The demonstration is derived on the template task (its initial state is the template
         // scene's facts).
         // A scene that contradicts its problem would show only as an inapplicable step.

@@ -274,9 +274,11 @@ pub(super) fn unknown_step(
     })
 }
 
-/// The demonstration trace (`L_0 … L_N`) of a task's files, derived on its template scene as
-/// a session derives it: errors name the file and step, as a session's do.
-pub fn demo_trace_of(files: &crate::sim::BenchmarkSources) -> Result<DemoTrace, SessionError> {
+/// What a task's files give before a scene is chosen: their `motions.json` (checked against the
+/// domain), the template world that reads its facts through it, and the domain model.
+pub(super) fn template_of(
+    files: &crate::sim::BenchmarkSources,
+) -> Result<(std::sync::Arc<crate::sim::Motions>, World, DomainModel), SessionError> {
     let motions = std::sync::Arc::new(files.parse_motions().map_err(|e| match e {
         Ok(m) => SessionError::Motions(m),
         Err(pddl) => SessionError::Lfd(LfdError::Model(pddl)),
@@ -289,6 +291,13 @@ pub fn demo_trace_of(files: &crate::sim::BenchmarkSources) -> Result<DemoTrace, 
         &files.file("problem.pddl"),
         &motions.scene_predicates(),
     )?;
+    Ok((motions, template, model))
+}
+
+/// The demonstration trace (`L_0 … L_N`) of a task's files, derived on its template scene as
+/// a session derives it: errors name the file and step, as a session's do.
+pub fn demo_trace_of(files: &crate::sim::BenchmarkSources) -> Result<DemoTrace, SessionError> {
+    let (_, template, model) = template_of(files)?;
     check_scene(files)?;
     let objects = SceneGraph::objects(&template);
     let facts = SceneGraph::from_world(&template).to_strings();
