@@ -60,7 +60,7 @@ fn a_taught_demo_with_a_wrong_type_deep_inside_names_its_path() {
     .unwrap();
     let json = serde_json::to_string(&rec.finish().unwrap().demo).unwrap();
     let (bad, line, column) = with_value_at(&json, "/scene/bodies/3/pose/position/0", json!(true));
-    let e = taught::load(&bad).unwrap_err().to_string();
+    let e = taught::load(&bad, None).unwrap_err().to_string();
     assert_eq!(
         e,
         format!(

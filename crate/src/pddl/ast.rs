@@ -238,8 +238,8 @@ impl Domain {
         self.source.error(span, message)
     }
 
-    /// An atom printed in IPC form, with `args` substituted for the action's variables.
-    #[allow(dead_code)]
+    /// An atom printed in IPC form, with `binding` substituted for the action's variables (a
+    /// ground atom needs none).
     pub(crate) fn atom_text(&self, atom: &Atom, binding: &[&str]) -> String {
         let mut s = format!("({}", self.predicates[atom.predicate].name.text);
         for t in &atom.args {

@@ -5,13 +5,15 @@
 //! world `scene`, `L_0` and the goal `G`. The task it defines is
 //!
 //! ```text
-//!   domain    the domain of the benchmark whose world the scene is (B1, B2 or B3)
+//!   domain    the task folder's domain (the folder it was taught in), else the domain of the
+//!             benchmark whose world the scene is (B1, B2 or B3)
 //!   problem   objects of the scene,  :init = L_0 ∪ static facts,  :goal = G
+//!             (static facts: the folder problem's, or the benchmark's)
 //!   demo      a_1..a_N of the recording  →  L_0..L_N  (derived, as for every demo)
 //!   skills    learned from the recorded motions (object-centric LQT-CP, `lfd::skill`)
 //! ```
 //!
-//! and a session runs it from any initial world of the same benchmark: the taught scene, a scene
+//! and a session runs it from any initial world of the same workcell: the taught scene, a scene
 //! the user arranged, or a seeded random one ([`random_scene`]). Loading checks everything before
 //! anything is used ([`load`]): the JSON shape (with the key path), the scene, every action's
 //! applicability in turn (`L_k` derived again) and `G ⊆ L_N`.
@@ -28,6 +30,7 @@ use crate::lqt::{Skill, SkillParams};
 use crate::sim::demo::Demonstration;
 use crate::sim::Benchmark;
 use crate::sim::BenchmarkSources;
+use crate::sim::TaskFolder;
 use crate::sim::{SceneGraph, World};
 use nalgebra::{Isometry3, Point3};
 
@@ -35,8 +38,11 @@ use nalgebra::{Isometry3, Point3};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 pub struct TaughtInfo {
-    /// `b1`, `b2` or `b3`: the benchmark whose world and domain the demonstration uses.
-    pub benchmark: Benchmark,
+    /// `b1`, `b2` or `b3`: the benchmark whose world and domain the demonstration uses (none
+    /// when it was taught in a task folder).
+    pub benchmark: Option<Benchmark>,
+    /// The task folder whose world and domain the demonstration uses, by its name (`./mine`).
+    pub folder: Option<String>,
     /// a_1..a_N.
     pub actions: Vec<String>,
     /// The arm of each action.
@@ -97,27 +103,87 @@ fn json_input(e: crate::sim::JsonError) -> RecorderError {
     RecorderError::Input { path, message }
 }
 
-/// The benchmark whose world (by the scene's name) a taught demo uses.
-pub fn benchmark_of(t: &TaughtDemo) -> Result<Benchmark, RecorderError> {
-    Benchmark::parse(&t.scene.name).ok_or_else(|| {
-        refused(format!(
-            "the demonstration's world `{}` is none of the benchmarks b1, b2, b3: a taught task runs \
-             in a benchmark's workcell",
-            t.scene.name
-        ))
+/// Where a taught task's domain, `motions.json` and static facts come from: the task folder it
+/// was taught in, or the benchmark whose workcell its scene is.
+struct Base {
+    /// The folder's or the benchmark's files (only the domain and motions are used).
+    files: BenchmarkSources,
+    /// Facts of the problem's `:init` the scene graph does not report (B3's `reaches`).
+    statics: Vec<String>,
+    benchmark: Option<Benchmark>,
+    folder: Option<String>,
+}
+
+fn model_err(e: impl std::fmt::Display) -> RecorderError {
+    RecorderError::Model(e.to_string())
+}
+
+/// The base of taught demo `t`: `folder` when given (its world must be the demo's), else the
+/// benchmark named by the demo's scene.
+fn base(t: &TaughtDemo, folder: Option<&TaskFolder>) -> Result<Base, RecorderError> {
+    let Some(folder) = folder else {
+        let b = Benchmark::parse(&t.scene.name).ok_or_else(|| {
+            refused(format!(
+                "the demonstration's world `{}` is none of the benchmarks b1, b2, b3: give the task \
+                 folder it was taught in",
+                t.scene.name
+            ))
+        })?;
+        return Ok(Base {
+            files: b.sources().map_err(model_err)?,
+            statics: b.static_facts().iter().map(|f| f.to_string()).collect(),
+            benchmark: Some(b),
+            folder: None,
+        });
+    };
+    let files = folder.sources().map_err(model_err)?;
+    let world = crate::sim::world_from_json(&files.scene)
+        .map_err(|e| RecorderError::Model(format!("{}: {e}", folder.path("scene.json"))))?;
+    if world.name() != t.scene.name {
+        return Err(refused(format!(
+            "the demonstration's world `{}` is not the world `{}` of the task folder {}",
+            t.scene.name,
+            world.name(),
+            folder.dir
+        )));
+    }
+    let motions = files.parse_motions().map_err(|e| match e {
+        Ok(m) => model_err(m),
+        Err(text) => RecorderError::Model(text),
+    })?;
+    let domain =
+        crate::pddl::parse_domain(&files.domain, &files.file("domain.pddl")).map_err(model_err)?;
+    let problem = crate::pddl::parse_problem(&files.problem, &files.file("problem.pddl"), &domain)
+        .map_err(model_err)?;
+    let scene_predicates = motions.scene_predicates();
+    let statics = problem
+        .init
+        .iter()
+        .filter(|a| !scene_predicates.contains(&domain.predicates[a.predicate].name.text))
+        .map(|a| domain.atom_text(a, &[]))
+        .collect();
+    Ok(Base {
+        files,
+        statics,
+        benchmark: None,
+        folder: Some(folder.dir.clone()),
     })
 }
 
-/// The files of the taught task: the benchmark's domain, a problem with the taught scene's objects,
-/// `L_0` (plus static facts) and the goal `G`, the taught scene and the demo itself.
-pub fn sources(t: &TaughtDemo, demo_json: &str) -> Result<BenchmarkSources, RecorderError> {
+/// The files of the taught task: the base's domain and motions, a problem with the taught scene's
+/// objects, `L_0` (plus static facts) and the goal `G`, the taught scene and the demo itself.
+fn sources(
+    t: &TaughtDemo,
+    demo_json: &str,
+    base: &Base,
+) -> Result<BenchmarkSources, RecorderError> {
     if t.goal.is_empty() {
         return Err(RecorderError::Input {
             path: "goal".into(),
             message: "empty: a taught task needs at least one goal fact".into(),
         });
     }
-    sources_with_goal(t, demo_json, &t.goal)
+    sources_with_goal(t, demo_json, &t.goal, base)
 }
 
 /// [`sources`] with another goal (empty: `(and)`, for checking the demo before its goal).
@@ -125,43 +191,43 @@ fn sources_with_goal(
     t: &TaughtDemo,
     demo_json: &str,
     goal: &[String],
+    base: &Base,
 ) -> Result<BenchmarkSources, RecorderError> {
-    let b = benchmark_of(t)?;
-    let files = b
-        .sources()
-        .map_err(|e| RecorderError::Model(e.to_string()))?;
-    let domain = crate::pddl::parse_domain(&files.domain, "domain.pddl")
-        .map_err(|e| RecorderError::Model(e.to_string()))?;
+    let files = &base.files;
+    let domain = crate::pddl::parse_domain(&files.domain, "domain.pddl").map_err(model_err)?;
+    let motions = std::sync::Arc::new(files.parse_motions().map_err(|e| match e {
+        Ok(m) => model_err(m),
+        Err(text) => RecorderError::Model(text),
+    })?);
     let world = World::from_snapshot(&t.scene)
         .map_err(|e| RecorderError::Input {
             path: format!("scene.{}", e.path),
             message: e.message,
         })?
-        .with_motions(b.motions());
+        .with_motions(motions);
     let mut objects = String::new();
     for o in SceneGraph::objects(&world) {
         if domain.type_index(&o.ty).is_some() {
             objects.push_str(&format!(" {} - {}", o.name, o.ty));
         }
     }
-    let statics: Vec<String> = b.static_facts().iter().map(|f| f.to_string()).collect();
     let problem = format!(
         "(define (problem taught) (:domain {})\n  (:objects{})\n  (:init {} {})\n  (:goal (and {})))\n",
         domain.name.text,
         objects,
         t.initial_facts.join(" "),
-        statics.join(" "),
+        base.statics.join(" "),
         goal.join(" ")
     );
-    let scene = serde_json::to_string(&t.scene).map_err(|e| RecorderError::Model(e.to_string()))?;
+    let scene = serde_json::to_string(&t.scene).map_err(model_err)?;
     Ok(BenchmarkSources {
         folder: None,
-        dir: files.dir,
-        domain: files.domain,
+        dir: files.dir.clone(),
+        domain: files.domain.clone(),
         problem,
         scene,
         demo: demo_json.to_string(),
-        motions: files.motions,
+        motions: files.motions.clone(),
     })
 }
 
@@ -201,12 +267,24 @@ fn model_and_trace(
 }
 
 /// Checks a taught `demo.json` completely and lists it: every action applies in turn from the
-/// scene's facts (`L_0` must be the scene's facts), and the goal holds in `L_N`.
-pub fn load(demo_json: &str) -> Result<(TaughtDemo, TaughtInfo), RecorderError> {
+/// scene's facts (`L_0` must be the scene's facts), and the goal holds in `L_N`. A demo taught in
+/// a task folder needs that `folder`; one taught in a benchmark's workcell, none.
+pub fn load(
+    demo_json: &str,
+    folder: Option<&TaskFolder>,
+) -> Result<(TaughtDemo, TaughtInfo), RecorderError> {
+    Ok(load_on(demo_json, folder)?.0)
+}
+
+/// [`load`], and the task's base.
+fn load_on(
+    demo_json: &str,
+    folder: Option<&TaskFolder>,
+) -> Result<((TaughtDemo, TaughtInfo), Base), RecorderError> {
     let t = parse(demo_json)?;
-    let benchmark = benchmark_of(&t)?;
+    let base = base(&t, folder)?;
     // The actions are checked first (on the task without a goal), then the goal.
-    let files = sources_with_goal(&t, demo_json, &[])?;
+    let files = sources_with_goal(&t, demo_json, &[], &base)?;
     let actions: Vec<String> = t.demo.actions.iter().map(|a| a.action.clone()).collect();
     if actions.is_empty() {
         return Err(RecorderError::Input {
@@ -244,13 +322,8 @@ pub fn load(demo_json: &str) -> Result<(TaughtDemo, TaughtInfo), RecorderError> 
         .map(|s| s.iter().cloned().collect())
         .collect();
     let last = states.last().cloned().unwrap_or_default();
-    let statics: Vec<String> = benchmark
-        .static_facts()
-        .iter()
-        .map(|f| f.to_string())
-        .collect();
     for (i, g) in t.goal.iter().enumerate() {
-        if !last.contains(g) && !statics.contains(g) {
+        if !last.contains(g) && !base.statics.contains(g) {
             return Err(RecorderError::Input {
                 path: format!("goal[{i}]"),
                 message: format!("{g} does not hold at the end of the demonstration"),
@@ -264,21 +337,26 @@ pub fn load(demo_json: &str) -> Result<(TaughtDemo, TaughtInfo), RecorderError> 
         });
     }
     let info = TaughtInfo {
-        benchmark,
+        benchmark: base.benchmark,
+        folder: base.folder.clone(),
         actions: trace.actions.clone(),
         arms: t.demo.actions.iter().map(|a| a.arm.clone()).collect(),
         states,
         goal: t.goal.clone(),
     };
-    Ok((t, info))
+    Ok(((t, info), base))
 }
 
 /// A seeded random initial world for a taught task: the taught scene after an unseen-state
 /// change (L3, else L2) and a motion-level spread (L1), each drawn from `seed`. Same seed, same
-/// world.
-pub fn random_scene(demo_json: &str, seed: u64) -> Result<String, RecorderError> {
-    let (t, info) = load(demo_json)?;
-    let files = sources(&t, demo_json)?;
+/// world. `folder` as for [`load`].
+pub fn random_scene(
+    demo_json: &str,
+    seed: u64,
+    folder: Option<&TaskFolder>,
+) -> Result<String, RecorderError> {
+    let ((t, info), base) = load_on(demo_json, folder)?;
+    let files = sources(&t, demo_json, &base)?;
     let (_, template, trace) = model_and_trace(&files, &info.actions)?;
     let mut last = String::new();
     for attempt in 0..8u64 {
@@ -304,10 +382,14 @@ pub fn random_scene(demo_json: &str, seed: u64) -> Result<String, RecorderError>
     )))
 }
 
-/// A closed-loop session running the taught task (see the module docs).
-pub fn session(demo_json: &str, options: &TaughtRunOptions) -> Result<Session, RecorderError> {
-    let (t, _) = load(demo_json)?;
-    let files = sources(&t, demo_json)?;
+/// A closed-loop session running the taught task (see the module docs); `folder` as for [`load`].
+pub fn session(
+    demo_json: &str,
+    options: &TaughtRunOptions,
+    folder: Option<&TaskFolder>,
+) -> Result<Session, RecorderError> {
+    let ((t, _), base) = load_on(demo_json, folder)?;
+    let files = sources(&t, demo_json, &base)?;
     let scene = match (&options.scene, options.random) {
         (Some(_), true) => {
             return Err(RecorderError::Input {
@@ -316,7 +398,7 @@ pub fn session(demo_json: &str, options: &TaughtRunOptions) -> Result<Session, R
             })
         }
         (Some(s), false) => Some(s.clone()),
-        (None, true) => Some(random_scene(demo_json, options.seed)?),
+        (None, true) => Some(random_scene(demo_json, options.seed, folder)?),
         (None, false) => None,
     };
     if let Some(s) = &scene {
@@ -336,7 +418,8 @@ pub fn session(demo_json: &str, options: &TaughtRunOptions) -> Result<Session, R
         }
     }
     let opts = SessionOptions {
-        benchmark: benchmark_of(&t)?,
+        // A folder's task only labels its log with a benchmark, as `Session.fromFolder` does.
+        benchmark: base.benchmark.unwrap_or(Benchmark::B1),
         method: options.method,
         mode: options.mode,
         seed: options.seed,
@@ -353,8 +436,9 @@ pub fn session(demo_json: &str, options: &TaughtRunOptions) -> Result<Session, R
     .map_err(|e| RecorderError::Model(e.to_string()))
 }
 
-/// Re-runs the episode log of a taught session (its `demo_json` is the taught demo) exactly.
-pub fn replay(episode_json: &str) -> Result<Session, RecorderError> {
+/// Re-runs the episode log of a taught session (its `demo_json` is the taught demo) exactly;
+/// `folder` as for [`load`].
+pub fn replay(episode_json: &str, folder: Option<&TaskFolder>) -> Result<Session, RecorderError> {
     let v: serde_json::Value =
         serde_json::from_str(episode_json).map_err(|e| RecorderError::Input {
             path: format!("line {} column {}", e.line(), e.column()),
@@ -367,8 +451,8 @@ pub fn replay(episode_json: &str) -> Result<Session, RecorderError> {
             path: "demo_json".into(),
             message: "missing: not the episode of a taught task".into(),
         })?;
-    let (t, _) = load(demo)?;
-    let files = sources(&t, demo)?;
+    let ((t, _), base) = load_on(demo, folder)?;
+    let files = sources(&t, demo, &base)?;
     Session::replay_with_sources(&files, episode_json)
         .map_err(|e| RecorderError::Model(e.to_string()))
 }

@@ -11,8 +11,9 @@ use super::session::WasmSession;
 use crate::recorder::taught::{self, TaughtRunOptions};
 use crate::recorder::Edit;
 use crate::recorder::{self as rec, GripperHandle, Recorder, RecorderError, RecorderEvent};
-use crate::sim::Benchmark;
-use serde::Serialize;
+use crate::sim::{Benchmark, TaskFolder, FOLDER_FILES};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use tsify::Tsify;
 use wasm_bindgen::prelude::*;
 
@@ -92,8 +93,10 @@ fn segments_out(segments: Vec<rec::Segment>) -> Vec<Segment> {
 struct TeachState {
     /// Recording time (s).
     t: f64,
-    /// The benchmark whose workcell and domain the recording uses.
-    benchmark: Benchmark,
+    /// The benchmark whose workcell and domain the recording uses (none in a task folder).
+    benchmark: Option<Benchmark>,
+    /// The task folder whose workcell and domain the recording uses, by its name (`./mine`).
+    folder: Option<String>,
     /// The actions recognised so far.
     segments: Vec<Segment>,
     /// L_0..L_k: the fluents before the first action and after each.
@@ -222,11 +225,60 @@ fn teach_error(e: &RecorderError) -> TeachError {
     }
 }
 
-/// A demonstration being recorded in one of the benchmark workcells (the page's Teach mode).
+/// A demonstration being recorded in a benchmark's workcell or a task folder's (the page's Teach
+/// mode).
 #[wasm_bindgen]
 pub struct Teacher {
     inner: Recorder,
-    benchmark: Benchmark,
+    benchmark: Option<Benchmark>,
+    /// The task folder of the recording, which its taught demo needs.
+    taught_in: Option<TaskFolder>,
+}
+
+/// The options of `Teacher.fromFolder`.
+#[derive(Debug, Default, Deserialize, Tsify)]
+#[serde(deny_unknown_fields)]
+#[tsify(missing_as_null)]
+pub struct TeachFolderOptions {
+    /// The folder's name in messages (default `folder`), as `Session.fromFolder` takes it.
+    #[serde(default)]
+    #[tsify(optional)]
+    pub dir: Option<String>,
+    /// Another starting world of the folder's task (a `WorldSnapshot` JSON) than its `scene.json`.
+    #[serde(default)]
+    #[tsify(optional)]
+    pub scene: Option<String>,
+}
+
+/// A task folder as the taught-task functions take it: its files by name, and its name.
+#[derive(Debug, Deserialize, Tsify)]
+#[serde(deny_unknown_fields)]
+#[tsify(missing_as_null)]
+pub struct TaughtFolder {
+    /// The folder's files: `domain.pddl`, `problem.pddl`, `motions.json`, `scene.json`, … by name.
+    pub files: BTreeMap<String, String>,
+    /// The folder's name in messages (default `folder`).
+    #[serde(default)]
+    #[tsify(optional)]
+    pub dir: Option<String>,
+}
+
+/// The optional folder argument of a taught-task function, as a [`TaskFolder`].
+fn taught_folder(func: &str, folder: &JsValue) -> Result<Option<TaskFolder>, JsValue> {
+    if folder.is_undefined() || folder.is_null() {
+        return Ok(None);
+    }
+    object_arg(func, "folder", folder, false)?;
+    let f: TaughtFolder = from_js(folder).map_err(|e| js_err(format!("{func}: folder: {e}")))?;
+    let files = f
+        .files
+        .into_iter()
+        .filter(|(name, _)| FOLDER_FILES.contains(&name.as_str()))
+        .collect();
+    Ok(Some(TaskFolder::new(
+        f.dir.as_deref().unwrap_or("folder"),
+        files,
+    )))
 }
 
 impl Teacher {
@@ -234,6 +286,7 @@ impl Teacher {
         TeachState {
             t: self.inner.time(),
             benchmark: self.benchmark,
+            folder: self.taught_in.as_ref().map(|f| f.dir.clone()),
             segments: segments_out(self.inner.segments()),
             states: self.inner.demo_states(),
             facts: self.inner.facts().to_vec(),
@@ -310,7 +363,40 @@ impl Teacher {
         .map_err(js_err)?;
         Ok(Teacher {
             inner,
-            benchmark: b,
+            benchmark: Some(b),
+            taught_in: None,
+        })
+    }
+
+    /// A recorder in a task folder's workcell (its files by name, as `Session.fromFolder` takes
+    /// them), starting from its `scene.json` or `options.scene`; errors name the folder's file.
+    #[wasm_bindgen(js_name = fromFolder)]
+    pub fn from_folder(
+        #[wasm_bindgen(unchecked_param_type = "Record<string, string>")] files: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "TeachFolderOptions | undefined")] options: JsValue,
+    ) -> Result<Teacher, JsValue> {
+        const F: &str = "Teacher.fromFolder";
+        let files = super::folder::folder_files(F, &files)?;
+        object_arg(F, "options", &options, true)?;
+        let o: TeachFolderOptions = if options.is_undefined() || options.is_null() {
+            TeachFolderOptions::default()
+        } else {
+            from_js(&options).map_err(|e| js_err(format!("options: {e}")))?
+        };
+        let folder = TaskFolder::new(o.dir.as_deref().unwrap_or("folder"), files);
+        let scene = match &o.scene {
+            Some(text) => Some(
+                crate::sim::world_from_json(text)
+                    .map_err(|e| js_err(format!("scene: {e}")))?
+                    .snapshot(),
+            ),
+            None => None,
+        };
+        let inner = Recorder::for_folder(&folder, scene.as_ref()).map_err(js_err)?;
+        Ok(Teacher {
+            inner,
+            benchmark: None,
+            taught_in: Some(folder),
         })
     }
 
@@ -388,7 +474,7 @@ impl Teacher {
         let out = match self.inner.finish().and_then(|t| {
             let json =
                 serde_json::to_string(&t.demo).map_err(|e| RecorderError::Model(e.to_string()))?;
-            let (_, info) = taught::load(&json)?;
+            let (_, info) = taught::load(&json, self.taught_in.as_ref())?;
             Ok((json, info, t.skills))
         }) {
             Ok((demo_json, info, skills)) => TeachFinish::Ok {
@@ -417,9 +503,11 @@ impl Teacher {
 #[wasm_bindgen(js_name = taughtInfo, unchecked_return_type = "TaughtInfo")]
 pub fn taught_info(
     #[wasm_bindgen(js_name = "demoJson", unchecked_param_type = "string")] demo_json: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "TaughtFolder | undefined")] folder: JsValue,
 ) -> Result<JsValue, JsValue> {
     let demo_json = string_arg("taughtInfo", "demoJson", &demo_json)?;
-    let (_, info) = taught::load(&demo_json).map_err(js_err)?;
+    let folder = taught_folder("taughtInfo", &folder)?;
+    let (_, info) = taught::load(&demo_json, folder.as_ref()).map_err(js_err)?;
     to_js(&info)
 }
 
@@ -428,20 +516,24 @@ pub fn taught_info(
 pub fn taught_random_scene(
     #[wasm_bindgen(js_name = "demoJson", unchecked_param_type = "string")] demo_json: JsValue,
     #[wasm_bindgen(unchecked_param_type = "number")] seed: JsValue,
+    #[wasm_bindgen(unchecked_param_type = "TaughtFolder | undefined")] folder: JsValue,
 ) -> Result<String, JsValue> {
     let demo_json = string_arg("taughtRandomScene", "demoJson", &demo_json)?;
     let seed = number_arg("taughtRandomScene", "seed", &seed)?;
-    Ok(taught::random_scene(&demo_json, seed_of(seed)?).map_err(js_err)?)
+    let folder = taught_folder("taughtRandomScene", &folder)?;
+    Ok(taught::random_scene(&demo_json, seed_of(seed)?, folder.as_ref()).map_err(js_err)?)
 }
 
 #[wasm_bindgen(js_class = Session)]
 impl WasmSession {
     /// A session running a taught task (`demo.json` from `Teacher.finish`) from the taught scene,
-    /// a scene the user arranged (`options.scene`) or a seeded random one (`options.random`).
+    /// a scene the user arranged (`options.scene`) or a seeded random one (`options.random`); a
+    /// task taught in a folder needs that `folder`.
     #[wasm_bindgen(js_name = fromTaught)]
     pub fn from_taught(
         #[wasm_bindgen(js_name = "demoJson", unchecked_param_type = "string")] demo_json: JsValue,
         #[wasm_bindgen(unchecked_param_type = "TaughtRunOptions | undefined")] options: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "TaughtFolder | undefined")] folder: JsValue,
     ) -> Result<WasmSession, JsValue> {
         let demo_json = string_arg("Session.fromTaught", "demoJson", &demo_json)?;
         object_arg("Session.fromTaught", "options", &options, true)?;
@@ -450,17 +542,21 @@ impl WasmSession {
         } else {
             from_js(&options).map_err(|e| js_err(format!("options: {e}")))?
         };
-        let inner = taught::session(&demo_json, &o).map_err(js_err)?;
+        let folder = taught_folder("Session.fromTaught", &folder)?;
+        let inner = taught::session(&demo_json, &o, folder.as_ref()).map_err(js_err)?;
         Ok(WasmSession::from(inner))
     }
 
-    /// Re-runs the logged episode of a taught task (from `episodeJson()`) exactly.
+    /// Re-runs the logged episode of a taught task (from `episodeJson()`) exactly; a task taught
+    /// in a folder needs that `folder`.
     #[wasm_bindgen(js_name = replayTaught)]
     pub fn replay_taught(
         #[wasm_bindgen(unchecked_param_type = "string")] episode: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "TaughtFolder | undefined")] folder: JsValue,
     ) -> Result<WasmSession, JsValue> {
         let episode = string_arg("Session.replayTaught", "episode", &episode)?;
-        let inner = taught::replay(&episode).map_err(js_err)?;
+        let folder = taught_folder("Session.replayTaught", &folder)?;
+        let inner = taught::replay(&episode, folder.as_ref()).map_err(js_err)?;
         Ok(WasmSession::from(inner))
     }
 }

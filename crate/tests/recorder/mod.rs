@@ -5,6 +5,7 @@
 
 mod segmentation;
 mod taught;
+mod taught_folder;
 mod teaching;
 
 use std::path::PathBuf;

@@ -20,7 +20,7 @@ fn loading_a_taught_demo_checks_it() {
     let mut rec = Recorder::for_benchmark(Benchmark::B1).unwrap();
     rec.push(&drag("c", "d")).unwrap();
     let json = serde_json::to_string(&rec.finish().unwrap().demo).unwrap();
-    let (_, info) = taught::load(&json).unwrap();
+    let (_, info) = taught::load(&json, None).unwrap();
     assert_eq!(info.actions, ["(pick panda c)", "(stack panda c d)"]);
     assert_eq!(info.states.len(), 3);
     assert!(info.goal.contains(&"(on c d)".to_string()));
@@ -29,16 +29,16 @@ fn loading_a_taught_demo_checks_it() {
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../domains/b1-tower/demo.json"),
     )
     .unwrap();
-    let e = taught::load(&scripted).unwrap_err().to_string();
+    let e = taught::load(&scripted, None).unwrap_err().to_string();
     assert!(e.contains("not a taught demonstration"), "{e}");
     let swapped = json.replace("(stack panda c d)", "(stack panda c a)");
-    let e = taught::load(&swapped).unwrap_err().to_string();
+    let e = taught::load(&swapped, None).unwrap_err().to_string();
     assert!(e.starts_with("goal[") || e.starts_with("actions"), "{e}");
     let mut v: serde_json::Value = serde_json::from_str(&json).unwrap();
     v["goal"] = serde_json::json!(["(on d c)"]);
-    let e = taught::load(&v.to_string()).unwrap_err().to_string();
+    let e = taught::load(&v.to_string(), None).unwrap_err().to_string();
     assert!(e.contains("goal[0]: (on d c) does not hold"), "{e}");
-    assert!(taught::load("{")
+    assert!(taught::load("{", None)
         .unwrap_err()
         .to_string()
         .contains("line 1"));
@@ -65,14 +65,14 @@ fn taught_reverse_tower_runs_to_success_under_l3() {
         ..TaughtRunOptions::default()
     };
     // The random initial world differs from the taught one, and is the same for the same seed.
-    let scene = taught::random_scene(&demo_json, 5).unwrap();
-    assert_eq!(scene, taught::random_scene(&demo_json, 5).unwrap());
+    let scene = taught::random_scene(&demo_json, 5, None).unwrap();
+    assert_eq!(scene, taught::random_scene(&demo_json, 5, None).unwrap());
     let w = World::from_json(&scene).unwrap();
     assert_ne!(
         SceneGraph::from_world(&w).facts,
         SceneGraph::from_world(&Benchmark::B1.scene()).facts
     );
-    let mut s = taught::session(&demo_json, &opts).unwrap();
+    let mut s = taught::session(&demo_json, &opts, None).unwrap();
     let mut injected = false;
     for _ in 0..40_000 {
         if s.outcome().is_some() {
@@ -95,7 +95,7 @@ fn taught_reverse_tower_runs_to_success_under_l3() {
     assert!(facts.contains("(on b a)") && facts.contains("(on c b)"));
     // The episode of a taught task replays exactly.
     let log = s.log().canonical();
-    let again = taught::replay(&s.episode_json()).unwrap();
+    let again = taught::replay(&s.episode_json(), None).unwrap();
     assert_eq!(again.log().canonical(), log);
 }
 
@@ -129,7 +129,7 @@ fn taught_b3_hand_over_runs_from_a_random_world() {
     let mut demo = t.demo.clone();
     demo.goal = goal.clone();
     let json = serde_json::to_string(&demo).unwrap();
-    let (_, info) = taught::load(&json).unwrap();
+    let (_, info) = taught::load(&json, None).unwrap();
     assert_eq!(info.arms, ["left", "left", "right", "right"]);
     let mut s = taught::session(
         &json,
@@ -138,6 +138,7 @@ fn taught_b3_hand_over_runs_from_a_random_world() {
             random: true,
             ..TaughtRunOptions::default()
         },
+        None,
     )
     .unwrap();
     for _ in 0..40_000 {

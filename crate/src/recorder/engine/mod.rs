@@ -16,6 +16,7 @@ use crate::plan::{self, State, Task};
 pub(crate) use crate::sim::geometry::gripper_yaw;
 use crate::sim::Benchmark;
 use crate::sim::Motions;
+use crate::sim::TaskFolder;
 use crate::sim::{BodyKind, WorldSnapshot};
 use crate::sim::{GripperCommand, SceneGraph, World, WorldEvent};
 use nalgebra::Isometry3;
@@ -161,7 +162,7 @@ fn static_facts(
             p.init
                 .iter()
                 .filter(|a| !preds.contains(&domain.predicates[a.predicate].name.text))
-                .map(|a| atom_text(domain, a))
+                .map(|a| domain.atom_text(a, &[]))
                 .collect()
         }
         None => Benchmark::parse(&scene.name)
@@ -271,6 +272,40 @@ impl Recorder {
             b.domain_pddl(),
             RecorderOptions {
                 domain_file: format!("domains/{}/domain.pddl", b.dir_name()),
+                ..RecorderOptions::default()
+            },
+        )
+    }
+
+    /// A recorder on a task folder's scene (or `scene`, another world of the same task), domain,
+    /// `motions.json` and the static facts of its `problem.pddl`; errors name the folder's file.
+    pub fn for_folder(
+        folder: &TaskFolder,
+        scene: Option<&WorldSnapshot>,
+    ) -> Result<Recorder, RecorderError> {
+        let files = folder
+            .sources()
+            .map_err(|e| RecorderError::Model(e.to_string()))?;
+        let own;
+        let scene = match scene {
+            Some(s) => s,
+            None => {
+                own = crate::sim::world_from_json(&files.scene)
+                    .map_err(|e| {
+                        RecorderError::Model(format!("{}: {e}", folder.path("scene.json")))
+                    })?
+                    .snapshot();
+                &own
+            }
+        };
+        let source = |name: &str, text: &str| Source::new(folder.path(name), text);
+        Recorder::new(
+            scene,
+            &files.domain,
+            RecorderOptions {
+                domain_file: folder.path("domain.pddl"),
+                problem_pddl: Some(source("problem.pddl", &files.problem)),
+                motions_json: Some(source("motions.json", &files.motions)),
                 ..RecorderOptions::default()
             },
         )
@@ -497,16 +532,6 @@ impl Recorder {
         *self = fresh;
         Ok(Some(removed))
     }
-}
-
-fn atom_text(domain: &pddl::Domain, a: &pddl::Atom) -> String {
-    let mut s = format!("({}", domain.predicates[a.predicate].name.text);
-    for t in &a.args {
-        s.push(' ');
-        s.push_str(t.text());
-    }
-    s.push(')');
-    s
 }
 
 /// A gripper sample at time `t` (used by the synthesiser and the tests).

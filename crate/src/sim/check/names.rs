@@ -6,7 +6,7 @@ use std::collections::BTreeSet;
 use std::sync::Arc;
 
 use super::finding::{closest, line_col, listed, Finding};
-use crate::pddl::{Atom, Domain, Problem};
+use crate::pddl::{Domain, Problem};
 use crate::sim::{
     normalise, parse_json, BenchmarkSources, BodyKind, Motions, ObjectKind, SceneGraph, World,
     WorldSnapshot,
@@ -103,16 +103,6 @@ fn kind_word(kind: ObjectKind) -> &'static str {
     }
 }
 
-fn atom_text(domain: &Domain, a: &Atom) -> String {
-    let mut s = format!("({}", domain.predicates[a.predicate].name.text);
-    for t in &a.args {
-        s.push(' ');
-        s.push_str(t.text());
-    }
-    s.push(')');
-    s
-}
-
 /// Scene objects the problem does not declare, and physical problem objects (of a kind
 /// motions.json declares) the scene lacks.
 pub(super) fn check_names(l: &Loaded, s: &BenchmarkSources) -> Vec<Finding> {
@@ -197,7 +187,7 @@ pub(super) fn check_init(l: &Loaded, s: &BenchmarkSources) -> Vec<Finding> {
         .init
         .iter()
         .filter(|a| preds.contains(&l.domain.predicates[a.predicate].name.text))
-        .map(|a| normalise(&atom_text(&l.domain, a)))
+        .map(|a| normalise(&l.domain.atom_text(a, &[])))
         .collect();
     let seen: BTreeSet<String> = SceneGraph::from_world(&l.world)
         .to_strings()
