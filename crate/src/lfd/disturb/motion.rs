@@ -8,9 +8,8 @@ use rand_pcg::Pcg64Mcg;
 
 use crate::sim::World;
 
-use super::{
-    centre, facts, shift_one_of, Before, DemoTrace, Injection, Level, TcpPush, MOTION_TRIES,
-};
+use super::scene::{centre, facts, Before, MOTION_TRIES};
+use super::{shift_one_of, DemoTrace, Injection, Level, TcpPush};
 
 /// An arm in the middle of a move, as a mid-motion disturbance sees it.
 #[derive(Clone, Debug, PartialEq)]
