@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use logic_lfd::lfd::EpisodeLog;
 use logic_lfd::sim::{content_hash, TaskFolder};
 
-use crate::support::cli::run_cli_in;
+use crate::support::cli::{refused_in, run_cli_in};
 
 const SHIPPED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../domains/b1-paper-naming");
 const NAME: &str = "b1-paper-naming";
@@ -66,16 +66,14 @@ fn a_task_folder_runs_at_every_level_under_a_bare_name() {
 #[test]
 fn a_bare_folder_name_is_never_named_as_a_shipped_domain() {
     let dir = workdir("names");
-    let (code, _, err) = run_cli_in(&dir, &["run", "--domain", "nope"]);
-    assert_eq!(code, 2);
+    let err = refused_in(&dir, &["run", "--domain", "nope"]);
     assert!(err.starts_with("./nope: not a directory"), "{err}");
     assert!(!err.contains("domains/"), "{err}");
 
     // A folder brings its own scene: a missing one is named, no benchmark's stands in.
     copy_folder(&dir.join(NAME), &dir.join("mine"));
     std::fs::remove_file(dir.join("mine/scene.json")).unwrap();
-    let (code, _, err) = run_cli_in(&dir, &["run", "--domain", "mine", "--level", "l1"]);
-    assert_eq!(code, 2);
+    let err = refused_in(&dir, &["run", "--domain", "mine", "--level", "l1"]);
     assert!(err.starts_with("./mine/scene.json: missing"), "{err}");
     std::fs::remove_dir_all(dir).ok();
 }
@@ -83,9 +81,7 @@ fn a_bare_folder_name_is_never_named_as_a_shipped_domain() {
 #[test]
 fn a_benchmark_is_refused_beside_a_task_folder() {
     let dir = workdir("benchmark");
-    let (code, out, err) = run_cli_in(&dir, &["run", "--benchmark", "b2", "--domain", NAME]);
-    assert_eq!(code, 2);
-    assert!(out.is_empty());
+    let err = refused_in(&dir, &["run", "--benchmark", "b2", "--domain", NAME]);
     assert!(
         err.contains(
             "a task folder's own scene and the disturbances drawn in it define the episode"
@@ -111,8 +107,7 @@ fn a_folder_episode_replays_from_its_path_from_domain_and_from_the_files_it_carr
 
     // Moved away: the recorded path no longer holds it; --domain gives it.
     std::fs::rename(dir.join(NAME), dir.join("moved")).unwrap();
-    let (code, _, err) = run_cli_in(&dir, &replay);
-    assert_eq!(code, 2);
+    let err = refused_in(&dir, &replay);
     assert!(
         err.contains(&format!("the task folder ./{NAME}")) && err.contains("--domain"),
         "{err}"
@@ -151,8 +146,7 @@ fn a_folder_episode_replays_from_its_path_from_domain_and_from_the_files_it_carr
     let before = content_hash(&std::fs::read_to_string(&problem).unwrap());
     append(&problem, "\n; edited\n");
     let after = content_hash(&std::fs::read_to_string(&problem).unwrap());
-    let (code, _, err) = run_cli_in(&dir, &from_domain);
-    assert_eq!(code, 2);
+    let err = refused_in(&dir, &from_domain);
     assert!(
         err.contains(&format!(
             "moved/problem.pddl (episode: {before}, now: {after})"
@@ -164,8 +158,7 @@ fn a_folder_episode_replays_from_its_path_from_domain_and_from_the_files_it_carr
     // A benchmark's episode is not replayed in a task folder.
     let bench = stdout_in(&dir, &["run", "--benchmark", "b1", "--json"], 0);
     std::fs::write(dir.join("b1.json"), bench).unwrap();
-    let (code, _, err) = run_cli_in(&dir, &["run", "--replay", "b1.json", "--domain", "moved"]);
-    assert_eq!(code, 2);
+    let err = refused_in(&dir, &["run", "--replay", "b1.json", "--domain", "moved"]);
     assert!(
         err.contains("benchmark b1") && err.contains("drop --domain moved"),
         "{err}"
@@ -236,11 +229,10 @@ fn a_folder_soak_is_the_same_on_any_number_of_threads_and_from_merged_shards() {
     let second = dir.join("second.json");
     let b: Vec<&str> = args.iter().copied().chain(["--shard", "2/2"]).collect();
     std::fs::write(&second, stdout_in(&dir, &b, 0)).unwrap();
-    let (code, _, err) = run_cli_in(
+    let err = refused_in(
         &dir,
         &["merge", first.to_str().unwrap(), second.to_str().unwrap()],
     );
-    assert_eq!(code, 2);
     assert!(
         err.contains("second.json: not the same sweep") && err.contains("folder: "),
         "{err}"
@@ -270,8 +262,7 @@ fn demo_record_writes_the_committed_demonstration() {
     let other = stdout_in(&dir, &["demo", "record", NAME, "--seed", "2", "-o", "-"], 0);
     assert_ne!(other, committed);
 
-    let (code, _, err) = run_cli_in(&dir, &["demo", "record", "nope"]);
-    assert_eq!(code, 2);
+    let err = refused_in(&dir, &["demo", "record", "nope"]);
     assert!(err.starts_with("./nope: not a directory"), "{err}");
     std::fs::remove_dir_all(dir).ok();
 }
@@ -300,7 +291,7 @@ fn demo_segment_reads_a_task_folders_domain_problem_and_motions() {
 
     // The domain file alone does not say what its names mean in a benchmark's scene.
     let domain = format!("{NAME}/domain.pddl");
-    let (code, _, err) = run_cli_in(
+    let err = refused_in(
         &dir,
         &[
             "demo",
@@ -311,7 +302,6 @@ fn demo_segment_reads_a_task_folders_domain_problem_and_motions() {
             "--no-skills",
         ],
     );
-    assert_eq!(code, 2);
     assert!(err.contains("the scene does not fit the domain"), "{err}");
 
     // --motions gives the meaning with a domain file.

@@ -7,12 +7,15 @@ import assert from 'node:assert/strict';
 import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { currentFrame, finish, openApp, root, screenshots, useBrowser } from './harness.mjs';
+import { dragBody, dropPoint } from './ux-helpers.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 
 const DIR = join(root, 'domains', 'b1-paper-naming');
 /** The folder's files by name. */
 const FILES = Object.fromEntries(readdirSync(DIR).map((n) => [n, readFileSync(join(DIR, n), 'utf8')]));
+const SORTING_DIR = join(root, 'domains', 'sorting');
+const SORTING = Object.fromEntries(readdirSync(SORTING_DIR).map((n) => [n, readFileSync(join(SORTING_DIR, n), 'utf8')]));
 const TOWER = ['(on-block a b)', '(on-block b c)', '(on-block c d)'];
 
 /** Serves `files` (name → text) at `/task-folders/NAME/` beside the page; other names are 404. */
@@ -80,6 +83,36 @@ describe('task folder on the page', () => {
       for (const g of goal) assert.ok(f.facts.includes(g), `${value}: ${g} missing from ${f.facts.join(' ')}`);
     }
     await page.screenshot({ path: join(screenshots, 'gallery-shelf-tower-1440.png') });
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
+
+  test('Teach records in the open folder; Run runs the taught task there and keeps the folder', async () => {
+    const { page, errors } = await openWithFolder('sorting', SORTING, '?folder=task-folders/sorting&autoplay=0');
+    await page.click('#tab-teach');
+    await page.click('#teach-record');
+    await page.waitForFunction(() => window.lfdTeach.state() !== null);
+    assert.equal(await page.evaluate(() => window.lfdTeach.state().folder), 'task-folders/sorting');
+    assert.match(await page.textContent('#status'), /Teaching task-folders\/sorting/);
+    // r2 from the pile into the red tray: the folder domain's actions, with its regions.
+    await dragBody(page, 'r2', await dropPoint(page, [0.39, 0.32]));
+    await page.waitForFunction(() => !window.lfdTeach.busy() && window.lfdTeach.state()?.segments.length === 2, null, { timeout: 20000, polling: 50 });
+    assert.deepEqual(
+      await page.evaluate(() => window.lfdTeach.state().segments.map((s) => s.action)),
+      ['(unstack panda r2 b2 pile)', '(place panda r2 red-tray)'],
+    );
+    await page.click('#teach-stop');
+    await page.waitForSelector('#teach-run-box:not([hidden])');
+    assert.equal(await page.evaluate(() => window.lfdTeach.info().folder), 'task-folders/sorting');
+    await page.screenshot({ path: join(screenshots, 'teach-folder-stopped.png') });
+    await page.click('#teach-run');
+    await page.waitForFunction(() => document.querySelector('#tab-run').classList.contains('active'));
+    const f = await finish(page, 60000);
+    assert.equal(f.status.kind, 'done', f.status.message);
+    assert.ok(f.facts.includes('(at r2 red-tray)'), f.facts.join(' '));
+    // The Run ran the taught task in the folder's workcell; the folder stays open.
+    assert.match(await page.textContent('#task-tag'), /taught task · sorting/);
+    assert.equal(await page.inputValue('#benchmark'), 'folder');
     assert.deepEqual(errors, []);
     await page.close();
   });

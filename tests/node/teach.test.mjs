@@ -2,6 +2,7 @@
 // demo.json, and a closed-loop `Session.fromTaught` run and its exact replay.
 import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
+import { readdirSync, readFileSync } from 'node:fs';
 
 const lfd = await import(new URL('../../pkg/node/index.mjs', import.meta.url).href);
 
@@ -79,6 +80,39 @@ describe('Teacher', () => {
     assert.deepEqual(again.frame().facts, f.facts);
     assert.equal(again.frame().tick, f.tick);
     assert.throws(() => lfd.Session.fromTaught(fin.demoJson, { sed: 3 }), /options: unknown field `sed`/);
+    s.free();
+    again.free();
+  });
+
+  test('Teacher.fromFolder records in a task folder; its taught task runs and replays with that folder', () => {
+    const dir = new URL('../../domains/sorting/', import.meta.url);
+    const files = {};
+    for (const name of readdirSync(dir)) files[name] = readFileSync(new URL(name, dir), 'utf8');
+    const folder = { files, dir: 'sorting' };
+    const t = lfd.Teacher.fromFolder(files, { dir: 'sorting' });
+    assert.equal(t.current().benchmark, null);
+    assert.equal(t.current().folder, './sorting');
+    const r = t.push({ edit: 'drag', body: 'r2', position: [0.39, 0.32] });
+    assert.ok(r.ok, JSON.stringify(r.error));
+    assert.deepEqual(
+      r.newSegments.map((s) => s.action),
+      ['(unstack panda r2 b2 pile)', '(place panda r2 red-tray)'],
+    );
+    assert.ok(t.setGoal(['(at r2 red-tray)']).ok);
+    const fin = t.finish();
+    assert.ok(fin.ok, JSON.stringify(fin));
+    assert.equal(fin.info.folder, './sorting');
+    t.free();
+    // The taught demo needs its folder: without it the error says so.
+    assert.throws(() => lfd.taughtInfo(fin.demoJson), /world `sorting` is none of the benchmarks.*task folder/);
+    assert.deepEqual(lfd.taughtInfo(fin.demoJson, folder).actions, fin.info.actions);
+    assert.throws(() => lfd.taughtInfo(fin.demoJson, { files, dri: 'x' }), /taughtInfo: folder: unknown field `dri`/);
+    const s = lfd.Session.fromTaught(fin.demoJson, { seed: 1, random: true }, folder);
+    const f = run(s);
+    assert.equal(f.status.kind, 'done', f.status.message);
+    assert.ok(f.facts.includes('(at r2 red-tray)'));
+    const again = lfd.Session.replayTaught(s.episodeJson(), folder);
+    assert.deepEqual(again.frame().facts, run(again).facts);
     s.free();
     again.free();
   });

@@ -116,11 +116,14 @@ export class SessionControls {
   }
 
   /** The Run runs a taught task: no permalink can restore it, so the URL and the top bar say so. */
-  taught(f: Frame): void {
+  taught(f: Frame, inFolder: boolean): void {
     this.p.state.taught = true;
-    // Teach mode teaches in a benchmark's workcell: the Run leaves the task folder.
-    this.p.state.folder = null;
-    this.folderChoices();
+    // A task taught in a benchmark's workcell leaves the task folder; one taught in the open
+    // folder keeps it (a new episode of the folder's own task reopens it).
+    if (!inFolder) {
+      this.p.state.folder = null;
+      this.folderChoices();
+    }
     history.replaceState(null, '', location.pathname);
     this.p.ui.taskTag.textContent = `taught task · ${f.world.name}`;
     this.p.ui.taskTag.hidden = false;
@@ -206,22 +209,28 @@ export class SessionControls {
     this.p.status.notice(`Could not open the task folder ${url}: ${sentence(why)}`, 'error', 15000);
   }
 
+  /** Shows the first frame `f` of a newly opened task (`folder`'s, or a benchmark's): the
+   * selects, the top bar's tag, the URL, the goal and the PDDL tab follow it. */
+  private showOpened(f: Frame, folder: OpenFolder | null): void {
+    const { state } = this.p;
+    state.folder = folder;
+    state.taught = false;
+    this.p.tabs().teach?.reset();
+    this.folderChoices();
+    this.showTaskTag();
+    updateUrl(state);
+    this.p.renderer.restart(f);
+    void this.guard(() => this.showGoal(f));
+    if (!this.p.ui.editorHost.hidden) void this.p.tabs().loadEditor();
+  }
+
   /** Opens `folder`; resolves to null, or to why it could not (the status line says so too). */
   private async tryFolder(folder: OpenFolder): Promise<string | null> {
-    const { state, status, renderer } = this.p;
+    const { state, status } = this.p;
     const was = state.playing;
     if (was) await this.pause();
     try {
-      const f = await this.openFolderSession(folder);
-      state.folder = folder;
-      state.taught = false;
-      this.p.tabs().teach?.reset();
-      this.folderChoices();
-      this.showTaskTag();
-      updateUrl(state);
-      renderer.restart(f);
-      void this.guard(() => this.showGoal(f));
-      if (!this.p.ui.editorHost.hidden) void this.p.tabs().loadEditor();
+      this.showOpened(await this.openFolderSession(folder), folder);
       status.notice(`Opened the task folder ${folder.name}.`, 'info');
       if (state.autoplay) await this.play();
       return null;
@@ -296,7 +305,7 @@ export class SessionControls {
 
   /** Replays a saved run; one that carries its folder's files opens that folder with it. */
   private async loadEpisode(name: string, text: string, folder: OpenFolder | null): Promise<void> {
-    const { state, client, renderer, status } = this.p;
+    const { state, client, status } = this.p;
     if (state.playing) await this.pause();
     try {
       const f = await client.call('replay', { episode: text });
@@ -305,18 +314,11 @@ export class SessionControls {
       Object.assign(o, { benchmark: log.options.benchmark, method: log.options.method, mode: log.options.mode, seed: log.options.seed });
       if (log.options.blocks != null && !folder) o.blocks = log.options.blocks;
       else delete o.blocks;
-      state.folder = folder;
-      state.taught = false;
       const c = this.p.ui.controls;
       c.methodSel.value = o.method;
       c.modeSel.value = o.mode;
       c.seedIn.value = String(o.seed);
-      this.folderChoices();
-      this.showTaskTag();
-      updateUrl(state);
-      renderer.restart(f);
-      void this.guard(() => this.showGoal(f));
-      if (!this.p.ui.editorHost.hidden) void this.p.tabs().loadEditor();
+      this.showOpened(f, folder);
       status.notice(`Loaded the run ${name}${folder ? ` on the task folder ${folder.name}` : ''}: replayed to its end.`, 'info');
     } catch (e) {
       status.notice(`${name} was not loaded: ${sentence((e as Error).message)}`, 'error');

@@ -22,7 +22,7 @@ export interface Playback {
   pause(): Promise<void>;
   setPlaying(p: boolean): void;
   /** The Run now runs a taught task (not the benchmark's): the URL and the link say so. */
-  taught(f: Frame): void;
+  taught(f: Frame, inFolder: boolean): void;
 }
 
 export interface TabsParts {
@@ -158,6 +158,7 @@ export class Tabs {
       view,
       stage: ui.stage.root,
       benchmark: () => state.options.benchmark,
+      folder: () => state.folder,
       options: () => state.options,
       notice: (t, k) => status.notice(t, k),
       status: (kind, text) => {
@@ -169,9 +170,9 @@ export class Tabs {
       pauseRun: async () => {
         if (state.playing) await playback.pause();
       },
-      runTaught: async (f: Frame, autoplay: boolean) => {
+      runTaught: async (f: Frame, autoplay: boolean, inFolder: boolean) => {
         playback.setPlaying(false);
-        playback.taught(f);
+        playback.taught(f, inFolder);
         this.select('run');
         renderer.restart(f);
         if (autoplay) await playback.play();

@@ -3,17 +3,19 @@
  * `Teacher` (the demonstration recorder) lives in the same worker as the Session, and "Run"
  * replaces the Session by one running the taught task.
  */
-import type { Benchmark, Frame, TaughtInfo, TaughtRunOptions, TeachEdit, TeachFinish, TeachResult, TeachState } from 'logic-lfd';
+import type { Benchmark, Frame, TaughtFolder, TaughtInfo, TaughtRunOptions, TeachEdit, TeachFinish, TeachResult, TeachState } from 'logic-lfd';
 
 export interface TeachApi {
   /** Starts fetching Teach mode's wasm module (the tab opened), so that Record need not wait. */
   teachLoad: { args: Record<string, never>; result: null };
-  teachStart: { args: { benchmark: Benchmark; scene?: string }; result: TeachState };
+  /** Records in the benchmark's workcell, or in the task folder's when one is given. */
+  teachStart: { args: { benchmark: Benchmark; folder?: TaughtFolder }; result: TeachState };
   teachPush: { args: { edit: TeachEdit }; result: TeachResult };
   teachUndo: { args: Record<string, never>; result: TeachResult };
   teachFinish: { args: Record<string, never>; result: TeachFinish };
   teachRecording: { args: Record<string, never>; result: string };
-  teachInfo: { args: { demoJson: string }; result: TaughtInfo };
-  teachRun: { args: { demoJson: string; options: TaughtRunOptions }; result: Frame };
+  /** `folder`: the task folder the demo was taught in (none: a benchmark's workcell). */
+  teachInfo: { args: { demoJson: string; folder?: TaughtFolder }; result: TaughtInfo };
+  teachRun: { args: { demoJson: string; options: TaughtRunOptions; folder?: TaughtFolder }; result: Frame };
   teachClose: { args: Record<string, never>; result: null };
 }

@@ -55,8 +55,9 @@ export function teachHandlers(replace: (s: InstanceType<TeachModule['Session']>)
       void teachModule().catch(() => {}); // a failure is reported by the call that needs the module
       return null;
     },
-    teachStart: async ({ benchmark, scene }) => {
-      const t = new (await teachModule()).Teacher(benchmark, scene);
+    teachStart: async ({ benchmark, folder }) => {
+      const m = await teachModule();
+      const t = folder ? m.Teacher.fromFolder(folder.files, { dir: folder.dir }) : new m.Teacher(benchmark);
       teacher?.free();
       teacher = t;
       return t.current();
@@ -65,8 +66,8 @@ export function teachHandlers(replace: (s: InstanceType<TeachModule['Session']>)
     teachUndo: () => need().undo(),
     teachFinish: () => need().finish(),
     teachRecording: () => need().recordingJson(),
-    teachInfo: async ({ demoJson }) => (await teachModule()).taughtInfo(demoJson),
-    teachRun: async ({ demoJson, options }) => replace((await teachModule()).Session.fromTaught(demoJson, options)),
+    teachInfo: async ({ demoJson, folder }) => (await teachModule()).taughtInfo(demoJson, folder),
+    teachRun: async ({ demoJson, options, folder }) => replace((await teachModule()).Session.fromTaught(demoJson, options, folder)),
     teachClose: () => {
       teacher?.free();
       teacher = null;

@@ -10,7 +10,8 @@
  * taught demo.json, and Run: a closed-loop session of the taught task from a random, the taught or
  * a user-arranged initial world, disturbed with the usual drag and L1–L4 buttons.
  */
-import type { Benchmark, Frame, SessionOptions, TaughtInfo, TeachEdit, TeachError, TeachResult, TeachState, WorldSnapshot } from 'logic-lfd';
+import type { Benchmark, Frame, SessionOptions, TaughtFolder, TaughtInfo, TeachEdit, TeachError, TeachResult, TeachState, WorldSnapshot } from 'logic-lfd';
+import type { OpenFolder } from './folder';
 import type { WorkerClient } from './client';
 import type { View, DropRequest } from './view';
 import { button, downloadJson, el, guard, isShortcut } from './dom';
@@ -27,16 +28,32 @@ export interface TeachHost {
   view: View;
   stage: HTMLElement;
   benchmark: () => Benchmark;
+  /** The open task folder (Teach records in its workcell), if any. */
+  folder: () => OpenFolder | null;
   options: () => SessionOptions;
   notice: (text: string, kind: 'info' | 'error') => void;
   status: (kind: string, text: string) => void;
   /** Pauses the running session (Teach mode owns the view meanwhile). */
   pauseRun: () => Promise<void>;
-  /** Shows a new session's first frame in the Run tab; plays it if `autoplay`. */
-  runTaught: (f: Frame, autoplay: boolean) => Promise<void>;
+  /** Shows a new session's first frame in the Run tab; plays it if `autoplay`. `inFolder`: the
+   * task was taught in the open task folder. */
+  runTaught: (f: Frame, autoplay: boolean, inFolder: boolean) => Promise<void>;
 }
 
 const ms = (m: number) => `${(m * 1000).toFixed(1)} mm`;
+/** Where a recording or a taught demo is: `./sorting` (a task folder) or `B1`. */
+const taskLabel = (t: { benchmark: Benchmark | null; folder: string | null }): string => t.folder ?? t.benchmark?.toUpperCase() ?? 'the task';
+/** The open folder as the taught-task calls take it. */
+const asTaught = (f: OpenFolder): TaughtFolder => ({ files: f.files, dir: f.name });
+/** The world a folder's `scene.json` names (null: unreadable). */
+function sceneName(json: string | undefined): string | null {
+  try {
+    const name = (JSON.parse(json ?? '') as { name?: unknown }).name;
+    return typeof name === 'string' ? name : null;
+  } catch {
+    return null;
+  }
+}
 /** How far (m) beside or below a block's top face a drop still stacks onto it. */
 const DROP_MARGIN = 0.005;
 
@@ -53,6 +70,8 @@ export class TeachPanel {
   private newSegments = new Set<number>();
   /** Whether the listed demo is a loaded file (else the recording). */
   private loaded = false;
+  /** The task folder the recording or the loaded demo was taught in (null: a benchmark's). */
+  private taughtIn: TaughtFolder | null = null;
 
   private readonly ui: TeachUi;
 
@@ -159,7 +178,10 @@ export class TeachPanel {
 
   private async record(): Promise<void> {
     await this.host.pauseRun();
-    const s = await this.host.client.call('teachStart', { benchmark: this.host.benchmark() });
+    const open = this.host.folder();
+    const folder = open ? asTaught(open) : undefined;
+    const s = await this.host.client.call('teachStart', { benchmark: this.host.benchmark(), folder });
+    this.taughtIn = folder ?? null;
     // The last run's arm trail is not part of the recording.
     this.host.view.clearTrail();
     this.forgetDemo();
@@ -265,7 +287,7 @@ export class TeachPanel {
     demo.goal = goal;
     const json = JSON.stringify(demo);
     try {
-      this.info = await this.host.client.call('teachInfo', { demoJson: json });
+      this.info = await this.host.client.call('teachInfo', { demoJson: json, folder: this.taughtIn ?? undefined });
       this.demoJson = json;
       this.clearError();
     } catch (e) {
@@ -279,11 +301,33 @@ export class TeachPanel {
       this.host.notice('Stop the recording first: the demo is saved once it is segmented', 'error');
       return;
     }
-    downloadJson(this.demoJson, `taught-${this.info?.benchmark ?? 'demo'}-demo.json`);
+    downloadJson(this.demoJson, `taught-${this.fileStem()}-demo.json`);
   }
 
   private async saveRecording(): Promise<void> {
-    downloadJson(await this.host.client.call('teachRecording', {}), `taught-${this.host.benchmark()}-recording.json`);
+    downloadJson(await this.host.client.call('teachRecording', {}), `taught-${this.fileStem()}-recording.json`);
+  }
+
+  /** The task in a file name: `b1`, or the folder's last name. */
+  private fileStem(): string {
+    const s = this.info ?? this.state;
+    if (!s) return 'demo';
+    return s.folder ? (s.folder.split('/').filter(Boolean).pop() ?? 'folder') : (s.benchmark ?? 'demo');
+  }
+
+  /** The open folder if the demo `json` was taught in its world and domain (else a benchmark's:
+   * a folder may reuse a benchmark's world under its own domain). */
+  private folderOf(json: string): TaughtFolder | null {
+    const open = this.host.folder();
+    let demo: { domain?: unknown; scene?: { name?: unknown } };
+    try {
+      demo = JSON.parse(json) as typeof demo;
+    } catch {
+      return null; // teachInfo reports the JSON error
+    }
+    const folderDomain = /\(\s*domain\s+([^\s()]+)/i.exec(open?.files['domain.pddl'] ?? '')?.[1];
+    const ours = demo.domain === folderDomain && demo.scene?.name === sceneName(open?.files['scene.json']);
+    return open && ours ? asTaught(open) : null;
   }
 
   private async load(): Promise<void> {
@@ -291,8 +335,9 @@ export class TeachPanel {
     this.ui.fileIn.value = '';
     if (!file) return;
     const text = await file.text();
+    const folder = this.folderOf(text);
     try {
-      this.info = await this.host.client.call('teachInfo', { demoJson: text });
+      this.info = await this.host.client.call('teachInfo', { demoJson: text, folder: folder ?? undefined });
     } catch (e) {
       const kept = this.info ? 'Nothing was loaded: the demonstration listed below is unchanged.' : 'Nothing was loaded.';
       this.showError({ kind: 'input', message: `${file.name}: ${(e as Error).message}`, t: null, added: [], removed: [] }, kept);
@@ -300,8 +345,9 @@ export class TeachPanel {
     }
     this.demoJson = text;
     this.loaded = true;
+    this.taughtIn = folder;
     this.clearError();
-    this.ui.summary.textContent = `Loaded ${file.name}: ${this.info.actions.length} actions in ${this.info.benchmark.toUpperCase()}.`;
+    this.ui.summary.textContent = `Loaded ${file.name}: ${this.info.actions.length} actions in ${taskLabel(this.info)}.`;
     this.refresh();
   }
 
@@ -313,9 +359,10 @@ export class TeachPanel {
     const f = await this.host.client.call('teachRun', {
       demoJson: this.demoJson,
       options: { seed, random: start === 'random', method: o.method, mode: o.mode },
+      folder: this.taughtIn ?? undefined,
     });
     this.handle.show(false);
-    await this.host.runTaught(f, start !== 'arrange');
+    await this.host.runTaught(f, start !== 'arrange', this.taughtIn !== null);
     if (start === 'arrange') this.host.notice('Arrange the blocks by dragging them, then press Play', 'info');
   }
 
@@ -359,7 +406,7 @@ export class TeachPanel {
     const s = this.state;
     if (!s) return 'Teach: press ● Record to demonstrate a new task in this workcell';
     const n = s.segments.length;
-    return `Teaching ${s.benchmark.toUpperCase()} · t = ${s.t.toFixed(2)} s · ${n} action${n === 1 ? '' : 's'} recognised${this.demoJson ? ' · stopped' : ' · recording'}`;
+    return `Teaching ${taskLabel(s)} · t = ${s.t.toFixed(2)} s · ${n} action${n === 1 ? '' : 's'} recognised${this.demoJson ? ' · stopped' : ' · recording'}`;
   }
 
   private refresh(): void {

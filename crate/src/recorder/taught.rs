@@ -129,8 +129,21 @@ fn base(t: &TaughtDemo, folder: Option<&TaskFolder>) -> Result<Base, RecorderErr
                 t.scene.name
             ))
         })?;
+        let files = b.sources().map_err(model_err)?;
+        let domain = crate::pddl::parse_domain(&files.domain, &files.file("domain.pddl"))
+            .map_err(model_err)?;
+        // A folder may reuse a benchmark's world under its own domain (B1 in other names).
+        if domain.name.text != t.domain {
+            return Err(refused(format!(
+                "the demonstration's domain `{}` is not {}'s `{}`: give the task folder it was \
+                 taught in",
+                t.domain,
+                b.as_str().to_uppercase(),
+                domain.name.text
+            )));
+        }
         return Ok(Base {
-            files: b.sources().map_err(model_err)?,
+            files,
             statics: b.static_facts().iter().map(|f| f.to_string()).collect(),
             benchmark: Some(b),
             folder: None,
@@ -153,6 +166,12 @@ fn base(t: &TaughtDemo, folder: Option<&TaskFolder>) -> Result<Base, RecorderErr
     })?;
     let domain =
         crate::pddl::parse_domain(&files.domain, &files.file("domain.pddl")).map_err(model_err)?;
+    if domain.name.text != t.domain {
+        return Err(refused(format!(
+            "the demonstration's domain `{}` is not the domain `{}` of the task folder {}",
+            t.domain, domain.name.text, folder.dir
+        )));
+    }
     let problem = crate::pddl::parse_problem(&files.problem, &files.file("problem.pddl"), &domain)
         .map_err(model_err)?;
     let scene_predicates = motions.scene_predicates();
@@ -292,9 +311,14 @@ fn load_on(
             message: "empty: nothing was demonstrated".into(),
         });
     }
-    let (_, world, trace) = model_and_trace(&files, &actions)?;
-    let mut scene_facts = SceneGraph::from_world(&world).to_strings();
-    scene_facts.sort();
+    let (_, _, trace) = model_and_trace(&files, &actions)?;
+    // L_0 lists the scene's fluents: facts of static predicates (the type facts a folder's scene
+    // may report) belong to the task, not to the demonstration's states.
+    let scene_facts: Vec<String> = trace
+        .states
+        .first()
+        .map(|s| s.iter().cloned().collect())
+        .unwrap_or_default();
     let mut l0 = t.initial_facts.clone();
     l0.sort();
     if scene_facts != l0 {

@@ -256,6 +256,7 @@ pub struct TeachFolderOptions {
 #[tsify(missing_as_null)]
 pub struct TaughtFolder {
     /// The folder's files: `domain.pddl`, `problem.pddl`, `motions.json`, `scene.json`, … by name.
+    #[tsify(type = "Record<string, string>")]
     pub files: BTreeMap<String, String>,
     /// The folder's name in messages (default `folder`).
     #[serde(default)]

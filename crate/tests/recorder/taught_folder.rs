@@ -90,3 +90,49 @@ fn a_task_taught_in_a_folder_runs_with_that_folder() {
     let again = taught::replay(&s.episode_json(), Some(&sorting)).unwrap();
     assert_eq!(again.log().canonical(), s.log().canonical());
 }
+
+/// A folder that reuses B1's world under its own domain (B1 in the paper's names): its taught
+/// demo names B1's world, yet without the folder it is refused for its domain, not misread.
+#[test]
+fn a_folder_demo_in_a_benchmark_world_is_not_taken_for_the_benchmark() {
+    let naming = folder("b1-paper-naming");
+    let mut rec = Recorder::for_folder(&naming, None).unwrap();
+    rec.push(&Edit::Drag {
+        body: "c".into(),
+        onto: Some("b".into()),
+        position: None,
+        yaw: None,
+        arm: None,
+    })
+    .unwrap();
+    let json = serde_json::to_string(&rec.finish().unwrap().demo).unwrap();
+    let (_, info) = taught::load(&json, Some(&naming)).unwrap();
+    assert!(
+        info.actions
+            .iter()
+            .all(|a| a.starts_with("(pick-up ") || a.starts_with("(put-on ")),
+        "{:?}",
+        info.actions
+    );
+    let e = taught::load(&json, None).unwrap_err().to_string();
+    assert!(
+        e.contains("domain `b1-paper-naming` is not B1's `b1-tower`") && e.contains("task folder"),
+        "{e}"
+    );
+    // …and a B1 demo is not read in that folder, whose world has B1's name.
+    let mut rec = Recorder::for_benchmark(logic_lfd::sim::Benchmark::B1).unwrap();
+    rec.push(&Edit::Drag {
+        body: "c".into(),
+        onto: Some("b".into()),
+        position: None,
+        yaw: None,
+        arm: None,
+    })
+    .unwrap();
+    let b1 = serde_json::to_string(&rec.finish().unwrap().demo).unwrap();
+    let e = taught::load(&b1, Some(&naming)).unwrap_err().to_string();
+    assert!(
+        e.contains("domain `b1-tower` is not the domain `b1-paper-naming` of the task folder"),
+        "{e}"
+    );
+}

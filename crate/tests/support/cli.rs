@@ -21,3 +21,15 @@ pub(crate) fn run_cli_in(cwd: &Path, args: &[&str]) -> (i32, String, String) {
         String::from_utf8_lossy(&out.stderr).into_owned(),
     )
 }
+
+/// Stderr of `logic-lfd args…` run in `cwd`, which must refuse its input: exit code 2 and
+/// nothing on stdout.
+pub(crate) fn refused_in(cwd: &Path, args: &[&str]) -> String {
+    let (code, out, err) = run_cli_in(cwd, args);
+    assert_eq!(code, 2, "logic-lfd {args:?} was not refused: {out}{err}");
+    assert!(
+        out.is_empty(),
+        "logic-lfd {args:?} refused with output: {out}"
+    );
+    err
+}
