@@ -368,7 +368,11 @@ fn random_posture(m: &Model, rng: &mut Pcg64Mcg) -> Joints {
             lo = lo.max(-std::f64::consts::PI);
             hi = hi.min(std::f64::consts::PI);
         }
-        q[i] = if hi > lo { rng.random_range(lo..hi) } else { lo };
+        q[i] = if hi > lo {
+            rng.random_range(lo..hi)
+        } else {
+            lo
+        };
     }
     q
 }

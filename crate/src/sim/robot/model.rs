@@ -197,7 +197,11 @@ mod tests {
             let dr = rotation_error(&fp.rotation, &f.tcp.rotation) / h;
             for r in 0..3 {
                 assert!((j[(r, i)] - dp[r]).abs() < 1e-5, "column {i} row {r}");
-                assert!((j[(r + 3, i)] - dr[r]).abs() < 1e-5, "column {i} row {}", r + 3);
+                assert!(
+                    (j[(r + 3, i)] - dr[r]).abs() < 1e-5,
+                    "column {i} row {}",
+                    r + 3
+                );
             }
         }
         assert!(j.column(3).norm() == 0.0, "unused columns stay zero");
