@@ -95,7 +95,7 @@ impl Model {
                 let (s, c) = libm::sincos(0.5 * q[i]);
                 let a = self.axis[i] * s;
                 let r = UnitQuaternion::new_unchecked(Quaternion::new(c, a.x, a.y, a.z));
-                t.rotation = t.rotation * r;
+                t.rotation *= r;
             }
         }
         Frames {
