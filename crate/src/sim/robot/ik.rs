@@ -11,7 +11,9 @@
 //! Δq = (JᵀJ + (E + b) I)⁻¹ Jᵀ e,   q ← clamp(q + Δq, lower, upper)
 //! ```
 //!
-//! with `w` the orientation weight (m/rad) and `b` a small bias. A redundant (7-joint) chain
+//! with `w` the orientation weight (m/rad) and `b` a small bias. A joint at a limit that the
+//! step would drive further out is held there and the step solved again without it. A redundant
+//! (7-joint) chain
 //! also moves in the Jacobian's null space towards the middle of its joint ranges while far from
 //! the target, which keeps it away from the limits the clamp would stall on. An attempt that
 //! stops improving gives way to a restart from a seeded random posture within the limits. The
@@ -319,10 +321,10 @@ fn step(
     pulls: &[bool; MAX_DOF],
     gain: f64,
 ) -> SMatrix<f64, MAX_DOF, 1> {
-    let mut j = m.jacobian(f);
+    let mut weighted = m.jacobian(f);
     for r in 3..6 {
         for c in 0..m.n {
-            j[(r, c)] *= ORIENTATION_WEIGHT;
+            weighted[(r, c)] *= ORIENTATION_WEIGHT;
         }
     }
     let e = Vector6::new(
@@ -333,24 +335,49 @@ fn step(
         ORIENTATION_WEIGHT * er.y,
         ORIENTATION_WEIGHT * er.z,
     );
-    let jt = j.transpose();
-    let mut h: SMatrix<f64, MAX_DOF, MAX_DOF> = jt * j;
-    // Columns past the chain are zero: their damping alone keeps their step at 0.
-    for i in 0..MAX_DOF {
-        h[(i, i)] += cost + DAMPING_BIAS;
-    }
-    let Some(chol) = Cholesky::new(h) else {
-        return SMatrix::zeros();
-    };
-    let mut dq = chol.solve(&(jt * e));
-    if cost > PULL_UNTIL && pulls.iter().any(|&p| p) {
-        let mut z = SMatrix::<f64, MAX_DOF, 1>::zeros();
-        for i in (0..m.n).filter(|&i| pulls[i]) {
-            z[i] = gain * (mid[i] - q[i]);
+    // A joint at a limit that the step drives further out is held (its column dropped) and the
+    // step solved again, so the other joints do its share instead of the clamp eating it.
+    let mut held = [false; MAX_DOF];
+    loop {
+        let mut j = weighted;
+        for c in (0..m.n).filter(|&c| held[c]) {
+            j.column_mut(c).fill(0.0);
         }
-        // (I − J⁺J) z with the damped pseudo-inverse J⁺ = (JᵀJ + λI)⁻¹ Jᵀ.
-        dq += z - chol.solve(&(jt * (j * z)));
+        let jt = j.transpose();
+        let mut h: SMatrix<f64, MAX_DOF, MAX_DOF> = jt * j;
+        // Columns past the chain (and held ones) are zero: their damping alone keeps their
+        // step at 0.
+        for i in 0..MAX_DOF {
+            h[(i, i)] += cost + DAMPING_BIAS;
+        }
+        let Some(chol) = Cholesky::new(h) else {
+            return SMatrix::zeros();
+        };
+        let mut dq = chol.solve(&(jt * e));
+        if cost > PULL_UNTIL && pulls.iter().any(|&p| p) {
+            let mut z = SMatrix::<f64, MAX_DOF, 1>::zeros();
+            for i in (0..m.n).filter(|&i| pulls[i] && !held[i]) {
+                z[i] = gain * (mid[i] - q[i]);
+            }
+            // (I − J⁺J) z with the damped pseudo-inverse J⁺ = (JᵀJ + λI)⁻¹ Jᵀ.
+            dq += z - chol.solve(&(jt * (j * z)));
+        }
+        let mut newly_held = false;
+        for i in 0..m.n {
+            let out = (q[i] >= m.upper[i] && dq[i] > 0.0) || (q[i] <= m.lower[i] && dq[i] < 0.0);
+            if out && !held[i] {
+                held[i] = true;
+                newly_held = true;
+            }
+        }
+        if !newly_held {
+            return capped(dq);
+        }
     }
+}
+
+/// `dq` scaled down so that no joint moves more than [`MAX_STEP`].
+fn capped(mut dq: SMatrix<f64, MAX_DOF, 1>) -> SMatrix<f64, MAX_DOF, 1> {
     let largest = dq.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
     if largest > MAX_STEP {
         dq *= MAX_STEP / largest;
