@@ -13,10 +13,9 @@
 //!
 //! with `w` the orientation weight (m/rad) and `b` a small bias. A joint at a limit that the
 //! step would drive further out is held there and the step solved again without it. A redundant
-//! (7-joint) chain
-//! also moves in the Jacobian's null space towards the middle of its joint ranges while far from
-//! the target, which keeps it away from the limits the clamp would stall on. An attempt that
-//! stops improving gives way to a restart from a seeded random posture within the limits. The
+//! (7-joint) chain also moves in the Jacobian's null space towards the middle of its joint
+//! ranges while far from the target, which keeps it away from the limits. An attempt that stops
+//! improving gives way to a restart from a seeded random posture within the limits. The
 //! solution's continuous and wide-range joints are wound to the turn nearest the seed.
 
 use nalgebra::{Cholesky, Isometry3, Matrix6xX, SMatrix, Vector3, Vector6};
@@ -281,9 +280,15 @@ fn attempt(m: &Model, target: &Isometry3<f64>, mut q: Joints, o: &IkOptions) -> 
             };
         }
         if np <= o.position_tolerance && nr <= o.orientation_tolerance {
-            best.solved = true;
-            best.iterations = it;
-            return best;
+            // This posture, not the best-scoring one passed: that may miss a tolerance.
+            return Attempt {
+                q,
+                position_error: np,
+                orientation_error: nr,
+                cost,
+                iterations: it,
+                solved: true,
+            };
         }
         if cost < reference * (1.0 - STALL_GAIN) {
             reference = cost;
