@@ -21,6 +21,7 @@ mod observed_states;
 mod pddl;
 mod recorder;
 mod robot;
+mod robot_ik;
 mod search;
 mod sim;
 mod soak;

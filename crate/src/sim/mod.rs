@@ -100,8 +100,9 @@ pub use motions::{
 };
 pub use reach::{handleable, hook_can_pull};
 pub use robot::{
-    parse_urdf, Chain, ChainJoint, Collision, Geometry, GripperSpec, JointKind, JointLimits, Robot,
-    RobotError, TcpSpec, Urdf, UrdfError, UrdfJoint, UrdfLink,
+    parse_urdf, Chain, ChainJoint, Collision, Geometry, GripperSpec, IkFailure, IkOptions,
+    IkResult, JointKind, JointLimits, Robot, RobotError, TcpSpec, Urdf, UrdfError, UrdfJoint,
+    UrdfLink,
 };
 pub use scene_graph::{Fact, SceneGraph};
 pub use snapshot::{

@@ -4,15 +4,19 @@
 //!   chain's joints and limits, the links with their collision shapes, the TCP at home and the
 //!   reach (sampled);
 //! * `robot fk ROBOT.json --q q1,q2,… [--json]` — the TCP's pose in the base link's frame
-//!   (metres; `--json`: `{"position": [x, y, z], "rotation": [[…], […], […]]}`).
+//!   (metres; `--json`: `{"position": [x, y, z], "rotation": [[…], […], […]]}`);
+//! * `robot ik ROBOT.json --position x,y,z [--rpy r,p,y] [--seed-q q1,…] [--json]` — joints
+//!   within the limits that put the TCP at the pose (orientation default: the TCP's at home;
+//!   seed default: home), with the residual errors.
 //!
-//! Exit codes: 0 success, 2 bad input (the message names the file and the JSON path or URDF line).
+//! Exit codes: 0 success, 1 no joints reach the pose (`robot ik`), 2 bad input (the message names
+//! the file and the JSON path or URDF line, or the flag).
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use logic_lfd::sim::{Geometry, Robot};
-use nalgebra::Isometry3;
+use logic_lfd::sim::{Geometry, IkFailure, IkOptions, Robot};
+use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use serde::Serialize;
@@ -44,6 +48,23 @@ enum Action {
         #[arg(long, allow_hyphen_values = true)]
         q: String,
         /// Print `{"position": [x, y, z], "rotation": [[…], […], […]]}`.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Joints within the limits that put the TCP at a pose (inverse kinematics).
+    Ik {
+        /// The robot file (robot.json).
+        robot: PathBuf,
+        /// Target TCP position in the base link's frame (m): x,y,z.
+        #[arg(long, allow_hyphen_values = true)]
+        position: String,
+        /// Target TCP orientation as fixed-axis roll,pitch,yaw (rad) [default: the TCP's at home].
+        #[arg(long, allow_hyphen_values = true)]
+        rpy: Option<String>,
+        /// Joint vector to start from, one value per moving joint [default: home].
+        #[arg(long = "seed-q", allow_hyphen_values = true)]
+        seed_q: Option<String>,
+        /// Print `{"joints": […], "names": […], "position_error": …, …}`.
         #[arg(long)]
         json: bool,
     },
@@ -119,6 +140,13 @@ pub fn run(args: Args) -> ExitCode {
     match args.action {
         Action::Check { robot, json } => check(&robot, json),
         Action::Fk { robot, q, json } => fk(&robot, &q, json),
+        Action::Ik {
+            robot,
+            position,
+            rpy,
+            seed_q,
+            json,
+        } => ik(&robot, &position, rpy.as_deref(), seed_q.as_deref(), json),
     }
 }
 
@@ -264,13 +292,10 @@ fn fk(path: &std::path::Path, q: &str, json: bool) -> ExitCode {
         Ok(r) => r,
         Err(e) => return bad(e.to_string()),
     };
-    let mut values = Vec::new();
-    for (i, v) in q.split(',').enumerate() {
-        match v.trim().parse::<f64>() {
-            Ok(x) if x.is_finite() => values.push(x),
-            _ => return bad(format!("--q: value {} is `{v}`, expected a number", i + 1)),
-        }
-    }
+    let values = match numbers("--q", q) {
+        Ok(v) => v,
+        Err(m) => return bad(m),
+    };
     let t = match r.tcp_pose(&values) {
         Ok(t) => t,
         Err(m) => return bad(format!("--q: {m}")),
@@ -288,5 +313,105 @@ fn fk(path: &std::path::Path, q: &str, json: bool) -> ExitCode {
             println!("rotation: {:.6} {:.6} {:.6}", row[0], row[1], row[2]);
         }
     }
+    ExitCode::from(exit::OK)
+}
+
+/// The comma-separated numbers of flag `flag`; the message names the flag and the value.
+fn numbers(flag: &str, text: &str) -> Result<Vec<f64>, String> {
+    text.split(',')
+        .enumerate()
+        .map(|(i, v)| match v.trim().parse::<f64>() {
+            Ok(x) if x.is_finite() => Ok(x),
+            _ => Err(format!(
+                "{flag}: value {} is `{v}`, expected a number",
+                i + 1
+            )),
+        })
+        .collect()
+}
+
+/// Exactly three numbers of flag `flag`, named `names` (`x,y,z`) in the message.
+fn triple(flag: &str, names: &str, text: &str) -> Result<[f64; 3], String> {
+    let v = numbers(flag, text)?;
+    <[f64; 3]>::try_from(v.as_slice())
+        .map_err(|_| format!("{flag}: {} values, expected 3 ({names})", v.len()))
+}
+
+#[derive(Serialize)]
+struct IkRow {
+    names: Vec<String>,
+    joints: Vec<f64>,
+    position_error: f64,
+    orientation_error: f64,
+    iterations: usize,
+    attempts: usize,
+}
+
+fn ik(
+    path: &std::path::Path,
+    position: &str,
+    rpy: Option<&str>,
+    seed_q: Option<&str>,
+    json: bool,
+) -> ExitCode {
+    let r = match Robot::load(path) {
+        Ok(r) => r,
+        Err(e) => return bad(e.to_string()),
+    };
+    let p = match triple("--position", "x,y,z", position) {
+        Ok(p) => p,
+        Err(m) => return bad(m),
+    };
+    let rotation = match rpy.map(|t| triple("--rpy", "roll,pitch,yaw", t)) {
+        None => (r.chain.tip_frame(&r.home) * r.tcp).rotation,
+        Some(Ok([a, b, c])) => UnitQuaternion::from_euler_angles(a, b, c),
+        Some(Err(m)) => return bad(m),
+    };
+    let seed = match seed_q.map(|t| numbers("--seed-q", t)) {
+        None => r.home.clone(),
+        Some(Ok(q)) if q.len() != r.chain.dof() => {
+            return bad(format!(
+                "--seed-q: {} joint values for {} joints",
+                q.len(),
+                r.chain.dof()
+            ))
+        }
+        Some(Ok(q)) => q,
+        Some(Err(m)) => return bad(m),
+    };
+    let target = Isometry3::from_parts(Translation3::new(p[0], p[1], p[2]), rotation);
+    let s = match r.ik(&target, &seed, &IkOptions::default()) {
+        Ok(s) => s,
+        Err(e @ IkFailure::Unreachable { .. }) => {
+            eprintln!(
+                "{}: no joints within the limits put the TCP at ({}, {}, {}): {e}",
+                r.name, p[0], p[1], p[2]
+            );
+            return ExitCode::from(exit::UNREACHABLE);
+        }
+        Err(e) => return bad(e.to_string()),
+    };
+    let row = IkRow {
+        names: r.chain.moving().map(|j| j.name.clone()).collect(),
+        joints: s.joints,
+        position_error: s.position_error,
+        orientation_error: s.orientation_error,
+        iterations: s.iterations,
+        attempts: s.attempts,
+    };
+    if json {
+        match serde_json::to_string(&row) {
+            Ok(t) => println!("{t}"),
+            Err(e) => return bad(format!("cannot write JSON: {e}")),
+        }
+        return ExitCode::from(exit::OK);
+    }
+    for (n, q) in row.names.iter().zip(&row.joints) {
+        println!("{n:<20} {q:>10.6}");
+    }
+    println!(
+        "error: {:.2e} m, {:.2e} rad ({} iterations, {} attempts)",
+        row.position_error, row.orientation_error, row.iterations, row.attempts
+    );
     ExitCode::from(exit::OK)
 }

@@ -3,6 +3,8 @@
 
 /// Success.
 pub const OK: u8 = 0;
+/// No answer where one may not exist: `robot ik` found no joints for the pose.
+pub const UNREACHABLE: u8 = 1;
 /// Bad input: a file, a flag or a value.
 pub const BAD_INPUT: u8 = 2;
 /// The goal is proved unreachable.

@@ -18,10 +18,13 @@
 
 mod chain;
 mod file;
+mod ik;
+mod model;
 mod urdf;
 
 pub use chain::{Chain, ChainJoint};
 pub use file::{GripperSpec, Robot, RobotError, TcpSpec};
+pub use ik::{IkFailure, IkOptions, IkResult};
 pub use urdf::{
     parse_urdf, Collision, Geometry, JointKind, JointLimits, Urdf, UrdfError, UrdfJoint, UrdfLink,
 };
