@@ -9,7 +9,7 @@ import { join } from 'node:path';
 // panel, and the full wasm module with the recorder) are separate chunks fetched when their tab
 // first opens; the help text when help first opens; the docs when a help link is followed; the
 // robot's meshes (their loader chunk and robots/*) after the first frame.
-const LAZY = /\/(robot-meshes-[^/]*\.js|robots\/[^/]*\/[^/]*|editor-[^/]*\.(js|css)|compare-[^/]*\.js|why-join-[^/]*\.js|help-text-[^/]*\.js|uPlot[^/]*\.(js|css)|teach-[^/]*\.js|logic_lfd_teach[^/]*\.(js|wasm)|docs\/[^/]*\.md)$/;
+const LAZY = /\/(robot-meshes-[^/]*\.(js|css)|robots\/[^/]*\/[^/]*|editor-[^/]*\.(js|css)|compare-[^/]*\.js|why-join-[^/]*\.js|help-text-[^/]*\.js|uPlot[^/]*\.(js|css)|teach-[^/]*\.js|logic_lfd_teach[^/]*\.(js|wasm)|docs\/[^/]*\.md)$/;
 
 /** Sizes of the built page in `dist`: totals (`raw`, `gz`, `lazyGz`) and one row per file. */
 export async function pageSizes(dist) {

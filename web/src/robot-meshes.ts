@@ -9,6 +9,7 @@ import * as THREE from 'three';
 import { MeshoptDecoder } from 'three/examples/jsm/libs/meshopt_decoder.module.js';
 import { el } from './dom';
 import { readGlb, type GlbMesh } from './robot-glb';
+import './robot-meshes.css';
 
 type Vec3 = [number, number, number];
 
