@@ -149,8 +149,9 @@ describe("the arms drawn with the robot's meshes", () => {
 
   test('a block is still dragged with the meshes drawn: the robot replans and finishes', async () => {
     const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=1&speed=8');
-    await page.waitForSelector('.stage canvas[data-meshes="loaded"]', { timeout: 30000 });
+    // Where a starts (read at once: at 8× it is soon on the tower).
     const start = (await currentFrame(page)).world.bodies.find((b) => b.name === 'a').pose.position;
+    await page.waitForSelector('.stage canvas[data-meshes="loaded"]', { timeout: 30000 });
     const done = await finish(page);
     assert.equal(done.status.kind, 'done', done.status.message);
     assert.ok((await meshInfo(page)).arms[0]?.shown);
