@@ -147,6 +147,23 @@ describe("the arms drawn with the robot's meshes", () => {
     await page.close();
   });
 
+  test('a mesh that cannot be fetched leaves the capsules and says which file', async () => {
+    const page = await ctx.browser.newPage({ viewport: { width: 1440, height: 900 } });
+    const errors = [];
+    page.on('pageerror', (e) => errors.push(String(e)));
+    await page.route('**/robots/panda/hand.glb', (r) => r.fulfill({ status: 404, body: 'not found' }));
+    await page.goto(`${ctx.server.url}?benchmark=b1`);
+    await page.waitForSelector('.stage canvas[data-meshes="failed"]', { timeout: 30000 });
+    const notice = await page.textContent('#notice');
+    assert.match(notice, /robot's meshes could not be loaded \(\/robots\/panda\/hand\.glb: HTTP 404\)/);
+    const info = await meshInfo(page);
+    assert.equal(info.loaded, false);
+    assert.deepEqual(info.arms, [null], 'no meshes drawn');
+    assert.equal(await page.$('.arm-style'), null, 'no switch without meshes');
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
+
   test('a block is still dragged with the meshes drawn: the robot replans and finishes', async () => {
     const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=1&speed=8');
     // Where a starts (read at once: at 8× it is soon on the tower).
