@@ -1,8 +1,8 @@
 /**
- * The 3-D view: draws a WorldSnapshot (tables, shelf, regions, labelled blocks, hook, arms from
- * their link capsules and fingers) with three.js, z up, an orbit camera, and lets the user drag a
- * block with the mouse (raycast onto the support under the pointer; the drop is sent to the worker,
- * which accepts or refuses it).
+ * The 3-D view: draws a WorldSnapshot (tables, shelf, regions, labelled blocks, hook, arms as
+ * capsules or with the robot's meshes: view-arms.ts) with three.js, z up, an orbit camera, and
+ * lets the user drag a block with the mouse (raycast onto the support under the pointer; the drop
+ * is sent to the worker, which accepts or refuses it).
  */
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
