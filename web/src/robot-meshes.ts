@@ -71,10 +71,11 @@ export class RobotModel {
 
   /** Loads `robot.json` and every link mesh of the robot in folder `base` (a URL ending in `/`). */
   static async load(base: URL): Promise<RobotModel> {
-    const res = await fetch(new URL('robot.json', base));
-    if (!res.ok) throw new Error(`${res.url}: HTTP ${res.status}`);
+    const at = new URL('robot.json', base);
+    const res = await fetch(at);
+    if (!res.ok) throw new Error(`${at.pathname}: HTTP ${res.status}`);
     const tree = (await res.json()) as RobotJson;
-    if (!Array.isArray(tree.links) || !Array.isArray(tree.joints)) throw new Error(`${res.url}: expected "links" and "joints" arrays`);
+    if (!Array.isArray(tree.links) || !Array.isArray(tree.joints)) throw new Error(`${at.pathname}: expected "links" and "joints" arrays`);
     await MeshoptDecoder.ready;
     const files = [...new Set(tree.links.flatMap((l) => l.visuals.map((v) => v.file)))];
     const meshes = new Map<string, GlbMesh[]>();
@@ -86,6 +87,8 @@ export class RobotModel {
         meshes.set(f, readGlb(new Uint8Array(await r.arrayBuffer()), f, MeshoptDecoder));
       }),
     );
+    // A tree that does not hold together fails here, not while a frame is drawn.
+    new RobotInstance(tree, meshes, false);
     return new RobotModel(tree, meshes);
   }
 
