@@ -67,7 +67,7 @@ describe("the arms drawn with the robot's meshes", () => {
     page.on('console', (m) => m.type() === 'error' && errors.push(m.text()));
     page.on('pageerror', (e) => errors.push(String(e)));
     page.on('request', (r) => requests.push({ url: r.url(), at: Date.now() }));
-    await page.goto(`${ctx.server.url}?benchmark=b1&seed=1&speed=2`);
+    await page.goto(`${ctx.server.url}?benchmark=b1&seed=1`);
     await page.waitForSelector('#app[data-ready="true"]', { timeout: 30000 });
     const readyAt = await page.evaluate(() => performance.timeOrigin + window.lfd.loadedAt);
     await page.waitForSelector('.stage canvas[data-meshes="loaded"]', { timeout: 30000 });
@@ -85,7 +85,7 @@ describe("the arms drawn with the robot's meshes", () => {
       assert.ok(arm && arm.shown, 'arm 0 is drawn with its meshes');
       samples.push({ joints: arm.drawn.joints, opening: arm.drawn.gripper_opening, spread: checkArm(arm), tcp: arm.tcp.position });
       if ((await currentFrame(page)).status.kind === 'done') break;
-      await page.waitForTimeout(250);
+      await page.waitForTimeout(200);
     }
     assert.ok(samples.length >= 10, `${samples.length} samples before the run ended`);
     // Every joint moved during the run, and the drawn hand with them.
