@@ -1,5 +1,7 @@
 // The page's test hooks (web/src/test-hooks.ts `window.lfd`), as the browser tests see them.
-import type { Frame } from '../../pkg/web/logic_lfd.js';
+import type { ArmSnapshot, Frame } from '../../pkg/web/logic_lfd.js';
+
+type Vec3 = [number, number, number];
 
 declare global {
   interface Window {
@@ -20,6 +22,18 @@ declare global {
       viewing: () => { t: number | null; end: number };
       bodyPosition: (body: string) => [number, number, number] | null;
       speedUp: () => Promise<{ stage: string; warmReplans: number; moved: number; reason: string }>;
+      armMeshes: () => {
+        style: 'meshes' | 'capsules';
+        loaded: boolean;
+        arms: ({
+          name: string;
+          shown: boolean;
+          drawn: ArmSnapshot;
+          links: Record<string, Vec3>;
+          tcp: { position: Vec3; z: Vec3 } | null;
+          fingers: Vec3[];
+        } | null)[];
+      };
     };
   }
 }

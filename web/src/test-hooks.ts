@@ -11,6 +11,7 @@ import type { SpeedUpState } from './speed-up';
 import type { CancelTiming, PageState } from './state';
 import type { Tabs } from './tabs';
 import type { View } from './view';
+import type { ArmMeshInfo, ArmStyle } from './view-arms';
 
 declare global {
   interface Window {
@@ -37,6 +38,8 @@ declare global {
       bodyPosition: (body: string) => [number, number, number] | null;
       /** Whether the worker's session runs on the full-speed module yet (speed-up.ts). */
       speedUp: () => Promise<SpeedUpState>;
+      /** How the arms are drawn, whether the robot's meshes are loaded, and where they are drawn. */
+      armMeshes: () => { style: ArmStyle; loaded: boolean; arms: (ArmMeshInfo | null)[] };
     };
   }
 }
@@ -60,5 +63,6 @@ export function installTestHooks(p: { state: PageState; view: View; charts: Char
     viewing: () => ({ t: history.viewing, end: history.end }),
     bodyPosition: (b) => view.bodyPosition(b),
     speedUp: () => client.call('speedUpState', {}),
+    armMeshes: () => view.armMeshes(),
   };
 }

@@ -1,13 +1,14 @@
 /**
- * The 3-D view: draws a WorldSnapshot (tables, shelf, regions, labelled blocks, hook, arms from
- * their link capsules and fingers) with three.js, z up, an orbit camera, and lets the user drag a
- * block with the mouse (raycast onto the support under the pointer; the drop is sent to the worker,
- * which accepts or refuses it).
+ * The 3-D view: draws a WorldSnapshot (tables, shelf, regions, labelled blocks, hook, arms as
+ * capsules or with the robot's meshes: view-arms.ts) with three.js, z up, an orbit camera, and
+ * lets the user drag a block with the mouse (raycast onto the support under the pointer; the drop
+ * is sent to the worker, which accepts or refuses it).
  */
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import type { ArmSnapshot, BodySnapshot, WorldSnapshot } from 'logic-lfd';
+import type { BodySnapshot, WorldSnapshot } from 'logic-lfd';
 import type { ReachShading } from './reach-shading';
+import { ArmDrawings, type ArmMeshInfo, type ArmStyle } from './view-arms';
 import { addRoom, applyPose, bodyObject, disposeObject, isSoftwareRenderer, regionObjects } from './view-scene';
 
 export interface DropRequest {
@@ -31,7 +32,6 @@ export interface ViewOptions {
 const UP = new THREE.Vector3(0, 0, 1);
 /** How long a disturbance's move stays marked (ms). */
 const MOVE_MARK_MS = 3000;
-const Y = new THREE.Vector3(0, 1, 0);
 
 interface BodyEntry {
   object: THREE.Object3D;
@@ -40,36 +40,26 @@ interface BodyEntry {
   halfZ: number;
 }
 
-interface ArmEntry {
-  group: THREE.Group;
-  links: THREE.Mesh[];
-  linkKeys: string[];
-  fingers: THREE.Mesh[];
-  base: THREE.Mesh;
-}
-
 export class View {
   readonly renderer: THREE.WebGLRenderer;
   readonly scene = new THREE.Scene();
   readonly camera: THREE.PerspectiveCamera;
   readonly controls: OrbitControls;
   private readonly bodies = new Map<string, BodyEntry>();
-  private readonly arms: ArmEntry[] = [];
   private readonly regions = new THREE.Group();
   private readonly targets = new THREE.Group();
   private readonly trail: THREE.Line;
   private trailPoints: THREE.Vector3[] = [];
   /** Loaded after the first frame (`loadExtras`): a drag before that shows no shading. */
   private reach: ReachShading | null = null;
+  /** The arms: capsules, and the Panda's meshes once `loadExtras` has loaded them. */
+  private readonly arms: ArmDrawings;
   private readonly raycaster = new THREE.Raycaster();
   private readonly pointer = new THREE.Vector2();
   private drag: { name: string; ghost: THREE.Mesh; target: THREE.Vector3 | null; halfZ: number; planeZ: number } | null =
     null;
   private snapshot: WorldSnapshot | null = null;
   private sceneName = '';
-  private readonly linkMaterial = new THREE.MeshStandardMaterial({ color: 0xe9ecef, roughness: 0.45, metalness: 0.1 });
-  private readonly jointMaterial = new THREE.MeshStandardMaterial({ color: 0x3a3f47, roughness: 0.5 });
-  private readonly fingerMaterial = new THREE.MeshStandardMaterial({ color: 0x2b2f36, roughness: 0.6 });
   private hovered: string | null = null;
   private rendering = false;
   /** Smoothed time of one `renderer.render` call (ms). */
@@ -108,6 +98,9 @@ export class View {
     this.controls.maxDistance = 6;
     this.controls.addEventListener('change', () => (this.dirty = true));
 
+    // `?arm=capsules` starts with the capsules.
+    const style: ArmStyle = new URLSearchParams(location.search).get('arm') === 'capsules' ? 'capsules' : 'meshes';
+    this.arms = new ArmDrawings(this.scene, this.shared, (o) => this.dropObject(o), !this.lowQuality, style);
     addRoom(this.scene);
     this.scene.add(this.regions, this.targets);
     this.trail = new THREE.Line(
@@ -126,13 +119,37 @@ export class View {
     this.resize();
   }
 
-  /** Loads what only a drag needs (the reach shading), in a chunk of its own. */
+  /** Loads what the first frame does without: the reach shading a drag shows, and the robot's
+   * meshes (with the Capsules / Meshes switch), each in a chunk of its own. */
   loadExtras(): void {
     void import('./reach-shading').then(({ ReachShading }) => {
       this.reach = new ReachShading();
       this.scene.add(this.reach.group);
       this.renderer.domElement.dataset.extras = 'loaded';
     });
+    const canvas = this.renderer.domElement;
+    canvas.dataset.armStyle = this.arms.style;
+    void import('./robot-meshes').then(async ({ RobotModel, armStyleSwitch }) => {
+      let robot;
+      try {
+        robot = await RobotModel.load(new URL('robots/panda/', document.baseURI));
+      } catch (e) {
+        canvas.dataset.meshes = 'failed';
+        this.opts.onNotice?.(`The robot's meshes could not be loaded (${(e as Error).message}): the arms stay drawn as capsules.`, 'error');
+        return;
+      }
+      this.arms.setRobot(robot, this.snapshot?.arms ?? []);
+      armStyleSwitch(this.host, this.arms.style, (s) => this.setArmStyle(s));
+      this.dirty = true;
+      canvas.dataset.meshes = 'loaded';
+    });
+  }
+
+  /** Draws the arms as capsules or with the robot's meshes (capsules while the meshes load). */
+  setArmStyle(style: ArmStyle): void {
+    this.arms.setStyle(style);
+    this.renderer.domElement.dataset.armStyle = style;
+    this.dirty = true;
   }
 
   /** Starts the render loop (renders only when something changed). */
@@ -225,8 +242,8 @@ export class View {
       }
     }
     if (fresh) this.drawRegions(s);
-    s.arms.forEach((a, i) => this.updateArm(i, a));
-    while (this.arms.length > s.arms.length) this.dropObject(this.arms.pop()!.group);
+    s.arms.forEach((a, i) => this.arms.update(i, a));
+    this.arms.trim(s.arms.length);
     this.updateTargets(ee ?? [], trail);
     if (fresh) this.frameCamera(s);
     this.dirty = true;
@@ -255,8 +272,7 @@ export class View {
     this.moveMark.group.visible = false;
     for (const e of this.bodies.values()) this.dropObject(e.object);
     this.bodies.clear();
-    for (const a of this.arms) this.dropObject(a.group);
-    this.arms.length = 0;
+    this.arms.trim();
     this.clearRegions();
     this.clearTrail();
     this.cancelDrag();
@@ -279,58 +295,10 @@ export class View {
     for (const r of s.regions) this.regions.add(...regionObjects(r));
   }
 
-  private updateArm(i: number, a: ArmSnapshot): void {
-    let e = this.arms[i];
-    if (!e) {
-      const group = new THREE.Group();
-      group.name = `arm:${a.name}`;
-      const base = new THREE.Mesh(new THREE.CylinderGeometry(0.09, 0.11, 0.04, 32), this.jointMaterial);
-      base.rotation.x = Math.PI / 2;
-      base.castShadow = true;
-      group.add(base);
-      e = { group, links: [], linkKeys: [], fingers: [], base };
-      this.arms[i] = e;
-      this.scene.add(group);
-    }
-    e.base.position.set(a.base.position[0], a.base.position[1], a.base.position[2] + 0.02);
-    a.links.forEach((c, j) => {
-      const A = new THREE.Vector3(...c.a);
-      const B = new THREE.Vector3(...c.b);
-      const len = A.distanceTo(B);
-      const key = `${c.radius.toFixed(4)}:${len.toFixed(4)}`;
-      let m = e.links[j];
-      if (!m || e.linkKeys[j] !== key) {
-        if (m) this.dropObject(m);
-        m = new THREE.Mesh(new THREE.CapsuleGeometry(c.radius, Math.max(len, 1e-4), 6, 16), this.linkMaterial);
-        m.castShadow = true;
-        m.receiveShadow = true;
-        e.links[j] = m;
-        e.linkKeys[j] = key;
-        e.group.add(m);
-      }
-      m.position.copy(A).add(B).multiplyScalar(0.5);
-      if (len > 1e-6) m.quaternion.setFromUnitVectors(Y, B.clone().sub(A).normalize());
-    });
-    a.fingers.forEach((f, j) => {
-      let m = e.fingers[j];
-      if (!m) {
-        const [hx, hy, hz] = f.half_extents;
-        m = new THREE.Mesh(new THREE.BoxGeometry(2 * hx, 2 * hy, 2 * hz), this.fingerMaterial);
-        m.castShadow = true;
-        e.fingers[j] = m;
-        e.group.add(m);
-      }
-      applyPose(m, f.pose);
-    });
-  }
-
   private readonly targetGeometry = new THREE.SphereGeometry(0.012, 12, 8);
   private readonly targetMaterial = new THREE.MeshBasicMaterial({ color: 0xffb224, transparent: true, opacity: 0.9 });
   /** Geometries and materials shared by many meshes: never disposed with one of them. */
-  private readonly shared: ReadonlySet<unknown> = new Set<unknown>([
-    this.linkMaterial,
-    this.jointMaterial,
-    this.fingerMaterial,
+  private readonly shared = new Set<unknown>([
     this.targetGeometry,
     this.targetMaterial,
   ]);
@@ -534,6 +502,11 @@ export class View {
   /** The disturbance marked now: `moved:<body>` or `pushed:<arm>` (at most one). */
   moveMarks(): string[] {
     return this.moveMark.group.visible ? [this.moveMark.group.name] : [];
+  }
+
+  /** Where each arm's meshes are drawn now (null entries: an arm without meshes yet). */
+  armMeshes(): { style: ArmStyle; loaded: boolean; arms: (ArmMeshInfo | null)[] } {
+    return { style: this.arms.style, loaded: this.arms.meshesLoaded, arms: this.arms.info() };
   }
 
   /** Where `body` is drawn now (world coordinates), or null if it is not in the scene. */
