@@ -1,4 +1,4 @@
-// The page's robot meshes (web/public/robots/<robot>/, written by scripts/robot-meshes.mjs) agree
+// The page's robot meshes (web/public/robots/<robot>/, written by scripts/robot-meshes/convert.mjs) agree
 // with what they were made from: the Panda's robot.json carries the vendored URDF's joints and
 // visuals as they are now (a URDF edited without running `npm run robot-meshes` fails here), and
 // every mesh file it names is there, a meshopt-compressed glTF binary of the recorded size.

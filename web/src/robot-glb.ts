@@ -1,5 +1,5 @@
 /**
- * Reads the glTF binaries scripts/robot-meshes.mjs writes (meshes, quantised attributes
+ * Reads the glTF binaries scripts/robot-meshes/convert.mjs writes (meshes, quantised attributes
  * (KHR_mesh_quantization), meshopt-compressed buffer views (EXT_meshopt_compression), plain
  * colour materials) into three.js geometries. three's GLTFLoader reads them too, but it would
  * pull parts of three.js the page does not otherwise use into its first-load bundle.

@@ -1,7 +1,7 @@
 /**
  * The arms drawn with the robot's own meshes (a chunk fetched after the first frame): the
  * kinematic tree of `robots/<robot>/robot.json` (written from the URDF by
- * scripts/robot-meshes.mjs) with its compressed link meshes (.glb, meshopt), posed by forward
+ * scripts/robot-meshes/convert.mjs) with its compressed link meshes (.glb, meshopt), posed by forward
  * kinematics from a frame's joint angles and gripper opening; and the view's "Capsules / Meshes"
  * switch.
  */

