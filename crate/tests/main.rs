@@ -21,6 +21,7 @@ mod observed_states;
 mod pddl;
 mod recorder;
 mod robot;
+mod robot_collision;
 mod search;
 mod sim;
 mod soak;

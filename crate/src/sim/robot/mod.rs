@@ -17,11 +17,19 @@
 //! direction.
 
 mod chain;
+mod collision;
+mod dae;
 mod file;
+mod hull;
+mod mesh;
 mod urdf;
 
 pub use chain::{Chain, ChainJoint};
+pub use collision::{CollisionLink, PairExclusion, RobotCollision};
+pub use dae::parse_dae;
 pub use file::{GripperSpec, Robot, RobotError, TcpSpec};
+pub use hull::{hull_of, read_mesh, LinkShape, ShapeKind};
+pub use mesh::{parse_obj, parse_stl, MeshError, TriangleMesh};
 pub use urdf::{
     parse_urdf, Collision, Geometry, JointKind, JointLimits, Urdf, UrdfError, UrdfJoint, UrdfLink,
 };
