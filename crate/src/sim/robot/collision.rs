@@ -21,7 +21,7 @@
 //! seen touching over random postures) are still checked: a sampled "never" is not a proof.
 
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
-use parry3d_f64::query;
+use parry3d_f64::query::{self, ClosestPoints};
 use parry3d_f64::shape::Shape;
 
 use super::chain::Chain;
@@ -86,21 +86,25 @@ fn motion(j: &UrdfJoint, v: f64) -> Isometry3<f64> {
 }
 
 /// The signed distance between two posed shapes: the gap, or minus the penetration depth.
+///
+/// From `query::closest_points`, not `query::distance`: parry 0.25's cuboid–cuboid distance
+/// overestimates the gap (dimforge/parry#431).
 fn signed_distance(
     p1: &Isometry3<f64>,
     s1: &dyn Shape,
     p2: &Isometry3<f64>,
     s2: &dyn Shape,
 ) -> f64 {
-    match query::distance(p1, s1, p2, s2) {
-        Ok(d) if d > 0.0 => d,
-        // Touching or overlapping: the contact's (negative) distance is the depth.
-        Ok(_) => query::contact(p1, s1, p2, s2, 0.0)
+    match query::closest_points(p1, s1, p2, s2, f64::MAX) {
+        Ok(ClosestPoints::WithinMargin(a, b)) => (a - b).norm(),
+        // Overlapping: the contact's (negative) distance is the depth.
+        Ok(ClosestPoints::Intersecting) => query::contact(p1, s1, p2, s2, 0.0)
             .ok()
             .flatten()
             .map_or(0.0, |c| c.dist.min(0.0)),
-        // Every shape built here is convex, which parry always supports.
-        Err(_) => f64::INFINITY,
+        // Unbounded margin: never disjoint. Every shape built here is convex, which parry
+        // supports.
+        Ok(ClosestPoints::Disjoint) | Err(_) => f64::INFINITY,
     }
 }
 

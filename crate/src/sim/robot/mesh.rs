@@ -227,11 +227,11 @@ fn parse_ascii_stl(text: &str, file: &str) -> Result<TriangleMesh, MeshError> {
             other => return Err(err(format!("ASCII STL: unexpected `{other}`"))),
         }
     }
-    if let Some(open) = lp.or(facet) {
+    if let Some(open) = lp.or(facet).or(solid) {
         return Err(MeshError::new(
             file,
             Some(open),
-            "the file ends inside this facet (truncated?)",
+            "the file ends inside the facet or solid opened here (truncated?)",
         ));
     }
     Ok(mesh)
