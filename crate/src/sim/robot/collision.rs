@@ -326,6 +326,15 @@ impl RobotCollision {
                 if (ca - cb).norm() > sa.sphere.1 + sb.sphere.1 {
                     continue;
                 }
+                // The bounding boxes' separating-axis test is exact and far cheaper than GJK.
+                let (ba, bb) = (p[a] * sa.bound.0, p[b] * sb.bound.0);
+                if !query::details::intersection_test_cuboid_cuboid(
+                    &ba.inv_mul(&bb),
+                    &sa.bound.1,
+                    &sb.bound.1,
+                ) {
+                    continue;
+                }
                 let pb = p[b] * sb.pose;
                 if let Ok(Some(c)) = query::contact(&pa, &*sa.shape, &pb, &*sb.shape, 0.0) {
                     let depth = (-c.dist).max(0.0);

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::SystemTime;
 
-use nalgebra::{Isometry3, Point3, UnitQuaternion, Vector3};
-use parry3d_f64::shape::{ConvexPolyhedron, SharedShape};
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
+use parry3d_f64::shape::{ConvexPolyhedron, Cuboid, SharedShape};
 
 use super::dae::parse_dae;
 use super::mesh::{parse_obj, parse_stl, MeshError, TriangleMesh};
@@ -83,6 +83,8 @@ pub struct LinkShape {
     pub kind: ShapeKind,
     /// Centre (link frame) and radius of a sphere around the shape, for quick rejection.
     pub(super) sphere: (Point3<f64>, f64),
+    /// The shape's bounding box, posed in the link frame: a tighter second rejection.
+    pub(super) bound: (Isometry3<f64>, Cuboid),
 }
 
 impl std::fmt::Debug for LinkShape {
@@ -141,11 +143,16 @@ impl LinkShape {
             None => *origin,
         };
         let s = shape.compute_local_bounding_sphere();
+        let b = shape.compute_local_aabb();
         Ok(LinkShape {
             pose,
+            sphere: (pose * s.center, s.radius),
+            bound: (
+                pose * Translation3::from(b.center().coords),
+                Cuboid::new(b.half_extents()),
+            ),
             shape,
             kind,
-            sphere: (pose * s.center, s.radius),
         })
     }
 }
