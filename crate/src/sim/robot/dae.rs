@@ -10,6 +10,7 @@
 //! turns it so that z is up, as URDF tools expect. A file without a visual scene gives every
 //! geometry once, untransformed. Lines, materials, normals and texture coordinates are read past.
 
+use std::collections::hash_map::Entry;
 use std::collections::HashMap;
 
 use nalgebra::{Matrix4, Point3, Rotation3, Unit, Vector3};
@@ -230,12 +231,11 @@ impl<'a, 'i> Reader<'a, 'i> {
             match c.tag_name().name() {
                 "instance_geometry" => {
                     let g = self.target(c)?;
-                    let key = g.id().get_usize();
-                    if !parts.contains_key(&key) {
-                        let part = self.geometry(g)?;
-                        parts.insert(key, part);
-                    }
-                    append(out, &parts[&key], &t);
+                    let part = match parts.entry(g.id().get_usize()) {
+                        Entry::Occupied(e) => e.into_mut(),
+                        Entry::Vacant(e) => e.insert(self.geometry(g)?),
+                    };
+                    append(out, part, &t);
                 }
                 "node" => self.node(c, &t, parts, out, depth + 1)?,
                 "instance_node" => {
