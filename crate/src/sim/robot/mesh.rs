@@ -79,14 +79,29 @@ const STL_TRIANGLE: usize = 50;
 
 /// Reads an STL file's bytes, binary or ASCII; `file` names it in errors.
 ///
-/// A file is ASCII when it starts with `solid` and is text (binary files may start with `solid`
-/// too, but their floats put NUL or non-UTF-8 bytes in it).
+/// A file is ASCII when it starts with `solid`, is text and has a `facet` or `endsolid` (binary
+/// headers may start with `solid` too, but their floats put NUL or non-UTF-8 bytes in the file).
+/// Text that fails as ASCII but has exactly the size its binary header announces is read as
+/// binary.
 pub fn parse_stl(bytes: &[u8], file: &str) -> Result<TriangleMesh, MeshError> {
     let start = bytes.iter().position(|b| !b.is_ascii_whitespace());
     let solid = start.is_some_and(|s| bytes[s..].starts_with(b"solid"));
     if solid && !bytes.contains(&0) {
         if let Ok(text) = std::str::from_utf8(bytes) {
-            return parse_ascii_stl(text, file);
+            if text.contains("facet") || text.contains("endsolid") {
+                let ascii = parse_ascii_stl(text, file);
+                let n = bytes
+                    .get(80..84)
+                    .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]) as usize);
+                let binary_size = n.is_some_and(|n| {
+                    n.checked_mul(STL_TRIANGLE)
+                        .and_then(|b| b.checked_add(STL_HEADER))
+                        == Some(bytes.len())
+                });
+                if ascii.is_ok() || !binary_size {
+                    return ascii;
+                }
+            }
         }
     }
     parse_binary_stl(bytes, file)

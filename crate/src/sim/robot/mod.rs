@@ -15,6 +15,10 @@
 //! `package://NAME/…` mesh paths to folders. The TCP frame is the tip link's frame moved by `tcp`:
 //! its z axis points from the hand towards the object, its y axis along the fingers' closing
 //! direction.
+//!
+//! The collision model ([`RobotCollision`], built apart from [`Robot::load`]) reads each link's
+//! `<collision>` shapes, meshes (STL, OBJ, COLLADA) as convex hulls, for self-collision and
+//! obstacle distances.
 
 mod chain;
 mod collision;
