@@ -39,6 +39,18 @@ fn hulls(c: &mut Criterion) {
             black_box((hits, d))
         })
     });
+    c.bench_function("self-collision alone (URDF hulls)", |b| {
+        b.iter(|| black_box(model.self_collisions(black_box(&Q), 0.04).unwrap()))
+    });
+    c.bench_function("block distance alone (URDF hulls)", |b| {
+        b.iter(|| {
+            black_box(
+                model
+                    .distance_to(&block, &pose, black_box(&Q), 0.04)
+                    .unwrap(),
+            )
+        })
+    });
 }
 
 fn capsules(c: &mut Criterion) {
