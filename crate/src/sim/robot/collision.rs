@@ -403,18 +403,29 @@ impl RobotCollision {
         let p = self.poses(q, opening)?;
         let s = shape.compute_local_bounding_sphere();
         let centre = pose * s.center;
+        // Nearest bounding sphere first: once a distance is known, every shape whose sphere gap
+        // (a lower bound) is not below it is skipped without GJK.
+        let mut order: Vec<(f64, usize, &LinkShape)> = self
+            .links
+            .iter()
+            .enumerate()
+            .flat_map(|(i, l)| {
+                let at = p[i];
+                l.shapes.iter().map(move |ls| {
+                    let gap = (at * ls.sphere.0 - centre).norm() - ls.sphere.1 - s.radius;
+                    (gap, i, ls)
+                })
+            })
+            .collect();
+        order.sort_by(|a, b| a.0.total_cmp(&b.0));
         let mut best: Option<(usize, f64)> = None;
-        for (i, l) in self.links.iter().enumerate() {
-            for ls in &l.shapes {
-                // A lower bound from the bounding spheres skips shapes that cannot be nearer.
-                let gap = (p[i] * ls.sphere.0 - centre).norm() - ls.sphere.1 - s.radius;
-                if best.is_some_and(|(_, bd)| gap >= bd) {
-                    continue;
-                }
-                let d = signed_distance(&(p[i] * ls.pose), &*ls.shape, pose, shape);
-                if best.is_none_or(|(_, bd)| d < bd) {
-                    best = Some((i, d));
-                }
+        for (gap, i, ls) in order {
+            if best.is_some_and(|(_, bd)| gap >= bd) {
+                break;
+            }
+            let d = signed_distance(&(p[i] * ls.pose), &*ls.shape, pose, shape);
+            if best.is_none_or(|(_, bd)| d < bd) {
+                best = Some((i, d));
             }
         }
         Ok(best.map(|(i, d)| (self.links[i].name.clone(), d)))
