@@ -22,6 +22,7 @@ mod pddl;
 mod recorder;
 mod robot;
 mod robot_ik;
+mod robot_collision;
 mod search;
 mod sim;
 mod soak;

@@ -100,9 +100,10 @@ pub use motions::{
 };
 pub use reach::{handleable, hook_can_pull};
 pub use robot::{
-    parse_urdf, Chain, ChainJoint, Collision, Geometry, GripperSpec, IkFailure, IkOptions,
-    IkResult, JointKind, JointLimits, Robot, RobotError, TcpSpec, Urdf, UrdfError, UrdfJoint,
-    UrdfLink,
+    hull_of, parse_dae, parse_obj, parse_stl, parse_urdf, read_mesh, Chain, ChainJoint, Collision,
+    CollisionLink, Geometry, GripperSpec, IkFailure, IkOptions, IkResult, JointKind, JointLimits,
+    LinkShape, MeshError, PairExclusion, Robot, RobotCollision, RobotError, ShapeKind, TcpSpec,
+    TriangleMesh, Urdf, UrdfError, UrdfJoint, UrdfLink,
 };
 pub use scene_graph::{Fact, SceneGraph};
 pub use snapshot::{

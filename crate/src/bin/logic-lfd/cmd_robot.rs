@@ -1,8 +1,8 @@
 //! `logic-lfd robot …`: a robot from its URDF (the robot file `robot.json` beside it).
 //!
 //! * `robot check ROBOT.json [--json]` — load and check the robot file and its URDF; print the
-//!   chain's joints and limits, the links with their collision shapes, the TCP at home and the
-//!   reach (sampled);
+//!   chain's joints and limits, the links with their collision shapes (a mesh as its convex hull),
+//!   self-collision at home, the TCP at home and the reach (sampled);
 //! * `robot fk ROBOT.json --q q1,q2,… [--json]` — the TCP's pose in the base link's frame
 //!   (metres; `--json`: `{"position": [x, y, z], "rotation": [[…], […], […]]}`);
 //! * `robot ik ROBOT.json --position x,y,z [--rpy r,p,y] [--seed-q q1,…] [--json]` — joints
@@ -21,6 +21,9 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 use serde::Serialize;
 
+use crate::cmd_robot_collision::{
+    collision_summary, print_self_collision, SelfCollisionRow, ShapeRow,
+};
 use crate::exit;
 
 /// Arguments of `logic-lfd robot`.
@@ -103,6 +106,7 @@ struct JointRow {
 struct LinkRow {
     name: String,
     collision: Vec<String>,
+    shapes: Vec<ShapeRow>,
 }
 
 #[derive(Serialize)]
@@ -124,6 +128,7 @@ struct Summary {
     dof: usize,
     joints: Vec<JointRow>,
     links: Vec<LinkRow>,
+    self_collision: SelfCollisionRow,
     gripper_joints: Vec<String>,
     max_opening: f64,
     home_tcp: Pose,
@@ -206,9 +211,10 @@ fn check(path: &std::path::Path, json: bool) -> ExitCode {
         Ok(r) => r,
         Err(e) => return bad(e.to_string()),
     };
-    let chain_links: Vec<&str> = std::iter::once(r.chain.base.as_str())
-        .chain(r.chain.joints.iter().map(|j| j.child.as_str()))
-        .collect();
+    let (model_links, self_collision) = match collision_summary(&r) {
+        Ok(c) => c,
+        Err(e) => return bad(e),
+    };
     let summary = Summary {
         name: r.name.clone(),
         urdf: r.urdf_file.display().to_string(),
@@ -226,16 +232,21 @@ fn check(path: &std::path::Path, json: bool) -> ExitCode {
                 velocity: j.velocity,
             })
             .collect(),
-        links: r
-            .urdf
-            .links
-            .iter()
-            .filter(|l| chain_links.contains(&l.name.as_str()))
+        links: model_links
+            .into_iter()
             .map(|l| LinkRow {
-                name: l.name.clone(),
-                collision: l.collisions.iter().map(|c| shape(&c.geometry)).collect(),
+                collision: r
+                    .urdf
+                    .links
+                    .iter()
+                    .filter(|u| u.name == l.name)
+                    .flat_map(|u| u.collisions.iter().map(|c| shape(&c.geometry)))
+                    .collect(),
+                name: l.name,
+                shapes: l.shapes,
             })
             .collect(),
+        self_collision,
         gripper_joints: r.gripper.joints.clone(),
         max_opening: r.gripper.max_opening,
         home_tcp: Pose::of(&(r.chain.tip_frame(&r.home) * r.tcp)),
@@ -262,13 +273,18 @@ fn check(path: &std::path::Path, json: bool) -> ExitCode {
         );
     }
     for l in &s.links {
-        let shapes = if l.collision.is_empty() {
+        let shapes = if l.shapes.is_empty() {
             "no collision shape".to_string()
         } else {
-            l.collision.join(", ")
+            l.shapes
+                .iter()
+                .map(ShapeRow::text)
+                .collect::<Vec<_>>()
+                .join(", ")
         };
         println!("  link {:<14} {shapes}", l.name);
     }
+    print_self_collision(&s.self_collision);
     let p = s.home_tcp.position;
     println!("  TCP at home: ({:.4}, {:.4}, {:.4}) m", p[0], p[1], p[2]);
     println!(

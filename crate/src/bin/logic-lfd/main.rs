@@ -13,6 +13,7 @@ mod cmd_lqt;
 mod cmd_merge;
 mod cmd_plan;
 mod cmd_robot;
+mod cmd_robot_collision;
 mod cmd_run;
 mod cmd_scene;
 mod cmd_soak;

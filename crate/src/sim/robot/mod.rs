@@ -15,16 +15,28 @@
 //! `package://NAME/…` mesh paths to folders. The TCP frame is the tip link's frame moved by `tcp`:
 //! its z axis points from the hand towards the object, its y axis along the fingers' closing
 //! direction.
+//!
+//! The collision model ([`RobotCollision`], built apart from [`Robot::load`]) reads each link's
+//! `<collision>` shapes, meshes (STL, OBJ, COLLADA) as convex hulls, for self-collision and
+//! obstacle distances.
 
 mod chain;
+mod collision;
+mod dae;
 mod file;
 mod ik;
 mod model;
+mod hull;
+mod mesh;
 mod urdf;
 
 pub use chain::{Chain, ChainJoint};
+pub use collision::{CollisionLink, PairExclusion, RobotCollision};
+pub use dae::parse_dae;
 pub use file::{GripperSpec, Robot, RobotError, TcpSpec};
 pub use ik::{IkFailure, IkOptions, IkResult};
+pub use hull::{hull_of, read_mesh, LinkShape, ShapeKind};
+pub use mesh::{parse_obj, parse_stl, MeshError, TriangleMesh};
 pub use urdf::{
     parse_urdf, Collision, Geometry, JointKind, JointLimits, Urdf, UrdfError, UrdfJoint, UrdfLink,
 };
