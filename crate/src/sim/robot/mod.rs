@@ -24,18 +24,18 @@ mod chain;
 mod collision;
 mod dae;
 mod file;
-mod ik;
-mod model;
 mod hull;
+mod ik;
 mod mesh;
+mod model;
 mod urdf;
 
 pub use chain::{Chain, ChainJoint};
 pub use collision::{CollisionLink, PairExclusion, RobotCollision};
 pub use dae::parse_dae;
 pub use file::{GripperSpec, Robot, RobotError, TcpSpec};
-pub use ik::{IkFailure, IkOptions, IkResult};
 pub use hull::{hull_of, read_mesh, LinkShape, ShapeKind};
+pub use ik::{IkFailure, IkOptions, IkResult};
 pub use mesh::{parse_obj, parse_stl, MeshError, TriangleMesh};
 pub use urdf::{
     parse_urdf, Collision, Geometry, JointKind, JointLimits, Urdf, UrdfError, UrdfJoint, UrdfLink,
