@@ -74,3 +74,24 @@ fn grasp_yaw(world: &World, body: &str) -> ([f64; 3], f64) {
     let p = g.translation.vector;
     ([p.x, p.y, p.z], libm::atan2(x.y, x.x))
 }
+
+/// Ticks the session `s` to its outcome, checking the world's invariants every tick. With
+/// `l3_after = Some(n)`, an L3 disturbance is injected once the robot has done `n` actions and is
+/// between two; returns whether it was.
+fn run_to_outcome(s: &mut logic_lfd::lfd::Session, l3_after: Option<usize>) -> bool {
+    let mut injected = false;
+    for _ in 0..40_000 {
+        if s.outcome().is_some() {
+            break;
+        }
+        if let Some(n) = l3_after {
+            if !injected && !s.is_executing() && s.actions_done() >= n {
+                injected = s.inject("l3").is_ok();
+            }
+        }
+        s.tick_once(&logic_lfd::plan::NoClock);
+        let v = crate::support::invariants::broken(s.world());
+        assert!(v.is_empty(), "tick {}: {v:?}", s.tick());
+    }
+    injected
+}

@@ -9,8 +9,7 @@ use logic_lfd::recorder::Recorder;
 use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{SceneGraph, World};
 
-use super::drag;
-use crate::support::invariants::broken;
+use super::{drag, run_to_outcome};
 
 /// A taught demo is checked completely on load: not a taught demo, an action that does not
 /// apply, a goal that does not hold at the end — each refused with the key.
@@ -49,7 +48,6 @@ fn loading_a_taught_demo_checks_it() {
 /// unseen state), through `recorder::taught` (what the page's Run does); its log replays exactly.
 #[test]
 fn taught_reverse_tower_runs_to_success_under_l3() {
-    use logic_lfd::plan::NoClock;
     use logic_lfd::recorder::taught::{self, TaughtRunOptions};
 
     let mut rec = Recorder::for_benchmark(Benchmark::B1).unwrap();
@@ -73,18 +71,7 @@ fn taught_reverse_tower_runs_to_success_under_l3() {
         SceneGraph::from_world(&Benchmark::B1.scene()).facts
     );
     let mut s = taught::session(&demo_json, &opts, None).unwrap();
-    let mut injected = false;
-    for _ in 0..40_000 {
-        if s.outcome().is_some() {
-            break;
-        }
-        if !injected && !s.is_executing() && s.actions_done() >= 2 {
-            injected = s.inject("l3").is_ok();
-        }
-        s.tick_once(&NoClock);
-        let v = broken(s.world());
-        assert!(v.is_empty(), "tick {}: {v:?}", s.tick());
-    }
+    let injected = run_to_outcome(&mut s, Some(2));
     assert!(injected, "no L3 disturbance could be injected");
     assert_eq!(
         s.outcome(),
@@ -104,7 +91,6 @@ fn taught_reverse_tower_runs_to_success_under_l3() {
 /// that world to the taught goal.
 #[test]
 fn taught_b3_hand_over_runs_from_a_random_world() {
-    use logic_lfd::plan::NoClock;
     use logic_lfd::recorder::taught::{self, TaughtRunOptions};
     let mut rec = Recorder::for_benchmark(Benchmark::B3).unwrap();
     for p in [[0.38, 0.0], [0.42, -0.62]] {
@@ -141,14 +127,7 @@ fn taught_b3_hand_over_runs_from_a_random_world() {
         None,
     )
     .unwrap();
-    for _ in 0..40_000 {
-        if s.outcome().is_some() {
-            break;
-        }
-        s.tick_once(&NoClock);
-        let v = broken(s.world());
-        assert!(v.is_empty(), "tick {}: {v:?}", s.tick());
-    }
+    run_to_outcome(&mut s, None);
     assert_eq!(s.outcome(), Some(&Ok(())), "{:?}", s.log().result);
     let facts = SceneGraph::from_world(s.world());
     for g in &goal {

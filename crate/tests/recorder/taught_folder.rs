@@ -4,12 +4,11 @@
 
 use std::path::PathBuf;
 
-use logic_lfd::plan::NoClock;
 use logic_lfd::recorder::taught::{self, TaughtRunOptions};
 use logic_lfd::recorder::{Edit, Recorder};
 use logic_lfd::sim::{SceneGraph, TaskFolder};
 
-use crate::support::invariants::broken;
+use super::{drag, run_to_outcome};
 
 fn folder(name: &str) -> TaskFolder {
     TaskFolder::read(
@@ -71,18 +70,7 @@ fn a_task_taught_in_a_folder_runs_with_that_folder() {
         ..TaughtRunOptions::default()
     };
     let mut s = taught::session(&json, &opts, Some(&sorting)).unwrap();
-    let mut injected = false;
-    for _ in 0..40_000 {
-        if s.outcome().is_some() {
-            break;
-        }
-        if !injected && !s.is_executing() && s.actions_done() >= 1 {
-            injected = s.inject("l3").is_ok();
-        }
-        s.tick_once(&NoClock);
-        let v = broken(s.world());
-        assert!(v.is_empty(), "tick {}: {v:?}", s.tick());
-    }
+    let injected = run_to_outcome(&mut s, Some(1));
     assert!(injected, "no L3 disturbance could be injected");
     assert_eq!(s.outcome(), Some(&Ok(())), "{:?}", s.log().result);
     let facts = SceneGraph::from_world(s.world());
@@ -97,14 +85,7 @@ fn a_task_taught_in_a_folder_runs_with_that_folder() {
 fn a_folder_demo_in_a_benchmark_world_is_not_taken_for_the_benchmark() {
     let naming = folder("b1-paper-naming");
     let mut rec = Recorder::for_folder(&naming, None).unwrap();
-    rec.push(&Edit::Drag {
-        body: "c".into(),
-        onto: Some("b".into()),
-        position: None,
-        yaw: None,
-        arm: None,
-    })
-    .unwrap();
+    rec.push(&drag("c", "b")).unwrap();
     let json = serde_json::to_string(&rec.finish().unwrap().demo).unwrap();
     let (_, info) = taught::load(&json, Some(&naming)).unwrap();
     assert!(
@@ -121,14 +102,7 @@ fn a_folder_demo_in_a_benchmark_world_is_not_taken_for_the_benchmark() {
     );
     // …and a B1 demo is not read in that folder, whose world has B1's name.
     let mut rec = Recorder::for_benchmark(logic_lfd::sim::Benchmark::B1).unwrap();
-    rec.push(&Edit::Drag {
-        body: "c".into(),
-        onto: Some("b".into()),
-        position: None,
-        yaw: None,
-        arm: None,
-    })
-    .unwrap();
+    rec.push(&drag("c", "b")).unwrap();
     let b1 = serde_json::to_string(&rec.finish().unwrap().demo).unwrap();
     let e = taught::load(&b1, Some(&naming)).unwrap_err().to_string();
     assert!(

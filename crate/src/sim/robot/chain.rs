@@ -152,6 +152,19 @@ impl Chain {
             .map_or(Isometry3::identity(), |(_, t)| t)
     }
 
+    /// Checks that `q` is a joint vector of this chain within its limits; the message says what
+    /// is wrong.
+    pub fn check_joints(&self, q: &[f64]) -> Result<(), String> {
+        if q.len() != self.dof() {
+            return Err(format!(
+                "{} joint values for {} joints",
+                q.len(),
+                self.dof()
+            ));
+        }
+        self.outside_limits(q).map_or(Ok(()), Err)
+    }
+
     /// The first joint whose `q` entry lies outside its limits, with its name and limits.
     pub fn outside_limits(&self, q: &[f64]) -> Option<String> {
         self.moving().zip(q).find_map(|(j, v)| {

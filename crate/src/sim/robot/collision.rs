@@ -262,16 +262,7 @@ impl RobotCollision {
 
     /// Each link's pose in the base link's frame, in [`RobotCollision::links`] order.
     fn poses(&self, q: &[f64], opening: f64) -> Result<Vec<Isometry3<f64>>, String> {
-        if q.len() != self.chain.dof() {
-            return Err(format!(
-                "{} joint values for {} joints",
-                q.len(),
-                self.chain.dof()
-            ));
-        }
-        if let Some(m) = self.chain.outside_limits(q) {
-            return Err(m);
-        }
+        self.chain.check_joints(q)?;
         if !(0.0..=self.max_opening).contains(&opening) {
             return Err(format!(
                 "gripper opening {opening} m is outside [0, {}]",

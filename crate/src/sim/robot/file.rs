@@ -197,16 +197,7 @@ impl Robot {
     /// The TCP in the base link's frame for joint vector `q`; refused when `q` has the wrong
     /// length or lies outside the joint limits.
     pub fn tcp_pose(&self, q: &[f64]) -> Result<Isometry3<f64>, String> {
-        if q.len() != self.chain.dof() {
-            return Err(format!(
-                "{} joint values for {} joints",
-                q.len(),
-                self.chain.dof()
-            ));
-        }
-        if let Some(m) = self.chain.outside_limits(q) {
-            return Err(m);
-        }
+        self.chain.check_joints(q)?;
         Ok(self.chain.tip_frame(q) * self.tcp)
     }
 
