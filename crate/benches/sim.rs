@@ -8,7 +8,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use logic_lfd::experiments::hot_paths;
-use logic_lfd::sim::panda::{self, IkParams};
+use logic_lfd::sim::kinematics::{ArmModel, IkParams};
 use logic_lfd::sim::tower_task;
 use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::{GripperCommand, SceneGraph};
@@ -41,16 +41,12 @@ fn ik_solve(c: &mut Criterion) {
     let base = Isometry3::identity();
     let params = IkParams::default();
     let targets = hot_paths::ik_targets();
+    let arm = ArmModel::panda();
     let mut i = 0;
     c.bench_function("ik solve (top grasp from ready)", |bch| {
         bch.iter(|| {
             i = (i + 1) % targets.len();
-            black_box(panda::inverse_kinematics(
-                &base,
-                &targets[i],
-                &panda::READY,
-                &params,
-            ))
+            black_box(arm.inverse_kinematics(&base, &targets[i], &arm.ready(), &params))
         })
     });
 }

@@ -141,6 +141,7 @@ fn an_episode_reports_what_a_mid_motion_l1_cost() {
             mode: Mode::Paper,
             seed: 2,
             scene: None,
+            robots: vec![],
         };
         let r = run_episode(&spec, SessionParams::default(), &NoClock).unwrap();
         assert!(r.success, "{b:?}: {:?}", r.reason);
@@ -227,6 +228,7 @@ fn b2_l4_tasks_block_the_demonstrated_plan_with_the_new_block() {
             mode: Mode::Paper,
             seed,
             scene: Some(scene.clone()),
+            robots: vec![],
         };
         let r = run_episode(&spec, SessionParams::default(), &NoClock).unwrap();
         assert!(r.success, "seed {seed}: {:?}", r.reason);

@@ -233,6 +233,7 @@ fn the_same_seed_gives_the_identical_episode_and_the_json_replays_exactly() {
         mode: Mode::Paper,
         seed: 5,
         scene: None,
+        robots: vec![],
     };
     let a = logic_lfd::experiments::run_episode(&spec, SessionParams::default(), &NoClock).unwrap();
     let b = logic_lfd::experiments::run_episode(&spec, SessionParams::default(), &NoClock).unwrap();

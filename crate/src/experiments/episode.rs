@@ -25,7 +25,9 @@ use crate::lfd::{
 };
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
+use crate::sim::kinematics::ArmModel;
 use crate::sim::{Benchmark, BenchmarkSources};
+use std::sync::Arc;
 
 /// The draw of the episode's seed that picks the action after which the disturbance comes.
 const INJECT_AFTER_DRAW: u64 = 77;
@@ -51,6 +53,9 @@ pub struct EpisodeSpec {
     pub seed: u64,
     /// Initial scene JSON (`None`: the benchmark's template scene).
     pub scene: Option<String>,
+    /// Robots in place of the scene's arms: none (the scene's own), one for every arm, or one
+    /// per arm ([`Session::set_robots`]).
+    pub robots: Vec<Arc<ArmModel>>,
 }
 
 /// What an episode did.
@@ -271,6 +276,7 @@ fn drive(
         blocks,
     };
     let mut s = Session::with_sources(options, sources, spec.scene.as_deref(), None, params)?;
+    s.set_robots(&spec.robots)?;
     let mut schedule = Schedule::new(spec, s.controller().trace().len());
     let mut tcp = vec![tcps(&s)];
     let mut injection: Option<Injection> = None;

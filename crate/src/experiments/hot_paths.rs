@@ -22,7 +22,8 @@ use crate::lfd::{Session, SessionOptions, SkillKind};
 use crate::lqt::{build_reference, Target, TargetRole, Tracking};
 use crate::lqt::{full_pipeline, Basis, LqtConfig};
 use crate::plan::{self, Algorithm, Clock, HeuristicKind, NoClock, SearchConfig, SearchOutcome};
-use crate::sim::panda::{self, IkParams};
+use crate::sim::kinematics::{ArmModel, IkParams};
+use crate::sim::panda;
 use crate::sim::Benchmark;
 use crate::sim::{GripperCommand, SceneGraph};
 use nalgebra::{DMatrix, Isometry3, Translation3};
@@ -480,6 +481,7 @@ fn ik_row() -> Row {
     let base = Isometry3::identity();
     let params = IkParams::default();
     let targets = ik_targets();
+    let arm = ArmModel::panda();
     Row {
         id: "ik-solve".into(),
         label: "IK solve, top grasp from the ready pose".into(),
@@ -487,7 +489,7 @@ fn ik_row() -> Row {
         batch: Box::new(move || {
             let (mut solved, mut iterations) = (0, 0);
             for t in &targets {
-                if let Ok(s) = panda::inverse_kinematics(&base, t, &panda::READY, &params) {
+                if let Ok(s) = arm.inverse_kinematics(&base, t, &arm.ready(), &params) {
                     solved += 1;
                     iterations += s.iterations;
                 }

@@ -518,6 +518,7 @@ fn arm(name: &str, xy: [f64; 2], rmin: f64, rmax: f64) -> ArmSnapshot {
     ArmSnapshot {
         name: name.into(),
         base,
+        robot: None,
         joints: panda::READY.to_vec(),
         gripper_opening: panda::GRIPPER_MAX_OPENING,
         holding: None,
@@ -535,6 +536,7 @@ fn arm(name: &str, xy: [f64; 2], rmin: f64, rmax: f64) -> ArmSnapshot {
         },
         links: vec![],
         fingers: vec![],
+        model: None,
     }
 }
 

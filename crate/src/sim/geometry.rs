@@ -25,9 +25,8 @@ pub(crate) type ArmDrawing = (
 
 /// Capsules of the links (base to hand) and the two finger boxes of an arm, world frame.
 pub(crate) fn arm_drawing(a: &Arm) -> ArmDrawing {
-    let f: ArmFrames = panda::forward_frames(&a.base, &a.joints);
-    let links = links_of(&f);
-    let tcp = f.tcp.to_iso();
+    let links = a.model.link_capsules(&a.base, &a.joints);
+    let tcp = a.tcp();
     let half = Vector3::new(0.01, 0.006, 0.0225);
     let fingers = [-1.0, 1.0]
         .iter()
@@ -42,11 +41,8 @@ pub(crate) fn arm_drawing(a: &Arm) -> ArmDrawing {
     (links, fingers)
 }
 
-/// Index of the hand's capsule among an arm's link capsules ([`link_capsules`]): the last.
-pub const HAND_LINK: usize = 6;
-
-/// The link capsules of a chain's frames (base to hand), world frame.
-fn links_of(f: &ArmFrames) -> Vec<(Vector3<f64>, Vector3<f64>, f64)> {
+/// The built-in Panda's link capsules (base to hand) from its frames, world frame.
+pub(crate) fn panda_links(f: &ArmFrames) -> Vec<(Vector3<f64>, Vector3<f64>, f64)> {
     let o = |i: usize| f.frames[i].p;
     let hand = &f.frames[9];
     let hp = |y: f64, z: f64| hand.p + hand.r * Vector3::new(0.0, y, z);
@@ -278,9 +274,9 @@ pub fn link_capsules(
     arm: usize,
     q: &[f64; panda::DOF],
 ) -> Vec<(Vector3<f64>, Vector3<f64>, f64)> {
-    match world.arm_base(arm) {
-        Some(base) => links_of(&panda::forward_frames(&base, q)),
-        None => vec![],
+    match (world.arm_base(arm), world.arm_model(arm)) {
+        (Some(base), Some(model)) => model.link_capsules(&base, q),
+        _ => vec![],
     }
 }
 

@@ -74,6 +74,7 @@ mod folder;
 mod generate;
 pub mod geometry;
 mod json_input;
+pub mod kinematics;
 mod motions;
 pub mod panda;
 mod reach;

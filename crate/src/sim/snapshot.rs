@@ -17,6 +17,9 @@
 //! still at its current pose.
 
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
+
+use super::kinematics::ArmModel;
 
 /// Version written into [`WorldSnapshot::version`]; loading refuses other versions.
 pub const SNAPSHOT_VERSION: u32 = 1;
@@ -128,7 +131,7 @@ pub struct ReachSnapshot {
     pub max_radius: f64,
 }
 
-/// One 7-DoF Panda-like arm with a parallel gripper.
+/// One arm with a parallel gripper: the built-in Panda, or a robot from its URDF.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[cfg_attr(feature = "wasm-core", derive(tsify::Tsify), tsify(missing_as_null))]
 #[serde(from = "ArmIn")]
@@ -137,7 +140,10 @@ pub struct ArmSnapshot {
     pub name: String,
     /// Pose of the arm's base (link 0) in the world.
     pub base: PoseSnapshot,
-    /// The 7 joint angles q1..q7 in radians (within the Panda joint limits).
+    /// The robot's name when it is not the built-in Panda (a robot file's `name`).
+    pub robot: Option<String>,
+    /// The joint angles, one per moving joint (rad, or m for a prismatic joint), within the
+    /// limits.
     pub joints: Vec<f64>,
     /// Distance between the two finger pads in metres, 0 (closed) ..= 0.08 (open).
     pub gripper_opening: f64,
@@ -152,6 +158,10 @@ pub struct ArmSnapshot {
     pub links: Vec<CapsuleSnapshot>,
     /// *Derived*: the two finger boxes in the world frame.
     pub fingers: Vec<CuboidSnapshot>,
+    /// The robot's model, carried from a world to its snapshot and back (not saved: a saved
+    /// scene names it in `robot`).
+    #[serde(skip)]
+    pub model: Option<Arc<ArmModel>>,
 }
 
 /// A named rectangle of table top (B3's `left-table`, `handover`, `right-table`): a PDDL `region`
@@ -197,6 +207,8 @@ pub struct WorldSnapshot {
 struct ArmIn {
     name: String,
     base: PoseSnapshot,
+    #[serde(default)]
+    robot: Option<String>,
     joints: Vec<f64>,
     gripper_opening: f64,
     #[serde(default)]
@@ -217,6 +229,7 @@ impl From<ArmIn> for ArmSnapshot {
         let ArmIn {
             name,
             base,
+            robot,
             joints,
             gripper_opening,
             holding,
@@ -228,6 +241,7 @@ impl From<ArmIn> for ArmSnapshot {
         ArmSnapshot {
             name,
             base,
+            robot,
             joints,
             gripper_opening,
             holding,
@@ -235,6 +249,7 @@ impl From<ArmIn> for ArmSnapshot {
             tcp,
             links,
             fingers,
+            model: None,
         }
     }
 }

@@ -22,7 +22,7 @@ use nalgebra::{Isometry3, Vector3};
 use parry3d_f64::shape::Cuboid;
 
 use crate::sim::geometry::{boxes_except, clear_grasp_at, quarter_turns, rise_first, transit_z};
-use crate::sim::panda::{self, DOF};
+use crate::sim::kinematics::DOF;
 use crate::sim::World;
 
 /// The heights of an action's motion, read by both the executor and the streams (m).
@@ -151,6 +151,8 @@ pub(crate) trait JointMoves {
     fn solve_with_room(&self, pose: &Isometry3<f64>) -> Option<[f64; DOF]>;
     /// The planning IK's solution for `pose` nearest the joints now.
     fn solve_near(&self, pose: &Isometry3<f64>) -> Option<[f64; DOF]>;
+    /// The arm's ready posture (`None`: no such arm).
+    fn ready(&self) -> Option<[f64; DOF]>;
     /// What the arm (with its load) hits on the straight joint-space move from `from` to `to`;
     /// `None` if nothing.
     fn joint_move_hits(&mut self, from: &[f64; DOF], to: &[f64; DOF]) -> Option<Self::Hit>;
@@ -172,6 +174,10 @@ impl JointMoves for LiveArm<'_> {
 
     fn joints(&self) -> Option<[f64; DOF]> {
         self.world.joints(self.arm)
+    }
+
+    fn ready(&self) -> Option<[f64; DOF]> {
+        self.world.arm_model(self.arm).map(|m| m.ready())
     }
 
     fn tcp_position(&self) -> Option<Vector3<f64>> {
@@ -203,8 +209,11 @@ impl JointMoves for LiveArm<'_> {
 pub(crate) enum RecoveryRoute<H> {
     /// Straight there in joint space.
     Straight,
-    /// By way of [`panda::READY`], then straight there.
-    ByReady,
+    /// By way of the ready posture `ready`, then straight there.
+    ByReady {
+        /// The arm's ready posture.
+        ready: [f64; DOF],
+    },
     /// Straight to `joints`, the solution nearest the arm's for `pose` (the goal or a point on
     /// the way to it); the tracker follows the rest of the way. `hit`: what the straight move
     /// to the goal joints hits.
@@ -232,7 +241,7 @@ pub(crate) struct JointRecovery<H> {
 /// The joint-space recovery of an arm to the TCP pose `pose`: the planning IK's solution with
 /// the most room to the joint limits, straight there, or, when that move sweeps the arm or its
 /// load through something and the way by the ready posture does not, by way of
-/// [`panda::READY`]; failing both, straight to the solution nearest the arm's joints for the
+/// the ready posture; failing both, straight to the solution nearest the arm's joints for the
 /// goal or for a point on the way to it ([`NEAR_RECOVERY_FRACTIONS`]), if that move is clear.
 /// `None` if the planning IK finds no solution.
 pub(crate) fn joint_recovery<M: JointMoves>(
@@ -256,9 +265,12 @@ fn recovery_route<M: JointMoves>(
     let Some(hit) = arm.joint_move_hits(&now, goal) else {
         return RecoveryRoute::Straight;
     };
-    let ready = panda::READY;
-    if arm.joint_move_hits(&now, &ready).is_none() && arm.joint_move_hits(&ready, goal).is_none() {
-        return RecoveryRoute::ByReady;
+    if let Some(ready) = arm.ready() {
+        if arm.joint_move_hits(&now, &ready).is_none()
+            && arm.joint_move_hits(&ready, goal).is_none()
+        {
+            return RecoveryRoute::ByReady { ready };
+        }
     }
     let Some(tcp) = arm.tcp_position() else {
         return RecoveryRoute::Blocked(hit);

@@ -72,6 +72,7 @@ fn spec_of(o: &EpisodeOptions) -> Result<EpisodeSpec, String> {
         mode,
         seed: o.seed,
         scene: o.scene.clone(),
+        robots: vec![],
     })
 }
 

@@ -23,6 +23,7 @@ fn episode() -> String {
         mode: Mode::Paper,
         seed: 5,
         scene: None,
+        robots: vec![],
     };
     let sources = folder().sources().unwrap();
     let report = run_episode_with(&spec, &sources, SessionParams::default(), &NoClock).unwrap();
@@ -93,6 +94,7 @@ fn a_benchmark_episode_is_not_replayed_in_a_folder() {
         mode: Mode::Paper,
         seed: 1,
         scene: None,
+        robots: vec![],
     };
     let report =
         logic_lfd::experiments::run_episode(&spec, SessionParams::default(), &NoClock).unwrap();

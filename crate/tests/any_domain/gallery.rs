@@ -32,6 +32,7 @@ fn each_gallery_folder_finishes_under_every_level_in_both_modes() {
                     mode,
                     seed: 10 + i as u64,
                     scene: None,
+                    robots: vec![],
                 };
                 let r =
                     run_episode_with(&spec, &sources, SessionParams::default(), &NoClock).unwrap();

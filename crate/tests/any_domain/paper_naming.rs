@@ -98,6 +98,7 @@ fn the_paper_named_b1_runs_every_level_to_success_like_b1() {
             mode,
             seed,
             scene: Some(scene),
+            robots: vec![],
         };
         let params = SessionParams::default();
         let ours = run_episode_with(&spec, &files, params, &NoClock).unwrap();

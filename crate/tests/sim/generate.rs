@@ -118,6 +118,7 @@ fn every_disturbance_level_ends_in_success_on_8_and_12_blocks() {
                 mode: Mode::Paper,
                 seed: 1 + i as u64,
                 scene: None,
+                robots: vec![],
             };
             let r = run_episode_with_blocks(&spec, Some(n), SessionParams::default(), &NoClock)
                 .unwrap();

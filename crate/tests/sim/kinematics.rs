@@ -2,7 +2,8 @@
 //! speed limits, links stopped at the table top, and what a joint-space move sweeps through.
 
 use logic_lfd::sim::geometry;
-use logic_lfd::sim::panda::{self, IkParams};
+use logic_lfd::sim::kinematics::{ArmModel, IkParams};
+use logic_lfd::sim::panda;
 use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::GripperCommand;
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
@@ -26,7 +27,8 @@ fn ik_round_trip_within_1mm_and_1deg_for_sampled_reachable_poses() {
         }
         let target = panda::forward_kinematics(&base, &q);
         // Solve from the ready pose, not from q.
-        let sol = panda::inverse_kinematics(&base, &target, &panda::READY, &params)
+        let sol = ArmModel::panda()
+            .inverse_kinematics(&base, &target, &panda::READY, &params)
             .unwrap_or_else(|e| panic!("{q:?}: {e}"));
         let got = panda::forward_kinematics(&base, &sol.joints);
         let dp = (got.translation.vector - target.translation.vector).norm();
@@ -52,7 +54,9 @@ fn ik_refuses_unreachable_poses_with_a_residual() {
             Translation3::new(p[0], p[1], p[2]),
             panda::down_orientation(0.0),
         );
-        let err = panda::inverse_kinematics(&base, &target, &panda::READY, &params).unwrap_err();
+        let err = ArmModel::panda()
+            .inverse_kinematics(&base, &target, &panda::READY, &params)
+            .unwrap_err();
         assert!(err.position_error > 0.1, "{p:?}: {err}");
         // The best configuration is within limits and really has that residual.
         let got = panda::forward_kinematics(&base, &err.best_joints);
@@ -84,7 +88,8 @@ fn ik_with_room_reaches_above_a_block_at_the_minimum_reach() {
             Translation3::new(0.2501, -0.4426, 0.13),
             panda::down_orientation(yaw),
         );
-        let sol = panda::inverse_kinematics_with_room(&base, &target, &panda::READY, &planning)
+        let sol = ArmModel::panda()
+            .inverse_kinematics_with_room(&base, &target, &panda::READY, &planning)
             .unwrap_or_else(|e| panic!("yaw {yaw}: {e:?}"));
         let reached = panda::forward_kinematics(&base, &sol.joints);
         assert!((reached.translation.vector - target.translation.vector).norm() < 1e-3);
@@ -220,12 +225,8 @@ fn the_capsule_messages_call_the_hand_is_the_hand_capsule() {
     let w = Benchmark::B1.scene();
     let q = w.joints(0).unwrap();
     let caps = geometry::link_capsules(&w, 0, &q);
-    assert_eq!(
-        caps.len(),
-        geometry::HAND_LINK + 1,
-        "the hand is the last capsule"
-    );
-    let (a, b, r) = caps[geometry::HAND_LINK];
+    assert_eq!(caps.len(), 7, "six links, then the hand");
+    let (a, b, r) = caps[caps.len() - 1];
     let (ha, hb, hr) = geometry::hand_capsule(&w.tcp_pose(0).unwrap());
     assert!((a - ha).norm() < 1e-9 && (b - hb).norm() < 1e-9 && r == hr);
 }

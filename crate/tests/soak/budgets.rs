@@ -141,6 +141,7 @@ fn l3_episode() -> EpisodeSpec {
         mode: Mode::Paper,
         seed: 1,
         scene: None,
+        robots: vec![],
     }
 }
 
@@ -187,6 +188,7 @@ fn an_episode_out_of_simulated_time_states_it() {
         mode: Mode::Paper,
         seed: 2,
         scene: None,
+        robots: vec![],
     };
     let r = run_episode(&spec, params, &NoClock).unwrap();
     assert!(!r.success);

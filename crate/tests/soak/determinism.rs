@@ -18,6 +18,7 @@ fn episode_json(b: Benchmark, level: Option<Level>, seed: u64) -> String {
         mode: Mode::Prioritised,
         seed,
         scene: None,
+        robots: vec![],
     };
     let r = run_episode(&spec, SessionParams::default(), &NoClock).unwrap();
     serde_json::to_string(&r.log).unwrap()

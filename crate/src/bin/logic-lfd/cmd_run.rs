@@ -5,6 +5,8 @@
 //! execution time; `--json` prints the report with the full episode log (it replays exactly:
 //! `logic-lfd run --replay EPISODE.json [--domain DIR]`).
 //!
+//! `--robot ROBOT.json` runs the episode on a robot read from its URDF (twice: one per arm).
+//!
 //! `--domain DIR` runs a task folder (`sim::TaskFolder`): its own scene, and the disturbances
 //! drawn in it.
 //!
@@ -61,6 +63,8 @@ pub struct Args {
     /// Print the report and the full episode log as JSON.
     #[arg(long)]
     json: bool,
+    #[arg(long, value_name = "ROBOT.json", help = crate::robot_arg::HELP)]
+    robot: Vec<PathBuf>,
     /// Replay an episode JSON (the `log` of `--json`, or the whole report) and check it. A task
     /// folder's episode replays on the files its log carries, else on --domain DIR, else on the
     /// folder it recorded; a file that differs from the episode's is named.
@@ -108,6 +112,10 @@ pub fn run(args: Args) -> ExitCode {
         },
         None => None,
     };
+    let robots = match crate::robot_arg::load(&args.robot) {
+        Ok(r) => r,
+        Err(e) => return bad(e),
+    };
     let spec = EpisodeSpec {
         benchmark: args.benchmark.unwrap_or(Benchmark::B1),
         level: args.level,
@@ -115,6 +123,7 @@ pub fn run(args: Args) -> ExitCode {
         mode: args.mode,
         seed: args.seed,
         scene,
+        robots,
     };
     let clock = WallClock::start();
     let sources = match &folder {

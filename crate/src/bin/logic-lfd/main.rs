@@ -22,6 +22,7 @@ mod cmd_validate;
 mod domain_dir;
 mod exit;
 mod listed;
+mod robot_arg;
 mod sweep;
 
 use clap::{Parser, Subcommand};

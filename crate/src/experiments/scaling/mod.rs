@@ -168,6 +168,7 @@ impl ScalingSweep {
                 mode,
                 seed,
                 scene: Some(scene.clone()),
+                robots: vec![],
             };
             let r = run_episode_with_blocks(&spec, Some(n), params, clock)?;
             runs.push(ScalingRun {

@@ -211,6 +211,7 @@ impl Table1Sweep {
                 mode,
                 seed: task_seed,
                 scene: Some(scene.clone()),
+                robots: vec![],
             };
             let r = run_episode(&spec, params, clock)?;
             let first = r.log.replans.first();

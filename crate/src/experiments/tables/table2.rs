@@ -134,6 +134,7 @@ impl Table2Sweep {
             mode: Mode::Paper,
             seed: s,
             scene: None,
+            robots: vec![],
         };
         let r = run_episode(&spec, params, clock)?;
         let trial = Table2Trial {

@@ -11,10 +11,10 @@ use crate::tamp::{ActionKind, Placement};
 
 use crate::lfd::{skill_key, SegmentKind, SkillLibrary};
 
-/// Below this [`panda::limit_margin`] (of a joint's range) an action starts by unwinding the
+/// Below this [`ArmModel::limit_margin`] (of a joint's range) an action starts by unwinding the
 /// arm ([`Via::Unwind`]).
 ///
-/// [`panda::limit_margin`]: crate::sim::panda::limit_margin
+/// [`ArmModel::limit_margin`]: crate::sim::kinematics::ArmModel::limit_margin
 const UNWIND_MARGIN: f64 = 0.01;
 
 impl ActionExec {
@@ -215,8 +215,9 @@ pub(super) fn prepare_arm(world: &World, arm: usize, p: &ExecParams, phases: &mu
     // tracker wound up against a shelf) unwinds first, up there: from such a posture the
     // tracker comes down the same way and fails the same way again.
     if world
-        .joints(arm)
-        .is_some_and(|q| crate::sim::panda::limit_margin(&q) < UNWIND_MARGIN)
+        .arm_model(arm)
+        .zip(world.joints(arm))
+        .is_some_and(|(m, q)| m.limit_margin(&q) < UNWIND_MARGIN)
     {
         let at = usize::from(matches!(
             phases.first(),

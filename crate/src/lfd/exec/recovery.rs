@@ -88,10 +88,10 @@ const STUCK_LIFT: f64 = 0.01;
 /// than this fraction of the world's penetration tolerance.
 const LOAD_OVERLAP_OF_TOLERANCE: f64 = 0.5;
 
-/// How much more room to its joint limits ([`panda::limit_margin`]) an unwound posture must
+/// How much more room to its joint limits ([`ArmModel::limit_margin`]) an unwound posture must
 /// leave than the arm's posture now.
 ///
-/// [`panda::limit_margin`]: crate::sim::panda::limit_margin
+/// [`ArmModel::limit_margin`]: crate::sim::kinematics::ArmModel::limit_margin
 const UNWIND_GAIN: f64 = 1e-3;
 
 /// The joints that reach arm `arm`'s TCP pose `tcp` with the most room to their limits, if they
@@ -102,11 +102,11 @@ pub(super) fn unwound(
     arm: usize,
     tcp: &Isometry3<f64>,
     touches: &str,
-) -> Option<[f64; crate::sim::panda::DOF]> {
-    use crate::sim::panda::limit_margin;
+) -> Option<[f64; crate::sim::kinematics::DOF]> {
+    let model = world.arm_model(arm)?;
     let now = world.joints(arm)?;
     let sol = world.reachable_with_room(arm, tcp).ok()?.joints;
-    (limit_margin(&sol) > limit_margin(&now) + UNWIND_GAIN
+    (model.limit_margin(&sol) > model.limit_margin(&now) + UNWIND_GAIN
         && world.joint_move_hits(arm, &now, &sol, &[touches]).is_none())
     .then_some(sol)
 }
@@ -121,14 +121,12 @@ pub(super) fn rise_by_ready(
     arm: usize,
     goal: &Isometry3<f64>,
     touches: &str,
-) -> Option<[f64; crate::sim::panda::DOF]> {
-    let ready = crate::sim::panda::READY;
+) -> Option<[f64; crate::sim::kinematics::DOF]> {
+    let model = world.arm_model(arm)?;
+    let ready = model.ready();
     let now = world.joints(arm)?;
     let base = world.arm_base(arm)?;
-    let high = crate::sim::panda::forward_kinematics(&base, &ready)
-        .translation
-        .z
-        >= goal.translation.z;
+    let high = model.forward_kinematics(&base, &ready).translation.z >= goal.translation.z;
     (high
         && world
             .joint_move_hits(arm, &now, &ready, &[touches])

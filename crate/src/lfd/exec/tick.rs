@@ -341,7 +341,7 @@ impl ActionExec {
     fn continue_joint_recovery(
         &mut self,
         world: &World,
-        q: [f64; crate::sim::panda::DOF],
+        q: [f64; crate::sim::kinematics::DOF],
         dt: f64,
         p: &ExecParams,
     ) -> Option<ExecStatus> {
@@ -551,7 +551,7 @@ fn start_joint_recovery(world: &World, arm: usize, via: &Via, seg: &mut Running,
         Some(recovery) => {
             seg.joint_goals = match recovery.route {
                 RecoveryRoute::Straight | RecoveryRoute::Blocked(_) => vec![recovery.goal],
-                RecoveryRoute::ByReady => vec![crate::sim::panda::READY, recovery.goal],
+                RecoveryRoute::ByReady { ready } => vec![ready, recovery.goal],
                 RecoveryRoute::Near { joints, .. } => vec![joints],
             };
             seg.joint_ticks = 0;

@@ -51,6 +51,7 @@ use nalgebra::Vector3;
 use std::sync::Arc;
 
 use crate::pddl::ObjectDecl;
+use crate::sim::kinematics::ArmModel;
 use crate::sim::WorldSnapshot;
 use crate::sim::{Refused, SceneGraph, World};
 
@@ -65,6 +66,14 @@ use options::{demo_hints, PlacementHints};
 
 /// The stream of seeds of injected disturbances: injection `n` is seeded `mix_seed(seed, base + n)`.
 const INJECT_SEED_BASE: u64 = 1_000_003;
+
+/// Where a session's world comes from.
+enum Start<'a> {
+    /// A scene file's JSON.
+    Json(&'a str),
+    /// A world's snapshot (its arms' robot models with it).
+    Snapshot(&'a WorldSnapshot),
+}
 
 /// A closed-loop episode stepped by the caller.
 pub struct Session {
@@ -137,12 +146,28 @@ impl Session {
         demo_json: Option<&str>,
         params: SessionParams,
     ) -> Result<Session, SessionError> {
+        let scene = Start::Json(scene_json.unwrap_or(&files.scene));
+        Session::starting(options, files, scene, demo_json, params)
+    }
+
+    /// [`Session::with_sources`] from a scene given as JSON or as a snapshot (which carries its
+    /// arms' robot models).
+    fn starting(
+        options: SessionOptions,
+        files: &BenchmarkSources,
+        scene: Start<'_>,
+        demo_json: Option<&str>,
+        params: SessionParams,
+    ) -> Result<Session, SessionError> {
         let (motions, template, model) = options::template_of(files)?;
         // Through the snapshot once, so the logged initial scene reloads to this very world. One
         // JSON reader for scenes in the session: a second would add its own copy of the scene's
         // deserialiser to the page's first-load module.
-        let world = crate::sim::world_from_json(scene_json.unwrap_or(&files.scene))?;
-        let world = World::from_snapshot(&world.snapshot())?.with_motions(Arc::clone(&motions));
+        let snapshot = match scene {
+            Start::Json(json) => crate::sim::world_from_json(json)?.snapshot(),
+            Start::Snapshot(s) => s.clone(),
+        };
+        let world = World::from_snapshot(&snapshot)?.with_motions(Arc::clone(&motions));
         motions
             .check_arms(world.arm_names().len())
             .map_err(SessionError::Json)?;
@@ -300,6 +325,35 @@ impl Session {
         }
     }
 
+    /// Puts robots in place of the scene's arms before the first step: one robot for every arm,
+    /// or one per arm, each at its ready posture on the arm's base ([`World::set_robot`]).
+    ///
+    /// # Errors
+    /// After the first step, for another number of robots, or for an arm holding a body.
+    pub fn set_robots(&mut self, robots: &[Arc<ArmModel>]) -> Result<(), SessionError> {
+        if robots.is_empty() {
+            return Ok(());
+        }
+        if self.tick > 0 {
+            return Err(SessionError::Json(
+                "robots are chosen before the episode's first step".into(),
+            ));
+        }
+        let arms = self.world.arm_names().len();
+        if robots.len() != 1 && robots.len() != arms {
+            return Err(SessionError::Json(format!(
+                "{} robots for {arms} arms: give one robot, or one per arm",
+                robots.len()
+            )));
+        }
+        for arm in 0..arms {
+            let robot = &robots[arm.min(robots.len() - 1)];
+            self.world.set_robot(arm, Arc::clone(robot))?;
+        }
+        self.initial = self.world.snapshot();
+        Ok(())
+    }
+
     /// Drops the current plan; the loop replans on the next step.
     pub fn cancel(&mut self) {
         self.controller.cancel();
@@ -313,11 +367,10 @@ impl Session {
     pub fn reset(&mut self, seed: u64) {
         let mut options = self.options.clone();
         options.seed = seed;
-        let scene = serde_json::to_string(&self.initial).unwrap_or_default();
-        if let Ok(s) = Session::with_sources(
+        if let Ok(s) = Session::starting(
             options,
             &self.sources,
-            Some(&scene),
+            Start::Snapshot(&self.initial),
             self.demo_json.as_deref(),
             self.params,
         ) {

@@ -7,7 +7,6 @@ use crate::recorder::{ArmRef, RawSample};
 use crate::recorder::{Recorder, RecorderError};
 use crate::sim::demo::min_jerk;
 use crate::sim::geometry;
-use crate::sim::panda;
 use crate::sim::{GripperCommand, World};
 use nalgebra::Isometry3;
 
@@ -151,8 +150,8 @@ pub(super) fn reaches(world: &World, arm: usize, poses: &[Isometry3<f64>]) -> bo
 /// With more than one arm, back to the ready pose (out of the hand-over region).
 pub(super) fn go_home(world: &World, m: &mut Motion, p: &SynthParams) {
     if world.arm_names().len() > 1 {
-        if let Some(base) = world.arm_base(m.arm) {
-            m.transfer(panda::forward_kinematics(&base, &panda::READY), p.speed);
+        if let Some(home) = world.ready_tcp(m.arm) {
+            m.transfer(home, p.speed);
         }
     }
 }

@@ -2,11 +2,11 @@
 //! around each block for a grasp from above (the hand and the arm's links at the grasp and on
 //! the way down clear of every other body).
 
-use nalgebra::{Isometry3, Point3};
-use parry3d_f64::shape::{Capsule, Cuboid};
+use nalgebra::Isometry3;
+use parry3d_f64::shape::Cuboid;
 
 use super::finding::Finding;
-use crate::sim::geometry::{grasp_poses_at, link_capsules, raised, shrunk};
+use crate::sim::geometry::{grasp_poses_at, raised, shrunk};
 use crate::sim::{collide, handleable, BodyKind, World, WorldSnapshot};
 
 /// Heights above a grasp the hand passes on its way down to it (m): the approach starts 12 cm up.
@@ -154,21 +154,20 @@ fn grasp_hit(world: &World, x: &str) -> Option<Hit> {
     first
 }
 
-/// The first body of `others` a link of arm `arm` at joints `q` overlaps (the base link
-/// excepted; the last capsule is the hand).
+/// The first body of `others` a solid of arm `arm` at joints `q` overlaps (the base's
+/// excepted; the last is the hand).
 fn links_hit(
     world: &World,
     arm: usize,
-    q: &[f64; crate::sim::panda::DOF],
+    q: &[f64; crate::sim::kinematics::DOF],
     others: &[(String, Isometry3<f64>, Cuboid)],
 ) -> Option<Hit> {
-    let caps = link_capsules(world, arm, q);
-    let last = caps.len().saturating_sub(1);
-    caps.iter().enumerate().skip(1).find_map(|(k, (a, b, r))| {
-        let cap = Capsule::new(Point3::from(*a), Point3::from(*b), *r);
+    let (parts, base) = world.arm_parts(arm, q);
+    let last = parts.len().saturating_sub(1);
+    parts.iter().enumerate().skip(base).find_map(|(k, part)| {
         others
             .iter()
-            .find(|(_, iso, c)| collide::intersects(&Isometry3::identity(), &cap, iso, c))
+            .find(|(_, iso, c)| collide::intersects(&part.iso, &part.shape, iso, c))
             .map(|(name, _, _)| Hit {
                 body: name.clone(),
                 part: if k == last {

@@ -9,7 +9,6 @@ use super::pull::{pull_hook_poses, PULL_TARGET_RADIUS};
 use super::segment::{Seg, Step, MIN_TRANSFER_TIME};
 use super::template::{template_steps, Script, TemplateAction};
 use crate::sim::geometry;
-use crate::sim::panda;
 use crate::sim::world::{GripperCommand, World};
 use crate::sim::Benchmark;
 use crate::sim::{Fact, SceneGraph};
@@ -292,10 +291,9 @@ impl Expert {
             },
         ];
         if retreat {
-            let base = world
-                .arm_base(arm)
+            let home = world
+                .ready_tcp(arm)
                 .ok_or_else(|| fail(action, "no such arm"))?;
-            let home = panda::forward_kinematics(&base, &panda::READY);
             let tr = self.transfer_time(&up, &home);
             segs.push(Seg {
                 to: home,

@@ -8,19 +8,19 @@ use super::chain::Chain;
 use super::urdf::JointKind;
 
 /// Most moving joints the solver handles.
-pub(super) const MAX_DOF: usize = 7;
+pub(crate) const MAX_DOF: usize = crate::sim::kinematics::DOF;
 
 /// A joint vector padded to [`MAX_DOF`] (unused entries stay 0).
-pub(super) type Joints = [f64; MAX_DOF];
+pub(crate) type Joints = [f64; MAX_DOF];
 
 /// Geometric Jacobian, linear rows first; columns past the chain's joints are 0.
-pub(super) type Jacobian = SMatrix<f64, 6, MAX_DOF>;
+pub(crate) type Jacobian = SMatrix<f64, 6, MAX_DOF>;
 
 /// The chain with its fixed joints folded into the moving joints' frames.
-#[derive(Clone, Debug)]
-pub(super) struct Model {
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Model {
     /// Number of moving joints.
-    pub(super) n: usize,
+    pub(crate) n: usize,
     /// Pose of moving joint `i`'s frame (at `q_i = 0`) in the frame moved by joint `i − 1`.
     pre: [Isometry3<f64>; MAX_DOF],
     /// Unit axis of moving joint `i` in its own frame.
@@ -37,9 +37,11 @@ pub(super) struct Model {
 
 /// The TCP and every moving joint's axis and origin in the base's frame, for one joint vector.
 #[derive(Clone, Debug)]
-pub(super) struct Frames {
+pub(crate) struct Frames {
     /// The TCP's pose.
-    pub(super) tcp: Isometry3<f64>,
+    pub(crate) tcp: Isometry3<f64>,
+    /// The frame each moving joint moves (its child link's), after its motion.
+    pub(crate) links: [Isometry3<f64>; MAX_DOF],
     axes: [Vector3<f64>; MAX_DOF],
     origins: [Vector3<f64>; MAX_DOF],
 }
@@ -47,7 +49,7 @@ pub(super) struct Frames {
 impl Model {
     /// The model of `chain` with `tcp` on its tip; `Err(dof)` when the chain has no moving joint
     /// or more than [`MAX_DOF`].
-    pub(super) fn new(chain: &Chain, tcp: &Isometry3<f64>) -> Result<Model, usize> {
+    pub(crate) fn new(chain: &Chain, tcp: &Isometry3<f64>) -> Result<Model, usize> {
         let n = chain.dof();
         if n == 0 || n > MAX_DOF {
             return Err(n);
@@ -80,10 +82,11 @@ impl Model {
     }
 
     /// Forward kinematics with the joint frames the Jacobian needs.
-    pub(super) fn frames(&self, q: &Joints) -> Frames {
+    pub(crate) fn frames(&self, q: &Joints) -> Frames {
         let mut t = Isometry3::identity();
         let mut axes = [Vector3::zeros(); MAX_DOF];
         let mut origins = [Vector3::zeros(); MAX_DOF];
+        let mut links = [Isometry3::identity(); MAX_DOF];
         for i in 0..self.n {
             t *= self.pre[i];
             axes[i] = t.rotation * self.axis[i];
@@ -97,9 +100,11 @@ impl Model {
                 let r = UnitQuaternion::new_unchecked(Quaternion::new(c, a.x, a.y, a.z));
                 t.rotation *= r;
             }
+            links[i] = t;
         }
         Frames {
             tcp: t * self.tail,
+            links,
             axes,
             origins,
         }
@@ -107,7 +112,7 @@ impl Model {
 
     /// The geometric Jacobian at `f`: column `i` maps joint `i`'s rate to the TCP's linear and
     /// angular velocity in the base's frame (`a × (p_tcp − p_i); a` turning, `a; 0` sliding).
-    pub(super) fn jacobian(&self, f: &Frames) -> Jacobian {
+    pub(crate) fn jacobian(&self, f: &Frames) -> Jacobian {
         let mut j = Jacobian::zeros();
         let p = f.tcp.translation.vector;
         for i in 0..self.n {

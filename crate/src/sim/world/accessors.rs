@@ -2,16 +2,21 @@
 //! arms, inverse kinematics from an arm's joints, overlaps and heights for planners.
 
 use super::{World, WorldParams};
-use crate::sim::panda::{self, IkParams, IkSolution, Unreachable, DOF};
+use crate::sim::kinematics::{ArmModel, ArmPart, IkParams, IkSolution, Unreachable, DOF};
 use crate::sim::BodyKind;
 use crate::sim::Motions;
 use nalgebra::{Isometry3, Point3, Vector3};
 use parry3d_f64::shape::{Capsule, Cuboid};
 use std::sync::Arc;
 
-/// An inverse kinematics of [`panda`]: (base, target, seed joints, parameters).
-type IkSolver =
-    fn(&Isometry3<f64>, &Isometry3<f64>, &[f64; DOF], &IkParams) -> Result<IkSolution, Unreachable>;
+/// An inverse kinematics of an [`ArmModel`]: (model, base, target, seed joints, parameters).
+type IkSolver = fn(
+    &ArmModel,
+    &Isometry3<f64>,
+    &Isometry3<f64>,
+    &[f64; DOF],
+    &IkParams,
+) -> Result<IkSolution, Unreachable>;
 
 impl World {
     /// The world reading the domain declared by `motions` (its facts, objects and actions).
@@ -141,6 +146,27 @@ impl World {
         self.arms.get(arm).map(|a| a.tcp())
     }
 
+    /// The TCP pose of arm `arm` at its ready posture.
+    pub fn ready_tcp(&self, arm: usize) -> Option<Isometry3<f64>> {
+        self.arms
+            .get(arm)
+            .map(|a| a.model.forward_kinematics(&a.base, &a.model.ready()))
+    }
+
+    /// The solids of arm `arm` at joints `q` (world frame) and how many leading ones are its
+    /// base's ([`ArmModel::arm_parts`]); none for an unknown arm.
+    pub(crate) fn arm_parts(&self, arm: usize, q: &[f64; DOF]) -> (Vec<ArmPart>, usize) {
+        match self.arms.get(arm) {
+            Some(a) => (a.model.arm_parts(&a.base, q), a.model.base_parts()),
+            None => (vec![], 0),
+        }
+    }
+
+    /// The arm's kinematic model.
+    pub fn arm_model(&self, arm: usize) -> Option<&Arc<ArmModel>> {
+        self.arms.get(arm).map(|a| &a.model)
+    }
+
     /// The arm's finger opening (m).
     pub fn gripper_opening(&self, arm: usize) -> Option<f64> {
         self.arms.get(arm).map(|a| a.gripper_opening)
@@ -172,36 +198,37 @@ impl World {
     pub fn reachable(&self, arm: usize, pose: &Isometry3<f64>) -> Result<IkSolution, Unreachable> {
         let Some(a) = self.arms.get(arm) else {
             return Err(Unreachable {
-                best_joints: panda::READY,
+                best_joints: ArmModel::panda().ready(),
                 position_error: f64::INFINITY,
                 orientation_error: f64::INFINITY,
             });
         };
-        panda::inverse_kinematics(&a.base, pose, &a.joints, &self.params.planning_ik)
+        a.model
+            .inverse_kinematics(&a.base, pose, &a.joints, &self.params.planning_ik)
     }
 
     /// Like [`World::reachable`], the solution with the most room to the joint limits
-    /// ([`panda::inverse_kinematics_with_room`] from the arm's joints; the executor's joint-space
+    /// ([`ArmModel::inverse_kinematics_with_room`] from the arm's joints; the executor's joint-space
     /// recovery).
     pub fn reachable_with_room(
         &self,
         arm: usize,
         pose: &Isometry3<f64>,
     ) -> Result<IkSolution, Unreachable> {
-        self.solve_from_joints(arm, pose, panda::inverse_kinematics_with_room)
+        self.solve_from_joints(arm, pose, ArmModel::inverse_kinematics_with_room)
     }
 
-    /// The solution nearest the arm's joints ([`panda::inverse_kinematics_near`]: from them
+    /// The solution nearest the arm's joints ([`ArmModel::inverse_kinematics_near`]: from them
     /// alone, a joint at a limit held there while the others reach the pose).
     pub fn reachable_near(
         &self,
         arm: usize,
         pose: &Isometry3<f64>,
     ) -> Result<IkSolution, Unreachable> {
-        self.solve_from_joints(arm, pose, panda::inverse_kinematics_near)
+        self.solve_from_joints(arm, pose, ArmModel::inverse_kinematics_near)
     }
 
-    /// `solve` (an IK of [`panda`]) for arm `arm` from its joints, with the planning IK's
+    /// `solve` (an IK of the arm's [`ArmModel`]) for arm `arm` from its joints, with the planning IK's
     /// parameters; [`World::reachable`] for an unknown arm.
     fn solve_from_joints(
         &self,
@@ -212,7 +239,7 @@ impl World {
         let Some(a) = self.arms.get(arm) else {
             return self.reachable(arm, pose);
         };
-        solve(&a.base, pose, &a.joints, &self.params.planning_ik)
+        solve(&a.model, &a.base, pose, &a.joints, &self.params.planning_ik)
     }
 
     /// The deepest overlap (m) body `name` would have at `pose` with another body that is not

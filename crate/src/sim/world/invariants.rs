@@ -3,7 +3,7 @@
 
 use super::state::LIMIT_SLACK;
 use super::World;
-use crate::sim::panda::{self, DOF};
+use crate::sim::kinematics::DOF;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -129,9 +129,7 @@ impl World {
         for a in &self.arms {
             for k in 0..DOF {
                 let v = a.joints[k];
-                if !(panda::JOINT_LOWER[k] - LIMIT_SLACK..=panda::JOINT_UPPER[k] + LIMIT_SLACK)
-                    .contains(&v)
-                {
+                if !(a.model.lower[k] - LIMIT_SLACK..=a.model.upper[k] + LIMIT_SLACK).contains(&v) {
                     out.push(Violation::JointLimit {
                         arm: a.name.clone(),
                         joint: k,

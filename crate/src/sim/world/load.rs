@@ -3,13 +3,14 @@
 
 use super::state::{scene_err, SceneError, LIMIT_SLACK};
 use super::{Arm, Body, GripperCommand, Region, Violation, World, WorldParams};
-use crate::sim::panda::{self, DOF};
+use crate::sim::kinematics::{ArmModel, DOF};
 use crate::sim::{
     ArmSnapshot, BodyKind, BodySnapshot, CapsuleSnapshot, CuboidSnapshot, PartSnapshot,
     PoseSnapshot, RegionSnapshot, ShapeSnapshot, WorldSnapshot, SNAPSHOT_VERSION,
 };
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::shape::Cuboid;
+use std::sync::Arc;
 
 /// A loaded quaternion shorter than this counts as zero: it has no orientation to normalise to.
 const MIN_QUATERNION_NORM: f64 = 1e-9;
@@ -254,13 +255,24 @@ fn load_arms(
         check_name(&a.name, &path)?;
         names.claim(&a.name, &path)?;
         let base = pose_from_snapshot(&a.base, &format!("{path}.base"))?;
-        let joints = load_joints(&a.joints, &path)?;
+        let model = match (&a.robot, &a.model) {
+            (None, _) => ArmModel::panda(),
+            (Some(r), Some(m)) if m.name() == r => Arc::clone(m),
+            (Some(r), _) => {
+                return Err(scene_err(
+                    format!("{path}.robot"),
+                    format!("robot `{r}` is not loaded: give its robot file (--robot ROBOT.json)"),
+                ))
+            }
+        };
+        let joints = load_joints(&a.joints, &path, &model)?;
+        let max = model.max_opening();
         if !(a.gripper_opening.is_finite()
-            && (0.0..=panda::GRIPPER_MAX_OPENING + LIMIT_SLACK).contains(&a.gripper_opening))
+            && (0.0..=max + LIMIT_SLACK).contains(&a.gripper_opening))
         {
             return Err(scene_err(
                 format!("{path}.gripper_opening"),
-                "must be in [0, 0.08] m",
+                format!("must be in [0, {max}] m"),
             ));
         }
         let r = &a.reach;
@@ -286,6 +298,7 @@ fn load_arms(
             last_gripper: GripperCommand::Open,
             blocked_by: None,
             joint_target: None,
+            model,
         };
         if let Some(h) = &a.holding {
             attach_held(&mut arm, h, &path, bodies, &arms)?;
@@ -295,26 +308,28 @@ fn load_arms(
     Ok(arms)
 }
 
-/// An arm's joint angles, validated: seven of them, each within its limits.
-fn load_joints(values: &[f64], path: &str) -> Result<[f64; DOF], SceneError> {
-    if values.len() != DOF {
+/// An arm's joint angles, validated: one per moving joint of `model`, each within its limits.
+fn load_joints(values: &[f64], path: &str, model: &ArmModel) -> Result<[f64; DOF], SceneError> {
+    let n = model.dof();
+    if values.len() != n {
         return Err(scene_err(
             format!("{path}.joints"),
-            format!("needs {DOF} joint angles, got {}", values.len()),
+            format!(
+                "needs {n} joint angles for `{}`, got {}",
+                model.name(),
+                values.len()
+            ),
         ));
     }
     let mut joints = [0.0; DOF];
     for (k, v) in values.iter().enumerate() {
-        if !v.is_finite()
-            || *v < panda::JOINT_LOWER[k] - LIMIT_SLACK
-            || *v > panda::JOINT_UPPER[k] + LIMIT_SLACK
+        if !v.is_finite() || *v < model.lower[k] - LIMIT_SLACK || *v > model.upper[k] + LIMIT_SLACK
         {
             return Err(scene_err(
                 format!("{path}.joints[{k}]"),
                 format!(
                     "{v} rad is outside the joint limits [{}, {}]",
-                    panda::JOINT_LOWER[k],
-                    panda::JOINT_UPPER[k]
+                    model.lower[k], model.upper[k]
                 ),
             ));
         }
@@ -397,7 +412,8 @@ impl World {
         ArmSnapshot {
             name: a.name.clone(),
             base: pose_to_snapshot(&a.base),
-            joints: a.joints.to_vec(),
+            robot: (!a.model.is_builtin()).then(|| a.model.name().to_string()),
+            joints: a.joints[..a.model.dof()].to_vec(),
             gripper_opening: a.gripper_opening,
             holding: a.holding.map(|(i, _)| self.bodies[i].name.clone()),
             reach: a.reach.clone(),
@@ -417,6 +433,7 @@ impl World {
                     half_extents: (*h).into(),
                 })
                 .collect(),
+            model: (!a.model.is_builtin()).then(|| Arc::clone(&a.model)),
         }
     }
 
@@ -466,6 +483,29 @@ impl World {
             Some(e) => Err(e),
             None => Ok(world),
         }
+    }
+
+    /// Puts robot `model` in place of arm `arm`'s, on the same base, at its ready posture with
+    /// the fingers open (at most as wide as before).
+    ///
+    /// # Errors
+    /// An unknown arm, or one holding a body (its grasp belongs to the old hand).
+    pub fn set_robot(&mut self, arm: usize, model: Arc<ArmModel>) -> Result<(), SceneError> {
+        let Some(a) = self.arms.get_mut(arm) else {
+            return Err(scene_err(format!("arms[{arm}]"), "no such arm"));
+        };
+        if a.holding.is_some() {
+            return Err(scene_err(
+                format!("arms[{arm}] {:?}.holding", a.name),
+                "an arm holding a body keeps its robot",
+            ));
+        }
+        a.joints = model.ready();
+        a.gripper_opening = a.gripper_opening.min(model.max_opening());
+        a.target = None;
+        a.joint_target = None;
+        a.model = model;
+        Ok(())
     }
 
     /// The first broken invariant of a freshly loaded world (lost bodies allowed) as a scene

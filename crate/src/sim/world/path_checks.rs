@@ -4,10 +4,10 @@
 use super::state::DEPTH_EPSILON;
 use super::{Body, World, LINK_TOLERANCE};
 use crate::sim::collide;
-use crate::sim::panda::{self, DOF};
+use crate::sim::kinematics::{joint_line, DOF};
 use crate::sim::BodyKind;
-use nalgebra::{Isometry3, Point3};
-use parry3d_f64::shape::{Capsule, Cuboid};
+use nalgebra::Isometry3;
+use parry3d_f64::shape::Cuboid;
 
 /// Bodies' boxes are shrunk by this before a path check (m), so that touching faces and resting
 /// contacts do not count as overlaps.
@@ -92,24 +92,23 @@ impl World {
         let others = self.parts_shrunk(|j, b| {
             held.is_none_or(|(bi, _)| bi != j) && !except.contains(&b.name.as_str())
         });
-        // (part, other) pairs overlapping at q; parts: link capsules, then load boxes.
+        // (part, other) pairs overlapping at q; parts: the arm's solids, then load boxes.
         let overlapping = |q: &[f64; DOF]| -> Vec<(usize, usize)> {
             let mut out = vec![];
-            let caps = crate::sim::geometry::link_capsules(self, arm, q);
-            for (pi, (p0, p1, r)) in caps.iter().enumerate().skip(1) {
-                let cap = Capsule::new(Point3::from(*p0), Point3::from(*p1), *r);
+            let (parts, base) = self.arm_parts(arm, q);
+            for (pi, part) in parts.iter().enumerate().skip(base) {
                 for (oi, (_, iso, c)) in others.iter().enumerate() {
-                    if collide::intersects(&Isometry3::identity(), &cap, iso, c) {
+                    if collide::intersects(&part.iso, &part.shape, iso, c) {
                         out.push((pi, oi));
                     }
                 }
             }
-            let tcp = panda::forward_kinematics(&a.base, q);
+            let tcp = a.model.forward_kinematics(&a.base, q);
             for (li, (off, lc)) in load.iter().enumerate() {
                 let liso = tcp * off;
                 for (oi, (_, iso, c)) in others.iter().enumerate() {
                     if collide::intersects(&liso, lc, iso, c) {
-                        out.push((caps.len() + li, oi));
+                        out.push((parts.len() + li, oi));
                     }
                 }
             }
@@ -119,7 +118,7 @@ impl World {
         // The links' stop at furniture, as in `step_arm`: deeper than LINK_TOLERANCE and deeper
         // than the step before.
         let mut furniture_depth = self.link_penetration(arm, from).0;
-        panda::joint_line(from, to).find_map(|q| {
+        joint_line(from, to).find_map(|q| {
             let (depth, with) = self.link_penetration(arm, &q);
             if depth > LINK_TOLERANCE && depth > furniture_depth + DEPTH_EPSILON {
                 if let Some(j) = with {

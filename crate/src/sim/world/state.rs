@@ -1,7 +1,7 @@
 //! The world's state: the [`World`] itself, its tunables and the small types its stages share.
 
 use super::body::Body;
-use crate::sim::panda::{self, IkParams, DOF};
+use crate::sim::kinematics::{ArmModel, IkParams, DOF};
 use crate::sim::Motions;
 use crate::sim::ReachSnapshot;
 use nalgebra::Isometry3;
@@ -95,11 +95,13 @@ pub(crate) struct Arm {
     pub blocked_by: Option<String>,
     /// A joint-space target (instead of `target`), followed at the joint velocity limits.
     pub joint_target: Option<[f64; DOF]>,
+    /// Its kinematics, limits and capsules.
+    pub model: Arc<ArmModel>,
 }
 
 impl Arm {
     pub(crate) fn tcp(&self) -> Isometry3<f64> {
-        panda::forward_kinematics(&self.base, &self.joints)
+        self.model.forward_kinematics(&self.base, &self.joints)
     }
 }
 

@@ -6,9 +6,9 @@ use super::state::DEPTH_EPSILON;
 use super::{Body, GripperCommand, SimError, World, LINK_TOLERANCE};
 use crate::sim::collide;
 use crate::sim::fast_math::norm3;
-use crate::sim::panda::{self, DOF};
+use crate::sim::kinematics::DOF;
 use crate::sim::BodyKind;
-use nalgebra::{Isometry3, Point3, Vector3};
+use nalgebra::{Isometry3, Point3};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -107,7 +107,7 @@ impl World {
     pub fn set_joints(&mut self, arm: usize, joints: [f64; DOF]) -> Result<(), SimError> {
         let a = self.arms.get_mut(arm).ok_or(SimError::NoSuchArm(arm))?;
         a.joints = joints;
-        panda::clamp_joints(&mut a.joints);
+        a.model.clamp(&mut a.joints);
         a.target = None;
         self.carry_held(arm);
         Ok(())
@@ -187,7 +187,7 @@ impl World {
                 // Grasp when the fingers are still wider than the body across them.
                 let opening = self.arms[ai].gripper_opening;
                 let grasp = found.map(|bi| (bi, tcp.inverse() * self.bodies[bi].pose));
-                let fits = grasp.filter(|(bi, g)| self.finger_width(*bi, g) < opening);
+                let fits = grasp.filter(|(bi, g)| self.finger_width(ai, *bi, g) < opening);
                 if let Some((bi, grasp)) = fits {
                     self.arms[ai].holding = Some((bi, grasp));
                     events.push(WorldEvent::Grasped {
@@ -201,14 +201,14 @@ impl World {
                 }
                 let width = self.arms[ai]
                     .holding
-                    .map(|(bi, g)| self.finger_width(bi, &g))
+                    .map(|(bi, g)| self.finger_width(ai, bi, &g))
                     .unwrap_or(0.0);
                 let a = &mut self.arms[ai];
                 a.gripper_opening =
                     (a.gripper_opening - self.params.finger_speed * self.dt).max(width);
             }
             (GripperCommand::Close, Some((bi, g))) => {
-                let width = self.finger_width(bi, &g);
+                let width = self.finger_width(ai, bi, &g);
                 let a = &mut self.arms[ai];
                 a.gripper_opening =
                     (a.gripper_opening - self.params.finger_speed * self.dt).max(width);
@@ -218,19 +218,20 @@ impl World {
                 self.release(ai, bi, events);
                 let a = &mut self.arms[ai];
                 a.gripper_opening = (a.gripper_opening + self.params.finger_speed * self.dt)
-                    .min(panda::GRIPPER_MAX_OPENING);
+                    .min(a.model.max_opening());
             }
             (GripperCommand::Open, None) => {
                 let a = &mut self.arms[ai];
                 a.gripper_opening = (a.gripper_opening + self.params.finger_speed * self.dt)
-                    .min(panda::GRIPPER_MAX_OPENING);
+                    .min(a.model.max_opening());
             }
             (GripperCommand::Close, None) => {}
         }
     }
 
-    /// Width of a held body across the fingers (along the TCP `y` axis).
-    fn finger_width(&self, bi: usize, grasp: &Isometry3<f64>) -> f64 {
+    /// Width of a held body across arm `ai`'s fingers (along the TCP `y` axis), at most their
+    /// opening.
+    fn finger_width(&self, ai: usize, bi: usize, grasp: &Isometry3<f64>) -> f64 {
         let b = &self.bodies[bi];
         let mut w: f64 = 0.0;
         for (p, c) in &b.parts {
@@ -241,7 +242,7 @@ impl World {
             let m = iso.rotation.to_rotation_matrix().matrix().abs();
             w = w.max(2.0 * (m * c.half_extents).y);
         }
-        w.min(panda::GRIPPER_MAX_OPENING)
+        w.min(self.arms[ai].model.max_opening())
     }
 
     fn step_arm(&mut self, ai: usize, events: &mut Vec<WorldEvent>) {
@@ -304,7 +305,7 @@ impl World {
                 return None;
             }
             Some(
-                match panda::inverse_kinematics(
+                match a.model.inverse_kinematics(
                     &a.base,
                     &target,
                     &a.joints,
@@ -328,7 +329,7 @@ impl World {
         let scale = (0..DOF)
             .map(|k| {
                 let d = (desired[k] - a.joints[k]).abs();
-                let max = panda::JOINT_VELOCITY[k] * dt;
+                let max = a.model.velocity[k] * dt;
                 if d > max {
                     max / d
                 } else {
@@ -338,7 +339,7 @@ impl World {
             .fold(1.0, f64::min);
         for k in 0..DOF {
             let d = scale * (desired[k] - a.joints[k]);
-            a.joints[k] = (a.joints[k] + d).clamp(panda::JOINT_LOWER[k], panda::JOINT_UPPER[k]);
+            a.joints[k] = (a.joints[k] + d).clamp(a.model.lower[k], a.model.upper[k]);
         }
     }
 
@@ -386,25 +387,22 @@ impl World {
         None
     }
 
-    /// Deepest overlap of arm `ai`'s link capsules at joints `q` (the base link excepted) with a
-    /// table or shelf, and which one.
+    /// Deepest overlap of arm `ai`'s solids at joints `q` (the base's excepted) with a table or
+    /// shelf, and which one.
     pub(super) fn link_penetration(&self, ai: usize, q: &[f64; DOF]) -> (f64, Option<usize>) {
         let mut best = (0.0, None);
-        let caps = crate::sim::geometry::link_capsules(self, ai, q);
-        for (a, b, r) in caps.into_iter().skip(1) {
-            let lo = a.inf(&b) - Vector3::repeat(r);
-            let hi = a.sup(&b) + Vector3::repeat(r);
-            let cap = parry3d_f64::shape::Capsule::new(Point3::from(a), Point3::from(b), r);
+        let (parts, base) = self.arm_parts(ai, q);
+        for part in parts.iter().skip(base) {
             for (j, body) in self.bodies.iter().enumerate() {
                 if body.lost || !matches!(body.kind, BodyKind::Table | BodyKind::Shelf) {
                     continue;
                 }
                 let (blo, bhi) = body.aabb();
-                if (0..3).any(|i| lo[i] > bhi[i] || blo[i] > hi[i]) {
+                if !part.near(&blo, &bhi) {
                     continue;
                 }
                 for (iso, c) in body.world_parts() {
-                    if let Some(k) = collide::contact(&Isometry3::identity(), &cap, &iso, c, 0.0) {
+                    if let Some(k) = collide::contact(&part.iso, &part.shape, &iso, c, 0.0) {
                         if -k.dist > best.0 {
                             best = (-k.dist, Some(j));
                         }

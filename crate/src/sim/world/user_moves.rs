@@ -159,9 +159,10 @@ impl World {
     /// `Err(why)` if body `bi` (at its new place) touches a link of an arm.
     fn arm_hit(&self, bi: usize) -> Result<(), String> {
         for ai in 0..self.arms.len() {
-            for cap in self.arm_capsules(ai) {
+            let (parts, _) = self.arm_parts(ai, &self.arms[ai].joints);
+            for part in &parts {
                 for (iso, c) in self.bodies[bi].world_parts() {
-                    if collide::intersects(&Isometry3::identity(), &cap, &iso, c) {
+                    if collide::intersects(&part.iso, &part.shape, &iso, c) {
                         return Err(format!("it would hit the arm {}", self.arms[ai].name));
                     }
                 }

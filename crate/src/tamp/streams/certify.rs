@@ -5,15 +5,15 @@
 use std::collections::BTreeMap;
 
 use crate::sim::collide::{self, Solid};
-use nalgebra::{Isometry3, Point3, Translation3, Vector3};
-use parry3d_f64::shape::{Capsule, Cuboid};
+use nalgebra::{Isometry3, Translation3, Vector3};
+use parry3d_f64::shape::Cuboid;
 
 use super::boxes::{box_aabb, overlaps, Obstacle};
 use super::{fmt_point, Geo, Predicted, StreamBinder};
-use crate::sim::geometry::{link_capsules, HAND_LINK};
-use crate::sim::panda::{self, DOF};
+use crate::sim::kinematics::{joint_line, ArmModel, ArmShape, DOF};
 use crate::sim::LINK_TOLERANCE;
 use crate::tamp::{joint_recovery, transit_height, JointMoves, RecoveryRoute};
+use std::sync::Arc;
 
 /// Why a candidate was not certified (counted in [`StreamStats`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -50,6 +50,7 @@ struct TrackedArm<'a, 'w> {
     binder: &'a mut StreamBinder<'w>,
     arm: usize,
     base: &'a Isometry3<f64>,
+    model: Arc<ArmModel>,
     q: [f64; DOF],
     load: &'a [LoadPart],
     obstacles: &'a [Obstacle],
@@ -65,22 +66,29 @@ impl JointMoves for TrackedArm<'_, '_> {
 
     fn tcp_position(&self) -> Option<Vector3<f64>> {
         Some(
-            panda::forward_kinematics(self.base, &self.q)
+            self.model
+                .forward_kinematics(self.base, &self.q)
                 .translation
                 .vector,
         )
     }
 
+    fn ready(&self) -> Option<[f64; DOF]> {
+        Some(self.model.ready())
+    }
+
     fn solve_with_room(&self, pose: &Isometry3<f64>) -> Option<[f64; DOF]> {
         let ik = &self.binder.world.params().planning_ik;
-        panda::inverse_kinematics_with_room(self.base, pose, &self.q, ik)
+        self.model
+            .inverse_kinematics_with_room(self.base, pose, &self.q, ik)
             .ok()
             .map(|s| s.joints)
     }
 
     fn solve_near(&self, pose: &Isometry3<f64>) -> Option<[f64; DOF]> {
         let ik = &self.binder.world.params().planning_ik;
-        panda::inverse_kinematics_near(self.base, pose, &self.q, ik)
+        self.model
+            .inverse_kinematics_near(self.base, pose, &self.q, ik)
             .ok()
             .map(|s| s.joints)
     }
@@ -102,6 +110,8 @@ impl JointMoves for TrackedArm<'_, '_> {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 enum Part {
     Link(usize),
+    /// The last link capsule, the hand's.
+    Hand,
     Load(usize),
 }
 
@@ -120,16 +130,16 @@ struct Overlap {
     shape: PartShape,
 }
 
-/// The shape of a [`Part`]: a link's capsule or a load part's box.
+/// The shape of a [`Part`]: a solid of the arm or a load part's box.
 enum PartShape {
-    Capsule(Capsule),
+    Arm(ArmShape),
     Cuboid(Cuboid),
 }
 
 impl PartShape {
     fn as_shape(&self) -> &dyn Solid {
         match self {
-            PartShape::Capsule(c) => c,
+            PartShape::Arm(s) => s,
             PartShape::Cuboid(c) => c,
         }
     }
@@ -140,6 +150,14 @@ impl PartShape {
 type StartContacts = BTreeMap<Contact, f64>;
 
 impl StreamBinder<'_> {
+    /// Arm `arm`'s kinematic model (the built-in Panda for an unknown arm).
+    fn arm_model(&self, arm: usize) -> Arc<ArmModel> {
+        self.world
+            .arm_model(arm)
+            .cloned()
+            .unwrap_or_else(ArmModel::panda)
+    }
+
     /// Certifies the TCP path through `via` for arm `arm` carrying what `geo` says it carries:
     /// returns the joints at the end, or why not. `exclude`: bodies the motion may touch.
     pub(super) fn certify_path(
@@ -187,6 +205,7 @@ impl StreamBinder<'_> {
         // stopped at the table) may leave that contact: against what it touches at the start it
         // may only get shallower, as in the simulator's contact stops.
         let start = self.start_contacts(arm, &geo.q[arm], &geo.tcp[arm], &load, &obstacles);
+        let model = self.arm_model(arm);
         let mut q = geo.q[arm];
         let mut from = geo.tcp[arm];
         for to in via {
@@ -197,12 +216,12 @@ impl StreamBinder<'_> {
                 // checked where it leaves them); at a via-point it has the settle time to
                 // converge (no restarts either way).
                 let ik = if end { &self.settle_ik } else { &self.track_ik };
-                q = match panda::inverse_kinematics(&base, &tcp, &q, ik) {
+                q = match model.inverse_kinematics(&base, &tcp, &q, ik) {
                     Ok(sol) => sol.joints,
                     Err(e) if !end => e.best_joints,
                     // A straight line is not the skill's path: the tracker may also come in
                     // from where the segment started. Either way without restarts.
-                    Err(_) => match panda::inverse_kinematics(&base, &tcp, &q_from, ik) {
+                    Err(_) => match model.inverse_kinematics(&base, &tcp, &q_from, ik) {
                         Ok(sol) => sol.joints,
                         // The executor's joint-space recovery: the planning IK (with restarts)
                         // from where the tracker stalled, then a straight joint-space move.
@@ -341,10 +360,12 @@ impl StreamBinder<'_> {
         obstacles: &[Obstacle],
         start: &StartContacts,
     ) -> Option<Result<[f64; DOF], Hit>> {
+        let model = self.arm_model(arm);
         let mut tracked = TrackedArm {
             binder: self,
             arm,
             base,
+            model,
             q: *q,
             load,
             obstacles,
@@ -352,7 +373,7 @@ impl StreamBinder<'_> {
         };
         let recovery = joint_recovery(&mut tracked, goal)?;
         Some(match recovery.route {
-            RecoveryRoute::Straight | RecoveryRoute::ByReady => Ok(recovery.goal),
+            RecoveryRoute::Straight | RecoveryRoute::ByReady { .. } => Ok(recovery.goal),
             RecoveryRoute::Near { joints, pose, hit } => self
                 .track_line(arm, base, &joints, &pose, goal, load, obstacles, start)
                 .ok_or(hit),
@@ -376,10 +397,11 @@ impl StreamBinder<'_> {
         start: &StartContacts,
     ) -> Option<[f64; DOF]> {
         let mut q = *q;
+        let model = self.arm_model(arm);
         for (tcp, end) in line_samples(from, to, self.params.path_step) {
             self.stats.path_samples += 1;
             let ik = if end { &self.settle_ik } else { &self.track_ik };
-            q = match panda::inverse_kinematics(base, &tcp, &q, ik) {
+            q = match model.inverse_kinematics(base, &tcp, &q, ik) {
                 Ok(sol) => sol.joints,
                 Err(e) if !end => e.best_joints,
                 Err(_) => return None,
@@ -407,9 +429,10 @@ impl StreamBinder<'_> {
         obstacles: &[Obstacle],
         start: &StartContacts,
     ) -> Option<Hit> {
-        for qk in panda::joint_line(from, to) {
+        let model = self.arm_model(arm);
+        for qk in joint_line(from, to) {
             self.stats.path_samples += 1;
-            let tcp = panda::forward_kinematics(base, &qk);
+            let tcp = model.forward_kinematics(base, &qk);
             if let Some(hit) = self.sample_hits(arm, &qk, &tcp, load, obstacles, start) {
                 return Some(hit);
             }
@@ -430,23 +453,18 @@ impl StreamBinder<'_> {
         obstacles: &[Obstacle],
     ) -> Vec<Overlap> {
         let mut out = vec![];
-        for (i, (a, b, r)) in link_capsules(self.world, arm, q)
-            .into_iter()
-            .enumerate()
-            .skip(1)
-        {
-            let cap = Capsule::new(Point3::from(a), Point3::from(b), r);
-            let lo = a.inf(&b) - Vector3::repeat(r);
-            let hi = a.sup(&b) + Vector3::repeat(r);
+        let (parts, base) = self.world.arm_parts(arm, q);
+        let hand = parts.len().saturating_sub(1);
+        for (i, part) in parts.into_iter().enumerate().skip(base) {
             for (oi, o) in obstacles.iter().enumerate() {
-                if overlaps(&lo, &hi, o) {
+                if overlaps(&part.lo, &part.hi, o) {
                     out.push(Overlap {
                         contact: Contact {
-                            part: Part::Link(i),
+                            part: if i == hand { Part::Hand } else { Part::Link(i) },
                             obstacle: oi,
                         },
-                        iso: Isometry3::identity(),
-                        shape: PartShape::Capsule(cap),
+                        iso: part.iso,
+                        shape: PartShape::Arm(part.shape.clone()),
                     });
                 }
             }
@@ -515,7 +533,9 @@ impl StreamBinder<'_> {
                     // it: deeper only while within its tolerance (the tracker's redundant joints
                     // take another path than this IK's, so the depth drifts either way).
                     let tolerated = match pair.contact.part {
-                        Part::Link(_) if o.fixed => LINK_TOLERANCE - self.params.contact_slack,
+                        Part::Link(_) | Part::Hand if o.fixed => {
+                            LINK_TOLERANCE - self.params.contact_slack
+                        }
                         _ => 0.0,
                     };
                     (d0 + START_CONTACT_DRIFT).max(tolerated)
@@ -525,8 +545,7 @@ impl StreamBinder<'_> {
             .contact;
         let o = &obstacles[oi].name;
         let words = match part {
-            // The last capsule is the hand's (`sim::geometry::link_capsules`).
-            Part::Link(i) if i == HAND_LINK => format!("the hand hits {o}"),
+            Part::Hand => format!("the hand hits {o}"),
             Part::Link(i) => format!("link {i} hits {o}"),
             Part::Load(_) => format!("the carried body hits {o}"),
         };

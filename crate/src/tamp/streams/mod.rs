@@ -57,7 +57,7 @@ use super::motion::{rise_before_action, MotionParams, Scene};
 use super::{BindFailure, Binder};
 use crate::plan::{Operator, Task};
 use crate::sim::demo::PULL_LIFT;
-use crate::sim::panda::{self, IkParams, DOF};
+use crate::sim::kinematics::{ArmModel, IkParams, DOF};
 use crate::sim::BodyKind;
 use crate::sim::World;
 
@@ -306,7 +306,7 @@ impl<'w> StreamBinder<'w> {
                 .map(|a| self.world.tcp_pose(a).unwrap_or_else(Isometry3::identity))
                 .collect(),
             q: (0..n)
-                .map(|a| self.world.joints(a).unwrap_or(panda::READY))
+                .map(|a| self.world.joints(a).unwrap_or(ArmModel::panda().ready()))
                 .collect(),
         }
     }

@@ -1,0 +1,106 @@
+//! The solids an arm is checked with against the workcell, posed for one joint vector: the
+//! built-in Panda's link capsules, or a URDF arm's own collision shapes (mesh hulls, boxes,
+//! cylinders, spheres); the hand's capsule last in both.
+
+use std::sync::Arc;
+
+use nalgebra::{Isometry3, Point3, Vector3};
+use parry3d_f64::shape::{Ball, Capsule, Cuboid, SharedShape, SupportMap};
+
+use crate::sim::collide::Solid;
+
+/// A URDF collision shape that moves with one frame of the chain.
+#[derive(Clone)]
+pub(super) struct ChainShape {
+    /// 0 the base, `i` the frame moved by joint `i`.
+    pub(super) frame: usize,
+    /// The shape's pose in that frame.
+    pub(super) pose: Isometry3<f64>,
+    /// A convex shape (every shape of a robot's collision model is).
+    pub(super) shape: SharedShape,
+}
+
+impl std::fmt::Debug for ChainShape {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ChainShape")
+            .field("frame", &self.frame)
+            .field("pose", &self.pose)
+            .finish()
+    }
+}
+
+impl PartialEq for ChainShape {
+    fn eq(&self, other: &Self) -> bool {
+        self.frame == other.frame
+            && self.pose == other.pose
+            && Arc::ptr_eq(&self.shape.0, &other.shape.0)
+    }
+}
+
+/// The shape of an [`ArmPart`].
+#[derive(Clone)]
+pub(crate) enum ArmShape {
+    /// A capsule in world coordinates (the part's pose is the identity).
+    Capsule(Capsule),
+    /// A convex collision shape of a URDF link.
+    Convex(SharedShape),
+}
+
+/// What a shape without a support map (none is built) is checked as: nothing.
+static NOTHING: Ball = Ball { radius: 0.0 };
+
+impl Solid for ArmShape {
+    fn support_map(&self) -> &dyn SupportMap {
+        match self {
+            ArmShape::Capsule(c) => c,
+            ArmShape::Convex(s) => s.as_support_map().unwrap_or(&NOTHING),
+        }
+    }
+    fn cuboid(&self) -> Option<&Cuboid> {
+        match self {
+            ArmShape::Capsule(_) => None,
+            ArmShape::Convex(s) => s.as_cuboid(),
+        }
+    }
+}
+
+/// One solid of an arm, posed in the world, with its world bounding box.
+#[derive(Clone)]
+pub(crate) struct ArmPart {
+    /// Its pose.
+    pub(crate) iso: Isometry3<f64>,
+    /// Its shape.
+    pub(crate) shape: ArmShape,
+    /// Lower corner of its world bounding box.
+    pub(crate) lo: Vector3<f64>,
+    /// Upper corner of its world bounding box.
+    pub(crate) hi: Vector3<f64>,
+}
+
+impl ArmPart {
+    /// The capsule from `a` to `b` of radius `r` (world frame).
+    pub(crate) fn capsule(a: Vector3<f64>, b: Vector3<f64>, r: f64) -> ArmPart {
+        ArmPart {
+            iso: Isometry3::identity(),
+            shape: ArmShape::Capsule(Capsule::new(Point3::from(a), Point3::from(b), r)),
+            lo: a.inf(&b) - Vector3::repeat(r),
+            hi: a.sup(&b) + Vector3::repeat(r),
+        }
+    }
+
+    /// A convex shape at `iso` (world frame).
+    pub(super) fn convex(iso: Isometry3<f64>, shape: &SharedShape) -> ArmPart {
+        let bb = shape.compute_aabb(&iso);
+        ArmPart {
+            iso,
+            shape: ArmShape::Convex(shape.clone()),
+            lo: bb.mins.coords,
+            hi: bb.maxs.coords,
+        }
+    }
+
+    /// Whether its bounding box overlaps the box from `lo` to `hi`.
+    pub(crate) fn near(&self, lo: &Vector3<f64>, hi: &Vector3<f64>) -> bool {
+        (0..3).all(|i| self.lo[i] <= hi[i] && lo[i] <= self.hi[i])
+    }
+}
