@@ -22,7 +22,9 @@ use logic_lfd::experiments::{
 use logic_lfd::lfd::Level;
 use logic_lfd::lfd::{EpisodeLog, Session, SessionParams};
 use logic_lfd::lfd::{Method, Mode};
+use logic_lfd::sim::kinematics::ArmModel;
 use logic_lfd::sim::{Benchmark, TaskFolder};
+use std::sync::Arc;
 
 use crate::cmd_plan::WallClock;
 use crate::{exit, listed};
@@ -87,8 +89,12 @@ fn bad(msg: String) -> ExitCode {
 
 /// Runs the subcommand.
 pub fn run(args: Args) -> ExitCode {
+    let robots = match crate::robot_arg::load(&args.robot) {
+        Ok(r) => r,
+        Err(e) => return bad(e),
+    };
     if let Some(path) = &args.replay {
-        return replay(path, args.domain.as_deref());
+        return replay(path, args.domain.as_deref(), &robots);
     }
     if let (Some(b), Some(dir)) = (args.benchmark, &args.domain) {
         return bad(format!(
@@ -111,10 +117,6 @@ pub fn run(args: Args) -> ExitCode {
             Err(e) => return bad(format!("{}: {e}", p.display())),
         },
         None => None,
-    };
-    let robots = match crate::robot_arg::load(&args.robot) {
-        Ok(r) => r,
-        Err(e) => return bad(e),
     };
     let spec = EpisodeSpec {
         benchmark: args.benchmark.unwrap_or(Benchmark::B1),
@@ -234,7 +236,7 @@ struct Report {
     log: EpisodeLog,
 }
 
-fn replay(path: &Path, domain: Option<&Path>) -> ExitCode {
+fn replay(path: &Path, domain: Option<&Path>, robots: &[Arc<ArmModel>]) -> ExitCode {
     let text = match std::fs::read_to_string(path) {
         Ok(t) => t,
         Err(e) => return bad(format!("{}: {e}", path.display())),
@@ -263,7 +265,7 @@ fn replay(path: &Path, domain: Option<&Path>) -> ExitCode {
                 dir.display()
             ))
         }
-        (None, None) => Session::replay(&log_text),
+        (None, None) => Session::replay_with_robots(&log_text, robots),
         (Some(record), _) => {
             let folder = match (TaskFolder::from_record(record), domain) {
                 (Some(carried), _) => carried,

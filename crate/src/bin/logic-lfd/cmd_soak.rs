@@ -57,6 +57,8 @@ pub struct Args {
     /// Print the report as JSON.
     #[arg(long, conflicts_with = "shard")]
     json: bool,
+    #[arg(long, value_name = "ROBOT.json", help = crate::robot_arg::HELP)]
+    robot: Vec<std::path::PathBuf>,
     #[command(flatten)]
     sweep: SweepArgs,
 }
@@ -91,7 +93,8 @@ pub fn run(args: Args) -> ExitCode {
         Some(dir) => crate::domain_dir::read(dir).and_then(|f| SoakRunner::in_folder(&params, &f)),
         None => SoakRunner::new(&params),
     };
-    let runner = match runner {
+    let robots = crate::robot_arg::load(&args.robot);
+    let runner = match runner.and_then(|r| robots.map(|robots| r.with_robots(robots))) {
         Ok(r) => r,
         Err(e) => {
             eprintln!("soak: {e}");

@@ -1,9 +1,10 @@
-//! `logic-lfd bench table1 [--tasks 100] [--seed S] [--markdown|--json] [--task-scene I]` and
+//! `logic-lfd bench table1 [--tasks 100] [--seed S] [--markdown|--json] [--task-scene I] [--robot R]` and
 //! `logic-lfd bench table2 [--trials 10] [--seed S] [--markdown|--json]`: the paper's Tables I
 //! and II with our numbers beside the paper's (planning times by the wall clock; run in release).
 //! Logic-LfD's TAMP fallback is off unless `--tamp-fallback`. Both take `--threads N` and
 //! `--shard K/N` ([`crate::sweep`]).
 
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 use logic_lfd::experiments::{
@@ -49,6 +50,8 @@ pub struct Table1Args {
     /// fallback; off by default, so the table counts Logic-LfD's own success).
     #[arg(long)]
     tamp_fallback: bool,
+    #[arg(long, value_name = "ROBOT.json", conflicts_with = "shard", help = crate::robot_arg::HELP)]
+    robot: Vec<PathBuf>,
     #[command(flatten)]
     sweep: SweepArgs,
 }
@@ -101,6 +104,13 @@ pub fn run_table1(a: Table1Args) -> ExitCode {
             return ExitCode::from(exit::BAD_INPUT);
         }
     };
+    let robots = match crate::robot_arg::load(&a.robot) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::from(exit::BAD_INPUT);
+        }
+    };
     if let Some(i) = a.task_scene {
         let Some(&b) = bs.first() else {
             eprintln!("--benchmarks: none given");
@@ -129,6 +139,7 @@ pub fn run_table1(a: Table1Args) -> ExitCode {
         tasks: a.tasks,
         seed: a.seed,
         tamp_fallback: a.tamp_fallback,
+        robots,
     };
     let clock = WallClock::start();
     let indices = a.sweep.indices(sweep.items());

@@ -3,7 +3,9 @@
 //! every guarantee on the way (invariants, nothing partially applied, adopted plans valid, the
 //! outcome stated and legitimate, the replay identical).
 
+use crate::sim::kinematics::ArmModel;
 use std::collections::{BTreeMap, BTreeSet};
+use std::sync::Arc;
 
 use nalgebra::Vector3;
 use rand::{Rng, SeedableRng};
@@ -206,6 +208,7 @@ pub(super) fn soak_episode(
     e: usize,
     models: &Models,
     folder: Option<&BenchmarkSources>,
+    robots: &[Arc<ArmModel>],
     rep: &mut SoakReport,
     json_out: &mut String,
 ) -> Result<(), String> {
@@ -228,7 +231,8 @@ pub(super) fn soak_episode(
         (Some(b), _) => (Session::new(options), b.as_str().to_string()),
         (None, None) => return Err("a task folder's soak needs the folder's files".into()),
     };
-    let s = s.map_err(|e| e.to_string())?;
+    let mut s = s.map_err(|e| e.to_string())?;
+    s.set_robots(robots).map_err(|e| e.to_string())?;
     rep.episodes = 1;
     *rep.per_benchmark.entry(task.clone()).or_default() += 1;
     let mut run = EpisodeRun {
@@ -250,7 +254,7 @@ pub(super) fn soak_episode(
     let json = run.s.episode_json();
     *json_out = json.clone();
     if params.check_replay {
-        run.check_replay(&json, folder, rep);
+        run.check_replay(&json, folder, robots, rep);
     }
     Ok(())
 }
@@ -531,11 +535,17 @@ impl EpisodeRun<'_> {
 
     /// Replays the episode JSON (on the task folder's files, if any) and compares the replay's
     /// JSON byte for byte.
-    fn check_replay(&self, json: &str, folder: Option<&BenchmarkSources>, rep: &mut SoakReport) {
+    fn check_replay(
+        &self,
+        json: &str,
+        folder: Option<&BenchmarkSources>,
+        robots: &[Arc<ArmModel>],
+        rep: &mut SoakReport,
+    ) {
         rep.replays_checked += 1;
         let replayed = match folder {
-            Some(f) => Session::replay_with_sources(f, json),
-            None => Session::replay(json),
+            Some(f) => Session::replay_on(f, json, robots),
+            None => Session::replay_with_robots(json, robots),
         };
         match replayed {
             Ok(r) if r.episode_json() == json => {}

@@ -47,7 +47,9 @@ mod reasons;
 mod report;
 
 use crate::lfd::mix_seed;
+use crate::sim::kinematics::ArmModel;
 use crate::sim::{BenchmarkSources, TaskFolder};
+use std::sync::Arc;
 
 use episode::soak_episode;
 use reasons::Models;
@@ -97,6 +99,8 @@ pub struct SoakRunner {
     models: Models,
     /// The task folder's files (`None`: the benchmarks').
     folder: Option<BenchmarkSources>,
+    /// Robots in place of the scenes' arms.
+    robots: Vec<Arc<ArmModel>>,
 }
 
 impl SoakRunner {
@@ -112,6 +116,7 @@ impl SoakRunner {
             params: params.clone(),
             models: Models::new(params.blocks)?,
             folder: None,
+            robots: vec![],
         })
     }
 
@@ -133,7 +138,16 @@ impl SoakRunner {
             },
             models,
             folder: Some(sources),
+            robots: vec![],
         })
+    }
+
+    /// The soak on `robots` in place of the scenes' arms (one for every arm, or one per arm;
+    /// [`Session::set_robots`](crate::lfd::Session::set_robots)); the parameters name them.
+    pub fn with_robots(mut self, robots: Vec<Arc<ArmModel>>) -> SoakRunner {
+        self.params.robots = robots.iter().map(|r| r.name().to_string()).collect();
+        self.robots = robots;
+        self
     }
 
     /// The soak's parameters (with its task folder, if it runs one).
@@ -154,6 +168,7 @@ impl SoakRunner {
                 e,
                 &self.models,
                 self.folder.as_ref(),
+                &self.robots,
                 &mut ep,
                 &mut json,
             )

@@ -39,6 +39,10 @@ pub struct SoakParams {
     /// hashes tell the shards of one folder's soak from another's.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub folder: Option<FolderRecord>,
+    /// The robots in place of the scenes' arms (empty: the scenes' own, the built-in Panda); set
+    /// by [`SoakRunner::with_robots`](super::SoakRunner::with_robots).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub robots: Vec<String>,
 }
 
 impl Default for SoakParams {
@@ -54,6 +58,7 @@ impl Default for SoakParams {
             first_episode: 0,
             blocks: None,
             folder: None,
+            robots: vec![],
         }
     }
 }

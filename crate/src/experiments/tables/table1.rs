@@ -7,8 +7,10 @@ use serde::{Deserialize, Serialize};
 use crate::lfd::{mix_seed, SessionError, SessionParams};
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
+use crate::sim::kinematics::ArmModel;
 use crate::sim::Benchmark;
 use crate::sim::World;
+use std::sync::Arc;
 
 use super::common::{count, reason_kind, summary, PAPER_TABLE1};
 use super::feasible::infeasible;
@@ -76,6 +78,9 @@ pub struct Table1 {
     /// ([`ControlParams::tamp_fallback`](crate::lfd::ControlParams::tamp_fallback)).
     #[serde(default)]
     pub tamp_fallback: bool,
+    /// The robots the episodes ran on (empty: the scenes' own, the built-in Panda).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub robots: Vec<String>,
 }
 
 /// A Table I task whose initial state was redrawn.
@@ -177,6 +182,10 @@ pub struct Table1Sweep {
     pub seed: u64,
     /// Whether Logic-LfD may fall back to TAMP from scratch.
     pub tamp_fallback: bool,
+    /// Robots in place of the scenes' arms ([`EpisodeSpec::robots`]); the tasks are drawn as
+    /// without them, so every robot meets the same tasks.
+    #[serde(skip)]
+    pub robots: Vec<Arc<ArmModel>>,
 }
 
 impl Table1Sweep {
@@ -211,7 +220,7 @@ impl Table1Sweep {
                 mode,
                 seed: task_seed,
                 scene: Some(scene.clone()),
-                robots: vec![],
+                robots: self.robots.clone(),
             };
             let r = run_episode(&spec, params, clock)?;
             let first = r.log.replans.first();
@@ -305,6 +314,7 @@ impl Table1Sweep {
             cells,
             redrawn,
             tamp_fallback: self.tamp_fallback,
+            robots: self.robots.iter().map(|r| r.name().to_string()).collect(),
         }
     }
 }
@@ -325,6 +335,7 @@ pub fn table1(
         tasks,
         seed,
         tamp_fallback: params.control.tamp_fallback,
+        robots: vec![],
     };
     let items = (0..sweep.items())
         .map(|i| sweep.run(i, params, clock, progress))
@@ -368,6 +379,9 @@ impl Table1 {
                     .collect::<Vec<_>>()
                     .join(", ")
             ));
+        }
+        if !self.robots.is_empty() {
+            out.push_str(&format!("Robot: {}.\n\n", self.robots.join(", ")));
         }
         out.push_str(if self.tamp_fallback {
             "Logic-LfD's TAMP fallback on: the fallbacks column counts its replans that planned to G from scratch.\n\n"

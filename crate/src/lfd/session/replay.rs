@@ -4,11 +4,22 @@ use crate::plan::NoClock;
 
 use super::log::{EpisodeEvent, EpisodeLog, EpisodeResult};
 use super::{facts_of, Session, SessionError, SessionParams};
+use crate::sim::kinematics::ArmModel;
 use crate::sim::{BenchmarkSources, TaskFolder};
+use std::sync::Arc;
 
 impl Session {
     /// Re-runs a logged episode tick by tick (see [`Session::replay_with_sources`]).
     pub fn replay(episode_json: &str) -> Result<Session, SessionError> {
+        Session::replay_with_robots(episode_json, &[])
+    }
+
+    /// [`Session::replay`] of an episode that ran on robots read from their URDFs: each arm the
+    /// log's scene names a robot for takes the model of that name from `robots`.
+    pub fn replay_with_robots(
+        episode_json: &str,
+        robots: &[Arc<ArmModel>],
+    ) -> Result<Session, SessionError> {
         let log: EpisodeLog = crate::sim::parse_json(episode_json)
             .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
         let files = match &log.folder {
@@ -24,7 +35,7 @@ impl Session {
                 }
             },
         };
-        Session::replay_with_sources(&files, episode_json)
+        Session::replay_on(&files, episode_json, robots)
     }
 
     /// Re-runs a logged episode on `folder`, after checking the folder's files are those the
@@ -82,14 +93,34 @@ impl Session {
         files: &BenchmarkSources,
         episode_json: &str,
     ) -> Result<Session, SessionError> {
+        Session::replay_on(files, episode_json, &[])
+    }
+
+    /// [`Session::replay_with_sources`] with the robots the log's scene names
+    /// ([`Session::replay_with_robots`]).
+    pub fn replay_on(
+        files: &BenchmarkSources,
+        episode_json: &str,
+        robots: &[Arc<ArmModel>],
+    ) -> Result<Session, SessionError> {
         let log: EpisodeLog = crate::sim::parse_json(episode_json)
             .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
+        // Through JSON and back, as a scene file is read; then each named robot's model.
         let scene = serde_json::to_string(&log.scene)
             .map_err(|e| SessionError::Json(format!("episode: scene: {e}")))?;
-        let mut s = Session::with_sources(
+        let mut scene: crate::sim::WorldSnapshot = crate::sim::parse_json(&scene)
+            .map_err(|e| SessionError::Json(format!("episode: scene: {e}")))?;
+        for arm in &mut scene.arms {
+            arm.model = arm
+                .robot
+                .as_ref()
+                .and_then(|name| robots.iter().find(|r| r.name() == name))
+                .cloned();
+        }
+        let mut s = Session::starting(
             log.options.clone(),
             files,
-            Some(&scene),
+            super::Start::Snapshot(&scene),
             log.demo_json.as_deref(),
             SessionParams::default(),
         )?;

@@ -485,22 +485,38 @@ impl World {
         }
     }
 
-    /// Puts robot `model` in place of arm `arm`'s, on the same base, at its ready posture with
-    /// the fingers open (at most as wide as before).
+    /// Puts robot `model` in place of arm `arm`'s, on the same base, with the fingers at most as
+    /// wide as before: at its ready posture, or, when the arm holds a body, at the joints its
+    /// IK finds for the TCP pose that holds it there.
     ///
     /// # Errors
-    /// An unknown arm, or one holding a body (its grasp belongs to the old hand).
+    /// An unknown arm, or a held body the robot cannot hold where it is.
     pub fn set_robot(&mut self, arm: usize, model: Arc<ArmModel>) -> Result<(), SceneError> {
+        let params = self.params.planning_ik.clone();
+        let held = self.arms.get(arm).and_then(|a| a.holding);
         let Some(a) = self.arms.get_mut(arm) else {
             return Err(scene_err(format!("arms[{arm}]"), "no such arm"));
         };
-        if a.holding.is_some() {
-            return Err(scene_err(
-                format!("arms[{arm}] {:?}.holding", a.name),
-                "an arm holding a body keeps its robot",
-            ));
-        }
-        a.joints = model.ready();
+        let joints = match held {
+            None => model.ready(),
+            Some((bi, _)) => {
+                let tcp = a.tcp();
+                model
+                    .inverse_kinematics(&a.base, &tcp, &model.ready(), &params)
+                    .map_err(|u| {
+                        scene_err(
+                            format!("arms[{arm}] {:?}.holding", a.name),
+                            format!(
+                                "`{}` cannot hold {} where it is: {u}",
+                                model.name(),
+                                self.bodies[bi].name
+                            ),
+                        )
+                    })?
+                    .joints
+            }
+        };
+        a.joints = joints;
         a.gripper_opening = a.gripper_opening.min(model.max_opening());
         a.target = None;
         a.joint_target = None;
