@@ -22,6 +22,7 @@ mod pddl;
 mod recorder;
 mod robot;
 mod robot_collision;
+mod robot_episodes;
 mod robot_ik;
 mod search;
 mod sim;

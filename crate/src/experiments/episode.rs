@@ -25,7 +25,7 @@ use crate::lfd::{
 };
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
-use crate::sim::kinematics::ArmModel;
+use crate::sim::ArmModel;
 use crate::sim::{Benchmark, BenchmarkSources};
 use std::sync::Arc;
 

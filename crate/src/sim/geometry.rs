@@ -7,7 +7,7 @@
 //! the arm's base to the block (what joint 1 gives naturally). The hook is grasped on its handle
 //! at [`HOOK_GRASP_POINT`] (hook frame), fingers across the handle, the hand turned as the hook.
 
-use super::panda::{self, ArmFrames};
+use super::panda::{self, hand_capsule, HAND_HALF_SPAN, HAND_RADIUS};
 use super::snapshot::BodyKind;
 use super::world::{Arm, World};
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
@@ -39,39 +39,6 @@ pub(crate) fn arm_drawing(a: &Arm) -> ArmDrawing {
         })
         .collect();
     (links, fingers)
-}
-
-/// The built-in Panda's link capsules (base to hand) from its frames, world frame.
-pub(crate) fn panda_links(f: &ArmFrames) -> Vec<(Vector3<f64>, Vector3<f64>, f64)> {
-    let o = |i: usize| f.frames[i].p;
-    let hand = &f.frames[9];
-    let hp = |y: f64, z: f64| hand.p + hand.r * Vector3::new(0.0, y, z);
-    vec![
-        (o(0), o(1), 0.075),
-        (o(2), o(3), 0.065),
-        (o(3), o(4), 0.06),
-        (o(4), o(5), 0.06),
-        (o(5), o(7), 0.055),
-        (o(7), o(8), 0.05),
-        (
-            hp(-HAND_HALF_SPAN, HAND_HEIGHT),
-            hp(HAND_HALF_SPAN, HAND_HEIGHT),
-            HAND_RADIUS,
-        ),
-    ]
-}
-
-/// The hand's capsule: half its span along the finger axis, its axis height above the hand
-/// frame, its radius (m).
-const HAND_HALF_SPAN: f64 = 0.08;
-const HAND_HEIGHT: f64 = 0.05;
-const HAND_RADIUS: f64 = 0.035;
-
-/// The hand's capsule `(a, b, radius)` (world frame) when the TCP is at `tcp`: the last of
-/// [`link_capsules`], without the rest of the arm.
-pub fn hand_capsule(tcp: &Isometry3<f64>) -> (Vector3<f64>, Vector3<f64>, f64) {
-    let p = |y: f64| (tcp * Point3::new(0.0, y, HAND_HEIGHT - panda::TCP_OFFSET)).coords;
-    (p(-HAND_HALF_SPAN), p(HAND_HALF_SPAN), HAND_RADIUS)
 }
 
 /// The hand at `tcp` as a capsule ([`hand_capsule`]), its radius grown by `margin`.

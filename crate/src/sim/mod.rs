@@ -74,7 +74,7 @@ mod folder;
 mod generate;
 pub mod geometry;
 mod json_input;
-pub mod kinematics;
+mod kinematics;
 mod motions;
 pub mod panda;
 mod reach;
@@ -95,6 +95,8 @@ pub use generate::{
     MAX_BLOCKS_B3, MAX_TOWER_HEIGHT, MIN_BLOCKS_B1, MIN_BLOCKS_B3, SPOT_SPACING, TOWER_SPACING,
 };
 pub use json_input::{parse_json, world_from_json, JsonError};
+pub(crate) use kinematics::{joint_line, ArmPart, ArmShape};
+pub use kinematics::{ArmModel, IkParams, IkSolution, Joints, Unreachable};
 pub use motions::{
     ActionMotion, FactSpec, MotionKind, Motions, MotionsError, ObjectKind, ObjectSpec, Onto,
     Relation, Slot,

@@ -17,12 +17,13 @@
 //!
 //! The damped-least-squares IK on this and on URDF arms is [`ArmModel`](super::kinematics::ArmModel)'s.
 
-use nalgebra::{Isometry3, Matrix3, SMatrix, Translation3, UnitQuaternion, Vector3};
+use nalgebra::{Isometry3, Matrix3, Point3, SMatrix, Translation3, UnitQuaternion, Vector3};
 use std::sync::OnceLock;
 
 use super::fast_math::{quaternion_of, sincos_table};
 
-pub use super::kinematics::DOF;
+/// Number of joints, and the width of every arm's joint vector (see `ArmModel`).
+pub const DOF: usize = 7;
 
 /// Modified DH `(a_{i-1}, d_i, alpha_{i-1})` of joints 1..7 (Franka documentation), metres / radians.
 const DH: [(f64, f64, f64); DOF] = [
@@ -153,6 +154,40 @@ pub(crate) fn jacobian(f: &ArmFrames) -> SMatrix<f64, 6, DOF> {
         j.fixed_view_mut::<3, 1>(3, i).copy_from(&z);
     }
     j
+}
+
+/// The built-in Panda's link capsules (base to hand) from its frames, world frame.
+pub(crate) fn panda_links(f: &ArmFrames) -> Vec<(Vector3<f64>, Vector3<f64>, f64)> {
+    let o = |i: usize| f.frames[i].p;
+    let hand = &f.frames[9];
+    let hp = |y: f64, z: f64| hand.p + hand.r * Vector3::new(0.0, y, z);
+    vec![
+        (o(0), o(1), 0.075),
+        (o(2), o(3), 0.065),
+        (o(3), o(4), 0.06),
+        (o(4), o(5), 0.06),
+        (o(5), o(7), 0.055),
+        (o(7), o(8), 0.05),
+        (
+            hp(-HAND_HALF_SPAN, HAND_HEIGHT),
+            hp(HAND_HALF_SPAN, HAND_HEIGHT),
+            HAND_RADIUS,
+        ),
+    ]
+}
+
+/// The hand's capsule: half its span along the finger axis, its axis height above the hand
+/// frame, its radius (m).
+pub(crate) const HAND_HALF_SPAN: f64 = 0.08;
+const HAND_HEIGHT: f64 = 0.05;
+pub(crate) const HAND_RADIUS: f64 = 0.035;
+
+/// The hand's capsule `(a, b, radius)` (world frame) when the TCP is at `tcp`: the last of an
+/// arm's link capsules, without the rest of the arm. Every arm's gripper is checked as the
+/// Panda's hand.
+pub fn hand_capsule(tcp: &Isometry3<f64>) -> (Vector3<f64>, Vector3<f64>, f64) {
+    let p = |y: f64| (tcp * Point3::new(0.0, y, HAND_HEIGHT - TCP_OFFSET)).coords;
+    (p(-HAND_HALF_SPAN), p(HAND_HALF_SPAN), HAND_RADIUS)
 }
 
 /// A gripper orientation pointing straight down (`z` to −z world) with the fingers joined along the

@@ -22,7 +22,7 @@ use nalgebra::{Isometry3, Vector3};
 use parry3d_f64::shape::Cuboid;
 
 use crate::sim::geometry::{boxes_except, clear_grasp_at, quarter_turns, rise_first, transit_z};
-use crate::sim::kinematics::DOF;
+use crate::sim::panda::DOF;
 use crate::sim::World;
 
 /// The heights of an action's motion, read by both the executor and the streams (m).

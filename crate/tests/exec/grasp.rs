@@ -93,7 +93,7 @@ fn an_arm_wound_to_a_joint_limit_unwinds_before_it_picks() {
     let mut world = saved_world("b2-arm-wound-b-beside-shelf");
     let wound = world.joints(0).unwrap();
     assert!(
-        logic_lfd::sim::kinematics::ArmModel::panda().limit_margin(&wound) < 1e-3,
+        logic_lfd::sim::ArmModel::panda().limit_margin(&wound) < 1e-3,
         "{wound:?}"
     );
     let (_, task) = model_and_task(Benchmark::B2, &world);

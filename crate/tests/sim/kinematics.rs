@@ -2,10 +2,10 @@
 //! speed limits, links stopped at the table top, and what a joint-space move sweeps through.
 
 use logic_lfd::sim::geometry;
-use logic_lfd::sim::kinematics::{ArmModel, IkParams};
 use logic_lfd::sim::panda;
 use logic_lfd::sim::Benchmark;
 use logic_lfd::sim::GripperCommand;
+use logic_lfd::sim::{ArmModel, IkParams};
 use nalgebra::{Isometry3, Translation3, UnitQuaternion, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -227,6 +227,6 @@ fn the_capsule_messages_call_the_hand_is_the_hand_capsule() {
     let caps = geometry::link_capsules(&w, 0, &q);
     assert_eq!(caps.len(), 7, "six links, then the hand");
     let (a, b, r) = caps[caps.len() - 1];
-    let (ha, hb, hr) = geometry::hand_capsule(&w.tcp_pose(0).unwrap());
+    let (ha, hb, hr) = logic_lfd::sim::panda::hand_capsule(&w.tcp_pose(0).unwrap());
     assert!((a - ha).norm() < 1e-9 && (b - hb).norm() < 1e-9 && r == hr);
 }

@@ -22,7 +22,7 @@ use logic_lfd::experiments::{
 use logic_lfd::lfd::Level;
 use logic_lfd::lfd::{EpisodeLog, Session, SessionParams};
 use logic_lfd::lfd::{Method, Mode};
-use logic_lfd::sim::kinematics::ArmModel;
+use logic_lfd::sim::ArmModel;
 use logic_lfd::sim::{Benchmark, TaskFolder};
 use std::sync::Arc;
 

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use logic_lfd::sim::kinematics::ArmModel;
+use logic_lfd::sim::ArmModel;
 use logic_lfd::sim::Robot;
 
 /// Help of `--robot`.

@@ -3,7 +3,7 @@
 //! every guarantee on the way (invariants, nothing partially applied, adopted plans valid, the
 //! outcome stated and legitimate, the replay identical).
 
-use crate::sim::kinematics::ArmModel;
+use crate::sim::ArmModel;
 use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
 

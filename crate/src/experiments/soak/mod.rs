@@ -47,7 +47,7 @@ mod reasons;
 mod report;
 
 use crate::lfd::mix_seed;
-use crate::sim::kinematics::ArmModel;
+use crate::sim::ArmModel;
 use crate::sim::{BenchmarkSources, TaskFolder};
 use std::sync::Arc;
 

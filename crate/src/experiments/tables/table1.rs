@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::lfd::{mix_seed, SessionError, SessionParams};
 use crate::lfd::{Method, Mode};
 use crate::plan::Clock;
-use crate::sim::kinematics::ArmModel;
+use crate::sim::ArmModel;
 use crate::sim::Benchmark;
 use crate::sim::World;
 use std::sync::Arc;
@@ -222,7 +222,28 @@ impl Table1Sweep {
                 scene: Some(scene.clone()),
                 robots: self.robots.clone(),
             };
-            let r = run_episode(&spec, params, clock)?;
+            let r = match run_episode(&spec, params, clock) {
+                Ok(r) => r,
+                // The robots cannot reach a block of this task: a failure of theirs, not the
+                // table's.
+                Err(SessionError::Reach(why)) => {
+                    progress(&format!(
+                        "table1 {} task {i} ({}) {}: refused: {why}",
+                        b.as_str(),
+                        level.as_str(),
+                        method_label(method, mode)
+                    ));
+                    runs.push(Table1Run {
+                        plan_ms: None,
+                        bind_ms: None,
+                        fallbacks: 0,
+                        success_actions: None,
+                        failure: Some("out-of-reach".into()),
+                    });
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
             let first = r.log.replans.first();
             let failure = match (&r.reason, r.success) {
                 (Some(reason), false) => {

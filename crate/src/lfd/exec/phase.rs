@@ -14,7 +14,7 @@ use crate::lfd::{skill_key, SegmentKind, SkillLibrary};
 /// Below this [`ArmModel::limit_margin`] (of a joint's range) an action starts by unwinding the
 /// arm ([`Via::Unwind`]).
 ///
-/// [`ArmModel::limit_margin`]: crate::sim::kinematics::ArmModel::limit_margin
+/// [`ArmModel::limit_margin`]: crate::sim::ArmModel::limit_margin
 const UNWIND_MARGIN: f64 = 0.01;
 
 impl ActionExec {

@@ -91,7 +91,7 @@ const LOAD_OVERLAP_OF_TOLERANCE: f64 = 0.5;
 /// How much more room to its joint limits ([`ArmModel::limit_margin`]) an unwound posture must
 /// leave than the arm's posture now.
 ///
-/// [`ArmModel::limit_margin`]: crate::sim::kinematics::ArmModel::limit_margin
+/// [`ArmModel::limit_margin`]: crate::sim::ArmModel::limit_margin
 const UNWIND_GAIN: f64 = 1e-3;
 
 /// The joints that reach arm `arm`'s TCP pose `tcp` with the most room to their limits, if they
@@ -102,7 +102,7 @@ pub(super) fn unwound(
     arm: usize,
     tcp: &Isometry3<f64>,
     touches: &str,
-) -> Option<[f64; crate::sim::kinematics::DOF]> {
+) -> Option<[f64; crate::sim::panda::DOF]> {
     let model = world.arm_model(arm)?;
     let now = world.joints(arm)?;
     let sol = world.reachable_with_room(arm, tcp).ok()?.joints;
@@ -121,7 +121,7 @@ pub(super) fn rise_by_ready(
     arm: usize,
     goal: &Isometry3<f64>,
     touches: &str,
-) -> Option<[f64; crate::sim::kinematics::DOF]> {
+) -> Option<[f64; crate::sim::panda::DOF]> {
     let model = world.arm_model(arm)?;
     let ready = model.ready();
     let now = world.joints(arm)?;

@@ -59,7 +59,7 @@ pub(super) struct Running {
     /// Joint-space recovery: the joint goals still to reach, the first followed instead of the
     /// Cartesian command while there is one (the planning IK's joints for `goal`, perhaps by
     /// way of the ready posture first); `recovered` once tried for this segment.
-    pub(super) joint_goals: Vec<[f64; crate::sim::kinematics::DOF]>,
+    pub(super) joint_goals: Vec<[f64; crate::sim::panda::DOF]>,
     pub(super) recovered: bool,
     /// Ticks spent in joint-space recovery.
     pub(super) joint_ticks: usize,

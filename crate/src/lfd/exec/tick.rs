@@ -341,7 +341,7 @@ impl ActionExec {
     fn continue_joint_recovery(
         &mut self,
         world: &World,
-        q: [f64; crate::sim::kinematics::DOF],
+        q: [f64; crate::sim::panda::DOF],
         dt: f64,
         p: &ExecParams,
     ) -> Option<ExecStatus> {

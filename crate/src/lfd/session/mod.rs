@@ -51,9 +51,9 @@ use nalgebra::Vector3;
 use std::sync::Arc;
 
 use crate::pddl::ObjectDecl;
-use crate::sim::kinematics::ArmModel;
+use crate::sim::ArmModel;
 use crate::sim::WorldSnapshot;
-use crate::sim::{Refused, SceneGraph, World};
+use crate::sim::{BodyKind, Refused, SceneGraph, World};
 
 use super::catalogue::Level;
 use super::control::{Controller, FailReason, TaskBuilder};
@@ -346,9 +346,40 @@ impl Session {
                 robots.len()
             )));
         }
+        let before = self.world.clone();
         for arm in 0..arms {
             let robot = &robots[arm.min(robots.len() - 1)];
-            self.world.set_robot(arm, Arc::clone(robot))?;
+            if let Err(e) = self.world.set_robot(arm, Arc::clone(robot)) {
+                self.world = before;
+                return Err(e.into());
+            }
+        }
+        // Truth on reach: a block the scene's arms could work that the robots cannot is named.
+        let snap = self.world.snapshot();
+        for b in snap
+            .bodies
+            .iter()
+            .filter(|b| b.kind == BodyKind::Block && !b.lost)
+        {
+            if crate::sim::handleable(&before, &b.name).is_err() {
+                continue;
+            }
+            if let Err(why) = crate::sim::handleable(&self.world, &b.name) {
+                let p = b.pose.position;
+                let near = snap
+                    .arms
+                    .iter()
+                    .map(|a| {
+                        let q = a.base.position;
+                        (libm::hypot(p[0] - q[0], p[1] - q[1]), a.name.as_str())
+                    })
+                    .fold((f64::INFINITY, ""), |m, d| if d.0 < m.0 { d } else { m });
+                self.world = before;
+                return Err(SessionError::Reach(format!(
+                    "block {} lies {:.3} m from the base of arm {}, out of the robots' reach: {why}",
+                    b.name, near.0, near.1
+                )));
+            }
         }
         self.initial = self.world.snapshot();
         Ok(())

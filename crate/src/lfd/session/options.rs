@@ -83,6 +83,10 @@ pub enum SessionError {
     /// A JSON document (demo, episode) is malformed.
     #[error("{0}")]
     Json(String),
+    /// A robot put in an arm's place cannot reach a body the task needs
+    /// ([`Session::set_robots`](super::Session::set_robots)).
+    #[error("{0}")]
+    Reach(String),
 }
 
 /// Tunables of a session.

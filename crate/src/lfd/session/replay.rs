@@ -4,7 +4,7 @@ use crate::plan::NoClock;
 
 use super::log::{EpisodeEvent, EpisodeLog, EpisodeResult};
 use super::{facts_of, Session, SessionError, SessionParams};
-use crate::sim::kinematics::ArmModel;
+use crate::sim::ArmModel;
 use crate::sim::{BenchmarkSources, TaskFolder};
 use std::sync::Arc;
 

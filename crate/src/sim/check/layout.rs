@@ -159,7 +159,7 @@ fn grasp_hit(world: &World, x: &str) -> Option<Hit> {
 fn links_hit(
     world: &World,
     arm: usize,
-    q: &[f64; crate::sim::kinematics::DOF],
+    q: &[f64; crate::sim::panda::DOF],
     others: &[(String, Isometry3<f64>, Cuboid)],
 ) -> Option<Hit> {
     let (parts, base) = world.arm_parts(arm, q);

@@ -17,9 +17,10 @@ use nalgebra::{Isometry3, Matrix3, Matrix6, Matrix6x1, SMatrix, Vector3, Vector6
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
-use super::{ArmModel, DOF};
+use super::arm::ArmModel;
 use crate::sim::fast_math::{norm3, Cholesky};
 use crate::sim::panda::Frame;
+use crate::sim::panda::DOF;
 
 /// Below this `sin θ` a rotation's axis is numerically undefined: the log map takes θ ≈ 0 or,
 /// when `cos θ` is negative, θ ≈ π.

@@ -2,40 +2,12 @@
 //! built-in Panda's link capsules, or a URDF arm's own collision shapes (mesh hulls, boxes,
 //! cylinders, spheres); the hand's capsule last in both.
 
-use std::sync::Arc;
-
 use nalgebra::{Isometry3, Point3, Vector3};
-use parry3d_f64::shape::{Ball, Capsule, Cuboid, SharedShape, SupportMap};
+#[cfg(not(first_load))]
+use parry3d_f64::shape::{Ball, SharedShape};
+use parry3d_f64::shape::{Capsule, Cuboid, SupportMap};
 
 use crate::sim::collide::Solid;
-
-/// A URDF collision shape that moves with one frame of the chain.
-#[derive(Clone)]
-pub(super) struct ChainShape {
-    /// 0 the base, `i` the frame moved by joint `i`.
-    pub(super) frame: usize,
-    /// The shape's pose in that frame.
-    pub(super) pose: Isometry3<f64>,
-    /// A convex shape (every shape of a robot's collision model is).
-    pub(super) shape: SharedShape,
-}
-
-impl std::fmt::Debug for ChainShape {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("ChainShape")
-            .field("frame", &self.frame)
-            .field("pose", &self.pose)
-            .finish()
-    }
-}
-
-impl PartialEq for ChainShape {
-    fn eq(&self, other: &Self) -> bool {
-        self.frame == other.frame
-            && self.pose == other.pose
-            && Arc::ptr_eq(&self.shape.0, &other.shape.0)
-    }
-}
 
 /// The shape of an [`ArmPart`].
 #[derive(Clone)]
@@ -43,22 +15,26 @@ pub(crate) enum ArmShape {
     /// A capsule in world coordinates (the part's pose is the identity).
     Capsule(Capsule),
     /// A convex collision shape of a URDF link.
+    #[cfg(not(first_load))]
     Convex(SharedShape),
 }
 
 /// What a shape without a support map (none is built) is checked as: nothing.
+#[cfg(not(first_load))]
 static NOTHING: Ball = Ball { radius: 0.0 };
 
 impl Solid for ArmShape {
     fn support_map(&self) -> &dyn SupportMap {
         match self {
             ArmShape::Capsule(c) => c,
+            #[cfg(not(first_load))]
             ArmShape::Convex(s) => s.as_support_map().unwrap_or(&NOTHING),
         }
     }
     fn cuboid(&self) -> Option<&Cuboid> {
         match self {
             ArmShape::Capsule(_) => None,
+            #[cfg(not(first_load))]
             ArmShape::Convex(s) => s.as_cuboid(),
         }
     }
@@ -89,6 +65,7 @@ impl ArmPart {
     }
 
     /// A convex shape at `iso` (world frame).
+    #[cfg(not(first_load))]
     pub(super) fn convex(iso: Isometry3<f64>, shape: &SharedShape) -> ArmPart {
         let bb = shape.compute_aabb(&iso);
         ArmPart {

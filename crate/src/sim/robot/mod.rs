@@ -37,6 +37,7 @@ pub use file::{GripperSpec, Robot, RobotError, TcpSpec};
 pub use hull::{hull_of, read_mesh, LinkShape, ShapeKind};
 pub use ik::{IkFailure, IkOptions, IkResult};
 pub use mesh::{parse_obj, parse_stl, MeshError, TriangleMesh};
+#[cfg(not(first_load))]
 pub(crate) use model::Model;
 pub use urdf::{
     parse_urdf, Collision, Geometry, JointKind, JointLimits, Urdf, UrdfError, UrdfJoint, UrdfLink,

@@ -8,7 +8,7 @@ use super::chain::Chain;
 use super::urdf::JointKind;
 
 /// Most moving joints the solver handles.
-pub(crate) const MAX_DOF: usize = crate::sim::kinematics::DOF;
+pub(crate) const MAX_DOF: usize = crate::sim::panda::DOF;
 
 /// A joint vector padded to [`MAX_DOF`] (unused entries stay 0).
 pub(crate) type Joints = [f64; MAX_DOF];
@@ -41,6 +41,7 @@ pub(crate) struct Frames {
     /// The TCP's pose.
     pub(crate) tcp: Isometry3<f64>,
     /// The frame each moving joint moves (its child link's), after its motion.
+    #[cfg_attr(first_load, allow(dead_code))]
     pub(crate) links: [Isometry3<f64>; MAX_DOF],
     axes: [Vector3<f64>; MAX_DOF],
     origins: [Vector3<f64>; MAX_DOF],

@@ -2,9 +2,10 @@
 //! arms, inverse kinematics from an arm's joints, overlaps and heights for planners.
 
 use super::{World, WorldParams};
-use crate::sim::kinematics::{ArmModel, ArmPart, IkParams, IkSolution, Unreachable, DOF};
+use crate::sim::panda::DOF;
 use crate::sim::BodyKind;
 use crate::sim::Motions;
+use crate::sim::{ArmModel, ArmPart, IkParams, IkSolution, Unreachable};
 use nalgebra::{Isometry3, Point3, Vector3};
 use parry3d_f64::shape::{Capsule, Cuboid};
 use std::sync::Arc;

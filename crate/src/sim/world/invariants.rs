@@ -3,7 +3,7 @@
 
 use super::state::LIMIT_SLACK;
 use super::World;
-use crate::sim::kinematics::DOF;
+use crate::sim::panda::DOF;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 

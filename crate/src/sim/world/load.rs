@@ -3,7 +3,8 @@
 
 use super::state::{scene_err, SceneError, LIMIT_SLACK};
 use super::{Arm, Body, GripperCommand, Region, Violation, World, WorldParams};
-use crate::sim::kinematics::{ArmModel, DOF};
+use crate::sim::panda::DOF;
+use crate::sim::ArmModel;
 use crate::sim::{
     ArmSnapshot, BodyKind, BodySnapshot, CapsuleSnapshot, CuboidSnapshot, PartSnapshot,
     PoseSnapshot, RegionSnapshot, ShapeSnapshot, WorldSnapshot, SNAPSHOT_VERSION,

@@ -4,7 +4,8 @@
 use super::state::DEPTH_EPSILON;
 use super::{Body, World, LINK_TOLERANCE};
 use crate::sim::collide;
-use crate::sim::kinematics::{joint_line, DOF};
+use crate::sim::joint_line;
+use crate::sim::panda::DOF;
 use crate::sim::BodyKind;
 use nalgebra::Isometry3;
 use parry3d_f64::shape::Cuboid;
@@ -32,7 +33,7 @@ impl World {
     }
 
     /// The first block or hook (`except` and held bodies excepted) that the hand's capsule
-    /// ([`crate::sim::geometry::hand_capsule`]) overlaps, by more than 2 mm, at one of the TCP poses
+    /// ([`crate::sim::panda::hand_capsule`]) overlaps, by more than 2 mm, at one of the TCP poses
     /// `path` and did not already overlap at the first; `None` if none. The simulator stops the
     /// links only at tables and shelves, so the executor asks this of a learned approach's
     /// planned path before it follows it (a hand swept through a block would knock it over).

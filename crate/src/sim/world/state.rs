@@ -1,9 +1,10 @@
 //! The world's state: the [`World`] itself, its tunables and the small types its stages share.
 
 use super::body::Body;
-use crate::sim::kinematics::{ArmModel, IkParams, DOF};
+use crate::sim::panda::DOF;
 use crate::sim::Motions;
 use crate::sim::ReachSnapshot;
+use crate::sim::{ArmModel, IkParams};
 use nalgebra::Isometry3;
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;

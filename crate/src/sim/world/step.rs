@@ -6,7 +6,7 @@ use super::state::DEPTH_EPSILON;
 use super::{Body, GripperCommand, SimError, World, LINK_TOLERANCE};
 use crate::sim::collide;
 use crate::sim::fast_math::norm3;
-use crate::sim::kinematics::DOF;
+use crate::sim::panda::DOF;
 use crate::sim::BodyKind;
 use nalgebra::{Isometry3, Point3};
 use serde::{Deserialize, Serialize};

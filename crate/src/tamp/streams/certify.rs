@@ -10,8 +10,9 @@ use parry3d_f64::shape::Cuboid;
 
 use super::boxes::{box_aabb, overlaps, Obstacle};
 use super::{fmt_point, Geo, Predicted, StreamBinder};
-use crate::sim::kinematics::{joint_line, ArmModel, ArmShape, DOF};
+use crate::sim::panda::DOF;
 use crate::sim::LINK_TOLERANCE;
+use crate::sim::{joint_line, ArmModel, ArmShape};
 use crate::tamp::{joint_recovery, transit_height, JointMoves, RecoveryRoute};
 use std::sync::Arc;
 

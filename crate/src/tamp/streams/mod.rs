@@ -57,9 +57,10 @@ use super::motion::{rise_before_action, MotionParams, Scene};
 use super::{BindFailure, Binder};
 use crate::plan::{Operator, Task};
 use crate::sim::demo::PULL_LIFT;
-use crate::sim::kinematics::{ArmModel, IkParams, DOF};
+use crate::sim::panda::DOF;
 use crate::sim::BodyKind;
 use crate::sim::World;
+use crate::sim::{ArmModel, IkParams};
 
 mod boxes;
 mod certify;
