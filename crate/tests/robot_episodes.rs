@@ -18,6 +18,18 @@ use nalgebra::Isometry3;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
+/// Logic-LfD in paper mode with LQT skills on benchmark `b`'s template task.
+fn options(b: Benchmark, seed: u64) -> SessionOptions {
+    SessionOptions {
+        benchmark: b,
+        method: Method::LogicLfd,
+        mode: Mode::Paper,
+        seed,
+        skill: SkillKind::Lqt,
+        blocks: None,
+    }
+}
+
 fn robot_file(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../robots")
@@ -115,15 +127,7 @@ fn the_ur5_and_the_urdf_panda_finish_b1_and_b2_with_a_disturbance_and_replay_exa
             (Benchmark::B2, "l2"),
             (Benchmark::B1, "l1"),
         ] {
-            let options = SessionOptions {
-                benchmark: b,
-                method: Method::LogicLfd,
-                mode: Mode::Paper,
-                seed: 5,
-                skill: SkillKind::Lqt,
-                blocks: None,
-            };
-            let mut s = Session::new(options).unwrap();
+            let mut s = Session::new(options(b, 5)).unwrap();
             s.set_robots(std::slice::from_ref(&m)).unwrap();
             assert_eq!(s.world().snapshot().arms[0].robot.as_deref(), Some(robot));
             assert_eq!(s.world().joints(0).unwrap(), m.ready());
@@ -177,15 +181,7 @@ fn the_ur5_runs_table_one_episodes_of_b1_and_b2() {
 #[test]
 fn robots_are_refused_where_they_cannot_take_an_arms_place() {
     let m = model("ur5");
-    let options = SessionOptions {
-        benchmark: Benchmark::B3,
-        method: Method::LogicLfd,
-        mode: Mode::Paper,
-        seed: 1,
-        skill: SkillKind::Lqt,
-        blocks: None,
-    };
-    let mut s = Session::new(options.clone()).unwrap();
+    let mut s = Session::new(options(Benchmark::B3, 1)).unwrap();
     let three = vec![Arc::clone(&m); 3];
     let e = s.set_robots(&three).unwrap_err().to_string();
     assert!(e.contains("3 robots for 2 arms"), "{e}");
@@ -193,7 +189,7 @@ fn robots_are_refused_where_they_cannot_take_an_arms_place() {
     let e = s.set_robots(&three[..1]).unwrap_err().to_string();
     assert!(e.contains("before the episode's first step"), "{e}");
     // B3 on one robot per arm: the left the UR5, the right the built-in Panda.
-    let mut s = Session::new(options).unwrap();
+    let mut s = Session::new(options(Benchmark::B3, 1)).unwrap();
     s.set_robots(&[Arc::clone(&m), ArmModel::panda()]).unwrap();
     let arms = s.world().snapshot().arms;
     assert_eq!(arms[0].robot.as_deref(), Some("ur5"));
@@ -262,15 +258,7 @@ fn short_arm() -> PathBuf {
 fn a_block_the_robot_cannot_reach_is_named_before_the_episode() {
     let robot = Robot::load(&short_arm()).unwrap();
     let short = Arc::new(ArmModel::from_robot(&robot).unwrap());
-    let options = SessionOptions {
-        benchmark: Benchmark::B1,
-        method: Method::LogicLfd,
-        mode: Mode::Paper,
-        seed: 1,
-        skill: SkillKind::Lqt,
-        blocks: None,
-    };
-    let mut s = Session::new(options).unwrap();
+    let mut s = Session::new(options(Benchmark::B1, 1)).unwrap();
     let before = s.world().to_json();
     let e = s.set_robots(&[short]).unwrap_err().to_string();
     assert!(

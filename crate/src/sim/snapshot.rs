@@ -140,7 +140,10 @@ pub struct ArmSnapshot {
     pub name: String,
     /// Pose of the arm's base (link 0) in the world.
     pub base: PoseSnapshot,
-    /// The robot's name when it is not the built-in Panda (a robot file's `name`).
+    /// The robot's name when it is not the built-in Panda (a robot file's `name`); absent for
+    /// the built-in Panda.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[cfg_attr(feature = "wasm-core", tsify(optional))]
     pub robot: Option<String>,
     /// The joint angles, one per moving joint (rad, or m for a prismatic joint), within the
     /// limits.

@@ -152,6 +152,14 @@ pub fn print_report(report: &SoakReport, json: bool) -> ExitCode {
 }
 
 fn print_summary(r: &SoakReport) {
+    if let Some(robots) = r
+        .params
+        .as_ref()
+        .map(|p| &p.robots)
+        .filter(|r| !r.is_empty())
+    {
+        println!("robots: {}", robots.join(", "));
+    }
     println!(
         "episodes {} ({:?}), {} ticks ({:.0} simulated s)",
         r.episodes,

@@ -78,6 +78,8 @@ pub struct Table2Args {
     /// fallback; off by default, so the table counts Logic-LfD's own success).
     #[arg(long)]
     tamp_fallback: bool,
+    #[arg(long, value_name = "ROBOT.json", conflicts_with = "shard", help = crate::robot_arg::HELP)]
+    robot: Vec<PathBuf>,
     #[command(flatten)]
     sweep: SweepArgs,
 }
@@ -104,12 +106,9 @@ pub fn run_table1(a: Table1Args) -> ExitCode {
             return ExitCode::from(exit::BAD_INPUT);
         }
     };
-    let robots = match crate::robot_arg::load(&a.robot) {
+    let robots = match crate::robot_arg::load_or_exit(&a.robot) {
         Ok(r) => r,
-        Err(e) => {
-            eprintln!("{e}");
-            return ExitCode::from(exit::BAD_INPUT);
-        }
+        Err(code) => return code,
     };
     if let Some(i) = a.task_scene {
         let Some(&b) = bs.first() else {
@@ -164,11 +163,16 @@ pub fn run_table2(a: Table2Args) -> ExitCode {
             return ExitCode::from(exit::BAD_INPUT);
         }
     };
+    let robots = match crate::robot_arg::load_or_exit(&a.robot) {
+        Ok(r) => r,
+        Err(code) => return code,
+    };
     let sweep = Table2Sweep {
         benchmarks: bs,
         trials: a.trials,
         seed: a.seed,
         tamp_fallback: a.tamp_fallback,
+        robots,
     };
     let clock = WallClock::start();
     let indices = a.sweep.indices(sweep.items());

@@ -2,6 +2,7 @@
 //! models that take the place of the built-in Panda.
 
 use std::path::PathBuf;
+use std::process::ExitCode;
 use std::sync::Arc;
 
 use logic_lfd::sim::ArmModel;
@@ -23,4 +24,12 @@ pub fn load(paths: &[PathBuf]) -> Result<Vec<Arc<ArmModel>>, String> {
                 .map_err(|e| e.to_string())
         })
         .collect()
+}
+
+/// [`load`], its error printed on stderr and turned into the bad-input exit code.
+pub fn load_or_exit(paths: &[PathBuf]) -> Result<Vec<Arc<ArmModel>>, ExitCode> {
+    load(paths).map_err(|e| {
+        eprintln!("{e}");
+        ExitCode::from(crate::exit::BAD_INPUT)
+    })
 }

@@ -1,7 +1,9 @@
 //! Table II: `trials` disturbed episodes per level, method and benchmark; simulated execution
 //! time of the successful ones, beside the paper's.
 
+use crate::sim::ArmModel;
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
 use crate::lfd::{Method, Mode};
 use crate::lfd::{SessionError, SessionParams};
@@ -56,6 +58,9 @@ pub struct Table2 {
     pub seed: u64,
     /// Cells.
     pub cells: Vec<Table2Cell>,
+    /// The robots the episodes ran on (empty: the scenes' own, the built-in Panda).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub robots: Vec<String>,
 }
 
 /// The methods of Table II.
@@ -94,6 +99,9 @@ pub struct Table2Sweep {
     pub seed: u64,
     /// Whether Logic-LfD may fall back to TAMP from scratch.
     pub tamp_fallback: bool,
+    /// Robots in place of the scenes' arms ([`EpisodeSpec::robots`]).
+    #[serde(skip)]
+    pub robots: Vec<Arc<ArmModel>>,
 }
 
 impl Table2Sweep {
@@ -134,7 +142,7 @@ impl Table2Sweep {
             mode: Mode::Paper,
             seed: s,
             scene: None,
-            robots: vec![],
+            robots: self.robots.clone(),
         };
         let r = run_episode(&spec, params, clock)?;
         let trial = Table2Trial {
@@ -198,6 +206,7 @@ impl Table2Sweep {
             trials: self.trials,
             seed: self.seed,
             cells,
+            robots: self.robots.iter().map(|r| r.name().to_string()).collect(),
         }
     }
 }
@@ -217,6 +226,7 @@ pub fn table2(
         trials,
         seed,
         tamp_fallback: params.control.tamp_fallback,
+        robots: vec![],
     };
     let items = (0..sweep.items())
         .map(|i| sweep.run(i, params, clock, progress))
@@ -257,6 +267,9 @@ impl Table2 {
             self.seed,
             self.seed + self.trials as u64 - 1
         ));
+        if !self.robots.is_empty() {
+            out.push_str(&format!("Robot: {}.\n\n", self.robots.join(", ")));
+        }
         let mut benches: Vec<Benchmark> = self.cells.iter().map(|c| c.benchmark).collect();
         benches.dedup();
         benches.sort_by_key(|b| *b as usize);

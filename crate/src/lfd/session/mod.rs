@@ -342,8 +342,9 @@ impl Session {
         let arms = self.world.arm_names().len();
         if robots.len() != 1 && robots.len() != arms {
             return Err(SessionError::Json(format!(
-                "{} robots for {arms} arms: give one robot, or one per arm",
-                robots.len()
+                "{} robots for {arms} arm{}: give one robot, or one per arm",
+                robots.len(),
+                if arms == 1 { "" } else { "s" }
             )));
         }
         let before = self.world.clone();

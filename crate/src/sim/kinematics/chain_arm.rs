@@ -2,6 +2,7 @@
 //! it (the page's first-load module, which runs the built-in Panda alone, leaves this out).
 
 use nalgebra::{Isometry3, Point3, SMatrix, Vector3};
+use parry3d_f64::bounding_volume::Aabb;
 use parry3d_f64::shape::SharedShape;
 
 use super::parts::ArmPart;
@@ -27,6 +28,8 @@ struct ChainShape {
     pose: Isometry3<f64>,
     /// A convex shape (every shape of a robot's collision model is).
     shape: SharedShape,
+    /// Its bounding box in its own frame.
+    aabb: Aabb,
 }
 
 impl std::fmt::Debug for ChainShape {
@@ -142,7 +145,7 @@ impl ChainArm {
                 } else {
                     base * f.links[s.frame - 1]
                 };
-                ArmPart::convex(frame * s.pose, &s.shape)
+                ArmPart::convex(frame * s.pose, &s.shape, &s.aabb)
             })
             .collect();
         let (a, b, r) = hand_capsule(&(base * f.tcp));
@@ -170,6 +173,7 @@ fn chain_shapes(robot: &Robot) -> Result<Vec<ChainShape>, RobotError> {
             out.push(ChainShape {
                 frame,
                 pose: rel * s.pose,
+                aabb: s.shape.compute_local_aabb(),
                 shape: s.shape.clone(),
             });
         }

@@ -96,6 +96,22 @@ pub struct IkSolution {
     pub iterations: usize,
 }
 
+impl IkSolution {
+    fn of(
+        joints: [f64; DOF],
+        position_error: f64,
+        orientation_error: f64,
+        iterations: usize,
+    ) -> Self {
+        IkSolution {
+            joints,
+            position_error,
+            orientation_error,
+            iterations,
+        }
+    }
+}
+
 /// IK did not reach the pose: the best configuration found and its residual.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("unreachable pose: best residual {position_error:.4} m, {orientation_error:.4} rad")]
@@ -223,12 +239,7 @@ impl ArmModel {
         let ok =
             |np: f64, nr: f64| np < params.position_tolerance && nr < params.orientation_tolerance;
         if ok(np, nr) {
-            return Ok(IkSolution {
-                joints: q,
-                position_error: np,
-                orientation_error: nr,
-                iterations: total,
-            });
+            return Ok(IkSolution::of(q, np, nr, total));
         }
         let mut rng = Pcg64Mcg::seed_from_u64(params.seed);
         for _ in 0..params.restarts {
@@ -250,12 +261,7 @@ impl ArmModel {
             );
             total += it;
             if ok(np, nr) {
-                return Ok(IkSolution {
-                    joints: q,
-                    position_error: np,
-                    orientation_error: nr,
-                    iterations: total,
-                });
+                return Ok(IkSolution::of(q, np, nr, total));
             }
             if np + ORIENTATION_WEIGHT * nr < best.1 + ORIENTATION_WEIGHT * best.2 {
                 best = (q, np, nr);
@@ -284,12 +290,7 @@ impl ArmModel {
         let (q, np, nr, it) =
             dls_attempt(self, base, &target, q0, params, params.max_iterations, true);
         if np < params.position_tolerance && nr < params.orientation_tolerance {
-            Ok(IkSolution {
-                joints: q,
-                position_error: np,
-                orientation_error: nr,
-                iterations: it,
-            })
+            Ok(IkSolution::of(q, np, nr, it))
         } else {
             Err(Unreachable {
                 best_joints: q,

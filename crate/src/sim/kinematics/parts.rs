@@ -4,6 +4,8 @@
 
 use nalgebra::{Isometry3, Point3, Vector3};
 #[cfg(not(first_load))]
+use parry3d_f64::bounding_volume::Aabb;
+#[cfg(not(first_load))]
 use parry3d_f64::shape::{Ball, SharedShape};
 use parry3d_f64::shape::{Capsule, Cuboid, SupportMap};
 
@@ -66,8 +68,10 @@ impl ArmPart {
 
     /// A convex shape at `iso` (world frame).
     #[cfg(not(first_load))]
-    pub(super) fn convex(iso: Isometry3<f64>, shape: &SharedShape) -> ArmPart {
-        let bb = shape.compute_aabb(&iso);
+    /// `local` is the shape's own bounding box, moved with it (not recomputed from its
+    /// vertices: a hull has a hundred of them).
+    pub(super) fn convex(iso: Isometry3<f64>, shape: &SharedShape, local: &Aabb) -> ArmPart {
+        let bb = local.transform_by(&iso);
         ArmPart {
             iso,
             shape: ArmShape::Convex(shape.clone()),
