@@ -7,7 +7,7 @@
 # module (feature `wasm-core` alone: the Session on B1's template task, `benchmark` and `blockRange`, without
 # Teach mode, Session.replay, Session.fromScene, B2, B3, N-block tasks, JSON paths in load errors,
 # the PDDL tab's plan, check, logicLfd and logicLfdPerturb, and the npm-only lqt, validate and
-# runEpisode; size-optimised profile wasm-release, then wasm-opt -O3, for the first-load target),
+# runEpisode; size-optimised profile wasm-release, then wasm-opt -Os, for the first-load target),
 # and logic_lfd_teach.js, the full module under its own name (the npm package's build), which the
 # page's worker fetches after the first frame and moves its session onto (web/src/speed-up.ts).
 #
@@ -86,9 +86,9 @@ rm -rf "$OUT"
 mkdir -p "$OUT/web" "$OUT/node" "$OUT/page"
 
 bind wasm-release wasm-core web "$OUT/page" logic_lfd
-# -O3 on the size-built module: 1.3–1.5× faster than -Oz on the hot paths for ~3 KB gzipped more
-# (docs/performance.md).
-wasm_opt "$OUT/page/logic_lfd_bg.wasm" -O3
+# -Os on the size-built module: as fast as -O3 on the page's replans and episodes, 2.2 KB gzipped
+# smaller (docs/performance.md).
+wasm_opt "$OUT/page/logic_lfd_bg.wasm" -Os
 
 bind wasm-speed wasm web "$OUT/web" logic_lfd
 bind wasm-speed wasm nodejs "$OUT/node" logic_lfd
