@@ -92,13 +92,7 @@ fn draw_drag(world: &World, kind: DragKind, rng: &mut Pcg64Mcg) -> (String, [f64
             }
         }
         DragKind::TableSpot => {
-            let snap = world.snapshot();
-            let tables: Vec<_> = snap
-                .bodies
-                .iter()
-                .filter(|b| b.kind == BodyKind::Table)
-                .filter_map(|b| world.body_aabb(&b.name))
-                .collect();
+            let tables = world.aabbs_of(BodyKind::Table);
             match tables.get(rng.random_range(0..tables.len().max(1))) {
                 Some((lo, hi)) => Vector3::new(
                     rng.random_range(lo.x..=hi.x),

@@ -143,18 +143,8 @@ pub(super) fn table_spot(world: &World, rng: &mut Pcg64Mcg, anywhere: bool) -> O
             ]);
         }
     }
-    let tables: Vec<_> = snap
-        .bodies
-        .iter()
-        .filter(|b| b.kind == BodyKind::Table)
-        .filter_map(|b| world.body_aabb(&b.name))
-        .collect();
-    let shelves: Vec<_> = snap
-        .bodies
-        .iter()
-        .filter(|b| b.kind == BodyKind::Shelf)
-        .filter_map(|b| world.body_aabb(&b.name))
-        .collect();
+    let tables = world.aabbs_of(BodyKind::Table);
+    let shelves = world.aabbs_of(BodyKind::Shelf);
     let clear_of_shelves = |x: f64, y: f64| {
         shelves.iter().all(|(lo, hi)| {
             x < lo.x - SHELF_KEEPOUT

@@ -148,15 +148,6 @@ impl ArmModel {
         matches!(self.kinematics, Kinematics::Panda)
     }
 
-    /// The joint vector of `values` (one per moving joint), padded; `None` for the wrong length.
-    pub fn joints_of(&self, values: &[f64]) -> Option<Joints> {
-        (values.len() == self.dof).then(|| {
-            let mut q = [0.0; DOF];
-            q[..self.dof].copy_from_slice(values);
-            q
-        })
-    }
-
     /// Forward kinematics: the TCP pose in the world for joints `q` of an arm based at `base`.
     pub fn forward_kinematics(&self, base: &Isometry3<f64>, q: &Joints) -> Isometry3<f64> {
         match &self.kinematics {

@@ -115,6 +115,15 @@ impl World {
         self.body_index(name).map(|i| self.bodies[i].aabb())
     }
 
+    /// World-frame bounding boxes `(min, max)` of every body of `kind`, in the world's order.
+    pub fn aabbs_of(&self, kind: BodyKind) -> Vec<(Vector3<f64>, Vector3<f64>)> {
+        self.bodies
+            .iter()
+            .filter(|b| b.kind == kind)
+            .map(|b| b.aabb())
+            .collect()
+    }
+
     /// Whether the body fell off (lost).
     pub fn is_lost(&self, name: &str) -> bool {
         self.body_index(name).is_some_and(|i| self.bodies[i].lost)
