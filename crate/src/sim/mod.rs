@@ -105,9 +105,11 @@ pub use reach::{handleable, hook_can_pull};
 pub use robot::{
     hull_of, parse_dae, parse_obj, parse_stl, parse_urdf, read_mesh, Chain, ChainJoint, Collision,
     CollisionLink, Geometry, GripperSpec, IkFailure, IkOptions, IkResult, JointKind, JointLimits,
-    LinkShape, MeshError, PairExclusion, Robot, RobotCollision, RobotError, ShapeKind, TcpSpec,
-    TriangleMesh, Urdf, UrdfError, UrdfJoint, UrdfLink,
+    LinkShape, MeshError, PairExclusion, Robot, RobotCollision, RobotError, RobotFiles, ShapeKind,
+    TcpSpec, TriangleMesh, Urdf, UrdfError, UrdfJoint, UrdfLink,
 };
+#[cfg(not(first_load))]
+pub use robot::{shipped_robot, SHIPPED_ROBOTS};
 pub use scene_graph::{Fact, SceneGraph};
 pub use snapshot::{
     ArmSnapshot, BodyKind, BodySnapshot, CapsuleSnapshot, CuboidSnapshot, PartSnapshot,

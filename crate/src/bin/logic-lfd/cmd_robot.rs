@@ -1,4 +1,5 @@
-//! `logic-lfd robot …`: a robot from its URDF (the robot file `robot.json` beside it).
+//! `logic-lfd robot …`: a robot from its URDF (the robot file `robot.json` beside it, or a
+//! shipped robot by name: `panda`, `ur5`).
 //!
 //! * `robot check ROBOT.json [--json]` — load and check the robot file and its URDF; print the
 //!   chain's joints and limits, the links with their collision shapes (a mesh as its convex hull),
@@ -37,7 +38,7 @@ pub struct Args {
 enum Action {
     /// Load and check a robot file and its URDF; print its joints, links, TCP and reach.
     Check {
-        /// The robot file (robot.json).
+        /// The robot file (robot.json), or a shipped robot: `panda`, `ur5`.
         robot: PathBuf,
         /// Print the summary as JSON.
         #[arg(long)]
@@ -45,7 +46,7 @@ enum Action {
     },
     /// The TCP's pose in the base link's frame for a joint vector.
     Fk {
-        /// The robot file (robot.json).
+        /// The robot file (robot.json), or a shipped robot: `panda`, `ur5`.
         robot: PathBuf,
         /// Joint values (rad or m), comma-separated, one per moving joint of the chain.
         #[arg(long, allow_hyphen_values = true)]
@@ -56,7 +57,7 @@ enum Action {
     },
     /// Joints within the limits that put the TCP at a pose (inverse kinematics).
     Ik {
-        /// The robot file (robot.json).
+        /// The robot file (robot.json), or a shipped robot: `panda`, `ur5`.
         robot: PathBuf,
         /// Target TCP position in the base link's frame (m): x,y,z.
         #[arg(long, allow_hyphen_values = true)]
@@ -207,7 +208,7 @@ fn reach(r: &Robot) -> Reach {
 }
 
 fn check(path: &std::path::Path, json: bool) -> ExitCode {
-    let r = match Robot::load(path) {
+    let r = match crate::robot_arg::robot(path) {
         Ok(r) => r,
         Err(e) => return bad(e.to_string()),
     };
@@ -304,7 +305,7 @@ fn check(path: &std::path::Path, json: bool) -> ExitCode {
 }
 
 fn fk(path: &std::path::Path, q: &str, json: bool) -> ExitCode {
-    let r = match Robot::load(path) {
+    let r = match crate::robot_arg::robot(path) {
         Ok(r) => r,
         Err(e) => return bad(e.to_string()),
     };
@@ -370,7 +371,7 @@ fn ik(
     seed_q: Option<&str>,
     json: bool,
 ) -> ExitCode {
-    let r = match Robot::load(path) {
+    let r = match crate::robot_arg::robot(path) {
         Ok(r) => r,
         Err(e) => return bad(e.to_string()),
     };

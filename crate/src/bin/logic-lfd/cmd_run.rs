@@ -65,7 +65,7 @@ pub struct Args {
     /// Print the report and the full episode log as JSON.
     #[arg(long)]
     json: bool,
-    #[arg(long, value_name = "ROBOT.json", help = crate::robot_arg::HELP)]
+    #[arg(long, value_name = "ROBOT", help = crate::robot_arg::HELP)]
     robot: Vec<PathBuf>,
     /// Replay an episode JSON (the `log` of `--json`, or the whole report) and check it. A task
     /// folder's episode replays on the files its log carries, else on --domain DIR, else on the

@@ -57,7 +57,7 @@ pub struct Args {
     /// Print the report as JSON.
     #[arg(long, conflicts_with = "shard")]
     json: bool,
-    #[arg(long, value_name = "ROBOT.json", help = crate::robot_arg::HELP)]
+    #[arg(long, value_name = "ROBOT", help = crate::robot_arg::HELP)]
     robot: Vec<std::path::PathBuf>,
     #[command(flatten)]
     sweep: SweepArgs,

@@ -50,7 +50,7 @@ pub struct Table1Args {
     /// fallback; off by default, so the table counts Logic-LfD's own success).
     #[arg(long)]
     tamp_fallback: bool,
-    #[arg(long, value_name = "ROBOT.json", conflicts_with = "shard", help = crate::robot_arg::HELP)]
+    #[arg(long, value_name = "ROBOT", conflicts_with = "shard", help = crate::robot_arg::HELP)]
     robot: Vec<PathBuf>,
     #[command(flatten)]
     sweep: SweepArgs,
@@ -78,7 +78,7 @@ pub struct Table2Args {
     /// fallback; off by default, so the table counts Logic-LfD's own success).
     #[arg(long)]
     tamp_fallback: bool,
-    #[arg(long, value_name = "ROBOT.json", conflicts_with = "shard", help = crate::robot_arg::HELP)]
+    #[arg(long, value_name = "ROBOT", conflicts_with = "shard", help = crate::robot_arg::HELP)]
     robot: Vec<PathBuf>,
     #[command(flatten)]
     sweep: SweepArgs,

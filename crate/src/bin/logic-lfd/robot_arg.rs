@@ -1,29 +1,50 @@
-//! `--robot ROBOT.json` of `run`, `soak` and `bench table1`: robot files read into the arm
-//! models that take the place of the built-in Panda.
+//! `--robot ROBOT` of `run`, `soak` and `bench table*`: a shipped robot's name or a robot file,
+//! read into the arm models that take the place of the built-in Panda.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
 
 use logic_lfd::sim::ArmModel;
-use logic_lfd::sim::Robot;
+use logic_lfd::sim::{shipped_robot, Robot, RobotError, SHIPPED_ROBOTS};
 
 /// Help of `--robot`.
-pub const HELP: &str = "A robot file (robot.json beside its URDF) whose arm takes the place of \
-                        the built-in Panda; given twice, one per arm (B3)";
+pub const HELP: &str = "A shipped robot (panda: the Franka Emika Panda from its URDF, ur5) or a \
+                        robot file (robot.json beside its URDF) whose arm takes the place of the \
+                        built-in Panda; given twice, one per arm (B3)";
 
-/// The arm models of the robot files `paths` (none: the scene's own arms); the error names the
-/// file and the JSON path, URDF line or mesh that cannot be used.
+/// The arm models of the robots `paths` (none: the scene's own arms): a shipped robot's name
+/// (unless a file of that name exists) or a robot file; the error names the file and the JSON
+/// path, URDF line or mesh that cannot be used.
 pub fn load(paths: &[PathBuf]) -> Result<Vec<Arc<ArmModel>>, String> {
     paths
         .iter()
         .map(|p| {
+            if let Some(name) = shipped_name(p) {
+                return ArmModel::shipped(name)
+                    .ok_or_else(|| format!("robot `{name}`: the shipped files do not load"));
+            }
             Robot::load(p)
                 .and_then(|r| ArmModel::from_robot(&r))
                 .map(Arc::new)
                 .map_err(|e| e.to_string())
         })
         .collect()
+}
+
+/// `p` as a shipped robot's name: one of [`SHIPPED_ROBOTS`], and no file of that name here.
+fn shipped_name(p: &Path) -> Option<&'static str> {
+    let name = p.to_str()?;
+    let shipped = SHIPPED_ROBOTS.into_iter().find(|s| *s == name)?;
+    (!p.exists()).then_some(shipped)
+}
+
+/// The robot `p`: a shipped robot's name (its compiled-in files) or a robot file.
+pub fn robot(p: &Path) -> Result<Robot, RobotError> {
+    match shipped_name(p).and_then(shipped_robot) {
+        Some(r) => r,
+        None => Robot::load(p),
+    }
 }
 
 /// [`load`], its error printed on stderr and turned into the bad-input exit code.

@@ -113,6 +113,25 @@ impl ArmModel {
         })
     }
 
+    /// A robot shipped with the library ([`crate::sim::SHIPPED_ROBOTS`]: `panda`, the Franka
+    /// Emika Panda from its own URDF, and `ur5`), built once and shared; `None` for another name.
+    #[cfg(not(first_load))]
+    pub fn shipped(name: &str) -> Option<Arc<ArmModel>> {
+        static PANDA: OnceLock<Option<Arc<ArmModel>>> = OnceLock::new();
+        static UR5: OnceLock<Option<Arc<ArmModel>>> = OnceLock::new();
+        let cell = match name {
+            "panda" => &PANDA,
+            "ur5" => &UR5,
+            _ => return None,
+        };
+        // The compiled-in files load (a test proves it); a failure would leave the name unknown.
+        cell.get_or_init(|| {
+            let robot = crate::sim::robot::shipped_robot(name)?.ok()?;
+            ArmModel::from_robot(&robot).ok().map(Arc::new)
+        })
+        .clone()
+    }
+
     /// The arm's name (`panda`, or the robot file's `name`).
     pub fn name(&self) -> &str {
         &self.name

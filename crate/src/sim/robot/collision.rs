@@ -151,12 +151,11 @@ impl RobotCollision {
                         _ => None,
                     };
                     let shape =
-                        LinkShape::new(&c.origin, &c.geometry, file.as_deref()).map_err(|e| {
-                            RobotError {
+                        LinkShape::new(&c.origin, &c.geometry, file.as_deref(), &robot.files)
+                            .map_err(|e| RobotError {
                                 at: at.clone(),
                                 message: format!("collision of link `{name}`: {e}"),
-                            }
-                        })?;
+                            })?;
                     shapes.push(shape);
                 }
             }

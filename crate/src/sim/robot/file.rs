@@ -8,6 +8,7 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use serde::Deserialize;
 
 use super::chain::Chain;
+use super::files::RobotFiles;
 use super::urdf::{parse_urdf, Geometry, Urdf};
 
 /// The tool centre point relative to the tip link: a translation and fixed-axis roll, pitch, yaw.
@@ -82,15 +83,22 @@ pub struct Robot {
     pub gripper: GripperSpec,
     /// ROS package name → folder, resolved against the robot file's folder.
     pub packages: BTreeMap<String, PathBuf>,
+    /// Where the robot's files (URDF, meshes) are read.
+    pub files: RobotFiles,
 }
 
 impl Robot {
-    /// Loads and checks a robot file and its URDF.
+    /// Loads and checks a robot file and its URDF from the disk.
     pub fn load(path: &Path) -> Result<Robot, RobotError> {
+        Robot::load_from(path, RobotFiles::disk())
+    }
+
+    /// Loads and checks the robot file at `path` and its URDF, reading every file from `files`.
+    pub fn load_from(path: &Path, files: RobotFiles) -> Result<Robot, RobotError> {
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| RobotError {
+        let text = files.read_text(path).map_err(|message| RobotError {
             at: file.clone(),
-            message: e.to_string(),
+            message,
         })?;
         let mut de = serde_json::Deserializer::from_str(&text);
         let raw: RawRobot = serde_path_to_error::deserialize(&mut de).map_err(|e| {
@@ -103,7 +111,7 @@ impl Robot {
         let at = |field: &str| format!("{file}: {field}");
         let dir = path.parent().unwrap_or(Path::new("."));
         let urdf_file = dir.join(&raw.urdf);
-        let urdf_text = std::fs::read_to_string(&urdf_file).map_err(|e| RobotError {
+        let urdf_text = files.read_text(&urdf_file).map_err(|e| RobotError {
             at: at("urdf"),
             message: format!("{}: {e}", urdf_file.display()),
         })?;
@@ -189,6 +197,7 @@ impl Robot {
             home: raw.home,
             gripper: raw.gripper,
             packages,
+            files,
         };
         robot.check_meshes()?;
         Ok(robot)
@@ -233,7 +242,7 @@ impl Robot {
                         at: at.clone(),
                         message: m,
                     })?;
-                    if !p.is_file() {
+                    if !self.files.is_file(&p) {
                         return Err(RobotError {
                             at,
                             message: format!(

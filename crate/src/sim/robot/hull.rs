@@ -4,17 +4,22 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
-use std::time::SystemTime;
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use parry3d_f64::shape::{ConvexPolyhedron, Cuboid, SharedShape};
 
 use super::dae::parse_dae;
+use super::files::RobotFiles;
 use super::mesh::{parse_obj, parse_stl, MeshError, TriangleMesh};
 use super::urdf::Geometry;
 
 /// Reads a mesh file by its extension: `.stl`, `.obj` or `.dae` (any case).
 pub fn read_mesh(path: &Path) -> Result<TriangleMesh, MeshError> {
+    read_mesh_in(&RobotFiles::disk(), path)
+}
+
+/// [`read_mesh`] from `files`.
+fn read_mesh_in(files: &RobotFiles, path: &Path) -> Result<TriangleMesh, MeshError> {
     let file = path.display().to_string();
     let ext = path
         .extension()
@@ -28,7 +33,9 @@ pub fn read_mesh(path: &Path) -> Result<TriangleMesh, MeshError> {
             format!("mesh format `.{ext}` is not supported (STL, OBJ or DAE)"),
         ));
     }
-    let bytes = std::fs::read(path).map_err(|e| MeshError::new(&file, None, e.to_string()))?;
+    let bytes = files
+        .read(path)
+        .map_err(|e| MeshError::new(&file, None, e))?;
     if ext == "stl" {
         return parse_stl(&bytes, &file);
     }
@@ -102,6 +109,7 @@ impl LinkShape {
         origin: &Isometry3<f64>,
         geometry: &Geometry,
         mesh_file: Option<&Path>,
+        files: &RobotFiles,
     ) -> Result<LinkShape, MeshError> {
         let (shape, kind, turn) = match geometry {
             Geometry::Box { size } => (
@@ -128,7 +136,7 @@ impl LinkShape {
             ),
             Geometry::Mesh { filename, scale } => {
                 let path = mesh_file.unwrap_or(Path::new(filename));
-                let hull = hull_of(path, *scale)?;
+                let hull = hull_in(files, path, *scale)?;
                 let aabb = hull.local_aabb();
                 let kind = ShapeKind::Hull {
                     file: path.to_path_buf(),
@@ -157,9 +165,9 @@ impl LinkShape {
     }
 }
 
-/// Identifies a hull: the file (canonical path, size, modification time) and the scale's bits,
-/// so that a file changed on disk is read again.
-type HullKey = (PathBuf, u64, Option<SystemTime>, [u64; 3]);
+/// Identifies a hull: the file (canonical path, size, modification time or content hash) and the
+/// scale's bits, so that a changed file is read again.
+type HullKey = (PathBuf, u64, u128, [u64; 3]);
 
 /// The hulls computed so far in this process.
 fn hulls() -> &'static Mutex<HashMap<HullKey, Arc<ConvexPolyhedron>>> {
@@ -170,19 +178,24 @@ fn hulls() -> &'static Mutex<HashMap<HullKey, Arc<ConvexPolyhedron>>> {
 /// The convex hull of the mesh file at `path`, its vertices scaled by `scale`: from the
 /// process-wide cache, or read and computed once.
 pub fn hull_of(path: &Path, scale: [f64; 3]) -> Result<Arc<ConvexPolyhedron>, MeshError> {
+    hull_in(&RobotFiles::disk(), path, scale)
+}
+
+/// [`hull_of`] from `files`.
+fn hull_in(
+    files: &RobotFiles,
+    path: &Path,
+    scale: [f64; 3],
+) -> Result<Arc<ConvexPolyhedron>, MeshError> {
     let file = path.display().to_string();
-    let meta = std::fs::metadata(path).map_err(|e| MeshError::new(&file, None, e.to_string()))?;
-    let canonical = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
-    let key = (
-        canonical,
-        meta.len(),
-        meta.modified().ok(),
-        scale.map(f64::to_bits),
-    );
+    let (at, len, stamp) = files
+        .stamp(path)
+        .map_err(|e| MeshError::new(&file, None, e))?;
+    let key = (at, len, stamp, scale.map(f64::to_bits));
     if let Some(h) = hulls().lock().ok().and_then(|m| m.get(&key).cloned()) {
         return Ok(h);
     }
-    let mesh = read_mesh(path)?;
+    let mesh = read_mesh_in(files, path)?;
     if mesh.vertices.is_empty() {
         return Err(MeshError::new(&file, None, "the mesh has no vertices"));
     }

@@ -24,21 +24,27 @@ mod chain;
 mod collision;
 mod dae;
 mod file;
+mod files;
 mod hull;
 mod ik;
 mod mesh;
 mod model;
+#[cfg(not(first_load))]
+mod shipped;
 mod urdf;
 
 pub use chain::{Chain, ChainJoint};
 pub use collision::{CollisionLink, PairExclusion, RobotCollision};
 pub use dae::parse_dae;
 pub use file::{GripperSpec, Robot, RobotError, TcpSpec};
+pub use files::RobotFiles;
 pub use hull::{hull_of, read_mesh, LinkShape, ShapeKind};
 pub use ik::{IkFailure, IkOptions, IkResult};
 pub use mesh::{parse_obj, parse_stl, MeshError, TriangleMesh};
 #[cfg(not(first_load))]
 pub(crate) use model::Model;
+#[cfg(not(first_load))]
+pub use shipped::{shipped_robot, SHIPPED_ROBOTS};
 pub use urdf::{
     parse_urdf, Collision, Geometry, JointKind, JointLimits, Urdf, UrdfError, UrdfJoint, UrdfLink,
 };

@@ -244,6 +244,17 @@ fn load_shape(
     }
 }
 
+/// The shipped robot `name`, which a scene may name without its robot file.
+fn shipped(name: &str) -> Option<Arc<ArmModel>> {
+    #[cfg(not(first_load))]
+    return ArmModel::shipped(name);
+    #[cfg(first_load)]
+    return {
+        let _ = name;
+        None
+    };
+}
+
 /// The arms of a snapshot, validated against `bodies`, their names claimed.
 fn load_arms(
     snaps: &[ArmSnapshot],
@@ -256,14 +267,22 @@ fn load_arms(
         check_name(&a.name, &path)?;
         names.claim(&a.name, &path)?;
         let base = pose_from_snapshot(&a.base, &format!("{path}.base"))?;
-        let model = match (&a.robot, &a.model) {
-            (None, _) => ArmModel::panda(),
-            (Some(r), Some(m)) if m.name() == r => Arc::clone(m),
-            (Some(r), _) => {
-                return Err(scene_err(
-                    format!("{path}.robot"),
-                    format!("robot `{r}` is not loaded: give its robot file (--robot ROBOT.json)"),
-                ))
+        let model = match &a.robot {
+            None => ArmModel::panda(),
+            Some(r) => {
+                let given = a.model.as_ref().filter(|m| m.name() == r).cloned();
+                match given.or_else(|| shipped(r)) {
+                    Some(m) => m,
+                    None => {
+                        return Err(scene_err(
+                            format!("{path}.robot"),
+                            format!(
+                                "robot `{r}` is not loaded: give its robot file (--robot \
+                                 ROBOT.json)"
+                            ),
+                        ))
+                    }
+                }
             }
         };
         let joints = load_joints(&a.joints, &path, &model)?;
