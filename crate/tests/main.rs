@@ -23,6 +23,7 @@ mod recorder;
 mod robot;
 mod robot_collision;
 mod robot_episodes;
+mod robot_files;
 mod robot_ik;
 mod search;
 mod sim;

@@ -141,13 +141,9 @@ fn the_ur5_and_the_urdf_panda_finish_b1_and_b2_with_a_disturbance_and_replay_exa
             assert!(ok, "{robot} {} {level}", b.as_str());
             let replayed = Session::replay_with_robots(&json, std::slice::from_ref(&m)).unwrap();
             assert_eq!(replayed.episode_json(), json, "{robot} {}", b.as_str());
-            let without = Session::replay(&json).err().map(|e| e.to_string());
-            assert!(
-                without
-                    .as_deref()
-                    .is_some_and(|e| e.contains(&format!("robot `{robot}` is not loaded"))),
-                "{without:?}"
-            );
+            // A shipped robot needs no robot file: the log's scene names it.
+            let shipped = Session::replay(&json).unwrap();
+            assert_eq!(shipped.episode_json(), json, "{robot} {}", b.as_str());
         }
     }
 }
@@ -202,10 +198,16 @@ fn robots_are_refused_where_they_cannot_take_an_arms_place() {
 fn a_saved_scene_names_its_robot_and_loads_only_with_it() {
     let mut w = Benchmark::B1.scene();
     w.set_robot(0, model("ur5")).unwrap();
+    // A shipped robot loads by its name alone.
+    let json = w.to_json();
+    assert_eq!(World::from_json(&json).unwrap().to_json(), json);
+    let robot = Robot::load(&short_arm()).unwrap();
+    w.set_robot(0, Arc::new(ArmModel::from_robot(&robot).unwrap()))
+        .unwrap();
     let json = w.to_json();
     let e = World::from_json(&json).unwrap_err().to_string();
     assert!(
-        e.contains("arms[0] \"panda\".robot") && e.contains("robot `ur5` is not loaded"),
+        e.contains("arms[0] \"panda\".robot") && e.contains("robot `short` is not loaded"),
         "{e}"
     );
     // The snapshot carries the model: the world comes back as it was.
@@ -222,6 +224,14 @@ fn a_saved_scene_names_its_robot_and_loads_only_with_it() {
 fn short_arm() -> PathBuf {
     let dir = std::env::temp_dir().join(format!("logic-lfd-short-arm-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in short_arm_files() {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    dir.join("robot.json")
+}
+
+/// The short arm's files: `robot.json` and `short.urdf`.
+pub fn short_arm_files() -> [(&'static str, String); 2] {
     let joint = |n: usize, parent: &str, child: &str, z: f64, axis: &str| {
         format!(
             r#"<joint name="j{n}" type="revolute"><parent link="{parent}"/><child link="{child}"/><origin xyz="0 0 {z}"/><axis xyz="{axis}"/><limit lower="-3" upper="3" velocity="2"/></joint>"#
@@ -243,15 +253,10 @@ fn short_arm() -> PathBuf {
         urdf.push_str(&joint(k + 1, names[k], names[k + 1], z, axes[k]));
     }
     urdf.push_str("</robot>");
-    std::fs::write(dir.join("short.urdf"), urdf).unwrap();
-    std::fs::write(
-        dir.join("robot.json"),
-        r#"{ "name": "short", "urdf": "short.urdf", "base_link": "base", "tip_link": "l6",
+    let robot = r#"{ "name": "short", "urdf": "short.urdf", "base_link": "base", "tip_link": "l6",
              "tcp": { "xyz": [0, 0, 0.05] }, "home": [0, 0.5, 0.5, 0.5, 0, 0],
-             "gripper": { "max_opening": 0.08, "finger_length": 0.04 } }"#,
-    )
-    .unwrap();
-    dir.join("robot.json")
+             "gripper": { "max_opening": 0.08, "finger_length": 0.04 } }"#;
+    [("robot.json", robot.to_string()), ("short.urdf", urdf)]
 }
 
 #[test]

@@ -67,7 +67,7 @@ pub struct TaskFiles {
 #[wasm_bindgen]
 extern "C" {
     /// `Session.fromFolder`'s optional options.
-    #[wasm_bindgen(typescript_type = "FolderOptions")]
+    #[wasm_bindgen(typescript_type = "FolderOptions & { robot?: RobotChoice }")]
     pub type FolderOptionsArg;
 }
 
@@ -179,13 +179,17 @@ impl WasmSession {
         let files = folder_files(F, &files)?;
         let options = options.map(JsValue::from).unwrap_or(JsValue::UNDEFINED);
         object_arg(F, "options", &options, true)?;
+        let (options, robots) = super::robot::take_robots(F, &options)?;
         let o: FolderOptions = if options.is_undefined() || options.is_null() {
             FolderOptions::deserialize(serde_json::json!({})).map_err(js_err)?
         } else {
             from_js(&options).map_err(|e| js_err(format!("options: {e}")))?
         };
         let folder = TaskFolder::new(o.dir.as_deref().unwrap_or("folder"), files);
-        let inner = session(&folder, o).map_err(js_err)?;
+        let mut inner = session(&folder, o).map_err(js_err)?;
+        inner
+            .set_robots(&robots)
+            .map_err(|e| js_err(named(&folder, e)))?;
         Ok(WasmSession {
             inner,
             folder: Some(folder),

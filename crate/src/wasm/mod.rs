@@ -34,6 +34,8 @@ mod logic_lfd;
 mod pddl;
 #[cfg(feature = "wasm")]
 mod reliability;
+#[cfg(not(first_load))]
+mod robot;
 mod session;
 #[cfg(feature = "wasm")]
 mod teach;

@@ -188,12 +188,21 @@ extern "C" {
 impl WasmSession {
     /// A session on one of the benchmarks (`{ benchmark: "b1", method: "logic-lfd", mode: "paper",
     /// seed: 1 }`). Rejects unknown options with a message; a non-object is a `TypeError`.
+    ///
+    /// `robot` (full module) puts a robot in the arms' place: `"panda"` (the Franka Emika Panda
+    /// from its URDF), `"ur5"`, a robot folder's files, or one per arm.
     #[wasm_bindgen(constructor)]
     pub fn new(
-        #[wasm_bindgen(unchecked_param_type = "SessionOptions")] options: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "SessionOptions & { robot?: RobotChoice }")]
+        options: JsValue,
     ) -> Result<WasmSession, JsValue> {
+        #[cfg(not(first_load))]
+        let (options, robots) = super::robot::take_robots("new Session", &options)?;
         let o = session_options("new Session", &options)?;
-        let inner = crate::lfd::Session::new(o).map_err(js_err)?;
+        #[allow(unused_mut)]
+        let mut inner = crate::lfd::Session::new(o).map_err(js_err)?;
+        #[cfg(not(first_load))]
+        inner.set_robots(&robots).map_err(js_err)?;
         Ok(WasmSession::from(inner))
     }
 
@@ -204,15 +213,19 @@ impl WasmSession {
     #[cfg(not(first_load))]
     #[wasm_bindgen(js_name = fromScene)]
     pub fn from_scene(
-        #[wasm_bindgen(unchecked_param_type = "SessionOptions")] options: JsValue,
+        #[wasm_bindgen(unchecked_param_type = "SessionOptions & { robot?: RobotChoice }")]
+        options: JsValue,
         #[wasm_bindgen(unchecked_param_type = "string")] scene: JsValue,
         demo: Option<super::args::StringArg>,
     ) -> Result<WasmSession, JsValue> {
         const F: &str = "Session.fromScene";
+        let (options, robots) = super::robot::take_robots(F, &options)?;
         let o = session_options(F, &options)?;
         let scene = string_arg(F, "scene", &scene)?;
         let demo = super::args::optional_string_arg(F, "demo", demo)?;
-        let inner = crate::lfd::Session::from_scene(o, &scene, demo.as_deref()).map_err(js_err)?;
+        let mut inner =
+            crate::lfd::Session::from_scene(o, &scene, demo.as_deref()).map_err(js_err)?;
+        inner.set_robots(&robots).map_err(js_err)?;
         Ok(WasmSession::from(inner))
     }
 

@@ -203,6 +203,60 @@ impl Robot {
         Ok(robot)
     }
 
+    /// Loads the robot of a folder held in memory (files a browser opened, a package's files):
+    /// each file's path in the folder with its bytes.
+    ///
+    /// The robot file is the folder's `robot.json` nearest its top, or else the one `.json` file
+    /// nearest the top that names a `urdf`.
+    pub fn from_folder(files: Vec<(String, Vec<u8>)>) -> Result<Robot, RobotError> {
+        let depth = |p: &str| p.matches('/').count();
+        let named = |p: &str| p == "robot.json" || p.ends_with("/robot.json");
+        let mut candidates: Vec<&str> = files
+            .iter()
+            .map(|(p, _)| p.as_str())
+            .filter(|p| named(p))
+            .collect();
+        if candidates.is_empty() {
+            candidates = files
+                .iter()
+                .filter(|(p, b)| {
+                    p.ends_with(".json")
+                        && serde_json::from_slice::<serde_json::Value>(b)
+                            .is_ok_and(|v| v.get("urdf").is_some())
+                })
+                .map(|(p, _)| p.as_str())
+                .collect();
+        }
+        let top = candidates.iter().map(|p| depth(p)).min();
+        let at_top: Vec<&str> = candidates
+            .into_iter()
+            .filter(|p| Some(depth(p)) == top)
+            .collect();
+        let file = match at_top.as_slice() {
+            [one] => one.to_string(),
+            [] => {
+                return Err(RobotError {
+                    at: "robot folder".into(),
+                    message: format!(
+                        "no robot.json (nor a .json file naming a `urdf`) among its {} files",
+                        files.len()
+                    ),
+                })
+            }
+            many => {
+                return Err(RobotError {
+                    at: "robot folder".into(),
+                    message: format!(
+                        "{} robot files side by side ({}): name one robot.json",
+                        many.len(),
+                        many.join(", ")
+                    ),
+                })
+            }
+        };
+        Robot::load_from(Path::new(&file), RobotFiles::memory(files))
+    }
+
     /// The TCP in the base link's frame for joint vector `q`; refused when `q` has the wrong
     /// length or lies outside the joint limits.
     pub fn tcp_pose(&self, q: &[f64]) -> Result<Isometry3<f64>, String> {
