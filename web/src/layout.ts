@@ -4,6 +4,7 @@
  * Teach, Charts, PDDL). Builds the elements, mounts them in #app and hands back the ones the panels
  * use; no behaviour lives here.
  */
+import { robotDirInput, robotSelect } from './robot-choice';
 import type { Benchmark, Catalogue } from 'logic-lfd';
 import { items } from './catalogue';
 import { button, el, select } from './dom';
@@ -15,6 +16,10 @@ export interface Controls {
   benchSel: HTMLSelectElement;
   /** Blocks of the generated tower task ('': the benchmark's template task). */
   blocksSel: HTMLSelectElement;
+  /** The robot in the arms' place (robot-choice.ts). */
+  robotSel: HTMLSelectElement;
+  /** The directory picker behind the robot select's "Open robot folder…". */
+  robotDirIn: HTMLInputElement;
   methodSel: HTMLSelectElement;
   modeSel: HTMLSelectElement;
   seedIn: HTMLInputElement;
@@ -169,6 +174,8 @@ function buildControls(s: PageState): Controls {
   return {
     benchSel: pending('benchmark', 'Benchmark', o.benchmark),
     blocksSel: blockSelect(o.benchmark, o.blocks),
+    robotSel: robotSelect(s.robot),
+    robotDirIn: robotDirInput(),
     methodSel: pending('method', 'Method', o.method),
     modeSel: pending('mode', 'Multi-goal mode', o.mode),
     seedIn: el('input', { id: 'seed', type: 'number', min: '0', step: '1', 'aria-label': 'Random seed', title: 'Random seed', value: String(o.seed) }),
@@ -238,7 +245,7 @@ function buildTopBar(c: Controls, version: HTMLElement, taskTag: HTMLElement): H
     'header',
     { class: 'topbar' },
     el('div', { class: 'brand' }, el('strong', {}, 'logic-lfd'), version, taskTag),
-    el('div', { class: 'group', role: 'group', 'aria-label': 'Scenario' }, c.benchSel, c.blocksSel, c.methodSel, c.modeSel, el('label', { class: 'seed' }, 'seed', c.seedIn), c.resetBtn),
+    el('div', { class: 'group', role: 'group', 'aria-label': 'Scenario' }, c.benchSel, c.blocksSel, c.robotSel, c.robotDirIn, c.methodSel, c.modeSel, el('label', { class: 'seed' }, 'seed', c.seedIn), c.resetBtn),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Playback' }, c.playBtn, c.stepBtn, c.speedSel),
     c.levelGroup,
     el('div', { class: 'group right', role: 'group', 'aria-label': 'Scene and link' }, c.saveBtn, c.loadBtn, c.fileIn, c.dirIn, c.linkBtn, c.helpBtn),

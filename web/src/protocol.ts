@@ -17,6 +17,7 @@ import type {
   Level,
   PlanOptions,
   PlanOutcome,
+  RobotChoice,
   SessionOptions,
   TaskFiles,
 } from 'logic-lfd';
@@ -47,9 +48,10 @@ export interface Api extends TeachApi {
   logicLfd: { args: { input: LogicLfdInput }; result: LogicLfdResult };
   logicLfdPerturb: { args: { input: LogicLfdPerturbInput }; result: LogicLfdPerturbResult };
   benchmark: { args: { id: Benchmark }; result: BenchmarkInfo };
-  open: { args: { options: SessionOptions; scene?: string }; result: Frame };
+  /** A session on a benchmark (`new Session`, `Session.fromScene`), `robot` in the arms' place. */
+  open: { args: { options: SessionOptions & { robot?: RobotChoice }; scene?: string }; result: Frame };
   /** A session on a task folder given by its files (`Session.fromFolder`). */
-  openFolder: { args: { files: Record<string, string>; options: FolderOptions }; result: Frame };
+  openFolder: { args: { files: Record<string, string>; options: FolderOptions & { robot?: RobotChoice } }; result: Frame };
   replay: { args: { episode: string }; result: Frame };
   /** The domain, problem and demonstration plan the session runs (a folder's, a generated task's). */
   task: { args: Record<string, never>; result: TaskFiles };

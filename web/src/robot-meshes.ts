@@ -92,6 +92,11 @@ export class RobotModel {
     return new RobotModel(tree, meshes);
   }
 
+  /** The robot's joint angles: its revolute joints that move on their own. */
+  get dof(): number {
+    return this.tree.joints.filter((j) => (j.type === 'revolute' || j.type === 'continuous') && !j.mimic).length;
+  }
+
   /** A new drawing of the robot (its meshes borrowed), at zero joint angles. */
   instantiate(shadows: boolean): RobotInstance {
     return new RobotInstance(this.tree, this.meshes, shadows);

@@ -13,6 +13,7 @@ import type { FrameRenderer } from './frame-renderer';
 import type { History } from './history';
 import { FOLDER, GALLERY, OPEN_FOLDER, galleryValue, setBlockChoices, setFolderChoice, type Layout } from './layout';
 import type { FromWorker } from './protocol';
+import { OPEN_ROBOT, ROBOT_FOLDER, robotFromFiles, robotFromUrl, robotLabel, robotOption, setRobotChoice, type RobotPick } from './robot-choice';
 import { blocksFor, parseSeed, recordStep, taskKey, updateUrl, type PageState } from './state';
 import type { StatusBar } from './status-bar';
 import type { Tabs } from './tabs';
@@ -141,7 +142,7 @@ export class SessionControls {
     const { folder } = state;
     status.say(folder ? 'Loading the task folder…' : 'Loading the benchmark…');
     try {
-      const f = folder ? await this.openFolderSession(folder, scene) : await client.call('open', { options: { ...state.options }, scene });
+      const f = folder ? await this.openFolderSession(folder, scene) : await client.call('open', { options: { ...state.options, ...robotOption(state.robot) }, scene });
       renderer.restart(f);
       void this.guard(() => this.showGoal(f));
       if (state.editorTask !== taskKey(state) && !this.p.ui.editorHost.hidden) void this.p.tabs().loadEditor();
@@ -165,7 +166,8 @@ export class SessionControls {
   /** A session on `folder` with the scenario's method, mode and seed (the worker's `openFolder`). */
   private openFolderSession(folder: OpenFolder, scene?: string): Promise<Frame> {
     const { method, mode, seed, skill } = this.p.state.options;
-    return this.p.client.call('openFolder', { files: folder.files, options: { dir: folder.name, method, mode, seed, skill, scene } });
+    const robot = robotOption(this.p.state.robot);
+    return this.p.client.call('openFolder', { files: folder.files, options: { dir: folder.name, method, mode, seed, skill, scene, ...robot } });
   }
 
   /** The top bar's tag: the task folder the Run runs (hidden for a benchmark). */
@@ -240,6 +242,30 @@ export class SessionControls {
       status.notice(`The task folder ${folder.name} was not opened: ${sentence(why)}`, 'error', 15000);
       if (was) await this.play();
       return why;
+    }
+  }
+
+  /**
+   * Puts robot `pick` in the arms' place (null: the default, the Panda) and reopens the task from
+   * its start. A robot the task refuses (a block out of its reach, a folder that does not load)
+   * changes nothing and says why.
+   */
+  async setRobot(pick: RobotPick | null): Promise<void> {
+    const { state, status } = this.p;
+    const was = state.robot;
+    if (state.playing) await this.pause();
+    state.robot = pick;
+    status.say(`Loading ${robotLabel(pick)}…`);
+    try {
+      this.showOpened(state.folder ? await this.openFolderSession(state.folder) : await this.p.client.call('open', { options: { ...state.options, ...robotOption(pick) } }), state.folder);
+      status.notice(`The arms are now ${robotLabel(pick)}.`, 'info');
+      if (state.autoplay) await this.play();
+    } catch (e) {
+      state.robot = was;
+      setRobotChoice(this.p.ui.controls.robotSel, was);
+      const why = (e as Error).message;
+      status.fail(`${robotLabel(pick, true)} cannot run this task: ${why}`);
+      status.notice(`${robotLabel(pick, true)} was not put in the arms' place: ${sentence(why)}`, 'error', 15000);
     }
   }
 
@@ -569,6 +595,25 @@ export class SessionControls {
         const files = [...(c.dirIn.files ?? [])];
         c.dirIn.value = '';
         if (files.length) await this.loadFiles(files);
+      });
+    c.robotSel.onchange = () => {
+      const v = c.robotSel.value;
+      if (v === OPEN_ROBOT || v === ROBOT_FOLDER) {
+        // Picking a folder happens in the browser's dialog; the select shows the arms' robot meanwhile.
+        if (v === OPEN_ROBOT) c.robotDirIn.click();
+        setRobotChoice(c.robotSel, state.robot);
+        return;
+      }
+      void this.guard(() => this.setRobot(robotFromUrl(v)));
+    };
+    c.robotDirIn.onchange = () =>
+      void this.guard(async () => {
+        const files = [...(c.robotDirIn.files ?? [])];
+        c.robotDirIn.value = '';
+        if (!files.length) return;
+        const pick = await robotFromFiles(files);
+        setRobotChoice(c.robotSel, pick);
+        await this.setRobot(pick);
       });
     c.linkBtn.onclick = () => void this.copyLink();
   }

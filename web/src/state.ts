@@ -8,6 +8,7 @@
 import type { Benchmark, Catalogue, Frame, Method, Mode, SessionOptions } from 'logic-lfd';
 import { entryOf } from './catalogue';
 import type { OpenFolder } from './folder';
+import { robotFromUrl, type RobotPick } from './robot-choice';
 import type { BlockRanges } from './protocol';
 
 export type TabId = 'run' | 'teach' | 'charts' | 'pddl' | 'compare';
@@ -91,6 +92,8 @@ export interface PageState {
   folder: OpenFolder | null;
   /** The folder URL the page was opened with (`?folder=URL`), until it is opened. */
   folderUrl: string | null;
+  /** The robot in the arms' place (null: the default, the Panda). */
+  robot: RobotPick | null;
   /** Whether the user is dragging a block (the world is paused meanwhile). */
   dragging: boolean;
   /** The latest frame: session status, plan, demo states, facts. */
@@ -131,6 +134,7 @@ export function initialState(search: string): PageState {
     taught: false,
     folder: null,
     folderUrl: params.get('folder') || null,
+    robot: robotFromUrl(params.get('robot')),
     frame: null,
     lastStepMs: 0,
     stepTimes: [],
@@ -181,6 +185,8 @@ export function updateUrl(s: PageState): void {
   p.set('mode', s.options.mode);
   p.set('seed', String(s.options.seed));
   if (s.options.blocks != null && !s.folder) p.set('blocks', String(s.options.blocks));
+  // A robot folder from this computer has no address: the link names shipped robots only.
+  if (s.robot && !s.robot.files) p.set('robot', s.robot.name);
   if (s.speed !== 1) p.set('speed', String(s.speed));
   history.replaceState(null, '', `${location.pathname}?${p}`);
 }

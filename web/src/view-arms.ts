@@ -1,7 +1,9 @@
 /**
  * The arms of the 3-D view: each drawn as the simulator sees it (base disc, link capsules, finger
- * boxes from the snapshot) and, once the robot's meshes are loaded (robot-meshes.ts), with the
- * meshes posed from the snapshot's joint angles and gripper opening; one of the two is shown.
+ * boxes from the snapshot) and, once its robot's meshes are loaded (robot-meshes.ts), with the
+ * meshes posed from the snapshot's joint angles and gripper opening; one of the two is shown. Each
+ * arm takes the meshes of the robot its snapshot names (the Panda when it names none); a robot
+ * whose hand has no meshes keeps the finger boxes beside its meshes.
  */
 import * as THREE from 'three';
 import type { ArmSnapshot } from 'logic-lfd';
@@ -28,6 +30,10 @@ interface ArmEntry {
   capsules: THREE.Group;
   /** The mesh drawing (null until the meshes are loaded, or for an arm they do not fit). */
   model: RobotInstance | null;
+  /** The robot whose meshes `model` draws. */
+  modelOf: string;
+  /** The finger boxes (shown with the meshes when the robot's hand has none). */
+  fingerBoxes: THREE.Group;
   links: THREE.Mesh[];
   linkKeys: string[];
   fingers: THREE.Mesh[];
@@ -38,7 +44,10 @@ const Y = new THREE.Vector3(0, 1, 0);
 
 export class ArmDrawings {
   private readonly entries: ArmEntry[] = [];
-  private robot: RobotModel | null = null;
+  /** The loaded meshes, by robot name. */
+  private readonly robots = new Map<string, RobotModel>();
+  /** Asks for a robot's meshes (once per name); set by the view when the meshes' chunk loads. */
+  want: ((robot: string) => void) | null = null;
   private readonly linkMaterial = new THREE.MeshStandardMaterial({ color: 0xe9ecef, roughness: 0.45, metalness: 0.1 });
   private readonly jointMaterial = new THREE.MeshStandardMaterial({ color: 0x3a3f47, roughness: 0.5 });
   private readonly fingerMaterial = new THREE.MeshStandardMaterial({ color: 0x2b2f36, roughness: 0.6 });
@@ -57,14 +66,14 @@ export class ArmDrawings {
     for (const m of [this.linkMaterial, this.jointMaterial, this.fingerMaterial]) shared.add(m);
   }
 
-  /** Whether the robot's meshes are loaded. */
+  /** Whether some robot's meshes are loaded. */
   get meshesLoaded(): boolean {
-    return this.robot !== null;
+    return this.robots.size > 0;
   }
 
-  /** Draws the arms with `robot`'s meshes from now on (redrawing `arms` at once). */
-  setRobot(robot: RobotModel, arms: readonly ArmSnapshot[]): void {
-    this.robot = robot;
+  /** Draws the arms of robot `name` with `robot`'s meshes from now on (redrawing `arms` at once). */
+  setRobot(name: string, robot: RobotModel, arms: readonly ArmSnapshot[]): void {
+    this.robots.set(name, robot);
     for (const x of robot.shared) this.shared.add(x);
     arms.forEach((a, i) => this.update(i, a));
   }
@@ -78,6 +87,7 @@ export class ArmDrawings {
   private showStyle(e: ArmEntry): void {
     const meshes = this.style === 'meshes' && !!e.model;
     e.capsules.visible = !meshes;
+    e.fingerBoxes.visible = !meshes || !e.model?.prismatic.length;
     if (e.model) e.model.root.visible = meshes;
   }
 
@@ -88,12 +98,13 @@ export class ArmDrawings {
       const group = new THREE.Group();
       group.name = `arm:${a.name}`;
       const capsules = new THREE.Group();
-      group.add(capsules);
+      const fingerBoxes = new THREE.Group();
+      group.add(capsules, fingerBoxes);
       const base = new THREE.Mesh(new THREE.CylinderGeometry(0.09, 0.11, 0.04, 32), this.jointMaterial);
       base.rotation.x = Math.PI / 2;
       base.castShadow = true;
       capsules.add(base);
-      e = { drawn: a, group, capsules, model: null, links: [], linkKeys: [], fingers: [], base };
+      e = { drawn: a, group, capsules, model: null, modelOf: '', fingerBoxes, links: [], linkKeys: [], fingers: [], base };
       this.entries[i] = e;
       this.scene.add(group);
     }
@@ -124,14 +135,22 @@ export class ArmDrawings {
         m = new THREE.Mesh(new THREE.BoxGeometry(2 * hx, 2 * hy, 2 * hz), this.fingerMaterial);
         m.castShadow = true;
         e.fingers[j] = m;
-        e.capsules.add(m);
+        e.fingerBoxes.add(m);
       }
       applyPose(m, f.pose);
     });
-    // The meshes fit the 7-joint Panda the simulator models: its base pose is the URDF's
-    // panda_link0, each finger slides half the opening.
-    if (this.robot && !e.model && a.joints.length === 7) {
-      e.model = this.robot.instantiate(this.shadows);
+    // The meshes of the arm's robot: its base pose is the URDF's base link, each finger slides
+    // half the opening. The built-in Panda names no robot and has the Panda's chain.
+    const name = a.robot ?? 'panda';
+    if (e.model && e.modelOf !== name) {
+      this.drop(e.model.root);
+      e.model = null;
+    }
+    const robot = this.robots.get(name);
+    if (!robot) this.want?.(name);
+    if (robot && !e.model && a.joints.length === robot.dof) {
+      e.model = robot.instantiate(this.shadows);
+      e.modelOf = name;
       e.group.add(e.model.root);
     }
     if (e.model) {

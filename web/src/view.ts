@@ -4,6 +4,7 @@
  * lets the user drag a block with the mouse (raycast onto the support under the pointer; the drop
  * is sent to the worker, which accepts or refuses it).
  */
+import { SHIPPED_ROBOTS } from './robot-choice';
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import type { BodySnapshot, WorldSnapshot } from 'logic-lfd';
@@ -129,19 +130,35 @@ export class View {
     });
     const canvas = this.renderer.domElement;
     canvas.dataset.armStyle = this.arms.style;
-    void import('./robot-meshes').then(async ({ RobotModel, armStyleSwitch }) => {
-      let robot;
-      try {
-        robot = await RobotModel.load(new URL('robots/panda/', document.baseURI));
-      } catch (e) {
-        canvas.dataset.meshes = 'failed';
-        this.opts.onNotice?.(`The robot's meshes could not be loaded (${(e as Error).message}): the arms stay drawn as capsules.`, 'error');
-        return;
-      }
-      this.arms.setRobot(robot, this.snapshot?.arms ?? []);
-      armStyleSwitch(this.host, this.arms.style, (s) => this.setArmStyle(s));
-      this.dirty = true;
-      canvas.dataset.meshes = 'loaded';
+    void import('./robot-meshes').then(({ RobotModel, armStyleSwitch }) => {
+      // Each robot's meshes are fetched once, when an arm first shows it (the Panda at once).
+      const asked = new Set<string>();
+      const loaded: string[] = [];
+      const load = async (name: string) => {
+        if (asked.has(name)) return;
+        asked.add(name);
+        if (!SHIPPED_ROBOTS.some(([n]) => n === name)) {
+          this.opts.onNotice?.(`The robot ${name} is drawn as capsules fitted to its collision shapes: the page has meshes for its own robots only.`, 'info');
+          return;
+        }
+        let robot;
+        try {
+          robot = await RobotModel.load(new URL(`robots/${name}/`, document.baseURI));
+        } catch (e) {
+          canvas.dataset.meshes = loaded.length ? 'loaded' : 'failed';
+          this.opts.onNotice?.(`The robot's meshes could not be loaded (${(e as Error).message}): the arms stay drawn as capsules.`, 'error');
+          return;
+        }
+        this.arms.setRobot(name, robot, this.snapshot?.arms ?? []);
+        if (!loaded.length) armStyleSwitch(this.host, this.arms.style, (s) => this.setArmStyle(s));
+        loaded.push(name);
+        this.dirty = true;
+        canvas.dataset.meshes = 'loaded';
+        canvas.dataset.meshesOf = loaded.join(' ');
+      };
+      this.arms.want = (name) => void load(name);
+      void load('panda');
+      for (const a of this.snapshot?.arms ?? []) void load(a.robot ?? 'panda');
     });
   }
 

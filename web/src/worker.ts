@@ -9,7 +9,7 @@
  * speed-up.ts moves the session onto it after the first frame.
  */
 import init, * as lfd from 'logic-lfd-page';
-import type { Frame, Level, SessionOptions } from 'logic-lfd';
+import type { Frame, Level, RobotChoice, SessionOptions } from 'logic-lfd';
 import type { Api, ApiKind, BlockRanges, FromWorker, ToWorker } from './protocol';
 import { teachHandlers, teachLastPanic, teachMemoryBytes, teachModule } from './teach-worker';
 import { type FullSession, fullModule, speedUp, speedUpState } from './speed-up';
@@ -74,13 +74,14 @@ function tick(): void {
  * demonstrations and the generator of N-block tasks are left out to keep the first load small);
  * the rest opens on the full module, fetched on demand if speed-up.ts has not fetched it yet.
  */
-function firstLoadRuns(options: Pick<SessionOptions, 'benchmark' | 'blocks'>): boolean {
-  return options.benchmark === 'b1' && options.blocks == null;
+function firstLoadRuns(options: Pick<SessionOptions, 'benchmark' | 'blocks'> & { robot?: RobotChoice }): boolean {
+  // A robot other than the default runs on the full module: the first-load one has no URDFs.
+  return options.benchmark === 'b1' && options.blocks == null && options.robot === undefined;
 }
 
 /** The module for a session or benchmark: the full one once it is ready, else the first-load one
  * when that runs it, else the full one, fetched now. */
-async function moduleFor(options: Pick<SessionOptions, 'benchmark' | 'blocks'>) {
+async function moduleFor(options: Pick<SessionOptions, 'benchmark' | 'blocks'> & { robot?: RobotChoice }) {
   return fullModule() ?? (firstLoadRuns(options) ? lfd : await teachModule());
 }
 

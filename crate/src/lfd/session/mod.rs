@@ -164,7 +164,7 @@ impl Session {
         // JSON reader for scenes in the session: a second would add its own copy of the scene's
         // deserialiser to the page's first-load module.
         let snapshot = match scene {
-            Start::Json(json) => crate::sim::world_from_json(json)?.snapshot(),
+            Start::Json(json) => default_robots(crate::sim::world_from_json(json)?.snapshot()),
             Start::Snapshot(s) => s.clone(),
         };
         let world = World::from_snapshot(&snapshot)?.with_motions(Arc::clone(&motions));
@@ -454,4 +454,18 @@ impl Session {
         }
         .map_err(SessionError::Json)
     }
+}
+
+/// A scene's arms that name no robot, on the default arm: the Franka Emika Panda from its own
+/// URDF. The page's first-load module keeps the built-in Panda (its DH chain and link capsules):
+/// the URDF's collision meshes do not fit its size budget.
+fn default_robots(mut scene: crate::sim::WorldSnapshot) -> crate::sim::WorldSnapshot {
+    #[cfg(not(first_load))]
+    if let Some(panda) = ArmModel::shipped("panda") {
+        for arm in scene.arms.iter_mut().filter(|a| a.robot.is_none()) {
+            arm.robot = Some(panda.name().to_string());
+            arm.model = Some(Arc::clone(&panda));
+        }
+    }
+    scene
 }
