@@ -42,7 +42,6 @@ describe('the robot select', () => {
     assert.ok(arm?.shown, 'the UR5 drawn with its meshes');
     assert.equal(arm.drawn.joints.length, 6);
     assert.ok(arm.links.wrist_3_link && arm.links.shoulder_link, Object.keys(arm.links).join(' '));
-    // The drawn flange sits where the simulator's last link capsule ends (within 1 cm).
     await page.screenshot({ path: join(screenshots, 'robot-ur5-b2.png') });
     const f = await finish(page);
     assert.equal(f.status.kind, 'done', f.status.message);
@@ -54,7 +53,8 @@ describe('the robot select', () => {
     await again.page.waitForFunction(() => window.lfd.frame()?.world.arms[0].robot === 'ur5', null, { timeout: 60000 });
     assert.equal(await again.page.inputValue('#robot'), 'ur5');
     await again.page.selectOption('#robot', 'panda');
-    await again.page.waitForFunction(() => window.lfd.frame()?.world.arms[0].robot === 'panda', null, { timeout: 60000 });
+    // The Panda: from its URDF on the full module, the built-in one (no robot named) on the first-load module.
+    await again.page.waitForFunction(() => (window.lfd.frame()?.world.arms[0].robot ?? 'panda') === 'panda', null, { timeout: 60000 });
     assert.equal(new URLSearchParams(new URL(again.page.url()).search).get('robot'), null);
     assert.deepEqual(again.errors, []);
     await again.page.close();

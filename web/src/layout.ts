@@ -201,14 +201,16 @@ function buildControls(s: PageState): Controls {
   };
 }
 
-function buildStage(): Stage {
+function buildStage(c: Controls): Stage {
   const statusText = el('span', { id: 'status-text', class: 'status-text' }, 'Loading the planner…');
   const statusDot = el('span', { class: 'status-dot', 'aria-hidden': 'true' });
   const cancelBtn = button('cancel', 'Cancel the current plan: the robot stops and replans (C)', 'Cancel');
   const status = el('div', { id: 'status', class: 'status idle', role: 'status', 'aria-live': 'polite' }, statusDot, statusText, cancelBtn);
   const hud = el('div', { id: 'hud', class: 'hud', 'aria-label': 'Simulation clock and timings' });
   const notice = el('div', { id: 'notice', class: 'notice', role: 'alert', hidden: '' });
-  const root = el('section', { class: 'stage', 'aria-label': 'Workcell' }, status, hud, notice);
+  // The robot select sits on the view it changes (bottom right, over the Capsules / Meshes switch).
+  const robot = el('label', { class: 'robot-choice', title: 'The robot in the arms’ place' }, 'robot', c.robotSel, c.robotDirIn);
+  const root = el('section', { class: 'stage', 'aria-label': 'Workcell' }, status, hud, notice, robot);
   return { root, status, statusText, cancelBtn, hud, notice };
 }
 
@@ -245,7 +247,7 @@ function buildTopBar(c: Controls, version: HTMLElement, taskTag: HTMLElement): H
     'header',
     { class: 'topbar' },
     el('div', { class: 'brand' }, el('strong', {}, 'logic-lfd'), version, taskTag),
-    el('div', { class: 'group', role: 'group', 'aria-label': 'Scenario' }, c.benchSel, c.blocksSel, c.robotSel, c.robotDirIn, c.methodSel, c.modeSel, el('label', { class: 'seed' }, 'seed', c.seedIn), c.resetBtn),
+    el('div', { class: 'group', role: 'group', 'aria-label': 'Scenario' }, c.benchSel, c.blocksSel, c.methodSel, c.modeSel, el('label', { class: 'seed' }, 'seed', c.seedIn), c.resetBtn),
     el('div', { class: 'group', role: 'group', 'aria-label': 'Playback' }, c.playBtn, c.stepBtn, c.speedSel),
     c.levelGroup,
     el('div', { class: 'group right', role: 'group', 'aria-label': 'Scene and link' }, c.saveBtn, c.loadBtn, c.fileIn, c.dirIn, c.linkBtn, c.helpBtn),
@@ -255,7 +257,7 @@ function buildTopBar(c: Controls, version: HTMLElement, taskTag: HTMLElement): H
 /** Builds the page for state `s` and mounts it in #app (replacing the boot message). */
 export function buildLayout(s: PageState): Layout {
   const controls = buildControls(s);
-  const stage = buildStage();
+  const stage = buildStage(controls);
   const run = buildRunPanel();
   const chartsPanel = el('div', { class: 'panel', id: 'panel-charts', role: 'tabpanel', hidden: '' });
   const editorHost = el('div', { class: 'panel panel-editor', id: 'panel-pddl', role: 'tabpanel', hidden: '' });

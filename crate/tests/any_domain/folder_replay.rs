@@ -53,7 +53,7 @@ fn a_folder_episode_replays_from_its_folder_and_from_the_files_it_carries() {
     let log: logic_lfd::lfd::EpisodeLog = serde_json::from_str(&json).unwrap();
     let want = serde_json::to_string(&log.canonical()).unwrap();
 
-    let from_folder = Session::replay_in_folder(&folder(), &json).unwrap();
+    let from_folder = Session::replay_in_folder(&folder(), &json, &[]).unwrap();
     assert_eq!(replayed(from_folder), want);
 
     // Without the folder the log alone cannot replay, and says which folder it needs.
@@ -76,7 +76,7 @@ fn a_changed_folder_file_is_named_with_both_hashes() {
         .get_mut("problem.pddl")
         .unwrap()
         .push_str("\n; edited\n");
-    match Session::replay_in_folder(&changed, &json) {
+    match Session::replay_in_folder(&changed, &json, &[]) {
         Err(SessionError::Folder(e)) => {
             assert!(e.message.contains("problem.pddl (episode: "), "{e}");
             assert!(!e.message.contains("scene.json"), "{e}");
@@ -100,7 +100,7 @@ fn a_benchmark_episode_is_not_replayed_in_a_folder() {
         logic_lfd::experiments::run_episode(&spec, SessionParams::default(), &NoClock).unwrap();
     assert!(report.log.folder.is_none());
     let json = serde_json::to_string(&report.log).unwrap();
-    let e = Session::replay_in_folder(&folder(), &json)
+    let e = Session::replay_in_folder(&folder(), &json, &[])
         .err()
         .unwrap()
         .to_string();

@@ -285,7 +285,7 @@ fn replay(path: &Path, domain: Option<&Path>, robots: &[Arc<ArmModel>]) -> ExitC
                     }
                 },
             };
-            Session::replay_in_folder(&folder, &log_text)
+            Session::replay_in_folder(&folder, &log_text, robots)
         }
     };
     let mut replayed = match session {

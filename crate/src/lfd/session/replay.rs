@@ -39,10 +39,12 @@ impl Session {
     }
 
     /// Re-runs a logged episode on `folder`, after checking the folder's files are those the
-    /// episode ran on (each file that differs is named).
+    /// episode ran on (each file that differs is named), with the robots the log's scene names
+    /// ([`Session::replay_on`]).
     pub fn replay_in_folder(
         folder: &TaskFolder,
         episode_json: &str,
+        robots: &[Arc<ArmModel>],
     ) -> Result<Session, SessionError> {
         let log: EpisodeLog = crate::sim::parse_json(episode_json)
             .map_err(|e| SessionError::Json(format!("episode: {e}")))?;
@@ -54,7 +56,7 @@ impl Session {
             )));
         };
         folder.check_against(record)?;
-        Session::replay_with_sources(&folder.sources()?, episode_json)
+        Session::replay_on(&folder.sources()?, episode_json, robots)
     }
 
     /// The full log of the episode so far.
