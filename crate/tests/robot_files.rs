@@ -105,3 +105,50 @@ fn a_robot_folder_in_memory_is_refused_with_the_file_at_fault() {
         "{e}"
     );
 }
+
+#[test]
+fn a_robot_file_narrows_joint_limits_and_names_a_wrong_one() {
+    let with = |limits: &str| -> Vec<(String, Vec<u8>)> {
+        folder("")
+            .into_iter()
+            .map(|(p, b)| {
+                if p == "robot.json" {
+                    let t = String::from_utf8(b).unwrap();
+                    let t = t.replacen("\"home\"", &format!("\"limits\": {limits}, \"home\""), 1);
+                    (p, t.into_bytes())
+                } else {
+                    (p, b)
+                }
+            })
+            .collect()
+    };
+    let r = Robot::from_folder(with(r#"{ "j2": [-1, 1.5] }"#)).unwrap();
+    let j2 = r.chain.moving().nth(1).unwrap();
+    assert_eq!((j2.lower, j2.upper), (-1.0, 1.5));
+    let m = ArmModel::from_robot(&r).unwrap();
+    assert_eq!((m.lower()[1], m.upper()[1]), (-1.0, 1.5));
+    for (limits, want) in [
+        (
+            r#"{ "j9": [0, 1] }"#,
+            "robot.json: limits.j9: `j9` is not a moving joint",
+        ),
+        (
+            r#"{ "j2": [1, 1] }"#,
+            "robot.json: limits.j2: [1, 1]: expected [lower, upper]",
+        ),
+        (
+            r#"{ "j2": [-4, 1] }"#,
+            "robot.json: limits.j2: [-4, 1] is not within the URDF's limits [-3, 3]",
+        ),
+        (r#"{ "j2": [0.6, 1] }"#, "robot.json: home"),
+    ] {
+        let e = Robot::from_folder(with(limits)).unwrap_err().to_string();
+        assert!(e.starts_with(want), "{limits}: {e}");
+    }
+    // The shipped UR5 keeps its upper arm above the shoulder: the lift joint within [-π, 0].
+    let ur5 = ArmModel::shipped("ur5").unwrap();
+    assert_eq!(
+        (ur5.lower()[1], ur5.upper()[1]),
+        (-std::f64::consts::PI, 0.0)
+    );
+}

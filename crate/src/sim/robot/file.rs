@@ -50,6 +50,8 @@ struct RawRobot {
     tcp: Option<TcpSpec>,
     home: Vec<f64>,
     gripper: GripperSpec,
+    #[serde(default)]
+    limits: BTreeMap<String, [f64; 2]>,
 }
 
 /// A robot file that cannot be loaded: the file with its JSON path or line, and what is wrong.
@@ -120,16 +122,17 @@ impl Robot {
             at: format!("{}:{}:{}", e.file, e.line, e.col),
             message: e.message,
         })?;
-        let chain = Chain::new(&urdf, &raw.base_link, &raw.tip_link).map_err(|m| RobotError {
-            at: at(
-                if m.contains(&format!("`{}`", raw.base_link)) && !m.contains("not below") {
-                    "base_link"
-                } else {
-                    "tip_link"
-                },
-            ),
-            message: m,
-        })?;
+        let mut chain =
+            Chain::new(&urdf, &raw.base_link, &raw.tip_link).map_err(|m| RobotError {
+                at: at(
+                    if m.contains(&format!("`{}`", raw.base_link)) && !m.contains("not below") {
+                        "base_link"
+                    } else {
+                        "tip_link"
+                    },
+                ),
+                message: m,
+            })?;
         if !(6..=7).contains(&chain.dof()) {
             return Err(RobotError {
                 at: at("tip_link"),
@@ -141,6 +144,10 @@ impl Robot {
                 ),
             });
         }
+        narrow_limits(&mut chain, &raw.limits).map_err(|(joint, message)| RobotError {
+            at: at(&format!("limits.{joint}")),
+            message,
+        })?;
         if raw.home.len() != chain.dof() {
             return Err(RobotError {
                 at: at("home"),
@@ -310,4 +317,39 @@ impl Robot {
         }
         Ok(())
     }
+}
+
+/// Puts the robot file's narrower joint limits (`limits`: joint name → `[lower, upper]`) on the
+/// chain; the error names the joint and what is wrong.
+fn narrow_limits(
+    chain: &mut Chain,
+    limits: &BTreeMap<String, [f64; 2]>,
+) -> Result<(), (String, String)> {
+    for (name, &[lo, hi]) in limits {
+        let fail = |m: String| Err((name.clone(), m));
+        let Some(j) = chain
+            .joints
+            .iter_mut()
+            .find(|j| j.moves() && &j.name == name)
+        else {
+            return fail(format!(
+                "`{name}` is not a moving joint of the chain from `{}` to `{}`",
+                chain.base, chain.tip
+            ));
+        };
+        if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+            return fail(format!(
+                "[{lo}, {hi}]: expected [lower, upper] with lower < upper"
+            ));
+        }
+        if lo < j.lower || hi > j.upper {
+            return fail(format!(
+                "[{lo}, {hi}] is not within the URDF's limits [{}, {}]",
+                j.lower, j.upper
+            ));
+        }
+        j.lower = lo;
+        j.upper = hi;
+    }
+    Ok(())
 }
