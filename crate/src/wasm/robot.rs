@@ -32,12 +32,11 @@ pub(super) fn take_robots(
     }
     let key = JsValue::from_str("robot");
     let value = Reflect::get(options, &key)?;
-    if value.is_undefined() || value.is_null() {
-        let rest = Object::assign(&Object::new(), options.unchecked_ref());
-        Reflect::delete_property(&rest, &key)?;
-        return Ok((rest.into(), vec![]));
-    }
-    let robots = if value.is_array() {
+    let rest = Object::assign(&Object::new(), options.unchecked_ref());
+    Reflect::delete_property(&rest, &key)?;
+    let robots = if value.is_undefined() || value.is_null() {
+        vec![]
+    } else if value.is_array() {
         let list = Array::from(&value);
         if list.length() == 0 {
             return Err(type_error(&format!(
@@ -51,8 +50,6 @@ pub(super) fn take_robots(
     } else {
         vec![robot(func, "options.robot", &value)?]
     };
-    let rest = Object::assign(&Object::new(), options.unchecked_ref());
-    Reflect::delete_property(&rest, &key)?;
     Ok((rest.into(), robots))
 }
 
