@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { cpSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { currentFrame, finish, openApp, root, screenshots, useBrowser } from './harness.mjs';
+import { compareRows, currentFrame, finish, openApp, root, screenshots, useBrowser } from './harness.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 
@@ -34,7 +34,7 @@ describe('the robot select', () => {
     await page.waitForFunction(() => window.lfd.frame()?.world.arms[0].robot === 'ur5', null, { timeout: 60000 });
     await page.waitForFunction(() => new URLSearchParams(location.search).get('robot') === 'ur5');
     assert.match(await page.textContent('#notice'), /The arms are now the UR5\./);
-    await page.waitForFunction(() => document.querySelector('.stage canvas')?.dataset.meshesOf?.includes('ur5'), null, { timeout: 30000 });
+    await page.waitForFunction(() => document.querySelector('.stage canvas')?.getAttribute('data-meshes-of')?.includes('ur5'), null, { timeout: 30000 });
     await page.click('#play');
     await page.waitForFunction(() => (window.lfd.frame()?.t ?? 0) > 4, null, { timeout: 60000 });
     const info = await meshInfo(page);
@@ -89,6 +89,25 @@ describe('the robot select', () => {
     const after = await currentFrame(page);
     assert.equal(after.world.arms[0].robot, 'my-arm');
     assert.equal(after.tick, before.tick);
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
+
+  test('Compare runs every method on the robot the Run has', async () => {
+    const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=2&robot=ur5&autoplay=0');
+    await page.waitForFunction(() => window.lfd.frame()?.world.arms[0].robot === 'ur5', null, { timeout: 60000 });
+    await page.click('#tab-compare');
+    await page.waitForSelector('#compare-run');
+    await page.selectOption('#compare-level', 'l3');
+    await page.fill('#compare-at', '0.5');
+    await page.click('#compare-run');
+    await page.waitForSelector('.compare[data-done="true"]', { timeout: 240000 });
+    assert.match(await page.textContent('#compare-note'), /^B1 · UR5 · seed 2 · L3 at 0\.5 s/);
+    const rows = await compareRows(page);
+    for (const n of ['Logic-LfD (paper)', 'Logic-LfD (prioritised)', 'TAMP']) {
+      const row = rows.find((r) => r.name === n);
+      assert.match(row.result, /success/, `${n}: ${row.reason}`);
+    }
     assert.deepEqual(errors, []);
     await page.close();
   });

@@ -6,7 +6,7 @@
  * untouched), and ends with a table: success, simulated execution time, replans, planning time
  * and the reason of a failure.
  */
-import type { Catalogue, Frame, Level, Method, Mode, SessionOptions } from 'logic-lfd';
+import type { Catalogue, Frame, Level, Method, Mode, RobotChoice, SessionOptions } from 'logic-lfd';
 import { descriptionOf, items } from './catalogue';
 import { WorkerClient } from './client';
 import { button, el, select } from './dom';
@@ -61,6 +61,8 @@ export interface CompareScript {
   disturbances: Disturbance[];
   /** The task folder every method runs (its name and files) instead of the benchmark's task. */
   folder?: { name: string; files: Record<string, string> } | null;
+  /** The robot in the arms' place, and its name (absent: the default, the Panda). */
+  robot?: { choice: RobotChoice; name: string } | null;
 }
 
 /** Where a comparison's disturbances come from. */
@@ -70,10 +72,11 @@ const finished = (f: Frame) => f.status.kind === 'done' || f.status.kind === 'fa
 
 /** Runs one method on the script in `client`'s worker. */
 async function runOne(client: WorkerClient, script: CompareScript, { method, mode, name }: Run): Promise<CompareResult> {
-  const options: SessionOptions = { ...script.options, method, mode };
+  const robot = script.robot ? { robot: script.robot.choice } : {};
+  const options: SessionOptions & { robot?: RobotChoice } = { ...script.options, method, mode, ...robot };
   const { folder } = script;
   const opened = folder
-    ? await client.call('openFolder', { files: folder.files, options: { dir: folder.name, method, mode, seed: options.seed, skill: options.skill, scene: script.scene } })
+    ? await client.call('openFolder', { files: folder.files, options: { dir: folder.name, method, mode, seed: options.seed, skill: options.skill, scene: script.scene, ...robot } })
     : await client.call('open', script.scene === undefined ? { options } : { options, scene: script.scene });
   const applied = await applyAll(client, opened, script.disturbances);
   let f = applied.frame;
@@ -95,6 +98,8 @@ export interface CompareHost {
   scenario(): CompareScript['options'];
   /** The task folder the Run runs (null: the benchmark's task). */
   folder(): CompareScript['folder'];
+  /** The robot the Run's arms are (null: the default, the Panda). */
+  robot(): CompareScript['robot'];
   /** The Run's episode log (`Session.episodeJson()`). */
   episode(): Promise<string>;
 }
@@ -179,18 +184,18 @@ export class ComparePanel {
       await this.refresh();
       const r = this.recorded;
       if (typeof r === 'string') return null;
-      return { options: r.options, scene: r.scene, disturbances: recordedDisturbances(r), folder: this.host.folder() };
+      return { options: r.options, scene: r.scene, disturbances: recordedDisturbances(r), folder: this.host.folder(), robot: this.host.robot() };
     }
     const level = this.levelSel.value as Level;
     const at = Math.max(0, Number(this.atIn.value) || 0);
-    return { options: this.host.scenario(), disturbances: [scriptedDisturbance(level, at)], folder: this.host.folder() };
+    return { options: this.host.scenario(), disturbances: [scriptedDisturbance(level, at)], folder: this.host.folder(), robot: this.host.robot() };
   }
 
   /** The comparison's one-line description: the scenario and its disturbances. */
   private describe(script: CompareScript): string {
     const o = script.options;
     const task = script.folder ? `task folder ${script.folder.name}` : `${o.benchmark.toUpperCase()}${o.blocks ? ` · ${o.blocks} blocks` : ''}`;
-    const head = `${task} · seed ${o.seed}`;
+    const head = `${task}${script.robot ? ` · ${script.robot.name}` : ''} · seed ${o.seed}`;
     const r = this.recorded;
     if (this.sourceSel.value === 'recorded' && typeof r !== 'string') return `${head} · the Run’s recorded disturbances: ${r.events.map((e) => eventLabel(e, r.dt)).join(', ')}`;
     return `${head} · ${this.levelSel.value.toUpperCase()} at ${Math.max(0, Number(this.atIn.value) || 0)} s`;

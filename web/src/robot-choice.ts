@@ -37,10 +37,15 @@ export function robotFromUrl(name: string | null): RobotPick | null {
   return name && SHIPPED_ROBOTS.some(([n]) => n === name) && name !== SHIPPED_ROBOTS[0][0] ? { name } : null;
 }
 
+/** A robot's name as the page shows it: a shipped robot's label (`UR5`), else its folder's name. */
+export function robotName(pick: RobotPick | null): string {
+  const shipped = SHIPPED_ROBOTS.find(([n]) => n === (pick?.name ?? SHIPPED_ROBOTS[0][0]));
+  return shipped && !pick?.files ? shipped[1] : (pick?.name ?? '');
+}
+
 /** How a robot is named in messages (`capital`: at a sentence's start). */
 export function robotLabel(pick: RobotPick | null, capital = false): string {
-  const shipped = SHIPPED_ROBOTS.find(([n]) => n === (pick?.name ?? SHIPPED_ROBOTS[0][0]));
-  const label = shipped && !pick?.files ? `the ${shipped[1]}` : `the robot ${pick?.name}`;
+  const label = pick?.files ? `the robot ${pick.name}` : `the ${robotName(pick)}`;
   return capital ? label[0].toUpperCase() + label.slice(1) : label;
 }
 

@@ -11,6 +11,7 @@ import type { ComparePanel } from './compare';
 import type { EditorPanel } from './editor';
 import type { FrameRenderer } from './frame-renderer';
 import type { Layout } from './layout';
+import { robotName, robotOption } from './robot-choice';
 import { taskKey, type PageState, type TabId } from './state';
 import type { StatusBar } from './status-bar';
 import type { TeachPanel } from './teach';
@@ -112,6 +113,10 @@ export class Tabs {
             return { benchmark: o.benchmark, seed: o.seed, ...(o.blocks != null && !this.p.state.folder ? { blocks: o.blocks } : {}) };
           },
           folder: () => this.p.state.folder,
+          robot: () => {
+            const { robot } = robotOption(this.p.state.robot);
+            return robot === undefined ? null : { choice: robot, name: robotName(this.p.state.robot) };
+          },
           episode: () => this.p.client.call('episode', {}),
         },
         catalogue,

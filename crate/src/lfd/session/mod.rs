@@ -459,13 +459,19 @@ impl Session {
 /// A scene's arms that name no robot, on the default arm: the Franka Emika Panda from its own
 /// URDF. The page's first-load module keeps the built-in Panda (its DH chain and link capsules):
 /// the URDF's collision meshes do not fit its size budget.
+#[cfg(not(first_load))]
 fn default_robots(mut scene: crate::sim::WorldSnapshot) -> crate::sim::WorldSnapshot {
-    #[cfg(not(first_load))]
     if let Some(panda) = ArmModel::shipped("panda") {
         for arm in scene.arms.iter_mut().filter(|a| a.robot.is_none()) {
             arm.robot = Some(panda.name().to_string());
             arm.model = Some(Arc::clone(&panda));
         }
     }
+    scene
+}
+
+/// The first-load module's arms stay the built-in Panda.
+#[cfg(first_load)]
+fn default_robots(scene: crate::sim::WorldSnapshot) -> crate::sim::WorldSnapshot {
     scene
 }
