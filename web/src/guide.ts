@@ -8,6 +8,9 @@ import { el } from './dom';
 
 const SEEN_KEY = 'logic-lfd.hint-dismissed';
 
+/** Whether the page is used by touch (a phone, a tablet): the hint then names a tap, not a key. */
+const TOUCH = typeof matchMedia === 'function' && matchMedia('(pointer: coarse)').matches;
+
 /** The facts inside a problem's `(:goal …)`, as `(pred arg …)` strings. */
 export function goalFacts(problem: string): string[] {
   const i = problem.indexOf(':goal');
@@ -42,7 +45,7 @@ export class FirstVisitHint {
       'div',
       { id: 'first-hint', class: 'hint', role: 'note' },
       el('p', {}, el('strong', {}, 'The robot learned this task from one demonstration. '), 'Goal: ', this.goal, '.'),
-      el('p', {}, 'Drag a block to disturb it: the robot notices, replans in milliseconds and still finishes. Press ? for help.'),
+      el('p', {}, `Drag a block to disturb it: the robot notices, replans in milliseconds and still finishes. ${TOUCH ? 'Tap' : 'Press'} ? for help.`),
       close,
     );
     close.onclick = () => this.dismiss();

@@ -20,8 +20,9 @@ export class HelpOverlay {
       el(
         'div',
         { class: 'dialog' },
-        this.content,
+        // Close first: it stays in view at the top of a long help (a phone scrolls it).
         this.closeBtn,
+        this.content,
       ),
     );
     opener.onclick = () => this.open();

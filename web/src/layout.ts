@@ -205,6 +205,7 @@ function buildStage(c: Controls): Stage {
   const statusText = el('span', { id: 'status-text', class: 'status-text' }, 'Loading the planner…');
   const statusDot = el('span', { class: 'status-dot', 'aria-hidden': 'true' });
   const cancelBtn = button('cancel', 'Cancel the current plan: the robot stops and replans (C)', 'Cancel');
+  cancelBtn.hidden = true;
   const status = el('div', { id: 'status', class: 'status idle', role: 'status', 'aria-live': 'polite' }, statusDot, statusText, cancelBtn);
   const hud = el('div', { id: 'hud', class: 'hud', 'aria-label': 'Simulation clock and timings' });
   const notice = el('div', { id: 'notice', class: 'notice', role: 'alert', hidden: '' });

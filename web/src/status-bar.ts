@@ -38,8 +38,11 @@ export class StatusBar {
     // A reopened episode waits for Play: "planning" would promise work that is not happening.
     const waiting = k === 'planning' && !s.playing && !s.dragging;
     this.show(k, waiting ? 'paused: press Play (Space) to go on' : f.status.message || k);
+    // Cancel appears with the first session's frame: before it there is nothing to cancel.
+    this.ui.cancelBtn.hidden = false;
     this.ui.cancelBtn.disabled = !(k === 'planning' || k === 'executing' || k === 'replanning');
-    this.ui.hud.textContent = `t = ${f.t.toFixed(2)} s · tick ${f.tick} · step ${s.lastStepMs.toFixed(2)} ms (mean ${meanStepMs(s).toFixed(2)}) · ${f.replans} replans`;
+    const replans = `${f.replans} replan${f.replans === 1 ? '' : 's'}`;
+    this.ui.hud.textContent = `t = ${f.t.toFixed(2)} s · tick ${f.tick} · step ${s.lastStepMs.toFixed(2)} ms (mean ${meanStepMs(s).toFixed(2)}) · ${replans}`;
   }
 
   /** A short message over the view; errors stay longer (`ms`: how long, when not the default). */
