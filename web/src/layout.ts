@@ -210,7 +210,7 @@ function buildStage(c: Controls): Stage {
   const hud = el('div', { id: 'hud', class: 'hud', 'aria-label': 'Simulation clock and timings' });
   const notice = el('div', { id: 'notice', class: 'notice', role: 'alert', hidden: '' });
   // The robot select sits on the view it changes (bottom right, over the Capsules / Meshes switch).
-  const robot = el('label', { class: 'robot-choice', title: 'The robot in the arms’ place' }, 'robot', c.robotSel, c.robotDirIn);
+  const robot = el('label', { class: 'robot-choice' }, 'robot', c.robotSel, c.robotDirIn);
   const root = el('section', { class: 'stage', 'aria-label': 'Workcell' }, status, hud, notice, robot);
   return { root, status, statusText, cancelBtn, hud, notice };
 }

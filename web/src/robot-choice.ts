@@ -8,9 +8,9 @@ import { el } from './dom';
 
 /** The robots shipped with the page (their URDFs compiled into the wasm module, their meshes
  * under `robots/<name>/`), the first the default. */
-export const SHIPPED_ROBOTS: [string, string, string][] = [
-  ['panda', 'Panda', 'The Franka Emika Panda, from its own URDF (7 joints)'],
-  ['ur5', 'UR5', 'The Universal Robots UR5, from its own URDF (6 joints, a two-finger gripper added)'],
+export const SHIPPED_ROBOTS: [string, string][] = [
+  ['panda', 'Panda'],
+  ['ur5', 'UR5'],
 ];
 
 /** The robot select's item that opens a robot folder, and the one of the open folder. */
@@ -22,9 +22,6 @@ export interface RobotPick {
   name: string;
   files?: Record<string, Uint8Array>;
 }
-
-/** What a robot folder's files may be: the robot file, the URDF and collision meshes. */
-const ROBOT_FILE = /\.(json|urdf|stl|obj|dae)$/i;
 
 /** The session option for `pick` (none: the default Panda). */
 export function robotOption(pick: RobotPick | null): { robot?: RobotChoice } {
@@ -51,16 +48,16 @@ export function robotLabel(pick: RobotPick | null, capital = false): string {
 
 /** The robot select, set to `pick`. */
 export function robotSelect(pick: RobotPick | null): HTMLSelectElement {
-  const sel = el('select', { id: 'robot', 'aria-label': 'Robot', title: 'The robot in the arms’ place' });
+  const sel = el('select', { id: 'robot', 'aria-label': 'Robot', title: 'The robot in the arms’ place: the Panda or the UR5 from its URDF, or a folder of your own (robot.json, URDF, meshes)' });
   setRobotChoice(sel, pick);
   return sel;
 }
 
 /** Sets the robot select's items (a robot folder's own item while one is open) and value. */
 export function setRobotChoice(sel: HTMLSelectElement, pick: RobotPick | null): void {
-  const items = SHIPPED_ROBOTS.map(([v, text, title]) => el('option', { value: v, title }, text));
-  if (pick?.files) items.push(el('option', { value: ROBOT_FOLDER, title: 'The robot folder opened from this computer' }, `${pick.name} (folder)`));
-  items.push(el('option', { value: OPEN_ROBOT, title: 'Put a robot of your own in the arms’ place: pick its folder (robot.json, URDF, meshes)' }, 'Open robot folder…'));
+  const items = SHIPPED_ROBOTS.map(([v, text]) => el('option', { value: v }, text));
+  if (pick?.files) items.push(el('option', { value: ROBOT_FOLDER }, `${pick.name} (folder)`));
+  items.push(el('option', { value: OPEN_ROBOT }, 'Open robot folder…'));
   sel.replaceChildren(...items);
   sel.value = pick?.files ? ROBOT_FOLDER : (pick?.name ?? SHIPPED_ROBOTS[0][0]);
 }
@@ -68,22 +65,4 @@ export function setRobotChoice(sel: HTMLSelectElement, pick: RobotPick | null): 
 /** The hidden directory input behind "Open robot folder…". */
 export function robotDirInput(): HTMLInputElement {
   return el('input', { id: 'robot-dir', type: 'file', webkitdirectory: '', multiple: '', hidden: '', 'aria-label': 'Robot folder' });
-}
-
-/**
- * The robot folder the user picked (`webkitdirectory`: each path starts with the directory's
- * name): its robot file, URDF and meshes by path, as bytes. Rejects a folder without a `.json`
- * or `.urdf` file.
- */
-export async function robotFromFiles(list: File[]): Promise<RobotPick> {
-  const path = (f: File) => f.webkitRelativePath || f.name;
-  const kept = list.filter((f) => ROBOT_FILE.test(f.name));
-  if (!kept.some((f) => /\.json$/i.test(f.name)) || !kept.some((f) => /\.urdf$/i.test(f.name))) {
-    throw new Error('a robot folder holds its robot.json, its URDF and the meshes the URDF names');
-  }
-  const files: Record<string, Uint8Array> = {};
-  await Promise.all(kept.map(async (f) => (files[path(f)] = new Uint8Array(await f.arrayBuffer()))));
-  const top = path(kept[0]).split('/')[0];
-  const name = kept.every((f) => path(f).startsWith(`${top}/`)) ? top : 'robot';
-  return { name, files };
 }

@@ -13,7 +13,7 @@ import type { FrameRenderer } from './frame-renderer';
 import type { History } from './history';
 import { FOLDER, GALLERY, OPEN_FOLDER, galleryValue, setBlockChoices, setFolderChoice, type Layout } from './layout';
 import type { FromWorker } from './protocol';
-import { OPEN_ROBOT, ROBOT_FOLDER, robotFromFiles, robotFromUrl, robotLabel, robotOption, setRobotChoice, type RobotPick } from './robot-choice';
+import { OPEN_ROBOT, ROBOT_FOLDER, robotFromUrl, robotLabel, robotOption, setRobotChoice, type RobotPick } from './robot-choice';
 import { blocksFor, parseSeed, recordStep, taskKey, updateUrl, type PageState } from './state';
 import type { StatusBar } from './status-bar';
 import type { Tabs } from './tabs';
@@ -611,6 +611,7 @@ export class SessionControls {
         const files = [...(c.robotDirIn.files ?? [])];
         c.robotDirIn.value = '';
         if (!files.length) return;
+        const { robotFromFiles } = await import('./robot-folder');
         const pick = await robotFromFiles(files);
         setRobotChoice(c.robotSel, pick);
         await this.setRobot(pick);
