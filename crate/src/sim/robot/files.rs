@@ -35,10 +35,7 @@ impl RobotFiles {
     pub fn read(&self, path: &Path) -> Result<Vec<u8>, String> {
         match &self.memory {
             None => std::fs::read(path).map_err(|e| e.to_string()),
-            Some(m) => m
-                .get(&normal(path))
-                .cloned()
-                .ok_or_else(|| "no such file among the robot's files".to_string()),
+            Some(m) => held(m, path).map(<[u8]>::to_vec),
         }
     }
 
@@ -69,12 +66,13 @@ impl RobotFiles {
                     .map_or(0, |d| d.as_nanos());
                 Ok((canonical, meta.len(), modified))
             }
-            Some(_) => {
-                let bytes = self.read(path)?;
+            Some(m) => {
+                // Hashed where it is held: no copy of the file for its cache key.
+                let bytes = held(m, path)?;
                 Ok((
                     PathBuf::from("memory:").join(normal(path)),
                     bytes.len() as u64,
-                    u128::from(fnv1a(&bytes)),
+                    u128::from(fnv1a(bytes)),
                 ))
             }
         }
@@ -98,6 +96,14 @@ impl PartialEq for RobotFiles {
             _ => false,
         }
     }
+}
+
+/// The bytes held in memory at `path`.
+fn held<'a>(files: &'a BTreeMap<PathBuf, Vec<u8>>, path: &Path) -> Result<&'a [u8], String> {
+    files
+        .get(&normal(path))
+        .map(Vec::as_slice)
+        .ok_or_else(|| "no such file among the robot's files".to_string())
 }
 
 /// `path` without `.` and with each `..` taking away the folder before it.
