@@ -142,7 +142,7 @@ export class SessionControls {
     const { folder } = state;
     status.say(folder ? 'Loading the task folder…' : 'Loading the benchmark…');
     try {
-      const f = folder ? await this.openFolderSession(folder, scene) : await client.call('open', { options: { ...state.options, ...robotOption(state.robot) }, scene });
+      const f = await this.openSession(scene);
       renderer.restart(f);
       void this.guard(() => this.showGoal(f));
       if (state.editorTask !== taskKey(state) && !this.p.ui.editorHost.hidden) void this.p.tabs().loadEditor();
@@ -161,6 +161,14 @@ export class SessionControls {
       }
       status.fail(`Could not start the session: ${(e as Error).message}`);
     }
+  }
+
+  /** A session on the open task folder, else on the scenario's benchmark (in `scene`'s world
+   * when given), with the chosen robot in the arms' place. */
+  private openSession(scene?: string): Promise<Frame> {
+    const { state } = this.p;
+    if (state.folder) return this.openFolderSession(state.folder, scene);
+    return this.p.client.call('open', { options: { ...state.options, ...robotOption(state.robot) }, scene });
   }
 
   /** A session on `folder` with the scenario's method, mode and seed (the worker's `openFolder`). */
@@ -257,7 +265,7 @@ export class SessionControls {
     state.robot = pick;
     status.say(`Loading ${robotLabel(pick)}…`);
     try {
-      this.showOpened(state.folder ? await this.openFolderSession(state.folder) : await this.p.client.call('open', { options: { ...state.options, ...robotOption(pick) } }), state.folder);
+      this.showOpened(await this.openSession(), state.folder);
       status.notice(`The arms are now ${robotLabel(pick)}.`, 'info');
       if (state.autoplay) await this.play();
     } catch (e) {
@@ -353,11 +361,11 @@ export class SessionControls {
 
   /** Opens a scene file's world; a file the core refuses changes nothing and says why. */
   async loadScene(name: string, text: string): Promise<void> {
-    const { state, client, renderer, status } = this.p;
+    const { state, renderer, status } = this.p;
     const was = state.playing;
     if (was) await this.pause();
     try {
-      const f = state.folder ? await this.openFolderSession(state.folder, text) : await client.call('open', { options: { ...state.options }, scene: text });
+      const f = await this.openSession(text);
       renderer.restart(f);
       status.notice(`Loaded the scene ${name}.`, 'info');
       if (state.autoplay) await this.play();
