@@ -3,7 +3,7 @@
 import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
-import { compareRows, currentFrame, openApp, screenshots, useBrowser } from './harness.mjs';
+import { compareRows, currentFrame, openApp, runScriptedCompare, screenshots, useBrowser } from './harness.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 
@@ -11,12 +11,7 @@ describe('compare methods', () => {
   test('a scripted L3 on B1: Logic-LfD (both modes) and TAMP succeed, Linear and RLDS fail with their reasons', async () => {
     const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=1&autoplay=0');
     const before = await currentFrame(page);
-    await page.click('#tab-compare');
-    await page.waitForSelector('#compare-run');
-    await page.selectOption('#compare-level', 'l3');
-    await page.fill('#compare-at', '0.5');
-    await page.click('#compare-run');
-    await page.waitForSelector('.compare[data-done="true"]', { timeout: 240000 });
+    await runScriptedCompare(page, 'l3', 0.5);
     const rows = await compareRows(page);
     const row = (n) => rows.find((r) => r.name === n);
     for (const n of ['Logic-LfD (paper)', 'Logic-LfD (prioritised)', 'TAMP']) {

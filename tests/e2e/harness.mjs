@@ -169,6 +169,16 @@ export async function typeIntoEditor(page, domain, problem) {
   await page.waitForFunction(([sel, h]) => document.querySelector(sel)?.textContent.replace(/\s+/g, ' ').includes(h), [visible, head]);
 }
 
+/** Runs the Compare tab on a scripted disturbance `level` at `at` s and waits for its table. */
+export async function runScriptedCompare(page, level, at) {
+  await page.click('#tab-compare');
+  await page.waitForSelector('#compare-run');
+  await page.selectOption('#compare-level', level);
+  await page.fill('#compare-at', String(at));
+  await page.click('#compare-run');
+  await page.waitForSelector('.compare[data-done="true"]', { timeout: 240000 });
+}
+
 /** The Compare tab's results table, one object per method row. */
 export async function compareRows(page) {
   return page.$$eval('#compare-table tbody tr', (trs) =>

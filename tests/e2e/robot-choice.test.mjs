@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import { cpSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { compareRows, currentFrame, finish, openApp, root, screenshots, useBrowser } from './harness.mjs';
+import { compareRows, currentFrame, finish, openApp, root, runScriptedCompare, screenshots, useBrowser } from './harness.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 
@@ -96,12 +96,7 @@ describe('the robot select', () => {
   test('Compare runs every method on the robot the Run has', async () => {
     const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=2&robot=ur5&autoplay=0');
     await page.waitForFunction(() => window.lfd.frame()?.world.arms[0].robot === 'ur5', null, { timeout: 60000 });
-    await page.click('#tab-compare');
-    await page.waitForSelector('#compare-run');
-    await page.selectOption('#compare-level', 'l3');
-    await page.fill('#compare-at', '0.5');
-    await page.click('#compare-run');
-    await page.waitForSelector('.compare[data-done="true"]', { timeout: 240000 });
+    await runScriptedCompare(page, 'l3', 0.5);
     assert.match(await page.textContent('#compare-note'), /^B1 · UR5 · seed 2 · L3 at 0\.5 s/);
     const rows = await compareRows(page);
     for (const n of ['Logic-LfD (paper)', 'Logic-LfD (prioritised)', 'TAMP']) {
