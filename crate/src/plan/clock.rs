@@ -4,10 +4,17 @@
 //! on wasm32). A caller that wants a time limit passes a [`Clock`]: the CLI one wraps that clock,
 //! the browser one wraps `performance.now()`. Only differences of [`Clock::now_secs`] are used.
 
-/// A monotonic time source in seconds (any origin).
+/// How many expansions a search makes between two [`Clock::progress`] calls.
+pub const PROGRESS_EVERY: u64 = 1024;
+
+/// A monotonic time source in seconds (any origin), and the listener of a long search.
 pub trait Clock {
     /// Current time in seconds since an arbitrary, fixed origin.
     fn now_secs(&self) -> f64;
+
+    /// Called by a running search every [`PROGRESS_EVERY`] expansions with its count so far, so
+    /// a caller can show a long search while it runs. The default ignores it.
+    fn progress(&self, _expanded: u64) {}
 }
 
 /// A clock that never advances: time limits never trigger and reported times are 0.
@@ -25,5 +32,9 @@ impl Clock for NoClock {
 impl<C: Clock + ?Sized> Clock for &C {
     fn now_secs(&self) -> f64 {
         (**self).now_secs()
+    }
+
+    fn progress(&self, expanded: u64) {
+        (**self).progress(expanded);
     }
 }

@@ -21,7 +21,7 @@ mod regress;
 mod relevance;
 mod search;
 
-pub use clock::{Clock, NoClock};
+pub use clock::{Clock, NoClock, PROGRESS_EVERY};
 pub use heuristic::{HeuristicEvaluator, HeuristicKind, UnknownName};
 pub use multigoal::{search_multi_goal, MultiGoalMode, MultiGoalResult, MultiGoalSearch};
 pub use regress::{reaches_goal, regress};

@@ -193,6 +193,7 @@ impl WasmSession {
         Ok(WasmSession {
             inner,
             folder: Some(folder),
+            progress: None,
         })
     }
 

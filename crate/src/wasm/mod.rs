@@ -33,6 +33,8 @@ mod logic_lfd;
 #[cfg(feature = "wasm")]
 mod pddl;
 #[cfg(feature = "wasm")]
+mod progress;
+#[cfg(feature = "wasm")]
 mod reliability;
 #[cfg(not(first_load))]
 mod robot;

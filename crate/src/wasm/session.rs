@@ -155,6 +155,9 @@ pub struct WasmSession {
     pub(super) inner: crate::lfd::Session,
     /// The task folder the session runs on (its files, for a log that carries them).
     pub(super) folder: Option<crate::sim::TaskFolder>,
+    /// `onProgress`'s listener.
+    #[cfg(feature = "wasm")]
+    pub(super) progress: Option<js_sys::Function>,
 }
 
 impl From<crate::lfd::Session> for WasmSession {
@@ -162,6 +165,8 @@ impl From<crate::lfd::Session> for WasmSession {
         WasmSession {
             inner,
             folder: None,
+            #[cfg(feature = "wasm")]
+            progress: None,
         }
     }
 }
@@ -241,7 +246,11 @@ impl WasmSession {
             .ok()
             .and_then(|log| log.folder)
             .and_then(|record| crate::sim::TaskFolder::from_record(&record));
-        Ok(WasmSession { inner, folder })
+        Ok(WasmSession {
+            inner,
+            folder,
+            progress: None,
+        })
     }
 
     /// Advances the episode by `dt` simulated seconds (whole 10 ms ticks; replans happen inside)
@@ -258,8 +267,29 @@ impl WasmSession {
             ))
             .into());
         }
+        #[cfg(feature = "wasm")]
+        let f = match &self.progress {
+            Some(callback) => self
+                .inner
+                .step(dt, &super::progress::ProgressClock::new(callback)),
+            None => self.inner.step(dt, &PerformanceClock),
+        };
+        #[cfg(not(feature = "wasm"))]
         let f = self.inner.step(dt, &PerformanceClock);
         frame_js(&f)
+    }
+
+    /// Calls `callback(expanded, ms)` while a search inside `step` runs: every 100 ms of wall
+    /// time at most, the states the current search has expanded and the step's milliseconds so
+    /// far. A step shorter than 100 ms calls nothing; `null` stops the calls.
+    #[cfg(feature = "wasm")]
+    #[wasm_bindgen(js_name = onProgress)]
+    pub fn on_progress(
+        &mut self,
+        #[wasm_bindgen(unchecked_param_type = "((expanded: number, ms: number) => void) | null")]
+        callback: Option<js_sys::Function>,
+    ) {
+        self.progress = callback;
     }
 
     /// The current frame, without stepping.

@@ -1,10 +1,10 @@
 //! What every configuration handles: names that parse and print, unsolvable tasks and empty
-//! goals proved unsolvable, node and time budgets, a start state that satisfies the goal, goal
-//! facts out of range.
+//! goals proved unsolvable, node and time budgets, progress reports of a long search, a start
+//! state that satisfies the goal, goal facts out of range.
 
 use logic_lfd::plan::{
     search, Algorithm, Budget, Clock, Condition, Goal, HeuristicKind, NoClock, Operator, Plan,
-    SearchConfig, SearchOutcome, State, Task,
+    SearchConfig, SearchOutcome, State, Task, PROGRESS_EVERY,
 };
 use std::cell::Cell;
 
@@ -140,6 +140,47 @@ fn budgets_stop_the_search() {
             "{alg} {h}"
         );
     }
+}
+
+/// A clock that never advances and keeps every progress report.
+#[derive(Default)]
+struct ProgressLog(std::cell::RefCell<Vec<u64>>);
+
+impl Clock for ProgressLog {
+    fn now_secs(&self) -> f64 {
+        0.0
+    }
+
+    fn progress(&self, expanded: u64) {
+        self.0.borrow_mut().push(expanded);
+    }
+}
+
+#[test]
+fn a_long_search_reports_its_expansions_as_it_goes() {
+    let task = random_blocksworld(8, 7).task;
+    let mut reported = 0;
+    for (alg, h) in OPTIMAL.into_iter().chain(SATISFICING) {
+        let cfg = SearchConfig {
+            max_nodes: Some(5 * PROGRESS_EVERY + 10),
+            ..SearchConfig::new(alg, h)
+        };
+        let log = ProgressLog::default();
+        let r = search(&task, &cfg, &log);
+        let seen = log.0.into_inner();
+        // One report per PROGRESS_EVERY expansions, in order, each the count at that moment.
+        let want: Vec<u64> = (1..=r.stats.expanded / PROGRESS_EVERY)
+            .map(|i| i * PROGRESS_EVERY)
+            .collect();
+        let mut dedup = seen.clone();
+        dedup.dedup();
+        assert_eq!(dedup, want, "{alg} {h}: {} expanded", r.stats.expanded);
+        reported += want.len();
+    }
+    assert!(
+        reported > 0,
+        "no configuration searched long enough to report"
+    );
 }
 
 #[test]

@@ -4,7 +4,7 @@
 use super::space::StateSpace;
 use super::succ::SuccessorGenerator;
 use super::{Algorithm, Budget, Plan, SearchConfig, SearchOutcome, SearchStats};
-use crate::plan::clock::Clock;
+use crate::plan::clock::{Clock, PROGRESS_EVERY};
 use crate::plan::heuristic::relaxed::has;
 use crate::plan::heuristic::HeuristicEvaluator;
 use crate::plan::task::sanitize_goals;
@@ -223,6 +223,9 @@ impl Engine<'_> {
     }
 
     fn budget(&self) -> Option<Budget> {
+        if self.stats.expanded % PROGRESS_EVERY == 0 && self.stats.expanded > 0 {
+            self.clock.progress(self.stats.expanded);
+        }
         if let Some(m) = self.config.max_nodes {
             if self.stats.expanded >= m {
                 return Some(Budget::Nodes);
