@@ -14,7 +14,7 @@ declare global {
       setPddl: (domain: string, problem: string, demo?: string) => Promise<void>;
       renderMs: () => number;
       lastCancel: () => { clickedAt: number; appliedAt: number; repliedAt: number } | null;
-      memory: () => Promise<{ wasmBytes: number; geometries: number; textures: number }>;
+      memory: () => Promise<{ wasmBytes: number; freshBytes: number; geometries: number; textures: number }>;
       loadedAt: number;
       moveMarks: () => string[];
       marks: () => { kind: string; t: number; text: string; ms?: number }[];

@@ -12,17 +12,29 @@ export class CancelledError extends Error {
 }
 
 export class WorkerClient {
-  private readonly worker: Worker;
+  private worker!: Worker;
   private nextId = 1;
   private readonly pending = new Map<number, { resolve: (v: unknown) => void; reject: (e: Error) => void }>();
   /** The worker's module is loaded: its version, the block counts of the N-block tasks and the catalogue. */
-  readonly ready: Promise<Ready>;
+  ready: Promise<Ready>;
 
-  constructor(onPush: (m: FromWorker) => void) {
+  constructor(private readonly onPush: (m: FromWorker) => void) {
+    this.ready = this.start();
+  }
+
+  /** Replaces the worker by a fresh one: wasm memory only grows, so this is how a long search's
+   * memory returns. Pending calls reject; the new worker has no session. */
+  respawn(): Promise<Ready> {
+    this.terminate('the planner restarted');
+    return (this.ready = this.start());
+  }
+
+  private start(): Promise<Ready> {
+    const onPush = this.onPush;
     this.worker = new Worker(new URL('./worker.ts', import.meta.url), { type: 'module' });
     let resolveReady!: (v: Ready) => void;
     let rejectReady!: (e: Error) => void;
-    this.ready = new Promise((res, rej) => {
+    const ready = new Promise<Ready>((res, rej) => {
       resolveReady = res;
       rejectReady = rej;
     });
@@ -44,6 +56,7 @@ export class WorkerClient {
       }
     };
     this.worker.onerror = (e) => rejectReady(new Error(e.message || 'worker failed to start'));
+    return ready;
   }
 
   call<K extends ApiKind>(kind: K, args: Api[K]['args']): Promise<Api[K]['result']> {

@@ -37,8 +37,11 @@ export class FrameRenderer {
     this.pendingFrame = f;
   }
 
-  /** Empties the charts and the end-effector trail (a new episode begins). */
+  /** Empties the charts, the end-effector trail and the step timings (a new episode begins). */
   clearHistory(): void {
+    // The step timings are the episode's too: a long search in the last one must not skew the mean.
+    this.state.stepTimes = [];
+    this.state.lastStepMs = 0;
     this.parts.history.reset();
     this.parts.charts.reset();
     this.parts.view.clearTrail();

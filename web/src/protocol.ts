@@ -68,8 +68,9 @@ export interface Api extends TeachApi {
   cancel: { args: Record<string, never>; result: { frame: Frame; appliedAt: number } };
   /** The episode log; `withFiles`: a folder's log carries its files. */
   episode: { args: { withFiles?: boolean }; result: string };
-  /** The worker's wasm linear memory (bytes; it grows, never shrinks), for the page soak test. */
-  memory: { args: Record<string, never>; result: { wasmBytes: number } };
+  /** The worker's wasm linear memory (bytes; it grows, never shrinks), and its size when the
+   * modules were instantiated. */
+  memory: { args: Record<string, never>; result: { wasmBytes: number; freshBytes: number } };
   scene: { args: Record<string, never>; result: string };
   /** Fetch the full-speed module and move the session onto it (starts it; answers at once). */
   speedUp: { args: Record<string, never>; result: null };
@@ -102,5 +103,7 @@ export type FromWorker =
   | ({ type: 'ready' } & Ready)
   | { type: 'fatal'; message: string }
   | { type: 'frame'; frame: Frame; timing: TickTiming; playing: boolean }
+  /** A search inside the running step has expanded `expanded` states in `ms` so far. */
+  | { type: 'progress'; expanded: number; ms: number }
   | { type: 'reply'; id: number; ok: true; value: unknown }
   | { type: 'reply'; id: number; ok: false; error: string };

@@ -7,8 +7,9 @@ import type { Benchmark, Frame, Level, Method, Mode } from 'logic-lfd';
 import { folderFromFiles, folderFromUrl, folderOfLog, isEpisodeLog, type OpenFolder } from './folder';
 import type { DropRequest, View } from './view';
 import type { WorkerClient } from './client';
+import { catalogue, entryOf, levelName } from './catalogue';
 import { downloadJson, guard } from './dom';
-import type { FirstVisitHint } from './guide';
+import type { FirstVisitHint } from './hint';
 import type { FrameRenderer } from './frame-renderer';
 import type { History } from './history';
 import { FOLDER, GALLERY, OPEN_FOLDER, galleryValue, setBlockChoices, setFolderChoice, type Layout } from './layout';
@@ -34,13 +35,19 @@ export interface SessionParts {
 /** `m` as the end of a sentence: a full stop unless it has one. */
 const sentence = (m: string) => (/[.!?]$/.test(m.trim()) ? m.trim() : `${m.trim()}.`);
 const isFinished = (kind: string) => kind === 'done' || kind === 'failed';
+
 const withoutLevel = (level: Level, m: string) => m.replace(new RegExp(`^${level}:\\s*`, 'i'), '');
-const withLevel = (level: Level, m: string) => `${level.toUpperCase()}: ${withoutLevel(level, m)}`;
+const withLevel = (level: Level, m: string) => `${levelName(level)}: ${withoutLevel(level, m)}`;
 
 export class SessionControls {
   /** The first-visit hint, once its chunk has loaded (after the first frame). */
   private hint: FirstVisitHint | null = null;
   private goal = '';
+  /** Whether the session is the scenario's own (not a replay, a scene or a taught task), so a
+   * fresh worker can open it again. */
+  private reopenable = false;
+  /** A search inside the worker's step reports progress: the worker answers nothing meanwhile. */
+  private searching = false;
 
   constructor(private readonly p: SessionParts) {}
 
@@ -142,6 +149,7 @@ export class SessionControls {
     const { folder } = state;
     status.say(folder ? 'Loading the task folder…' : 'Loading the benchmark…');
     try {
+      await this.freshWorker();
       const f = await this.openSession(scene);
       renderer.restart(f);
       void this.guard(() => this.showGoal(f));
@@ -165,10 +173,13 @@ export class SessionControls {
 
   /** A session on the open task folder, else on the scenario's benchmark (in `scene`'s world
    * when given), with the chosen robot in the arms' place. */
-  private openSession(scene?: string): Promise<Frame> {
+  private async openSession(scene?: string): Promise<Frame> {
     const { state } = this.p;
-    if (state.folder) return this.openFolderSession(state.folder, scene);
-    return this.p.client.call('open', { options: { ...state.options, ...robotOption(state.robot) }, scene });
+    const f = await (state.folder
+      ? this.openFolderSession(state.folder, scene)
+      : this.p.client.call('open', { options: { ...state.options, ...robotOption(state.robot) }, scene }));
+    this.reopenable = scene === undefined;
+    return f;
   }
 
   /** A session on `folder` with the scenario's method, mode and seed (the worker's `openFolder`). */
@@ -241,6 +252,7 @@ export class SessionControls {
     if (was) await this.pause();
     try {
       this.showOpened(await this.openFolderSession(folder), folder);
+      this.reopenable = true;
       status.notice(`Opened the task folder ${folder.name}.`, 'info');
       if (state.autoplay) await this.play();
       return null;
@@ -343,6 +355,7 @@ export class SessionControls {
     if (state.playing) await this.pause();
     try {
       const f = await client.call('replay', { episode: text });
+      this.reopenable = false;
       const log = JSON.parse(text) as { options: { benchmark: Benchmark; method: Method; mode: Mode; seed: number; blocks?: number | null } };
       const o = state.options;
       Object.assign(o, { benchmark: log.options.benchmark, method: log.options.method, mode: log.options.mode, seed: log.options.seed });
@@ -378,8 +391,21 @@ export class SessionControls {
 
   async reset(): Promise<void> {
     this.setPlaying(false);
-    this.p.renderer.restart(await this.p.client.call('reset', { seed: this.p.state.options.seed }));
+    const fresh = this.reopenable && !this.p.state.taught && (await this.freshWorker());
+    this.p.renderer.restart(await (fresh ? this.openSession() : this.p.client.call('reset', { seed: this.p.state.options.seed })));
     if (this.p.state.autoplay) await this.play();
+  }
+
+  /** Replaces a worker whose wasm memory grew 16 MiB (and twice) past its fresh size: wasm memory
+   * never shrinks, and one long search (TAMP on a tall tower) can leave hundreds of MB behind. Resolves
+   * to whether it did (the new worker has no session yet). */
+  private async freshWorker(): Promise<boolean> {
+    const { client } = this.p;
+    const m = await client.call('memory', {});
+    if (m.wasmBytes <= Math.max(2 * m.freshBytes, m.freshBytes + (16 << 20))) return false;
+    await client.respawn();
+    void client.call('speedUp', {});
+    return true;
   }
 
   step(): Promise<void> {
@@ -409,17 +435,31 @@ export class SessionControls {
       this.p.renderer.render(r.frame);
       if (!this.p.state.playing) await this.play();
     } catch (e) {
-      this.p.status.notice(`${level.toUpperCase()} refused: ${withoutLevel(level, (e as Error).message)}`, 'error');
+      this.p.status.notice(`${levelName(level)} refused: ${withoutLevel(level, (e as Error).message)}`, 'error');
     }
   }
 
   cancel(): Promise<void> {
     return this.guard(async () => {
+      if (this.searching) return this.stopSearch();
       const clickedAt = performance.timeOrigin + performance.now();
       const r = await this.p.client.call('cancel', {});
       this.p.renderer.render(r.frame);
       this.p.state.lastCancel = { clickedAt, appliedAt: r.appliedAt, repliedAt: performance.timeOrigin + performance.now() };
     });
+  }
+
+  /** Cancel while a search holds the worker: a fresh worker (the only way to stop wasm from
+   * outside) reopens the episode at its start, or says what to open when it cannot. */
+  private async stopSearch(): Promise<void> {
+    const { client, status, renderer, state } = this.p;
+    this.searching = false;
+    this.setPlaying(false);
+    await client.respawn();
+    void client.call('speedUp', {});
+    if (!this.reopenable || state.taught) return status.fail('Search stopped: the planner restarted. Open a task to go on.');
+    renderer.restart(await this.openSession());
+    status.notice('Search stopped: the planner restarted and the episode is back at its start.', 'info', 8000);
   }
 
   /** A block the user dropped in the view; resolves to a refusal or null. */
@@ -469,10 +509,17 @@ export class SessionControls {
       this.p.status.fail(m.message);
       return;
     }
+    if (m.type === 'progress') {
+      this.searching = true;
+      const method = entryOf(catalogue()?.methods ?? [], this.p.state.options.method)?.label ?? '';
+      return this.p.status.searching(method, m.expanded, m.ms);
+    }
+    this.searching = false;
     if (m.type !== 'frame' || this.p.tabs().teach?.active) return;
     recordStep(this.p.state, m.timing.stepMs);
     this.p.renderer.render(m.frame);
     if (!m.playing && this.p.state.playing) this.setPlaying(false);
+    if (m.frame.status.kind === 'done') this.hint?.ended(() => void this.reset());
   }
 
   /** Selects the next benchmark (as if chosen in its select). */

@@ -37,12 +37,20 @@ export class StatusBar {
     const k = f.status.kind;
     // A reopened episode waits for Play: "planning" would promise work that is not happening.
     const waiting = k === 'planning' && !s.playing && !s.dragging;
-    this.show(k, waiting ? 'paused: press Play (Space) to go on' : f.status.message || k);
+    const text = f.status.message || k;
+    const budget = k === 'failed' && text.includes('budget exhausted') ? ' (stopped at a budget, not proved unsolvable)' : '';
+    this.show(k, waiting ? 'paused: press Play (Space) to go on' : text + budget);
     // Cancel appears with the first session's frame: before it there is nothing to cancel.
     this.ui.cancelBtn.hidden = false;
     this.ui.cancelBtn.disabled = !(k === 'planning' || k === 'executing' || k === 'replanning');
     const replans = `${f.replans} replan${f.replans === 1 ? '' : 's'}`;
     this.ui.hud.textContent = `t = ${f.t.toFixed(2)} s · tick ${f.tick} · step ${s.lastStepMs.toFixed(2)} ms (mean ${meanStepMs(s).toFixed(2)}) · ${replans}`;
+  }
+
+  /** A search runs inside the worker's step: which method's, how far it got, and Cancel. */
+  searching(method: string, expanded: number, ms: number): void {
+    this.show('planning', `${method} searching: ${expanded.toLocaleString('en')} states expanded · ${(ms / 1000).toFixed(1)} s`);
+    this.ui.cancelBtn.disabled = false;
   }
 
   /** A short message over the view; errors stay longer (`ms`: how long, when not the default). */

@@ -15,6 +15,8 @@ type TeachHandlers = {
 let loading: Promise<TeachModule> | null = null;
 let loaded: TeachModule | null = null;
 let memory: WebAssembly.Memory | null = null;
+/** Its size when it was instantiated (bytes). */
+let freshBytes = 0;
 let teacher: InstanceType<TeachModule['Teacher']> | null = null;
 
 /** The full module, instantiated once (a failed fetch is retried on the next call). */
@@ -22,6 +24,7 @@ export function teachModule(): Promise<TeachModule> {
   loading ??= import('logic-lfd-teach').then(
     async (m) => {
       memory = (await m.default()).memory;
+      freshBytes = memory.buffer.byteLength;
       loaded = m;
       return m;
     },
@@ -43,9 +46,9 @@ export function teachLastPanic(): string {
   return loaded?.lastPanic() ?? '';
 }
 
-/** The Teach module's wasm memory in bytes (0 until it is loaded). */
-export function teachMemoryBytes(): number {
-  return memory?.buffer.byteLength ?? 0;
+/** The Teach module's wasm memory in bytes, now and when it was instantiated (0 until it is loaded). */
+export function teachMemoryBytes(): [number, number] {
+  return [memory?.buffer.byteLength ?? 0, freshBytes];
 }
 
 /** The Teach handlers; `replace` installs a new Session (stopping the old one) and returns its frame. */

@@ -24,7 +24,7 @@ declare global {
       setPddl: (domain: string, problem: string, demo?: string) => Promise<void>;
       renderMs: () => number;
       lastCancel: () => CancelTiming | null;
-      memory: () => Promise<{ wasmBytes: number; geometries: number; textures: number }>;
+      memory: () => Promise<{ wasmBytes: number; freshBytes: number; geometries: number; textures: number }>;
       loadedAt: number;
       /** Bodies whose disturbance move is marked in the view now. */
       moveMarks: () => string[];

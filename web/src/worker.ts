@@ -19,6 +19,8 @@ const post = (m: FromWorker) => (self as unknown as Worker).postMessage(m);
 /** The live session: on the first-load module until speed-up.ts moves it onto the full one. */
 let session: lfd.Session | FullSession | null = null;
 let wasmMemory: WebAssembly.Memory | null = null;
+/** The first-load module's memory when it was instantiated (bytes). */
+let freshBytes = 0;
 /** The disturbance levels of the module's catalogue (read once it is loaded). */
 let levels: Level[] = [];
 let playing = false;
@@ -38,8 +40,15 @@ function need(): lfd.Session | FullSession {
 function replace(s: lfd.Session | FullSession): Frame {
   stop();
   session?.free();
-  session = s;
+  session = watched(s);
   return s.frame();
+}
+
+/** `s`, telling the page how a long search inside a step goes (the full module's sessions; the
+ * page can show it while this worker is busy). */
+function watched<S extends lfd.Session | FullSession>(s: S): S {
+  if ('onProgress' in s) s.onProgress((expanded, ms) => post({ type: 'progress', expanded, ms }));
+  return s;
 }
 
 function stop(): void {
@@ -115,7 +124,7 @@ const handlers: Handlers = {
       (s) => {
         // Same episode, same frame: the loop keeps playing on the new session.
         session?.free();
-        session = s;
+        session = watched(s);
       },
     );
     return null;
@@ -178,7 +187,10 @@ const handlers: Handlers = {
   },
   episode: ({ withFiles }) => need().episodeJson(withFiles ? { withFiles } : undefined),
   scene: () => need().sceneJson(),
-  memory: () => ({ wasmBytes: (wasmMemory?.buffer.byteLength ?? 0) + teachMemoryBytes() }),
+  memory: () => {
+    const [teach, teachFresh] = teachMemoryBytes();
+    return { wasmBytes: (wasmMemory?.buffer.byteLength ?? 0) + teach, freshBytes: freshBytes + teachFresh };
+  },
   ...teachHandlers(replace),
 };
 
@@ -214,6 +226,7 @@ async function handle(req: ToWorker): Promise<void> {
 const ready = init().then(
   (wasm) => {
     wasmMemory = wasm.memory;
+    freshBytes = wasm.memory.buffer.byteLength;
     const catalogue = lfd.catalogue();
     levels = catalogue.levels.map((l) => l.id);
     const blockRanges = Object.fromEntries(catalogue.benchmarks.map(({ id }) => [id, lfd.blockRange(id)])) as BlockRanges;
