@@ -1,7 +1,7 @@
 // Browser tests of the page's small words and touch targets: the clock line counts its replans in
 // the right number, Cancel waits for a session, and on a phone (390 × 844, touch) the hint names a
-// tap rather than a key, Help's Close is in view without scrolling, and the timeline's scrubber
-// is a finger's height.
+// tap rather than a key, Help's Close is in view without scrolling, the timeline's scrubber is a
+// finger's height and the plan shows without scrolling.
 import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
@@ -21,7 +21,9 @@ async function phone(query) {
 
 describe('words and touch targets', () => {
   test('the clock line says "1 replan", then "2 replans"', async () => {
-    const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=1&speed=8');
+    // Paused after the first plan: the scrambled state is the same in every run.
+    const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=1&speed=8&autoplay=0');
+    await page.click('#step');
     await page.waitForFunction(() => window.lfd.frame()?.replans === 1, null, { timeout: 30000 });
     assert.match(await page.textContent('#hud'), /· 1 replan$/);
     await page.click('#inject-l3');
@@ -74,6 +76,19 @@ describe('words and touch targets', () => {
     const h = await page.waitForSelector('.timeline input[type="range"]', { timeout: 30000 });
     const box = await h.boundingBox();
     assert.ok(box && box.height >= 24, `the scrubber is ${box?.height} px tall`);
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
+
+  test('on a phone the plan shows without scrolling', async () => {
+    const { page, errors } = await phone('?benchmark=b1&seed=1');
+    await page.waitForFunction(() => (window.lfd.frame()?.plan.length ?? 0) > 0, null, { timeout: 30000 });
+    const first = await page.$eval('#plan li', (li) => {
+      const r = li.getBoundingClientRect();
+      return { top: r.top, bottom: r.bottom, height: innerHeight, scrolled: scrollY };
+    });
+    assert.equal(first.scrolled, 0);
+    assert.ok(first.bottom <= first.height, `the plan's first step at ${first.top}..${first.bottom} px of ${first.height}`);
     assert.deepEqual(errors, []);
     await page.close();
   });

@@ -1,7 +1,7 @@
 /**
  * The catalogue of methods, multi-goal modes, benchmarks and disturbance levels (id, label,
  * one-line description) as the wasm module's `catalogue()` gives it. The worker sends it with its
- * `ready` message; the selects, the L1–L4 buttons, the Compare table, the tooltips and the help
+ * `ready` message; the selects, the disturbance buttons, the Compare table, the tooltips and the help
  * are built from it, so none of them names an entry itself.
  */
 import type { Catalogue, CatalogueEntry } from 'logic-lfd';
@@ -29,6 +29,9 @@ export const items = <T extends string>(entries: CatalogueEntry<T>[]): [T, strin
 /** The entry of `id`, if `entries` has one. */
 export const entryOf = <T extends string>(entries: CatalogueEntry<T>[], id: string | null | undefined): CatalogueEntry<T> | undefined =>
   entries.find((e) => e.id === id);
+
+/** A disturbance level's name on the page (its catalogue label, before the catalogue its id). */
+export const levelName = (id: string): string => entryOf(current?.levels ?? [], id)?.label ?? id.toUpperCase();
 
 /** The one-line description of `id` ('' for an unknown id). */
 export const descriptionOf = <T extends string>(entries: CatalogueEntry<T>[], id: string): string => entryOf(entries, id)?.description ?? '';

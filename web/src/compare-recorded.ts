@@ -6,6 +6,7 @@
 import type { Frame, Level, SessionOptions, WorldSnapshot } from 'logic-lfd';
 import type { WorkerClient } from './client';
 import type { Vec3 } from './protocol';
+import { levelName } from './catalogue';
 
 /** One external event of the episode log (`EpisodeLog.events`, the CLI's snake_case JSON). */
 export type LoggedEvent =
@@ -63,7 +64,7 @@ const at = (tick: number, dt: number) => `${(tick * dt).toFixed(2)} s`;
 /** What a logged event is, in words: "drag a at 3.20 s", "L3 at 0.50 s", "cancel at 1.00 s". */
 export function eventLabel(e: LoggedEvent, dt: number): string {
   if (e.event === 'perturb') return `drag ${e.body} at ${at(e.tick, dt)}`;
-  if (e.event === 'inject') return `${e.level.toUpperCase()} at ${at(e.tick, dt)}`;
+  if (e.event === 'inject') return `${levelName(e.level)} at ${at(e.tick, dt)}`;
   return `cancel at ${at(e.tick, dt)}`;
 }
 

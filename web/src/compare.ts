@@ -7,10 +7,11 @@
  * and the reason of a failure.
  */
 import type { Catalogue, Frame, Level, Method, Mode, RobotChoice, SessionOptions } from 'logic-lfd';
-import { descriptionOf, items } from './catalogue';
+import { descriptionOf, items, levelName } from './catalogue';
 import { WorkerClient } from './client';
 import { button, el, select } from './dom';
 import { applyAll, type Disturbance, eventLabel, type Recorded, recordedDisturbances, recordedOf, scriptedDisturbance } from './compare-recorded';
+import './compare.css';
 
 /** One run of a comparison: method, mode, the row's name and tooltip. */
 export interface Run {
@@ -198,7 +199,7 @@ export class ComparePanel {
     const head = `${task}${script.robot ? ` · ${script.robot.name}` : ''} · seed ${o.seed}`;
     const r = this.recorded;
     if (this.sourceSel.value === 'recorded' && typeof r !== 'string') return `${head} · the Run’s recorded disturbances: ${r.events.map((e) => eventLabel(e, r.dt)).join(', ')}`;
-    return `${head} · ${this.levelSel.value.toUpperCase()} at ${Math.max(0, Number(this.atIn.value) || 0)} s`;
+    return `${head} · ${levelName(this.levelSel.value)} at ${Math.max(0, Number(this.atIn.value) || 0)} s`;
   }
 
   /** Runs the comparison with the chosen disturbances; resolves to the table's rows. */

@@ -38,9 +38,18 @@ export function factChips(added: string[], removed: string[]): HTMLElement[] {
   return [...added.map((x) => el('span', { class: 'chip added' }, `+ ${x}`)), ...removed.map((x) => el('span', { class: 'chip removed' }, `− ${x}`))];
 }
 
+/** L_k as the paper writes it (k a subscript), so a demonstration state never reads like a
+ * disturbance level. */
+export function lk(k: number | string, base = 'L'): HTMLElement {
+  return el('span', { class: 'lk' }, base, el('sub', {}, String(k)));
+}
+
+/** L_k as plain text, k in subscript digits (for sentences and tooltips). */
+export const lkText = (k: number): string => `L${[...String(k)].map((d) => '₀₁₂₃₄₅₆₇₈₉'[Number(d)]).join('')}`;
+
 /** The list item of demo state L`i` (its facts in the tooltip). */
 export function demoStateItem(i: number, facts: string[], cls = 'demo-state'): HTMLLIElement {
-  return el('li', { class: cls, title: facts.join(' ') }, `L${i}`, el('span', { class: 'muted' }, ` · ${facts.length} facts`));
+  return el('li', { class: cls, title: facts.join(' ') }, lk(i), el('span', { class: 'muted' }, ` · ${facts.length} facts`));
 }
 
 /** Saves `text` as a JSON file named `name` (the browser's download). */

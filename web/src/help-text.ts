@@ -53,7 +53,7 @@ function helpExplanations(c: Catalogue): HTMLElement {
   return el(
     'div',
     { id: 'help-explain', class: 'help-explain' },
-    section('Disturbances (buttons L1–L4, keys 1–4)', rows(c.levels)),
+    section('Disturbances (the paper’s L1–L4; buttons and keys 1–4)', c.levels.map((e) => [`${e.label} (${e.id.toUpperCase()})`, e.description])),
     section('Methods (the method select)', rows(c.methods)),
     section('Logic-LfD modes (the mode select)', rows(c.modes)),
     section('Benchmarks (the benchmark select)', rows(c.benchmarks)),

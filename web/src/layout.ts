@@ -27,7 +27,7 @@ export interface Controls {
   playBtn: HTMLButtonElement;
   stepBtn: HTMLButtonElement;
   speedSel: HTMLSelectElement;
-  /** The L1–L4 buttons' group, and the buttons (made when the catalogue arrives). */
+  /** The disturbance buttons' group, and the buttons (made when the catalogue arrives). */
   levelGroup: HTMLElement;
   levelBtns: HTMLButtonElement[];
   saveBtn: HTMLButtonElement;
@@ -153,7 +153,7 @@ export function setFolderChoice(sel: HTMLSelectElement, folder: string | null, b
   sel.value = folder !== null ? FOLDER : benchmark;
 }
 
-/** Fills the benchmark, method and mode selects and makes the L1–L4 buttons from the catalogue
+/** Fills the benchmark, method and mode selects and makes the disturbance buttons from the catalogue
  * the worker sent, the selects set to scenario `o`. */
 export function setCatalogueChoices(c: Controls, cat: Catalogue, o: Scenario): void {
   fill(c.benchSel, items(cat.benchmarks), o.benchmark);
@@ -161,7 +161,7 @@ export function setCatalogueChoices(c: Controls, cat: Catalogue, o: Scenario): v
   fill(c.methodSel, items(cat.methods), o.method);
   fill(c.modeSel, items(cat.modes), o.mode);
   const buttons = cat.levels.map(({ id, label, description }, i) => {
-    const b = button(`inject-${id}`, `Inject ${label} (key ${i + 1}): ${description}`, label, 'level');
+    const b = button(`inject-${id}`, `${label}, the paper’s ${id.toUpperCase()} (key ${i + 1}): ${description}`, label, 'level');
     b.dataset.level = id;
     return b;
   });

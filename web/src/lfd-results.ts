@@ -4,18 +4,13 @@
  * which mode is shorter, and planning from scratch for comparison. Plain rendering, no state.
  */
 import type { LogicLfdResult, LogicLfdStats, Mode } from 'logic-lfd';
-import { el } from './dom';
+import { el, lk } from './dom';
 
 /** What each mode joins, as its column explains it (a new mode needs a line: the type asks). */
 const JOINS: Record<Mode, () => (Node | string)[]> = {
   paper: () => ['the first ', lk('k'), ' reached'],
   prioritised: () => ['cheapest prefix + demo left'],
 };
-
-/** `L` with subscript `k`. */
-export function lk(k: number | string, base = 'L'): HTMLElement {
-  return el('span', { class: 'lk' }, base, el('sub', {}, String(k)));
-}
 
 function ms(s: LogicLfdStats): string {
   return `${s.expanded} expanded · ${s.timeMs < 10 ? s.timeMs.toFixed(2) : s.timeMs.toFixed(0)} ms`;

@@ -14,8 +14,8 @@ import type {
   Mode,
 } from 'logic-lfd';
 import './lfd.css';
-import { el } from './dom';
-import { lk, renderResults } from './lfd-results';
+import { el, lk } from './dom';
+import { renderResults } from './lfd-results';
 import { StateEditor } from './lfd-state-editor';
 import { withInit } from './pddl-init';
 

@@ -75,7 +75,7 @@ client.ready.then(
     void import('./timeline').then(
       ({ Timeline }) => new Timeline(ui.stage.root, { history, pause: () => void session.guard(() => session.pause()), togglePlay: () => void session.togglePlay() }),
     );
-    void import('./guide').then(({ FirstVisitHint }) => session.setHint(new FirstVisitHint(ui.stage.root)));
+    void import('./hint').then(({ FirstVisitHint }) => session.setHint(new FirstVisitHint(ui.stage.root)));
   },
   (e: Error) => status.fail(e.message),
 );

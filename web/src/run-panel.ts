@@ -7,7 +7,7 @@ import type { Frame, Mode, Replan } from 'logic-lfd';
 
 /** Replans listed under the plan (the newest). */
 const MAX_REPLANS_SHOWN = 6;
-import { demoStateItem, el, factChips } from './dom';
+import { demoStateItem, el, factChips, lk } from './dom';
 import type { RunLists } from './layout';
 
 type WhyJoin = typeof import('./why-join');
@@ -99,7 +99,7 @@ export class RunPanel {
   private showDemo(f: Frame): void {
     const k = f.matchedK ?? null;
     const at = demoPosition(f);
-    this.ui.matched.textContent = k == null ? '' : `joined at L${k}${at != null && at !== k ? `, now at L${at}` : ''}`;
+    this.ui.matched.replaceChildren(...(k == null ? [] : ['joined at ', lk(k), ...(at != null && at !== k ? [', now at ', lk(at)] : [])]));
     const items: HTMLElement[] = [];
     f.demoStates.forEach((facts, i) => {
       items.push(demoStateItem(i, facts, `demo-state${k === i ? ' matched' : ''}${at === i ? ' at' : ''}`));
@@ -126,15 +126,18 @@ export class RunPanel {
         .reverse()
         .slice(0, MAX_REPLANS_SHOWN)
         .flatMap((r, i) => {
-          const joined = r.k != null ? `L${r.k}` : r.alternatives?.some((a) => a.status === 'joined') ? 'G' : null;
+          const joined = () => (r.k != null ? lk(r.k) : 'G');
+          const joins = r.k != null || r.alternatives?.some((a) => a.status === 'joined');
           const line = el(
             'div',
             { class: i === 0 ? 'replan last' : 'replan' },
-            `${i === 0 ? 'Last replan' : 'Replan'} at tick ${r.tick}: ${r.reason} — ${r.timeMs.toFixed(2)} ms${joined ? `, joined ${joined} (${r.newActions} new actions)` : ''}${r.fallback ? ', no skeleton joining the demo bound: planned to G from scratch (TAMP fallback)' : ''}`,
+            `${i === 0 ? 'Last replan' : 'Replan'} at tick ${r.tick}: ${r.reason} — ${r.timeMs.toFixed(2)} ms`,
+            ...(joins ? [', joined ', joined(), ` (${r.newActions} new actions)`] : []),
+            r.fallback ? ', no skeleton joining the demo bound: planned to G from scratch (TAMP fallback)' : '',
           );
-          if (!joined || !r.alternatives?.length) return [line];
+          if (!joins || !r.alternatives?.length) return [line];
           const open = this.whyOpen === r.tick;
-          const btn = el('button', { class: 'why-btn link', type: 'button', 'aria-expanded': String(open) }, `why ${joined}?`);
+          const btn = el('button', { class: 'why-btn link', type: 'button', 'aria-expanded': String(open) }, 'why ', joined(), '?');
           btn.addEventListener('click', () => void this.toggleWhy(r.tick));
           line.append(' ', btn);
           return open && this.why ? [line, this.why.whyJoinPanel(r, this.mode())] : [line];

@@ -108,7 +108,7 @@ export function buildTeachUi(root: HTMLElement): TeachUi {
     el('h2', {}, 'Run the taught task'),
     el('div', { class: 'teach-row' }, u.startSel, el('label', { class: 'seed' }, 'seed', u.seedIn)),
     el('div', { class: 'teach-row' }, u.runBtn),
-    el('p', { class: 'muted small' }, 'Logic-LfD plans to the nearest demo state and follows the taught actions; drag blocks or press L1–L4 while it works.'),
+    el('p', { class: 'muted small' }, 'Logic-LfD plans to the nearest demo state and follows the taught actions; drag blocks or use the disturbance buttons while it works.'),
   );
   return u;
 }

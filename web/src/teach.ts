@@ -20,6 +20,7 @@ import { GripperHandle, type HandlePose } from './teach-gripper';
 import { GripperStream } from './teach-gripper-stream';
 import { buildTeachUi, TEACH_MODES, type TeachMode, type TeachUi } from './teach-layout';
 import { checkedGoal, errorContent, goalItems, recordingItems, taughtItems } from './teach-listing';
+import './teach.css';
 
 type Start = 'random' | 'taught' | 'arrange';
 

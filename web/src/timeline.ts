@@ -4,6 +4,7 @@
  * scrubber pauses the run and shows the recorded moment in the view; Play returns to live.
  * Loaded once the page is interactive: it is not part of the first frame.
  */
+import { levelName } from './catalogue';
 import { MARK_COLOURS, type History, type Mark } from './history';
 
 export interface TimelineParts {
@@ -17,14 +18,8 @@ export interface TimelineParts {
 /** Markers drawn at most (the newest): hundreds of replans stay one light row. */
 const MAX_SHOWN = 300;
 
-const NAMES: Record<Mark['kind'], string> = {
-  drag: 'Drag',
-  l1: 'L1',
-  l2: 'L2',
-  l3: 'L3',
-  l4: 'L4',
-  replan: 'Replan',
-};
+/** A marker's name: a disturbance's word (the catalogue's label), else what it marks. */
+const nameOf = (kind: Mark['kind']): string => (kind === 'drag' ? 'Drag' : kind === 'replan' ? 'Replan' : levelName(kind));
 
 /** The scale's end: the latest time rounded up, so markers move only when it steps. */
 function scaleEnd(t: number): number {
@@ -114,7 +109,7 @@ export class Timeline {
       s.dataset.t = m.t.toFixed(2);
       s.style.left = `${(m.t / this.max) * 100}%`;
       s.style.background = MARK_COLOURS[m.kind];
-      s.title = `${NAMES[m.kind]} at t = ${m.t.toFixed(2)} s: ${m.text}`;
+      s.title = `${nameOf(m.kind)} at t = ${m.t.toFixed(2)} s: ${m.text}`;
       return s;
     });
     this.marksEl.replaceChildren(...items);

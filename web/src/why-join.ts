@@ -4,9 +4,10 @@
  * why the mode joined the L_k it did. Loaded only when the user first asks (a chunk of its own).
  */
 import type { Alternative, Mode, Replan } from 'logic-lfd';
-import { el } from './dom';
+import { el, lk, lkText } from './dom';
+import './why-join.css';
 
-const name = (a: Alternative): string => (a.k == null ? 'G' : `L${a.k}`);
+const name = (a: Alternative): string => (a.k == null ? 'G' : lkText(a.k));
 
 const STATUS: Record<Alternative['status'], string> = {
   joined: 'joined',
@@ -52,7 +53,7 @@ export function whyJoinPanel(r: Replan, mode: Mode): HTMLElement {
       'tbody',
       {},
       ...rows.map((a) =>
-        el('tr', { class: `alt ${a.status}` }, el('td', {}, name(a)), cell(a.prefix), cell(a.suffix), cell(a.total), el('td', { class: 'muted' }, STATUS[a.status])),
+        el('tr', { class: `alt ${a.status}` }, el('td', {}, a.k == null ? 'G' : lk(a.k)), cell(a.prefix), cell(a.suffix), cell(a.total), el('td', { class: 'muted' }, STATUS[a.status])),
       ),
     ),
   );

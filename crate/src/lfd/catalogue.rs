@@ -304,10 +304,12 @@ impl Listed for Level {
 
     fn label(self) -> &'static str {
         match self {
-            Level::L1 => "L1",
-            Level::L2 => "L2",
-            Level::L3 => "L3",
-            Level::L4 => "L4",
+            // Words, not the paper's L1–L4: the page shows them beside the demonstration's
+            // states L_k, and "L2" must not name both.
+            Level::L1 => "Nudge",
+            Level::L2 => "Set back",
+            Level::L3 => "Scramble",
+            Level::L4 => "New block",
         }
     }
 
