@@ -161,7 +161,7 @@ describe('teach says what it records', () => {
     // Deleting the first move while the goal still holds (on c b): refused with the reason.
     await page.click('#teach-delete-move-1');
     await page.waitForSelector('#teach-error:not([hidden])');
-    assert.match(await page.textContent('#teach-error'), /Deleting move 1 \(\(pick panda c\) \(stack panda c b\)\) leaves an invalid demonstration: .*\(on c b\)/);
+    assert.match(await page.textContent('#teach-error'), /Deleting move 1, \(pick panda c\) \(stack panda c b\), leaves an invalid demonstration: .*\(on c b\)/);
     assert.match(await page.textContent('#teach-error'), /The demonstration is unchanged/);
     assert.equal(await page.evaluate(() => window.lfdTeach.info().actions.length), 4);
     // Goal: only (on a d).
@@ -178,6 +178,8 @@ describe('teach says what it records', () => {
     assert.deepEqual(info.actions, ['(pick panda a)', '(stack panda a d)']);
     assert.deepEqual(info.goal, ['(on a d)']);
     assert.ok(!info.states.at(-1).includes('(on c b)'));
+    assert.match(await page.textContent('#teach-summary'), /Deleted move 1, \(pick panda c\) \(stack panda c b\): 2 actions left/);
+    assert.match(await page.textContent('#status'), /2 actions recognised · stopped/);
     const listed = await page.textContent('#teach-list');
     assert.match(listed, /a1 \(pick panda a\)/);
     assert.doesNotMatch(listed, /panda c/);

@@ -47,7 +47,7 @@ export function taughtItems(info: TaughtInfo, moves: [number, number][], onDelet
     if (k >= 0) {
       const [first, end] = moves[k];
       const span = end - first > 1 ? `a${first + 1}–a${end}` : `a${first + 1}`;
-      const del = button(`teach-delete-move-${k + 1}`, `Delete move ${k + 1} (${span}) from the demonstration`, '✕');
+      const del = button(`teach-delete-move-${k + 1}`, `Delete move ${k + 1} (${span}) from the demonstration`, `✕ move ${k + 1}`);
       del.onclick = () => onDelete(k);
       row.append(del);
     }

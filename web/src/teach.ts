@@ -311,14 +311,15 @@ export class TeachPanel {
     try {
       this.info = await this.host.client.call('teachInfo', { demoJson: json, folder: this.taughtIn ?? undefined });
     } catch (e) {
-      const message = `Deleting move ${k + 1} (${names}) leaves an invalid demonstration: ${(e as Error).message}`;
+      const message = `Deleting move ${k + 1}, ${names}, leaves an invalid demonstration: ${(e as Error).message}`;
       this.showError({ kind: 'refused', message, t: null, added: [], removed: [] }, 'The demonstration is unchanged.');
       return;
     }
     this.demoJson = json;
     this.clearError();
-    this.ui.summary.textContent = `Deleted move ${k + 1} (${names}): ${this.info.actions.length} actions left, checked again.`;
+    this.ui.summary.textContent = `Deleted move ${k + 1}, ${names}: ${this.info.actions.length} actions left, checked again.`;
     this.refresh();
+    if (this.active) this.host.status('done', this.statusText());
   }
 
   private async setGoal(): Promise<void> {
@@ -443,7 +444,8 @@ export class TeachPanel {
   private statusText(): string {
     const s = this.state;
     if (!s) return 'Teach: press ● Record to demonstrate a new task in this workcell';
-    const n = s.segments.length;
+    // Stopped: the taught demo (its moves may have been deleted), else the recording.
+    const n = this.demoJson && this.info ? this.info.actions.length : s.segments.length;
     return `Teaching ${taskLabel(s)} · t = ${s.t.toFixed(2)} s · ${n} action${n === 1 ? '' : 's'} recognised${this.demoJson ? ' · stopped' : ' · recording'}`;
   }
 
