@@ -55,10 +55,9 @@ async function startRecording(page) {
 }
 
 describe('teach says what it records', () => {
-  test('a drag over a block outlines it and shadows its top; the drop stacks, shows at once, and one Undo takes the whole move back', async () => {
+  test('a drag over a block outlines it and shadows its top; the drop stacks and its actions and fact change show at once', async () => {
     const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&autoplay=0');
     await startRecording(page);
-    const c0 = await teachBody(page, 'c');
     const pt = await points(page, 'c', 'd');
     await hold(page, pt.from, pt.top);
     const hint = await page.evaluate(() => window.lfdTeach.dropHint());
@@ -79,14 +78,33 @@ describe('teach says what it records', () => {
     const box = await page.$eval('#teach-toast', (e) => e.getBoundingClientRect().toJSON());
     const stage = await page.$eval('.stage', (e) => e.getBoundingClientRect().toJSON());
     assert.ok(box.top >= stage.top && box.bottom <= stage.bottom && box.right <= stage.right, 'the toast is over the view');
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
+
+  test('one Undo takes back the whole move: its place and its pick', async () => {
+    const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&autoplay=0');
+    await startRecording(page);
+    const c0 = await teachBody(page, 'c');
+    const pt = await points(page, 'c', 'd');
+    await hold(page, pt.from, pt.top);
+    await page.mouse.up();
+    await idle(page, 2);
+    assert.deepEqual(await segments(page), ['(pick panda c)', '(stack panda c d)']);
 
     // One Undo: the whole move (its place and its pick) is gone, c is back where it was.
     await page.click('#teach-undo');
-    await idle(page, 0);
+    await page.waitForFunction(() => /Undid/.test(document.querySelector('#notice')?.textContent ?? '') && !window.lfdTeach.busy(), null, { timeout: 10000 });
+    assert.deepEqual(await segments(page), [], 'one Undo leaves no half move');
     const c1 = await teachBody(page, 'c');
     assert.ok(Math.hypot(c1.p[0] - c0.p[0], c1.p[1] - c0.p[1], c1.p[2] - c0.p[2]) < 0.003, `c is back: ${JSON.stringify([c0, c1])}`);
     assert.ok(await page.evaluate(() => window.lfdTeach.state().facts.includes('(ontable c)')));
     assert.match(await page.textContent('#notice'), /Undid \(stack panda c d\) and \(pick panda c\)/);
+    // The toast says what was undone, with the change it takes back.
+    const toast = await page.textContent('#teach-toast');
+    assert.match(toast, /Undone a1 \(pick panda c\) · a2 \(stack panda c d\)/);
+    assert.match(toast, /\+ \(ontable c\)/);
+    assert.match(toast, /− \(on c d\)/);
     assert.deepEqual(errors, []);
     await page.close();
   });
