@@ -460,8 +460,8 @@ export class TeachPanel {
     this.ui.recordBtn.textContent = recording ? '● New recording' : '● Record';
     this.ui.clock.textContent = s ? `t = ${s.t.toFixed(2)} s` : '';
     this.renderPull();
-    // The listing: from the recording while recording, else from a loaded demo.
-    // Stopped or loaded: the taught demo, whose moves may be deleted.
+    // The listing: the recording while recording; once stopped or loaded, the taught demo (whose
+    // moves may be deleted).
     const items = s && !this.demoJson ? recordingItems(s, this.newSegments) : this.info && this.demoJson ? taughtItems(this.info, demoMoves(this.demoJson), (k) => void this.guard(() => this.deleteMove(k))) : [];
     if (!items.length) items.push(el('li', { class: 'muted empty' }, recording ? 'nothing yet: demonstrate the first action' : 'not recording'));
     this.ui.list.replaceChildren(...items);
