@@ -9,6 +9,8 @@ declare global {
       demoJson: () => string | null;
       handle: (part: 'move' | 'lift' | 'turn') => { x: number; y: number };
       busy: () => boolean;
+      /** The drop marks while a block is dragged: the receiving block and the footprint's centre. */
+      dropHint: () => { body: string; onto: string | null; shadow: [number, number, number] } | null;
     };
   }
 }

@@ -46,7 +46,7 @@ function buildElements(): TeachUi {
   return {
     recordBtn: button('teach-record', 'Start a new recording in this workcell', '● Record', 'primary'),
     stopBtn: button('teach-stop', 'Stop recording: segment, learn the skills, edit the goal', '■ Stop'),
-    undoBtn: button('teach-undo', 'Undo the last recognised action (the world goes back to the end of the one before)', '↶ Undo'),
+    undoBtn: button('teach-undo', 'Undo the last move: its pick and its place together (the world goes back to before the move)', '↶ Undo'),
     saveBtn: button('teach-save', 'Save the taught demonstration (demo.json)', 'Save demo'),
     loadBtn: button('teach-load', 'Load a taught demonstration (demo.json)', 'Load demo'),
     recBtn: button('teach-save-recording', 'Save the raw recording (for logic-lfd demo segment)', 'Save recording'),

@@ -4,7 +4,7 @@
  * actions, the goal checklist (L_N's facts) and a refused edit's explanation.
  */
 import type { TaughtInfo, TeachError, TeachState } from 'logic-lfd';
-import { demoStateItem, el, factChips } from './dom';
+import { button, demoStateItem, el, factChips } from './dom';
 
 const ERROR_TITLES: Record<TeachError['kind'], string> = {
   input: 'Bad input',
@@ -35,12 +35,23 @@ export function recordingItems(s: TeachState, fresh: ReadonlySet<number>): HTMLE
   return items;
 }
 
-/** A taught demo's L0, a1, L1, … with the arm of each action. */
-export function taughtItems(info: TaughtInfo): HTMLElement[] {
+/** A taught demo's L0, a1, L1, … with the arm of each action; the first action of each of the
+ * `moves` (`[first, end)` ranges) carries a button deleting that move. */
+export function taughtItems(info: TaughtInfo, moves: [number, number][], onDelete: (k: number) => void): HTMLElement[] {
   const items: HTMLElement[] = [];
   info.states.forEach((st, i) => {
     items.push(demoStateItem(i, st));
-    if (i < info.actions.length) items.push(el('li', { class: 'teach-seg' }, el('span', { class: 'seg-name' }, `a${i + 1} ${info.actions[i]}`), el('span', { class: 'muted small' }, ` ${info.arms[i]}`)));
+    if (i >= info.actions.length) return;
+    const k = moves.findIndex(([first]) => first === i);
+    const row = el('li', { class: 'teach-seg teach-move' }, el('span', { class: 'seg-name' }, `a${i + 1} ${info.actions[i]}`), el('span', { class: 'muted small' }, ` ${info.arms[i]}`));
+    if (k >= 0) {
+      const [first, end] = moves[k];
+      const span = end - first > 1 ? `a${first + 1}–a${end}` : `a${first + 1}`;
+      const del = button(`teach-delete-move-${k + 1}`, `Delete move ${k + 1} (${span}) from the demonstration`, `✕ move ${k + 1}`);
+      del.onclick = () => onDelete(k);
+      row.append(del);
+    }
+    items.push(row);
   });
   return items;
 }

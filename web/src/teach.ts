@@ -10,7 +10,7 @@
  * taught demo.json, and Run: a closed-loop session of the taught task from a random, the taught or
  * a user-arranged initial world, disturbed with the usual drag and L1–L4 buttons.
  */
-import type { Benchmark, Frame, SessionOptions, TaughtFolder, TaughtInfo, TeachEdit, TeachError, TeachResult, TeachState, WorldSnapshot } from 'logic-lfd';
+import type { Benchmark, Frame, Segment, SessionOptions, TaughtFolder, TaughtInfo, TeachEdit, TeachError, TeachResult, TeachState } from 'logic-lfd';
 import type { OpenFolder } from './folder';
 import type { WorkerClient } from './client';
 import type { View, DropRequest } from './view';
@@ -20,6 +20,9 @@ import { GripperHandle, type HandlePose } from './teach-gripper';
 import { GripperStream } from './teach-gripper-stream';
 import { buildTeachUi, TEACH_MODES, type TeachMode, type TeachUi } from './teach-layout';
 import { checkedGoal, errorContent, goalItems, recordingItems, taughtItems } from './teach-listing';
+import { blockUnder, DropHint, type DropHintState } from './teach-drop';
+import { atRest, demoMoves, withGoal, withoutMove } from './teach-moves';
+import { MoveToast } from './teach-toast';
 import './teach.css';
 
 type Start = 'random' | 'taught' | 'arrange';
@@ -55,8 +58,6 @@ function sceneName(json: string | undefined): string | null {
     return null;
   }
 }
-/** How far (m) beside or below a block's top face a drop still stacks onto it. */
-const DROP_MARGIN = 0.005;
 
 export class TeachPanel {
   private state: TeachState | null = null;
@@ -75,12 +76,18 @@ export class TeachPanel {
   private taughtIn: TaughtFolder | null = null;
 
   private readonly ui: TeachUi;
+  private readonly hint: DropHint;
+  private readonly toast: MoveToast;
 
   constructor(
     readonly root: HTMLElement,
     private readonly host: TeachHost,
   ) {
     this.ui = buildTeachUi(root);
+    this.hint = new DropHint(host.view.scene, () => host.view.controls.dispatchEvent({ type: 'change' }));
+    // Quick mode only: there the page decides stack or place (`drop`), by the rule the hint shows.
+    host.view.dragHint = (body, p) => this.hint.show(this.active && this.mode === 'quick' ? this.state!.world : null, body, p);
+    this.toast = new MoveToast(host.stage);
     this.ui.modeBtns.forEach((b, i) => (b.onclick = () => this.setMode(TEACH_MODES[i][0])));
     this.handle = new GripperHandle(host.view, host.stage, (p, final) => this.queueGripper(p, final));
     this.stream = new GripperStream({
@@ -124,6 +131,7 @@ export class TeachPanel {
       demoJson: () => this.demoJson,
       handle: (part) => this.handle.screenPosition(part),
       busy: () => this.busy || this.stream.busy,
+      dropHint: () => this.hint.current(),
     };
   }
 
@@ -152,6 +160,7 @@ export class TeachPanel {
     this.stream.clear();
     this.clearError();
     this.handle.show(false);
+    this.toast.hide();
     void this.host.client.call('teachClose', {}).catch(() => {});
     this.refresh();
   }
@@ -189,6 +198,7 @@ export class TeachPanel {
     this.closed = false;
     this.newSegments.clear();
     this.clearError();
+    this.toast.hide();
     this.ui.armSel.replaceChildren(...s.handles.map((h, i) => el('option', { value: String(i) }, h.arm)));
     this.ui.armSel.disabled = s.handles.length < 2;
     if (s.benchmark === 'b2' && this.mode === 'gripper') this.setMode('quick');
@@ -201,6 +211,7 @@ export class TeachPanel {
     try {
       const r = await this.host.client.call('teachPush', { edit });
       this.apply(r);
+      if (r.ok && r.newSegments.length) this.toast.show(r.newSegments, 'recorded');
       return r;
     } finally {
       this.busy = false;
@@ -240,8 +251,16 @@ export class TeachPanel {
     this.ui.gripBtn.setAttribute('aria-pressed', String(this.closed));
   }
 
+  /** Undoes the last whole move: actions are undone until no arm holds a block (a pick goes with
+   * its place), so the world is back where it was before the move. */
   private async undo(): Promise<void> {
-    const r = await this.host.client.call('teachUndo', {});
+    const undone: Segment[] = [];
+    let r = await this.host.client.call('teachUndo', {});
+    while (r.ok && r.removed) {
+      undone.push(r.removed);
+      if (atRest(r.state) || !r.state.segments.length) break;
+      r = await this.host.client.call('teachUndo', {});
+    }
     this.newSegments.clear();
     this.forgetDemo();
     this.apply(r);
@@ -250,7 +269,8 @@ export class TeachPanel {
       const h = r.state.handles[Number(this.ui.armSel.value || 0)];
       if (h) this.closed = h.gripper === 'closed';
       this.updateGripButton();
-      this.host.notice(r.removed ? `Undid ${r.removed.action}` : 'Nothing to undo', 'info');
+      this.host.notice(undone.length ? `Undid ${undone.map((u) => u.action).join(' and ')}` : 'Nothing to undo', 'info');
+      this.toast.show(undone, 'undone');
     }
   }
 
@@ -281,12 +301,31 @@ export class TeachPanel {
     this.ui.goalList.replaceChildren(...goalItems(info, () => void this.guard(() => this.setGoal())));
   }
 
+  /** Deletes move `k` of the taught demo; the rest is checked again (each action must still apply
+   * in turn and the goal hold at the end), else the demo stays as it was and the reason is shown. */
+  private async deleteMove(k: number): Promise<void> {
+    if (!this.demoJson || !this.info) return;
+    const move = demoMoves(this.demoJson)[k];
+    if (!move) return;
+    const names = this.info.actions.slice(move[0], move[1]).join(' ');
+    const json = withoutMove(this.demoJson, move);
+    try {
+      this.info = await this.host.client.call('teachInfo', { demoJson: json, folder: this.taughtIn ?? undefined });
+    } catch (e) {
+      const message = `Deleting move ${k + 1}, ${names}, leaves an invalid demonstration: ${(e as Error).message}`;
+      this.showError({ kind: 'refused', message, t: null, added: [], removed: [] }, 'The demonstration is unchanged.');
+      return;
+    }
+    this.demoJson = json;
+    this.clearError();
+    this.ui.summary.textContent = `Deleted move ${k + 1}, ${names}: ${this.info.actions.length} actions left, checked again.`;
+    this.refresh();
+    if (this.active) this.host.status('done', this.statusText());
+  }
+
   private async setGoal(): Promise<void> {
     if (!this.demoJson) return;
-    const goal = checkedGoal(this.ui.goalList);
-    const demo = JSON.parse(this.demoJson) as { goal: string[] };
-    demo.goal = goal;
-    const json = JSON.stringify(demo);
+    const json = withGoal(this.demoJson, checkedGoal(this.ui.goalList));
     try {
       this.info = await this.host.client.call('teachInfo', { demoJson: json, folder: this.taughtIn ?? undefined });
       this.demoJson = json;
@@ -406,7 +445,8 @@ export class TeachPanel {
   private statusText(): string {
     const s = this.state;
     if (!s) return 'Teach: press ● Record to demonstrate a new task in this workcell';
-    const n = s.segments.length;
+    // Stopped: the taught demo (its moves may have been deleted), else the recording.
+    const n = this.demoJson && this.info ? this.info.actions.length : s.segments.length;
     return `Teaching ${taskLabel(s)} · t = ${s.t.toFixed(2)} s · ${n} action${n === 1 ? '' : 's'} recognised${this.demoJson ? ' · stopped' : ' · recording'}`;
   }
 
@@ -421,12 +461,13 @@ export class TeachPanel {
     this.ui.recordBtn.textContent = recording ? '● New recording' : '● Record';
     this.ui.clock.textContent = s ? `t = ${s.t.toFixed(2)} s` : '';
     this.renderPull();
-    // The listing: from the recording while recording, else from a loaded demo.
-    const items = s && !this.loaded ? recordingItems(s, this.newSegments) : this.info ? taughtItems(this.info) : [];
+    // The listing: the recording while recording; once stopped or loaded, the taught demo (whose
+    // moves may be deleted).
+    const items = s && !this.demoJson ? recordingItems(s, this.newSegments) : this.info && this.demoJson ? taughtItems(this.info, demoMoves(this.demoJson), (k) => void this.guard(() => this.deleteMove(k))) : [];
     if (!items.length) items.push(el('li', { class: 'muted empty' }, recording ? 'nothing yet: demonstrate the first action' : 'not recording'));
     this.ui.list.replaceChildren(...items);
     this.ui.list.lastElementChild?.scrollIntoView({ block: 'nearest' });
-    const n = s?.segments.length ?? this.info?.actions.length ?? 0;
+    const n = (this.demoJson ? this.info?.actions.length : s?.segments.length) ?? 0;
     this.ui.count.textContent = n ? `${n} actions` : '';
     if (!this.demoJson) this.ui.summary.textContent = '';
     this.renderGoal();
@@ -468,25 +509,6 @@ export class TeachPanel {
   }
 }
 
-/** The block under a drop point (stack onto it), if the point is above one's top face. */
-function blockUnder(w: WorldSnapshot, body: string, p: [number, number, number]): string | null {
-  let best: { name: string; top: number } | null = null;
-  for (const b of w.bodies) {
-    if (b.kind !== 'block' || b.name === body || b.shape.type !== 'cuboid') continue;
-    const [hx, hy, hz] = b.shape.half_extents;
-    const [x, y, z] = b.pose.position;
-    const q = b.pose.quaternion;
-    const yaw = Math.atan2(2 * (q[3] * q[2] + q[0] * q[1]), 1 - 2 * (q[1] * q[1] + q[2] * q[2]));
-    const dx = p[0] - x;
-    const dy = p[1] - y;
-    const lx = Math.cos(yaw) * dx + Math.sin(yaw) * dy;
-    const ly = -Math.sin(yaw) * dx + Math.cos(yaw) * dy;
-    const top = z + hz;
-    if (Math.abs(lx) <= hx + DROP_MARGIN && Math.abs(ly) <= hy + DROP_MARGIN && p[2] > top - DROP_MARGIN && (!best || top > best.top)) best = { name: b.name, top };
-  }
-  return best?.name ?? null;
-}
-
 declare global {
   interface Window {
     lfdTeach: {
@@ -495,6 +517,7 @@ declare global {
       demoJson: () => string | null;
       handle: (part: 'move' | 'lift' | 'turn') => { x: number; y: number };
       busy: () => boolean;
+      dropHint: () => DropHintState | null;
     };
   }
 }

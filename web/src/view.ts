@@ -68,6 +68,8 @@ export class View {
   /** Whether the renderer runs in software (SwiftShader) or `?quality=low` was asked for. */
   readonly lowQuality: boolean;
   private dirty = true;
+  /** Told where a dragged block would land (null: the drag ended); set by Teach mode. */
+  dragHint: ((body: string, p: THREE.Vector3 | null) => void) | null = null;
 
   constructor(
     private readonly host: HTMLElement,
@@ -414,6 +416,7 @@ export class View {
       if (this.raycaster.ray.intersectPlane(plane, p)) target = p;
     }
     d.target = target;
+    this.dragHint?.(d.name, target);
     d.ghost.visible = !!target;
     if (target) {
       d.ghost.position.copy(target);
@@ -432,6 +435,7 @@ export class View {
     if (!d) return;
     this.renderer.domElement.releasePointerCapture(e.pointerId);
     this.drag = null;
+    this.dragHint?.(d.name, null);
     this.reach?.hide();
     this.renderer.domElement.dataset.reachShown = 'false';
     this.dropGhost(d.ghost);
@@ -456,6 +460,7 @@ export class View {
 
   private cancelDrag(): void {
     if (!this.drag) return;
+    this.dragHint?.(this.drag.name, null);
     this.dropGhost(this.drag.ghost);
     this.reach?.hide();
     this.renderer.domElement.dataset.reachShown = 'false';
