@@ -6,7 +6,6 @@
 import type { Segment } from 'logic-lfd';
 import { el, factChips } from './dom';
 import { netChange } from './teach-moves';
-import './teach-honest.css';
 
 /** How long a toast stays (ms). */
 const SHOW_MS = 7000;
