@@ -193,7 +193,8 @@ describe('rewind', () => {
     const at = await noteTime(page);
     assert.ok(at !== null && Number(at) <= r.t + 1e-9, `note at ${at}, replan at ${r.t}`);
     assert.ok(await page.evaluate(() => document.documentElement.scrollWidth <= window.innerWidth), 'the page scrolls sideways');
-    await page.locator('#rewind-note').scrollIntoViewIfNeeded();
+    // The Run tab is under the view on a phone: the note at the top of the screen, the plans under it.
+    await page.$eval('#rewind-note', (e) => e.scrollIntoView({ block: 'start' }));
     await page.screenshot({ path: join(screenshots, 'rewind-phone.png') });
     assert.deepEqual(errors, []);
     await page.close();
