@@ -24,15 +24,15 @@ const SHOWN = () => ({
 async function watchLive(page) {
   await page.evaluate((shown) => {
     const read = new Function(`return (${shown})()`);
-    window.liveShown = {};
-    window.planAfter = {};
+    /** @type {any} */ (window).liveShown = {};
+    /** @type {any} */ (window).planAfter = {};
     const grab = () => {
       if (!document.querySelector('.panel.rw-rewound')) {
         const s = read();
         const t = /^t = ([\d.]+) s/.exec(s.hud);
-        if (t) window.liveShown[t[1]] = s;
+        if (t) /** @type {any} */ (window).liveShown[t[1]] = s;
         const r = /Last replan at tick (\d+):/.exec(s.replans);
-        if (r && !(r[1] in window.planAfter)) window.planAfter[r[1]] = s.plan.map((p) => p.split('|')[1]);
+        if (r && !(r[1] in /** @type {any} */ (window).planAfter)) /** @type {any} */ (window).planAfter[r[1]] = s.plan.map((p) => p.split('|')[1]);
       }
       requestAnimationFrame(grab);
     };
@@ -64,7 +64,7 @@ async function runWithL3(page) {
   await watchLive(page);
   for (let i = 1; i <= 5; i++) {
     await page.click('#step');
-    await page.waitForFunction((t) => t in window.liveShown, (i / 10).toFixed(2));
+    await page.waitForFunction((t) => t in /** @type {any} */ (window).liveShown, (i / 10).toFixed(2));
   }
   const before = (await shown(page)).plan.map((p) => p.split('|')[1]);
   await page.click('#inject-l3', { force: true });
@@ -89,7 +89,7 @@ async function l3Replan(page) {
     const m = window.lfd.marks();
     const l3 = m.find((x) => x.kind === 'l3');
     const r = m.find((x) => x.kind === 'replan' && x.t >= l3.t - 1e-9);
-    const el = [...document.querySelectorAll('#timeline .tl-mark.replan')].find((e) => e.dataset.t === r.t.toFixed(2));
+    const el = [...document.querySelectorAll('#timeline .tl-mark.replan')].find((e) => /** @type {HTMLElement} */ (e).dataset.t === r.t.toFixed(2));
     const b = el.getBoundingClientRect();
     return { t: r.t, text: r.text, x: b.left + b.width / 2, y: b.top + b.height / 2 };
   });
@@ -107,7 +107,7 @@ async function checkReplanDiff(page, r, planBefore) {
   assert.ok(d.reason.startsWith(`Replan at t = ${r.t.toFixed(2)} s: ${r.text}`), `${d.reason} | ${r.text}`);
   const [before, after] = d.lists;
   const tick = await page.evaluate((t) => Math.round(t / window.lfd.frame().world.dt), r.t);
-  const planAfter = await page.evaluate((k) => window.planAfter[k], tick);
+  const planAfter = await page.evaluate((k) => /** @type {any} */ (window).planAfter[k], tick);
   assert.deepEqual(before.map((a) => a.text), planBefore);
   assert.deepEqual(after.map((a) => a.text), planAfter);
   assert.notDeepEqual(planBefore, planAfter, 'the replan changed nothing');
@@ -124,13 +124,18 @@ describe('rewind', () => {
     const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=1&speed=2&autoplay=0');
     const planBefore = await runWithL3(page);
     const end = await shown(page);
+    // Compact: every Moment recorded, snapshots only where the Run tab changed, plans shared.
+    const use = await page.evaluate(() => ({ ...window.lfd.rewind(), replanMarks: window.lfd.marks().filter((m) => m.kind === 'replan').length }));
+    assert.equal(use.recorded, use.moments, JSON.stringify(use));
+    assert.ok(use.moments > 100 && use.snapshots < use.moments / 4, JSON.stringify(use));
+    assert.ok(use.plans <= use.replans + 1 && use.replans === use.replanMarks, JSON.stringify(use));
 
     // Back to before the disturbance: every panel as it was shown live then.
     await scrubTo(page, 0.35);
     const at = await noteTime(page);
     assert.ok(at !== null && Number(at) < 0.5, `note at ${at}`);
     assert.match(await page.textContent('#rewind-note'), /^Viewing t = 0\.\d\d s — Play returns to live$/);
-    const then = await page.evaluate((t) => window.liveShown[t], at);
+    const then = await page.evaluate((t) => /** @type {any} */ (window).liveShown[t], at);
     assert.ok(then, `nothing shown live at t = ${at}`);
     assert.deepEqual(await shown(page), then);
     assert.notDeepEqual(then.plan, end.plan, 'the plan is the same now as then');
@@ -144,10 +149,18 @@ describe('rewind', () => {
       later = await noteTime(page);
     }
     assert.ok(Number(later) > Number(at) && Number(later) < 0.5, `${at} → ${later}`);
-    assert.deepEqual(await shown(page), await page.evaluate((t) => window.liveShown[t], later));
+    assert.deepEqual(await shown(page), await page.evaluate((t) => /** @type {any} */ (window).liveShown[t], later));
+
+    // From the keyboard: the note offers the next replan, whose plans the Run tab then shows.
+    const r = await l3Replan(page);
+    await page.focus('#rewind-next button');
+    assert.equal(await page.textContent('#rewind-next button'), `Next replan at t = ${r.t.toFixed(2)} s: its plans before and after`);
+    await page.keyboard.press('Enter');
+    await checkReplanDiff(page, r, planBefore);
+    await scrubTo(page, 0.3);
+    assert.ok(await page.$eval('#rewind-replan', (e) => e.hidden), 'the plans stay when another moment is viewed');
 
     // The replan marker: its time, and the plans before and after it.
-    const r = await l3Replan(page);
     await page.mouse.click(r.x, r.y);
     const v = await page.evaluate(() => window.lfd.viewing());
     assert.ok(Math.abs(v.t - r.t) < 1e-9, JSON.stringify({ v, r }));

@@ -6,7 +6,7 @@
  */
 import './rewind.css';
 import { el } from './dom';
-import type { History, Mark, Moment } from './history';
+import type { History, Moment } from './history';
 import type { Layout } from './layout';
 import { RewindRecorder, type MomentRecord, type ReplanRecord } from './rewind-record';
 import { RunPanel } from './run-panel';
@@ -26,21 +26,34 @@ export class Rewind {
   readonly recorder: RewindRecorder;
   private readonly panel: HTMLElement;
   private readonly note: HTMLElement;
+  /** The next replan after the viewed moment: a button showing its plans (the markers' keyboard way). */
+  private readonly next: HTMLElement;
   private readonly diff: HTMLElement;
   /** The moment drawn (undefined: live). */
   private shown: Moment | null | undefined = undefined;
-  /** The replan whose plans are shown, and the moment it was shown at. */
-  private replan: { at: Moment | null } | null = null;
+  /** The moment the replan's plans were shown at (they go when another is viewed). */
+  private diffAt: Moment | null = null;
 
   constructor(private readonly p: RewindParts) {
     this.recorder = new RewindRecorder(p.history, p.state);
     this.panel = p.ui.run.plan.closest<HTMLElement>('.panel') ?? p.ui.run.plan.parentElement!;
     this.note = el('p', { id: 'rewind-note', class: 'rw-note', role: 'status', 'aria-live': 'polite', hidden: '' });
     this.diff = el('section', { id: 'rewind-replan', class: 'rw-replan', 'aria-label': 'The plan before and after the replan', hidden: '' });
-    this.panel.prepend(this.note);
+    this.next = el('p', { id: 'rewind-next', class: 'rw-next', hidden: '' });
+    this.panel.prepend(this.note, this.next);
     p.ui.run.plan.after(this.diff);
     p.ui.stage.root.addEventListener('click', (e) => this.clicked(e.target as HTMLElement));
     p.history.listen(() => this.update());
+    window.lfd.rewind = () => this.usage();
+  }
+
+  /** What the record holds now: Moments with a record, the snapshots and plan lists they share. */
+  private usage(): { moments: number; recorded: number; snapshots: number; plans: number; replans: number } {
+    const ms = this.p.history.moments;
+    const recs = ms.map((m) => this.recorder.at(m)).filter((r) => r !== null);
+    const snaps = new Set(recs.map((r) => r.snap));
+    const plans = new Set([...snaps].map((s) => s.frame.plan)).size;
+    return { moments: ms.length, recorded: recs.length, snapshots: snaps.size, plans, replans: this.recorder.replans.length };
   }
 
   private update(): void {
@@ -50,15 +63,19 @@ export class Rewind {
     this.shown = m;
     if (m === undefined) this.live();
     else this.past(m);
-    if (this.replan && this.replan.at !== m) this.hideReplan();
+    if (!this.diff.hidden && this.diffAt !== m) this.hideReplan();
   }
 
   /** Back to live: the live frame drawn again in full. */
   private live(): void {
-    const { state, status, run } = this.p;
     this.setPast(false);
-    this.note.hidden = true;
     this.note.textContent = '';
+    this.next.hidden = true;
+    this.drawLive();
+  }
+
+  private drawLive(): void {
+    const { state, status, run } = this.p;
     if (!state.frame) return;
     status.showFrame(state.frame, state);
     run.invalidate();
@@ -72,17 +89,33 @@ export class Rewind {
     this.note.dataset.t = m ? m.t.toFixed(2) : '';
     if (!m || !rec) {
       this.note.textContent = 'Viewing a moment from before the panels were recorded: they show the live run. Play returns to live.';
+      this.drawLive();
+      this.offerNext(m);
       return;
     }
     this.note.textContent = `Viewing t = ${m.t.toFixed(2)} s — Play returns to live`;
     this.draw(rec);
+    this.offerNext(m);
+  }
+
+  /** A button for the first replan after moment `m`: jumps there and shows its plans. */
+  private offerNext(m: Moment | null): void {
+    const r = m && this.recorder.replans.find((x) => x.t > m.t);
+    this.next.hidden = !r;
+    if (!r) return this.next.replaceChildren();
+    const b = el('button', { type: 'button', class: 'link' }, `Next replan at t = ${r.t.toFixed(2)} s: its plans before and after`);
+    b.addEventListener('click', () => this.jump(r.t, r.replan.reason));
+    this.next.replaceChildren(b);
   }
 
   private draw(rec: MomentRecord): void {
     const { status, run, ui, state } = this.p;
-    const [text, hud] = frameTexts({ status: rec.snap.frame.status, t: rec.t, tick: rec.tick, replans: rec.replans }, { playing: rec.playing, dragging: rec.dragging, lastStepMs: rec.stepMs }, rec.meanMs);
+    const [text, hud] = frameTexts(
+      { status: rec.snap.frame.status, t: rec.t, tick: rec.tick, replans: rec.replans },
+      { playing: rec.playing, dragging: rec.dragging, lastStepMs: rec.stepMs },
+      rec.meanMs,
+    );
     status.show(rec.snap.frame.status.kind, text);
-    ui.stage.status.classList.add('rw-past');
     ui.stage.hud.textContent = hud;
     // A panel of its own, so the live one keeps what the frames left it; an open "why L_k?" stays open.
     const p = new RunPanel(ui.run, () => state.options.mode);
@@ -100,32 +133,32 @@ export class Rewind {
     this.p.ui.stage.root.classList.toggle('rw-rewound', on);
   }
 
-  /** A replan marker's click: the timeline goes to its time (as a drag of the scrubber there
-   * would) and the Run tab adds its plans and reason. */
+  /** A replan marker's click: its time and plans. */
   private clicked(target: HTMLElement): void {
     if (!target.matches('.tl-mark[data-kind="replan"]')) return;
-    const h = this.p.history;
-    const mark = [...h.marks].reverse().find((m) => m.kind === 'replan' && m.t.toFixed(2) === target.dataset.t);
-    const range = document.querySelector<HTMLInputElement>('#timeline-range');
-    if (!mark || !range) return;
-    range.value = String(mark.t);
-    range.dispatchEvent(new Event('input'));
-    // The scrubber rounds to its step: the view goes to the replan's own time.
-    h.view(Math.min(mark.t, h.end));
-    this.showReplan(mark);
+    const mark = [...this.p.history.marks].reverse().find((m) => m.kind === 'replan' && m.t.toFixed(2) === target.dataset.t);
+    if (mark) this.jump(mark.t, mark.text);
   }
 
-  private showReplan(mark: Mark): void {
-    const rec = this.recorder.replanAt(mark.t);
+  /** Goes to the replan at time `t` (as a drag of the scrubber there would: the run pauses) and
+   * adds its plans and `reason` to the Run tab. */
+  private jump(t: number, reason: string): void {
+    const h = this.p.history;
+    const range = document.querySelector<HTMLInputElement>('#timeline-range');
+    if (!range) return;
+    range.value = String(t);
+    range.dispatchEvent(new Event('input'));
+    // The scrubber rounds to its step: the view goes to the replan's own time.
+    h.view(Math.min(t, h.end));
+    const rec = this.recorder.replanAt(t);
     this.diff.replaceChildren(
-      ...(rec ? replanDiff(rec) : [el('p', { class: 'muted small' }, `Replan at t = ${mark.t.toFixed(2)} s: ${mark.text} (recorded before the panels were).`)]),
+      ...(rec ? replanDiff(rec) : [el('p', { class: 'muted small' }, `Replan at t = ${t.toFixed(2)} s: ${reason} (recorded before the panels were).`)]),
     );
     this.diff.hidden = false;
-    this.replan = { at: this.shown ?? null };
+    this.diffAt = this.shown ?? null;
   }
 
   private hideReplan(): void {
-    this.replan = null;
     this.diff.hidden = true;
     this.diff.replaceChildren();
   }
