@@ -123,12 +123,22 @@ describe('rewind', () => {
   test('scrubbing back shows the panels as they were; a replan marker shows its plans; Play returns to live', async () => {
     const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=1&speed=2&autoplay=0');
     const planBefore = await runWithL3(page);
+    // The L3 replan's "why L_k?" table, opened live.
+    const r = await l3Replan(page);
+    const tick = await page.evaluate((t) => Math.round(t / window.lfd.frame().world.dt), r.t);
+    await page.locator('#replan-info .replan', { hasText: `at tick ${tick}:` }).locator('.why-btn').click();
+    const why = await page.locator('#replan-info .why-join').textContent();
     const end = await shown(page);
     // Compact: every Moment recorded, snapshots only where the Run tab changed, plans shared.
     const use = await page.evaluate(() => ({ ...window.lfd.rewind(), replanMarks: window.lfd.marks().filter((m) => m.kind === 'replan').length }));
     assert.equal(use.recorded, use.moments, JSON.stringify(use));
     assert.ok(use.moments > 100 && use.snapshots < use.moments / 4, JSON.stringify(use));
     assert.ok(use.plans <= use.replans + 1 && use.replans === use.replanMarks, JSON.stringify(use));
+
+    // Just after the replan: its "why L_k?" table, open as it is live, with the same candidates.
+    await scrubTo(page, r.t + 1.5);
+    assert.ok(Number(await noteTime(page)) > r.t, await page.textContent('#rewind-note'));
+    assert.equal(await page.locator('#replan-info .why-join').textContent(), why);
 
     // Back to before the disturbance: every panel as it was shown live then.
     await scrubTo(page, 0.35);
@@ -152,7 +162,6 @@ describe('rewind', () => {
     assert.deepEqual(await shown(page), await page.evaluate((t) => /** @type {any} */ (window).liveShown[t], later));
 
     // From the keyboard: the note offers the next replan, whose plans the Run tab then shows.
-    const r = await l3Replan(page);
     await page.focus('#rewind-next button');
     assert.equal(await page.textContent('#rewind-next button'), `Next replan at t = ${r.t.toFixed(2)} s: its plans before and after`);
     await page.keyboard.press('Enter');

@@ -155,6 +155,8 @@ export class Rewind {
       ...(rec ? replanDiff(rec) : [el('p', { class: 'muted small' }, `Replan at t = ${t.toFixed(2)} s: ${reason} (recorded before the panels were).`)]),
     );
     this.diff.hidden = false;
+    // The button would offer this replan again.
+    this.next.hidden = true;
     this.diffAt = this.shown ?? null;
   }
 
