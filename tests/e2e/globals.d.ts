@@ -21,6 +21,7 @@ declare global {
       chartMarks: () => { kind: string; t: number; text: string }[][];
       viewing: () => { t: number | null; end: number };
       bodyPosition: (body: string) => [number, number, number] | null;
+      rewind?: () => { moments: number; recorded: number; snapshots: number; plans: number; replans: number };
       speedUp: () => Promise<{ stage: string; warmReplans: number; moved: number; reason: string }>;
       armMeshes: () => {
         style: 'meshes' | 'capsules';

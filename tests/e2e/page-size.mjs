@@ -8,9 +8,9 @@ import { join } from 'node:path';
 // The PDDL editor (CodeMirror), the charts (uPlot, its JS and CSS), Compare, Teach mode (its
 // panel, and the full wasm module with the recorder) are separate chunks fetched when their tab
 // first opens; the help text when help first opens; the docs when a help link is followed; the
-// robot's meshes (their reader's chunk and robots/*) after the first frame; a gallery task's files
-// (tasks/*) when it is chosen.
-const LAZY = /\/(robot-meshes-[^/]*\.(js|css)|robots\/[^/]*\/[^/]*|tasks\/[^/]*\/[^/]*|editor-[^/]*\.(js|css)|compare-[^/]*\.(js|css)|why-join-[^/]*\.(js|css)|help-text-[^/]*\.js|uPlot[^/]*\.(js|css)|teach-[^/]*\.(js|css)|logic_lfd_teach[^/]*\.(js|wasm)|docs\/[^/]*\.md)$/;
+// robot's meshes (their reader's chunk and robots/*) and the timeline's rewind (rewind-*) after
+// the first frame; a gallery task's files (tasks/*) when it is chosen.
+const LAZY = /\/(robot-meshes-[^/]*\.(js|css)|robots\/[^/]*\/[^/]*|tasks\/[^/]*\/[^/]*|editor-[^/]*\.(js|css)|compare-[^/]*\.(js|css)|why-join-[^/]*\.(js|css)|rewind-[^/]*\.(js|css)|help-text-[^/]*\.js|uPlot[^/]*\.(js|css)|teach-[^/]*\.(js|css)|logic_lfd_teach[^/]*\.(js|wasm)|docs\/[^/]*\.md)$/;
 
 /** Sizes of the built page in `dist`: totals (`raw`, `gz`, `lazyGz`) and one row per file. */
 export async function pageSizes(dist) {

@@ -66,9 +66,10 @@ export class FrameRenderer {
     this.pendingFrame = null;
     if (!f) return;
     const { view, charts, chartsPanel, status, run, history } = this.parts;
-    // Scrubbed back: the view keeps showing the past moment until Play returns to live.
-    if (history.viewing === null) view.update(f.world, f.ee);
     if (!chartsPanel.hidden) charts.draw();
+    // Scrubbed back: the view and the panels keep the past moment until Play returns to live.
+    if (history.viewing !== null) return;
+    view.update(f.world, f.ee);
     status.showFrame(f, this.state);
     run.show(f);
   }

@@ -34,7 +34,8 @@ const view = new View(ui.stage.root, {
   dragRefusal: () => (history.viewing === null ? null : 'Viewing an earlier moment: press Play to return to live, then drag the block.'),
 });
 const charts = new Charts(ui.chartsPanel, history);
-const renderer = new FrameRenderer(state, { view, charts, history, chartsPanel: ui.chartsPanel, status, run: new RunPanel(ui.run, () => state.options.mode) });
+const run = new RunPanel(ui.run, () => state.options.mode);
+const renderer = new FrameRenderer(state, { view, charts, history, chartsPanel: ui.chartsPanel, status, run });
 const session: SessionControls = new SessionControls({ state, ui, client, view, renderer, history, status, tabs: () => tabs });
 const tabs = new Tabs({ state, ui, client, view, charts, renderer, status, playback: session });
 session.wire();
@@ -72,6 +73,7 @@ client.ready.then(
     // Not needed for the first frame: fetched once the page is interactive.
     void import('./explain').then(({ explainSelects }) => explainSelects(ui.controls.methodSel, ui.controls.modeSel, catalogue));
     view.loadExtras();
+    void import('./rewind').then(({ Rewind }) => new Rewind({ history, state, ui, status, run }));
     void import('./timeline').then(
       ({ Timeline }) => new Timeline(ui.stage.root, { history, pause: () => void session.guard(() => session.pause()), togglePlay: () => void session.togglePlay() }),
     );

@@ -5,31 +5,37 @@
  */
 import type { Frame, Mode, Replan } from 'logic-lfd';
 
-/** Replans listed under the plan (the newest). */
-const MAX_REPLANS_SHOWN = 6;
 import { demoStateItem, el, factChips, lk } from './dom';
 import type { RunLists } from './layout';
+
+/** Replans listed under the plan (the newest). */
+export const MAX_REPLANS_SHOWN = 6;
+
+/** What the tab draws of a frame: all of it but the world (a recorded moment has no more). */
+export type RunFrame = Omit<Frame, 'world' | 'ee'>;
 
 type WhyJoin = typeof import('./why-join');
 
 /** The last change of the facts: kept on screen until the next one. */
-interface FactChange {
+export interface FactChange {
   added: string[];
   removed: string[];
   t: number;
 }
 
+/** The fields up to `why` are what earlier frames left and what is open: the timeline's rewind
+ * sets them on a panel of its own to draw a recorded moment. */
 export class RunPanel {
   private lastKey = '';
-  private lastChange: FactChange | null = null;
+  lastChange: FactChange | null = null;
   /** The plan step being executed in the latest frame that executed one (the failed step). */
-  private lastStep: number | null = null;
+  lastStep: number | null = null;
   /** The episode's replans so far (the frame carries the last one only). */
-  private replans: Replan[] = [];
+  replans: Replan[] = [];
   /** The tick of the replan whose "why L_k?" panel is open. */
-  private whyOpen: number | null = null;
+  whyOpen: number | null = null;
   /** The panel's chunk, once loaded. */
-  private why: WhyJoin | null = null;
+  why: WhyJoin | null = null;
 
   constructor(
     private readonly ui: RunLists,
@@ -53,7 +59,7 @@ export class RunPanel {
   /** Notes what frame `f` changed (its replan, its facts' change, its step). Called with every
    * frame: `show` draws only the latest of an animation frame, and a replan or change carried by
    * a frame drawn over would be lost. */
-  record(f: Frame): void {
+  record(f: RunFrame): void {
     if (f.factsAdded.length || f.factsRemoved.length) this.lastChange = { added: f.factsAdded, removed: f.factsRemoved, t: f.t };
     if (f.executing != null) this.lastStep = f.executing;
     const r = f.lastReplan;
@@ -61,7 +67,7 @@ export class RunPanel {
   }
 
   /** Draws frame `f` (after `record`). */
-  show(f: Frame): void {
+  show(f: RunFrame): void {
     const key = JSON.stringify([f.plan, f.executing, f.demo.length, f.matchedK, f.facts, f.lastReplan?.tick, f.status.kind, this.lastChange?.t]);
     if (key === this.lastKey) return;
     this.lastKey = key;
@@ -70,7 +76,7 @@ export class RunPanel {
     this.showFacts(f);
   }
 
-  private showPlan(f: Frame): void {
+  private showPlan(f: RunFrame): void {
     const list = this.ui.plan;
     this.ui.planCount.textContent = f.plan.length ? `${f.plan.length} actions` : '';
     const done = stepsDone(f);
@@ -96,7 +102,7 @@ export class RunPanel {
     }
   }
 
-  private showDemo(f: Frame): void {
+  private showDemo(f: RunFrame): void {
     const k = f.matchedK ?? null;
     const at = demoPosition(f);
     this.ui.matched.replaceChildren(...(k == null ? [] : ['joined at ', lk(k), ...(at != null && at !== k ? [', now at ', lk(at)] : [])]));
@@ -108,7 +114,7 @@ export class RunPanel {
     this.ui.demo.replaceChildren(...items);
   }
 
-  private showFacts(f: Frame): void {
+  private showFacts(f: RunFrame): void {
     const added = new Set(f.factsAdded);
     this.ui.facts.replaceChildren(...f.facts.map((x) => el('li', { class: added.has(x) ? 'added' : '' }, x)));
     const c = this.lastChange;
@@ -153,14 +159,14 @@ export class RunPanel {
 }
 
 /** How many leading steps of the plan are finished (all of them once the goal holds). */
-function stepsDone(f: Frame): number {
+function stepsDone(f: RunFrame): number {
   if (f.status.kind === 'done') return f.plan.length;
   return f.executing ?? 0;
 }
 
 /** The demonstration state the robot is at on its way: L_k once the new prefix is done, then one
  * further per demonstration action executed (null without a joined state). */
-function demoPosition(f: Frame): number | null {
+function demoPosition(f: RunFrame): number | null {
   const k = f.matchedK;
   if (k == null) return null;
   const prefix = f.plan.length - (f.demo.length - k);

@@ -6,6 +6,20 @@ import type { Frame } from 'logic-lfd';
 import type { Stage } from './layout';
 import { meanStepMs, type PageState } from './state';
 
+/** What the status line and the clock say of a frame (live, or a recorded moment's). */
+export function frameTexts(f: Pick<Frame, 'status' | 't' | 'tick' | 'replans'>, s: Pick<PageState, 'playing' | 'dragging' | 'lastStepMs'>, mean: number): [string, string] {
+  const k = f.status.kind;
+  // A reopened episode waits for Play: "planning" would promise work that is not happening.
+  const waiting = k === 'planning' && !s.playing && !s.dragging;
+  const replans = `${f.replans} replan${f.replans === 1 ? '' : 's'}`;
+  const text = f.status.message || k;
+  const budget = k === 'failed' && text.includes('budget exhausted') ? ' (stopped at a budget, not proved unsolvable)' : '';
+  return [
+    waiting ? 'paused: press Play (Space) to go on' : text + budget,
+    `t = ${f.t.toFixed(2)} s · tick ${f.tick} · step ${s.lastStepMs.toFixed(2)} ms (mean ${mean.toFixed(2)}) · ${replans}`,
+  ];
+}
+
 /** How long a notice stays (ms). */
 const NOTICE_MS = { info: 3500, error: 6000 };
 
@@ -35,16 +49,12 @@ export class StatusBar {
   /** The status, Cancel and the clock of a frame. */
   showFrame(f: Frame, s: PageState): void {
     const k = f.status.kind;
-    // A reopened episode waits for Play: "planning" would promise work that is not happening.
-    const waiting = k === 'planning' && !s.playing && !s.dragging;
-    const text = f.status.message || k;
-    const budget = k === 'failed' && text.includes('budget exhausted') ? ' (stopped at a budget, not proved unsolvable)' : '';
-    this.show(k, waiting ? 'paused: press Play (Space) to go on' : text + budget);
+    const [text, hud] = frameTexts(f, s, meanStepMs(s));
+    this.show(k, text);
     // Cancel appears with the first session's frame: before it there is nothing to cancel.
     this.ui.cancelBtn.hidden = false;
     this.ui.cancelBtn.disabled = !(k === 'planning' || k === 'executing' || k === 'replanning');
-    const replans = `${f.replans} replan${f.replans === 1 ? '' : 's'}`;
-    this.ui.hud.textContent = `t = ${f.t.toFixed(2)} s · tick ${f.tick} · step ${s.lastStepMs.toFixed(2)} ms (mean ${meanStepMs(s).toFixed(2)}) · ${replans}`;
+    this.ui.hud.textContent = hud;
   }
 
   /** A search runs inside the worker's step: which method's, how far it got, and Cancel. */

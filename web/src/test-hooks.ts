@@ -38,6 +38,9 @@ declare global {
       bodyPosition: (body: string) => [number, number, number] | null;
       /** Whether the worker's session runs on the full-speed module yet (speed-up.ts). */
       speedUp: () => Promise<SpeedUpState>;
+      /** What the rewound panels' record holds (rewind.ts, once loaded): Moments, those with a
+       * record, the distinct snapshots and plan lists they share, replans kept with their plans. */
+      rewind?: () => { moments: number; recorded: number; snapshots: number; plans: number; replans: number };
       /** How the arms are drawn, whether the robot's meshes are loaded, and where they are drawn. */
       armMeshes: () => { style: ArmStyle; loaded: boolean; arms: (ArmMeshInfo | null)[] };
     };

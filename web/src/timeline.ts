@@ -1,7 +1,8 @@
 /**
  * The timeline under the 3-D view: a scrubber over the episode's simulated time with a marker per
  * disturbance (drags, L1–L4, coloured by kind) and per replan (its reason on hover). Dragging the
- * scrubber pauses the run and shows the recorded moment in the view; Play returns to live.
+ * scrubber pauses the run and shows the recorded moment in the view (and the panels: rewind.ts);
+ * Play returns to live.
  * Loaded once the page is interactive: it is not part of the first frame.
  */
 import { levelName } from './catalogue';
