@@ -5,7 +5,7 @@
  * (the timeline back at live) redraws the live frame. Loaded with the timeline, after the first frame.
  */
 import './rewind.css';
-import { el } from './dom';
+import { el, lk } from './dom';
 import type { History, Moment } from './history';
 import type { Layout } from './layout';
 import { RewindRecorder, type MomentRecord, type ReplanRecord } from './rewind-record';
@@ -181,9 +181,9 @@ export function replanDiff(rec: ReplanRecord): HTMLElement[] {
   });
   const list = (label: string, items: HTMLElement[]) =>
     el('div', { class: 'rw-plan' }, el('h3', {}, label), el('ol', { class: 'plan-list', 'aria-label': label }, ...(items.length ? items : [el('li', { class: 'muted' }, 'empty')])));
-  const joined = r.k != null ? `, joined L${r.k} (${r.newActions} new actions)` : '';
+  const joined = r.k != null ? [', joined ', lk(r.k), ` (${r.newActions} new actions)`] : [];
   return [
-    el('p', { class: 'rw-reason' }, el('strong', {}, `Replan at t = ${rec.t.toFixed(2)} s`), `: ${r.reason} — ${r.timeMs.toFixed(2)} ms${joined}`),
+    el('p', { class: 'rw-reason' }, el('strong', {}, `Replan at t = ${rec.t.toFixed(2)} s`), `: ${r.reason} — ${r.timeMs.toFixed(2)} ms`, ...joined),
     el('div', { class: 'rw-plans' }, list(`Plan before (${before.length})`, beforeItems), list(`Plan after (${after.length})`, afterItems)),
   ];
 }
