@@ -13,6 +13,9 @@ describe('disturbances and demonstration states have different names', () => {
     const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=1&speed=8&autoplay=0');
     await page.click('#step');
     await page.waitForFunction(() => window.lfd.frame()?.replans === 1, null, { timeout: 30000 });
+    // The words fit: the top bar stays one row at 1440 px.
+    const bar = await page.$eval('.topbar', (e) => e.getBoundingClientRect().height);
+    assert.ok(bar < 50, `the top bar is ${bar} px tall`);
     const buttons = await page.$$eval('[data-level]', (bs) => bs.map((b) => ({ text: b.textContent.trim(), title: b.title })));
     assert.equal(buttons.length, 4);
     for (const [i, b] of buttons.entries()) {

@@ -183,7 +183,7 @@ function buildControls(s: PageState): Controls {
     playBtn: button('play', 'Play (Space)', '▶ Play', 'primary'),
     stepBtn: button('step', 'Advance 0.1 s of simulated time (N)', 'Step'),
     speedSel: select('speed', 'Playback speed', SPEEDS, String(s.speed)),
-    levelGroup: el('div', { class: 'group', role: 'group', 'aria-label': 'Inject a disturbance' }, el('span', { class: 'muted small' }, 'inject')),
+    levelGroup: el('div', { class: 'group', role: 'group', 'aria-label': 'Disturb the task' }),
     levelBtns: [],
     saveBtn: button('save-scene', 'Save the current scene as JSON', 'Save'),
     loadBtn: button('load-scene', 'Load a scene or a saved run (JSON), or a task folder’s files or .zip', 'Load'),

@@ -55,6 +55,7 @@ history.listen(() => {
 client.ready.then(
   async ({ version, blockRanges, catalogue }) => {
     ui.version.textContent = `v${version}`;
+    ui.version.parentElement!.title = `logic-lfd v${version}`;
     // The choices and the block counts come from the wasm module: check the URL's against them.
     setCatalogue(catalogue);
     settleChoices(state, catalogue);
