@@ -107,6 +107,8 @@ struct Report {
 #[derive(Serialize)]
 struct LevelReport {
     level: Level,
+    /// The items (tasks) at this level, by item index.
+    items: Vec<usize>,
     table: Table1,
     intervals: Vec<(f64, f64)>,
 }
@@ -152,6 +154,9 @@ pub fn table1_report(
             let table = sweep.report_level(items.clone(), level);
             LevelReport {
                 level,
+                items: (0..sweep.items())
+                    .filter(|&i| sweep.level(i) == level)
+                    .collect(),
                 intervals: intervals(&table),
                 table,
             }
