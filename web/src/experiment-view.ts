@@ -118,7 +118,7 @@ function rows(r: Report, f: Filter, withAll: boolean): Row[] {
 
 /** The success table: rows benchmark × method × level, then each method over all levels. */
 export function successTable(r: Report, f: Filter): HTMLTableElement {
-  const head = ['Benchmark', 'Method', 'Level', 'Success', '95 % interval', 'First plan, ms: median (search / binding)', 'Re-plans after the first (mean)', 'Failures: logic / motion / budget'];
+  const head = ['Bench\u00admark', 'Method', 'Level', 'Success', '95 % interval (Wilson)', 'First plan ms, median (search / binding)', 'Re-plans after the first (mean)', 'Failures logic / motion / budget'];
   const body = rows(r, f, true).map(({ benchmark, method, level, cell: c, ci }) => {
     const g = grouped(c, r.groups);
     const kinds = c.failures.map(([k, n]) => `${k} ×${n} (${r.groups[k] ?? 'logic'})`).join(', ');
