@@ -236,3 +236,48 @@ fn an_infeasible_table1_draw_is_redrawn() {
         .with_motions(Benchmark::B2.motions());
     assert!(infeasible(&first).is_some());
 }
+
+/// The sweep's parts as the page joins them: each level's report holds that level's tasks alone
+/// and the levels add up to the whole table; re-plans count those after the first plan (the
+/// linear baseline, which never replans, has none); an episode of one method re-runs as the
+/// sweep ran it; failure kinds fall into logic, motion and budget; a Wilson interval holds its rate.
+#[test]
+fn table1_sweep_parts_add_up_by_level() {
+    use logic_lfd::experiments::{failure_group, wilson, Table1Sweep, Table1Task};
+    let sweep = Table1Sweep {
+        benchmarks: vec![Benchmark::B1],
+        tasks: 5,
+        seed: 1,
+        tamp_fallback: false,
+        robots: vec![],
+    };
+    let items: Vec<Table1Task> = (0..sweep.items())
+        .map(|i| sweep.run(i, SessionParams::default(), &NoClock, &mut |_| {}))
+        .collect::<Result<_, _>>()
+        .expect("the items run");
+    let whole = sweep.report(items.clone());
+    assert_eq!(whole.cells[0].replans, vec![0; 5], "linear never replans");
+    let levels: Vec<_> = Level::ALL
+        .iter()
+        .map(|&l| sweep.report_level(items.clone(), l))
+        .collect();
+    assert_eq!(levels[0].cells[0].tasks, 2, "tasks 0 and 4 are at L1");
+    for (k, cell) in whole.cells.iter().enumerate() {
+        let tasks: usize = levels.iter().map(|t| t.cells[k].tasks).sum();
+        let successes: usize = levels.iter().map(|t| t.cells[k].successes).sum();
+        assert_eq!((tasks, successes), (cell.tasks, cell.successes));
+        assert_eq!(cell.replans.len(), cell.tasks);
+    }
+    let episode = sweep
+        .episode(2, 1, SessionParams::default(), &NoClock)
+        .expect("TAMP's episode of task 2");
+    assert_eq!(episode.success, items[2].runs[1].success_actions.is_some());
+    assert_eq!(episode.replans.saturating_sub(1), items[2].runs[1].replans);
+    assert_eq!(failure_group("out-of-reach"), "motion");
+    assert_eq!(failure_group("action-failed"), "motion");
+    assert_eq!(failure_group("budget"), "budget");
+    assert_eq!(failure_group("no-plan"), "logic");
+    let (lo, hi) = wilson(3, 10);
+    assert!(lo < 0.3 && 0.3 < hi && lo > 0.1 && hi < 0.61, "{lo} {hi}");
+    assert_eq!(wilson(0, 0), (0.0, 1.0));
+}

@@ -27,7 +27,7 @@ describe('compare methods', () => {
     assert.match(rows[0].disturbance, /^L3: /);
     // The Run's own episode was not touched.
     assert.equal((await currentFrame(page)).tick, before.tick);
-    await page.screenshot({ path: join(screenshots, 'compare-1440.png') });
+    await page.screenshot({ path: join(screenshots, 'compare-episode-1440.png') });
     assert.deepEqual(errors, []);
     await page.close();
   });

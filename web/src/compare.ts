@@ -1,5 +1,6 @@
 /**
- * The Compare tab (a chunk of its own, loaded when the tab first opens): runs the same episode —
+ * The Compare tab (a chunk of its own, loaded when the tab first opens): the experiment of
+ * experiment.ts (Table I over many tasks, in a pool of workers) and, below it, one episode —
  * benchmark, blocks, seed, and one scripted disturbance (level and time) or the Run's recorded
  * drags, injections and cancels at their times — with every method of the catalogue (Logic-LfD
  * in each of its modes), one after another in a worker of its own (the Run's session is
@@ -10,6 +11,7 @@ import type { Catalogue, Frame, Level, Method, Mode, RobotChoice, SessionOptions
 import { descriptionOf, items, levelName } from './catalogue';
 import { WorkerClient } from './client';
 import { button, el, select } from './dom';
+import { ExperimentPanel } from './experiment';
 import { applyAll, type Disturbance, eventLabel, type Recorded, recordedDisturbances, recordedOf, scriptedDisturbance } from './compare-recorded';
 import './compare.css';
 
@@ -103,6 +105,8 @@ export interface CompareHost {
   robot(): CompareScript['robot'];
   /** The Run's episode log (`Session.episodeJson()`). */
   episode(): Promise<string>;
+  /** Replays an episode log on the Run tab, as Load does with a saved run, and shows the Run. */
+  replay(name: string, log: string): Promise<void>;
 }
 
 export class ComparePanel {
@@ -127,6 +131,7 @@ export class ComparePanel {
   private readonly note = el('p', { id: 'compare-note', class: 'muted small' });
   private client: WorkerClient | null = null;
   private recorded: Recorded | string = '';
+  readonly experiment: ExperimentPanel;
 
   constructor(
     private readonly host: CompareHost,
@@ -136,9 +141,12 @@ export class ComparePanel {
     this.levelSel = select('compare-level', 'Disturbance level', items(catalogue.levels), 'l3');
     for (const o of this.levelSel.options) o.title = descriptionOf(catalogue.levels, o.value);
     this.scripted = el('span', { class: 'compare-scripted' }, el('label', {}, 'inject ', this.levelSel), el('label', {}, 'at ', this.atIn, ' s'));
+    this.experiment = new ExperimentPanel({ folderName: () => host.folder()?.name ?? null, replay: (name, log) => host.replay(name, log) }, catalogue);
     this.root = el(
       'div',
       { class: 'compare' },
+      this.experiment.root,
+      el('h2', { class: 'episode-head' }, 'One episode, every method'),
       el('p', { class: 'muted' }, 'The same seed and the same disturbances for every method, run one after another in the background (the Run keeps its own episode).'),
       el('div', { class: 'compare-row' }, this.sourceSel, this.scripted, this.runBtn),
       this.why,
@@ -161,6 +169,7 @@ export class ComparePanel {
 
   /** Reads the Run's episode again: the recorded disturbances, or why there are none. */
   async refresh(): Promise<void> {
+    this.experiment.refresh();
     try {
       this.recorded = recordedOf(await this.host.episode());
     } catch (e) {

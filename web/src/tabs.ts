@@ -22,6 +22,8 @@ export interface Playback {
   play(): Promise<void>;
   pause(): Promise<void>;
   setPlaying(p: boolean): void;
+  /** Opens files as Load does (a saved run is replayed). */
+  loadFiles(files: File[]): Promise<void>;
   /** The Run now runs a taught task (not the benchmark's): the URL and the link say so. */
   taught(f: Frame, inFolder: boolean): void;
 }
@@ -118,6 +120,10 @@ export class Tabs {
             return robot === undefined ? null : { choice: robot, name: robotName(this.p.state.robot) };
           },
           episode: () => this.p.client.call('episode', {}),
+          replay: async (name, log) => {
+            await this.p.playback.loadFiles([new File([log], name)]);
+            this.select('run');
+          },
         },
         catalogue,
       );

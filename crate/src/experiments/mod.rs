@@ -34,8 +34,9 @@ pub use soak::{
     soak, soak_with, ExplainedFailure, SoakFinding, SoakParams, SoakReport, SoakRunner,
 };
 pub use tables::{
-    infeasible, table1, table1_scene, table1_task_seed, table2, MeanSd, Redraw, Table1, Table1Cell,
-    Table1Run, Table1Sweep, Table1Task, Table2, Table2Cell, Table2Sweep, Table2Trial, MAX_DRAWS,
-    PAPER_TABLE1, PAPER_TABLE2, TABLE1_METHODS, TABLE2_METHODS,
+    failure_group, infeasible, table1, table1_scene, table1_task_seed, table2, wilson, MeanSd,
+    Redraw, Table1, Table1Cell, Table1Run, Table1Sweep, Table1Task, Table2, Table2Cell,
+    Table2Sweep, Table2Trial, MAX_DRAWS, PAPER_TABLE1, PAPER_TABLE2, TABLE1_METHODS,
+    TABLE2_METHODS,
 };
 pub use tasks::{demo_trace, demo_trace_for, initial_scene, initial_scene_for, template_task_for};

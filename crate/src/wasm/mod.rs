@@ -13,7 +13,8 @@
 //! `catalogue`, without Teach mode (`Teacher`, taught tasks), `Session.replay`,
 //! `Session.fromScene`, B2, B3, N-block tasks, JSON paths in load errors, the PDDL tab's `plan`,
 //! `check`, `logicLfd` and `logicLfdPerturb`, task folders (`Session.fromFolder`,
-//! `Session.taskFiles`), and the npm-only `lqt`, `validate`, `runEpisode` and `LogicLfd` class;
+//! `Session.taskFiles`), the Compare tab's `table1Task`, `table1Report` and `table1Episode`, and the
+//! npm-only `lqt`, `validate`, `runEpisode` and `LogicLfd` class;
 //! `wasm` adds them (the npm package, and the module the page loads after its first frame).
 
 #[cfg(feature = "wasm")]
@@ -39,6 +40,8 @@ mod reliability;
 #[cfg(not(first_load))]
 mod robot;
 mod session;
+#[cfg(feature = "wasm")]
+mod table1;
 #[cfg(feature = "wasm")]
 mod teach;
 

@@ -130,3 +130,27 @@ pub(super) fn count(failures: &mut Vec<(String, usize)>, k: String) {
         None => failures.push((k, 1)),
     }
 }
+
+/// The group of a failure kind of the tables: `logic` (the task level found no way: no plan, no
+/// demonstration step applies, the plan ended short of the goal), `motion` (an action could not
+/// be executed, a block out of the robots' reach) or `budget` (replans or simulated time ran out).
+pub fn failure_group(kind: &str) -> &'static str {
+    match kind {
+        "action-failed" | "out-of-reach" => "motion",
+        "budget" => "budget",
+        _ => "logic",
+    }
+}
+
+/// The 95 % Wilson score interval of `successes` out of `n` (`(0, 1)` when `n` is 0).
+pub fn wilson(successes: usize, n: usize) -> (f64, f64) {
+    if n == 0 {
+        return (0.0, 1.0);
+    }
+    let (z, n) = (1.959_963_984_540_054, n as f64);
+    let p = successes as f64 / n;
+    let denom = 1.0 + z * z / n;
+    let centre = (p + z * z / (2.0 * n)) / denom;
+    let half = z * libm::sqrt(p * (1.0 - p) / n + z * z / (4.0 * n * n)) / denom;
+    ((centre - half).max(0.0), (centre + half).min(1.0))
+}

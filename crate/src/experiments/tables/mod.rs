@@ -10,7 +10,7 @@ mod table1;
 mod table2;
 
 pub(crate) use common::summary;
-pub use common::{MeanSd, PAPER_TABLE1, PAPER_TABLE2};
+pub use common::{failure_group, wilson, MeanSd, PAPER_TABLE1, PAPER_TABLE2};
 pub use feasible::infeasible;
 pub use table1::{
     table1, table1_scene, table1_task_seed, Redraw, Table1, Table1Cell, Table1Run, Table1Sweep,

@@ -41,6 +41,9 @@ pub struct Table1Cell {
     /// Replans of Logic-LfD that planned to G from scratch (the TAMP fallback), over all tasks.
     #[serde(default)]
     pub fallbacks: usize,
+    /// Replans after the first plan, per task run (the first plan is not a replan).
+    #[serde(default)]
+    pub replans: Vec<usize>,
     /// Actions executed per successful task.
     pub actions: Vec<usize>,
     /// Failure reasons seen (kind → count).
@@ -163,6 +166,9 @@ pub struct Table1Run {
     pub bind_ms: Option<f64>,
     /// Replans that planned to G from scratch (the TAMP fallback).
     pub fallbacks: usize,
+    /// Replans after the first plan.
+    #[serde(default)]
+    pub replans: usize,
     /// Actions executed, if the episode reached the goal.
     pub success_actions: Option<usize>,
     /// The failure's kind, if it failed with a stated reason.
@@ -194,6 +200,50 @@ impl Table1Sweep {
         self.benchmarks.len() * self.tasks
     }
 
+    /// The level of item `index` (tasks take L1..L4 in turn).
+    pub fn level(&self, index: usize) -> Level {
+        Level::ALL[index % self.tasks % 4]
+    }
+
+    /// The initial scene of item `index` and the draw it came from ([`table1_scene`]).
+    fn scene(&self, index: usize) -> Result<(String, usize), SessionError> {
+        let (b, i) = (self.benchmarks[index / self.tasks], index % self.tasks);
+        table1_scene(b, self.level(index), table1_task_seed(b, i, self.seed))
+    }
+
+    /// The episode of `method` in `mode` from item `index`'s initial `scene`.
+    fn spec(&self, index: usize, method: Method, mode: Mode, scene: &str) -> EpisodeSpec {
+        let (b, i) = (self.benchmarks[index / self.tasks], index % self.tasks);
+        EpisodeSpec {
+            benchmark: b,
+            level: None,
+            method,
+            mode,
+            seed: table1_task_seed(b, i, self.seed),
+            scene: Some(scene.to_string()),
+            robots: self.robots.clone(),
+        }
+    }
+
+    /// Runs method `run` of [`TABLE1_METHODS`] alone from item `index` as [`Table1Sweep::run`]
+    /// runs it, with its full report (the log replays it).
+    pub fn episode(
+        &self,
+        index: usize,
+        run: usize,
+        params: SessionParams,
+        clock: &dyn Clock,
+    ) -> Result<crate::experiments::EpisodeReport, SessionError> {
+        let mut params = params;
+        params.control.tamp_fallback = self.tamp_fallback;
+        let (method, mode) = TABLE1_METHODS
+            .get(run)
+            .copied()
+            .ok_or_else(|| SessionError::Json(format!("run {run}: Table I has 4 methods")))?;
+        let (scene, _) = self.scene(index)?;
+        run_episode(&self.spec(index, method, mode, &scene), params, clock)
+    }
+
     /// Runs item `index`: draws its initial state ([`table1_scene`]) and runs every method of
     /// [`TABLE1_METHODS`] in closed loop from it, with `params` (their
     /// `control.tamp_fallback` set from the sweep's). `progress` hears of failures and of the
@@ -209,19 +259,10 @@ impl Table1Sweep {
         params.control.tamp_fallback = self.tamp_fallback;
         let (b, i) = (self.benchmarks[index / self.tasks], index % self.tasks);
         let level = Level::ALL[i % 4];
-        let task_seed = table1_task_seed(b, i, self.seed);
-        let (scene, draw) = table1_scene(b, level, task_seed)?;
+        let (scene, draw) = self.scene(index)?;
         let mut runs = Vec::with_capacity(TABLE1_METHODS.len());
         for (method, mode) in TABLE1_METHODS {
-            let spec = EpisodeSpec {
-                benchmark: b,
-                level: None,
-                method,
-                mode,
-                seed: task_seed,
-                scene: Some(scene.clone()),
-                robots: self.robots.clone(),
-            };
+            let spec = self.spec(index, method, mode, &scene);
             let r = match run_episode(&spec, params, clock) {
                 Ok(r) => r,
                 // The robots cannot reach a block of this task: a failure of theirs, not the
@@ -237,6 +278,7 @@ impl Table1Sweep {
                         plan_ms: None,
                         bind_ms: None,
                         fallbacks: 0,
+                        replans: 0,
                         success_actions: None,
                         failure: Some("out-of-reach".into()),
                     });
@@ -261,6 +303,7 @@ impl Table1Sweep {
                 plan_ms: first.map(|f| f.time_ms),
                 bind_ms: first.map(|f| f.bind_ms),
                 fallbacks: r.log.replans.iter().filter(|p| p.fallback).count(),
+                replans: r.log.replans.len().saturating_sub(1),
                 success_actions: r.success.then_some(r.actions_executed),
                 failure,
             });
@@ -281,6 +324,25 @@ impl Table1Sweep {
 
     /// Table I from the sweep's items, given in item order.
     pub fn report(&self, items: impl IntoIterator<Item = Table1Task>) -> Table1 {
+        self.report_of(items.into_iter().enumerate())
+    }
+
+    /// Table I of the items at `level` alone (items given in item order, all of them).
+    pub fn report_level(
+        &self,
+        items: impl IntoIterator<Item = Table1Task>,
+        level: Level,
+    ) -> Table1 {
+        self.report_of(
+            items
+                .into_iter()
+                .enumerate()
+                .filter(|(p, _)| self.level(*p) == level),
+        )
+    }
+
+    /// Table I from items paired with their item index.
+    fn report_of(&self, items: impl IntoIterator<Item = (usize, Table1Task)>) -> Table1 {
         let mut cells: Vec<Table1Cell> = self
             .benchmarks
             .iter()
@@ -297,13 +359,14 @@ impl Table1Sweep {
                         search_ms: vec![],
                         bind_ms: vec![],
                         fallbacks: 0,
+                        replans: vec![],
                         actions: vec![],
                         failures: vec![],
                     })
             })
             .collect();
         let mut redrawn = vec![];
-        for (p, item) in items.into_iter().enumerate() {
+        for (p, item) in items {
             if item.draw > 0 {
                 redrawn.push(Redraw {
                     benchmark: item.benchmark,
@@ -321,6 +384,7 @@ impl Table1Sweep {
                     cell.bind_ms.push(bind);
                 }
                 cell.fallbacks += run.fallbacks;
+                cell.replans.push(run.replans);
                 if let Some(actions) = run.success_actions {
                     cell.successes += 1;
                     cell.actions.push(actions);
