@@ -24,7 +24,7 @@ describe('compare methods', () => {
     assert.match(row('RLDS').reason, /no remaining part of the demonstration/);
     // Every method met the same disturbance.
     assert.equal(new Set(rows.map((r) => r.disturbance)).size, 1, rows.map((r) => r.disturbance).join(' | '));
-    assert.match(rows[0].disturbance, /^L3: /);
+    assert.match(rows[0].disturbance, /^Scramble: /);
     // The Run's own episode was not touched.
     assert.equal((await currentFrame(page)).tick, before.tick);
     await page.screenshot({ path: join(screenshots, 'compare-episode-1440.png') });

@@ -110,9 +110,16 @@ describe('task folder on the page', () => {
     const f = await finish(page, 60000);
     assert.equal(f.status.kind, 'done', f.status.message);
     assert.ok(f.facts.includes('(at r2 red-tray)'), f.facts.join(' '));
-    // The Run ran the taught task in the folder's workcell; the folder stays open.
-    assert.match(await page.textContent('#task-tag'), /taught task · sorting/);
-    assert.equal(await page.inputValue('#benchmark'), 'folder');
+    // The Run ran the taught task in the folder's workcell; the folder stays open. The benchmark
+    // select names the taught task, the goal is its own, the top bar keeps to one row and the
+    // link keeps the folder.
+    assert.equal(await page.inputValue('#benchmark'), 'taught');
+    assert.match(await page.getAttribute('#benchmark option[value="taught"]', 'title'), /sorting/);
+    assert.ok(await page.$('#benchmark option[value="folder"]'), 'the folder stays open');
+    assert.equal(await page.isDisabled('#blocks'), true);
+    assert.match(await page.textContent('#goal'), /r2 at red-tray/);
+    assert.ok((await page.$eval('.topbar', (e) => e.getBoundingClientRect().height)) < 50);
+    assert.equal(new URL(page.url()).searchParams.get('folder'), 'task-folders/sorting');
     assert.deepEqual(errors, []);
     await page.close();
   });
@@ -209,7 +216,7 @@ describe('task folder on the page', () => {
     await page.selectOption('#compare-level', 'l3');
     await page.click('#compare-run');
     await page.waitForSelector('.compare[data-done="true"]', { timeout: 300000 });
-    assert.match(await page.textContent('#compare-note'), /^task folder \.\/mine · seed 1 · L3/);
+    assert.match(await page.textContent('#compare-note'), /^task folder \.\/mine · seed 1 · Scramble at /);
     const rows = await page.$$eval('#compare-table tbody tr', (trs) => trs.map((tr) => [tr.querySelector('th')?.textContent, tr.children[1]?.textContent]));
     const lfd = rows.filter(([name]) => name?.startsWith('Logic-LfD'));
     assert.ok(lfd.length >= 1 && lfd.every(([, r]) => r?.includes('success')), JSON.stringify(rows));

@@ -97,7 +97,7 @@ describe('the robot select', () => {
     const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=2&robot=ur5&autoplay=0');
     await page.waitForFunction(() => window.lfd.frame()?.world.arms[0].robot === 'ur5', null, { timeout: 60000 });
     await runScriptedCompare(page, 'l3', 0.5);
-    assert.match(await page.textContent('#compare-note'), /^B1 · UR5 · seed 2 · L3 at 0\.5 s/);
+    assert.match(await page.textContent('#compare-note'), /^B1 · UR5 · seed 2 · Scramble at 0\.5 s/);
     const rows = await compareRows(page);
     for (const n of ['Logic-LfD (paper)', 'Logic-LfD (prioritised)', 'TAMP']) {
       const row = rows.find((r) => r.name === n);

@@ -13,6 +13,9 @@ describe('disturbances and demonstration states have different names', () => {
     const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&seed=1&speed=8&autoplay=0');
     await page.click('#step');
     await page.waitForFunction(() => window.lfd.frame()?.replans === 1, null, { timeout: 30000 });
+    // The block count's first item says what it is.
+    assert.equal(await page.$eval('#blocks', (s) => s.selectedOptions[0].textContent), 'paper task');
+    assert.match(await page.getAttribute('#blocks', 'aria-label'), /Blocks/);
     // The words fit: the top bar stays one row at 1440 px.
     const bar = await page.$eval('.topbar', (e) => e.getBoundingClientRect().height);
     assert.ok(bar < 50, `the top bar is ${bar} px tall`);
@@ -55,6 +58,24 @@ describe('the first visit', () => {
     await page.waitForFunction(() => window.lfd.frame()?.status.kind !== 'done', null, { timeout: 30000 });
     assert.ok((await page.evaluate(() => window.lfd.frame().t)) < 5, 'the episode started over');
     assert.equal(await page.$('#hint-again'), null);
+    assert.deepEqual(errors, []);
+    await page.close();
+  });
+});
+
+describe('while Teach records', () => {
+  test("the Run's Play, Step, Reset, speed and disturbance buttons wait", async () => {
+    const { page, errors } = await openApp(ctx.browser, ctx.server, '?benchmark=b1&autoplay=0');
+    const runControls = () => page.$$eval('#play, #step, #reset, #speed, [data-level]', (es) => es.map((e) => `${e.id}:${e.disabled}`));
+    assert.ok((await runControls()).every((s) => s.endsWith(':false')), (await runControls()).join(' '));
+    await page.click('#tab-teach');
+    await page.click('#teach-record');
+    await page.waitForFunction(() => window.lfdTeach.state() !== null);
+    const recording = await runControls();
+    assert.equal(recording.length, 8);
+    assert.ok(recording.every((s) => s.endsWith(':true')), recording.join(' '));
+    await page.click('#tab-run');
+    assert.ok((await runControls()).every((s) => s.endsWith(':false')), (await runControls()).join(' '));
     assert.deepEqual(errors, []);
     await page.close();
   });

@@ -33,5 +33,11 @@ export const entryOf = <T extends string>(entries: CatalogueEntry<T>[], id: stri
 /** A disturbance level's name on the page (its catalogue label, before the catalogue its id). */
 export const levelName = (id: string): string => entryOf(current?.levels ?? [], id)?.label ?? id.toUpperCase();
 
+/** A core message about level `level` ("L3: moved c …") without its level. */
+export const withoutLevel = (level: string, m: string): string => m.replace(new RegExp(`^${level}:\\s*`, 'i'), '');
+
+/** A core message about level `level`, led by the level's name on the page ("Scramble: moved c …"). */
+export const withLevel = (level: string, m: string): string => `${levelName(level)}: ${withoutLevel(level, m)}`;
+
 /** The one-line description of `id` ('' for an unknown id). */
 export const descriptionOf = <T extends string>(entries: CatalogueEntry<T>[], id: string): string => entryOf(entries, id)?.description ?? '';

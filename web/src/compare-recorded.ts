@@ -6,7 +6,7 @@
 import type { Frame, Level, SessionOptions, WorldSnapshot } from 'logic-lfd';
 import type { WorkerClient } from './client';
 import type { Vec3 } from './protocol';
-import { levelName } from './catalogue';
+import { levelName, withLevel } from './catalogue';
 
 /** One external event of the episode log (`EpisodeLog.events`, the CLI's snake_case JSON). */
 export type LoggedEvent =
@@ -71,7 +71,7 @@ export function eventLabel(e: LoggedEvent, dt: number): string {
 /** An injection of `level`; a refused one says why. */
 async function inject(client: WorkerClient, level: Level): Promise<string> {
   try {
-    return (await client.call('inject', { level })).message;
+    return withLevel(level, (await client.call('inject', { level })).message);
   } catch (e) {
     return `not injected: ${(e as Error).message}`;
   }

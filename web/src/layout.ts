@@ -86,7 +86,7 @@ export interface Layout {
   help: HelpOverlay;
 }
 
-const BLOCKS_TITLE = "Blocks: the benchmark's own task (template) or a generated tower of N blocks";
+const BLOCKS_TITLE = "Blocks: the benchmark's task as in the paper, or a generated tower of N blocks";
 
 /** Fills the block select with benchmark `b`'s choices, set to `blocks` (undefined: template);
  * disabled, saying why, for a benchmark without an N-block task, and until the worker has sent
@@ -103,7 +103,7 @@ export function setBlockChoices(sel: HTMLSelectElement, b: Benchmark, blocks: nu
       ? `${BLOCKS_TITLE} (loading)`
       : r
         ? `${BLOCKS_TITLE} (${b.toUpperCase()}: ${r[0]} to ${r[1]})`
-        : `${b.toUpperCase()} has no N-block variant: it runs its template task`;
+        : `${b.toUpperCase()} has no N-block variant: it runs its task as in the paper`;
 }
 
 function blockSelect(b: Benchmark, blocks: number | null | undefined): HTMLSelectElement {
@@ -129,6 +129,8 @@ function fill<T extends string>(sel: HTMLSelectElement, choices: [T, string][], 
 /** The benchmark select's item that opens a task folder, and the one of the open folder. */
 export const OPEN_FOLDER = 'open-folder';
 export const FOLDER = 'folder';
+/** The benchmark select's item while the Run runs a taught task. */
+export const TAUGHT = 'taught';
 /** The gallery's task folders, served beside the page at `tasks/NAME/` (web/vite.config.ts). */
 export const GALLERY: { name: string; label: string; title: string }[] = [
   { name: 'sorting', label: 'Sorting task', title: 'Sorting: cubes of two colours from a mixed pile into two trays, one stack per tray' },
@@ -140,7 +142,7 @@ export const galleryValue = (name: string): string => `tasks/${name}`;
 /** Adds to the benchmark select the open folder (selected; null: none) and the item that opens
  * one. */
 export function setFolderChoice(sel: HTMLSelectElement, folder: string | null, benchmark: Benchmark): void {
-  for (const v of [FOLDER, OPEN_FOLDER, ...GALLERY.map((g) => galleryValue(g.name))]) sel.querySelector(`option[value="${v}"]`)?.remove();
+  for (const v of [FOLDER, OPEN_FOLDER, TAUGHT, ...GALLERY.map((g) => galleryValue(g.name))]) sel.querySelector(`option[value="${v}"]`)?.remove();
   if (folder !== null) {
     // The folder's last name, short: the select is as wide as its longest item.
     const name = folder.split('/').filter((p) => p && p !== '.').pop() ?? folder;

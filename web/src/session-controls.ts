@@ -7,12 +7,12 @@ import type { Benchmark, Frame, Level, Method, Mode } from 'logic-lfd';
 import { folderFromFiles, folderFromUrl, folderOfLog, isEpisodeLog, type OpenFolder } from './folder';
 import type { DropRequest, View } from './view';
 import type { WorkerClient } from './client';
-import { catalogue, entryOf, levelName } from './catalogue';
-import { downloadJson, guard } from './dom';
+import { catalogue, entryOf, levelName, withLevel, withoutLevel } from './catalogue';
+import { downloadJson, el, guard } from './dom';
 import type { FirstVisitHint } from './hint';
 import type { FrameRenderer } from './frame-renderer';
 import type { History } from './history';
-import { FOLDER, GALLERY, OPEN_FOLDER, galleryValue, setBlockChoices, setFolderChoice, type Layout } from './layout';
+import { FOLDER, GALLERY, OPEN_FOLDER, TAUGHT, galleryValue, setBlockChoices, setFolderChoice, type Layout } from './layout';
 import type { FromWorker } from './protocol';
 import { OPEN_ROBOT, ROBOT_FOLDER, robotFromUrl, robotLabel, robotOption, setRobotChoice, type RobotPick } from './robot-choice';
 import { blocksFor, parseSeed, recordStep, taskKey, updateUrl, type PageState } from './state';
@@ -36,8 +36,6 @@ export interface SessionParts {
 const sentence = (m: string) => (/[.!?]$/.test(m.trim()) ? m.trim() : `${m.trim()}.`);
 const isFinished = (kind: string) => kind === 'done' || kind === 'failed';
 
-const withoutLevel = (level: Level, m: string) => m.replace(new RegExp(`^${level}:\\s*`, 'i'), '');
-const withLevel = (level: Level, m: string) => `${levelName(level)}: ${withoutLevel(level, m)}`;
 
 export class SessionControls {
   /** The first-visit hint, once its chunk has loaded (after the first frame). */
@@ -123,19 +121,27 @@ export class SessionControls {
     return this.guard(() => (this.p.state.playing ? this.pause() : this.play()));
   }
 
-  /** The Run runs a taught task: no permalink can restore it, so the URL and the top bar say so. */
-  taught(f: Frame, inFolder: boolean): void {
-    this.p.state.taught = true;
+  /** The Run runs a taught task: the benchmark select names it (no permalink restores it; the URL
+   * keeps the workcell it was taught in), and the goal is its own. */
+  async taught(f: Frame, inFolder: boolean, goal: string[]): Promise<void> {
+    const { state, ui } = this.p;
     // A task taught in a benchmark's workcell leaves the task folder; one taught in the open
     // folder keeps it (a new episode of the folder's own task reopens it).
     if (!inFolder) {
-      this.p.state.folder = null;
+      state.folder = null;
       this.folderChoices();
     }
-    history.replaceState(null, '', location.pathname);
-    this.p.ui.taskTag.textContent = `taught task · ${f.world.name}`;
-    this.p.ui.taskTag.hidden = false;
-    this.p.ui.run.goal.textContent = 'the taught goal (Teach tab)';
+    updateUrl(state);
+    state.taught = true;
+    this.reopenable = false;
+    ui.taskTag.hidden = true;
+    const sel = ui.controls.benchSel;
+    sel.append(el('option', { value: TAUGHT, title: `The task taught in Teach mode, in ${f.world.name}` }, 'taught task'));
+    sel.value = TAUGHT;
+    ui.controls.blocksSel.disabled = true;
+    const { goalWords } = await import('./guide');
+    ui.run.goal.textContent = goalWords(goal);
+    ui.run.goal.title = goal.join(' ');
   }
 
   /** Opens a session of the chosen scenario (or of a scene file's world), on the open task folder
@@ -527,7 +533,7 @@ export class SessionControls {
     const sel = this.p.ui.controls.benchSel;
     if (sel.disabled) return;
     // The benchmarks only: the open folder and the item that opens one are not in the cycle.
-    const ids = [...sel.options].map((o) => o.value).filter((v) => v !== FOLDER && v !== OPEN_FOLDER && !GALLERY.some((g) => galleryValue(g.name) === v));
+    const ids = [...sel.options].map((o) => o.value).filter((v) => v !== FOLDER && v !== OPEN_FOLDER && v !== TAUGHT && !GALLERY.some((g) => galleryValue(g.name) === v));
     sel.value = ids[(ids.indexOf(sel.value) + 1) % ids.length];
     sel.dispatchEvent(new Event('change'));
   }

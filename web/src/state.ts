@@ -52,7 +52,8 @@ export function blocksFor(b: Benchmark, n: number | null | undefined): number | 
 /** The block select's items for benchmark `b`: the template ('') and each allowed count. */
 export function blockItems(b: Benchmark): [string, string][] {
   const r = blockRange(b);
-  const items: [string, string][] = [['', 'template']];
+  // Says what it is: "template" alone did not read as a block count.
+  const items: [string, string][] = [['', 'paper task']];
   if (r && r !== 'unknown') for (let n = r[0]; n <= r[1]; n++) items.push([String(n), `${n} blocks`]);
   return items;
 }

@@ -24,8 +24,8 @@ export interface Playback {
   setPlaying(p: boolean): void;
   /** Opens files as Load does (a saved run is replayed). */
   loadFiles(files: File[]): Promise<void>;
-  /** The Run now runs a taught task (not the benchmark's): the URL and the link say so. */
-  taught(f: Frame, inFolder: boolean): void;
+  /** The Run now runs a taught task (not the benchmark's), with goal facts `goal`: the selects say so. */
+  taught(f: Frame, inFolder: boolean, goal: string[]): Promise<void>;
 }
 
 export interface TabsParts {
@@ -69,7 +69,10 @@ export class Tabs {
         (e: unknown) => status.notice(`could not load Teach mode: ${(e as Error).message}`, 'error'),
       );
     } else this.teach?.setVisible(false);
-    if (id !== 'teach') renderer.redraw();
+    if (id !== 'teach') {
+      this.runControls(true);
+      renderer.redraw();
+    }
     if (id === 'pddl') void this.loadEditor();
     if (id === 'charts') charts.draw();
     if (id === 'compare') void this.loadCompare().then((c) => c.refresh());
@@ -151,6 +154,12 @@ export class Tabs {
     return this.editorPromise;
   }
 
+  /** Enables the Run's controls, or disables them while Teach mode records (it owns the view). */
+  private runControls(on: boolean): void {
+    const c = this.p.ui.controls;
+    for (const b of [c.playBtn, c.stepBtn, c.resetBtn, c.speedSel, ...c.levelBtns]) b.disabled = !on;
+  }
+
   private getTeach(): Promise<TeachPanel> {
     this.teachPromise ??= Promise.all([import('./teach'), this.p.client.call('teachLoad', {})]).then(
       ([{ TeachPanel }]) => (this.teach = this.newTeachPanel(TeachPanel)),
@@ -175,15 +184,16 @@ export class Tabs {
       status: (kind, text) => {
         // Teach mode's own status: no run to cancel, no run clock.
         status.show(kind, text);
+        this.runControls(!this.teach?.active);
         ui.stage.cancelBtn.disabled = true;
         ui.stage.hud.textContent = '';
       },
       pauseRun: async () => {
         if (state.playing) await playback.pause();
       },
-      runTaught: async (f: Frame, autoplay: boolean, inFolder: boolean) => {
+      runTaught: async (f: Frame, autoplay: boolean, inFolder: boolean, goal: string[]) => {
         playback.setPlaying(false);
-        playback.taught(f, inFolder);
+        await playback.taught(f, inFolder, goal);
         this.select('run');
         renderer.restart(f);
         if (autoplay) await playback.play();

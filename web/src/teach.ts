@@ -40,8 +40,8 @@ export interface TeachHost {
   /** Pauses the running session (Teach mode owns the view meanwhile). */
   pauseRun: () => Promise<void>;
   /** Shows a new session's first frame in the Run tab; plays it if `autoplay`. `inFolder`: the
-   * task was taught in the open task folder. */
-  runTaught: (f: Frame, autoplay: boolean, inFolder: boolean) => Promise<void>;
+   * task was taught in the open task folder; `goal`: its goal facts. */
+  runTaught: (f: Frame, autoplay: boolean, inFolder: boolean, goal: string[]) => Promise<void>;
 }
 
 const ms = (m: number) => `${(m * 1000).toFixed(1)} mm`;
@@ -402,7 +402,7 @@ export class TeachPanel {
       folder: this.taughtIn ?? undefined,
     });
     this.handle.show(false);
-    await this.host.runTaught(f, start !== 'arrange', this.taughtIn !== null);
+    await this.host.runTaught(f, start !== 'arrange', this.taughtIn !== null, this.info?.goal ?? []);
     if (start === 'arrange') this.host.notice('Arrange the blocks by dragging them, then press Play', 'info');
   }
 
