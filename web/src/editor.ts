@@ -18,6 +18,8 @@ import type {
 import { el } from './dom';
 import { LfdView } from './lfd-view';
 import { lint, pddlEditor, revealAt, setText } from './pddl-codemirror';
+import { initAtoms, withInit } from './pddl-init';
+import { InitNotice, copyLinkButton, wideToggle } from './pddl-workspace';
 
 export type Which = 'domain' | 'problem' | 'demo';
 const WHICH: Which[] = ['domain', 'problem', 'demo'];
@@ -68,10 +70,14 @@ export class EditorPanel {
   private lastPlan: Extract<PlanOutcome, { ok: true }> | null = null;
   private selected = 0;
   private lintTimer = 0;
+  private readonly initNotice: InitNotice;
+  private readonly linkNote: HTMLElement;
+  /** The problem as last loaded: its (:init …) is the demonstration's start. */
+  private loadedProblem = '';
 
   constructor(private readonly opts: EditorPanelOptions) {
     this.hosts = { domain: el('div', { class: 'cm-host' }), problem: el('div', { class: 'cm-host', hidden: '' }), demo: el('div', { class: 'cm-host', hidden: '' }) };
-    const make = (w: Which) => pddlEditor(this.hosts[w], `PDDL ${w} editor`, () => this.scheduleCheck());
+    const make = (w: Which) => pddlEditor(this.hosts[w], `PDDL ${w} editor`, () => this.edited(w));
     this.views = { domain: make('domain'), problem: make('problem'), demo: make('demo') };
     const tab = (w: Which, on: boolean) =>
       el('button', { class: on ? 'tab active' : 'tab', role: 'tab', id: `pddl-tab-${w}`, 'aria-selected': String(on), 'aria-label': TAB_LABELS[w], title: TAB_LABELS[w] }, w);
@@ -110,6 +116,12 @@ export class EditorPanel {
       diagnostics: (d) => this.showDiagnostics(d),
       busy: () => this.planning,
     });
+    this.initNotice = new InitNotice(() => this.moveInitToState());
+    this.linkNote = el('span', { class: 'muted pddl-link-note', id: 'pddl-link-note', 'aria-live': 'polite' });
+    const copyLink = copyLinkButton(
+      () => ({ domain: this.text('domain'), problem: this.text('problem'), demo: this.text('demo') }),
+      (t) => (this.linkNote.textContent = t),
+    );
     const prev = el('button', { 'aria-label': 'Previous state', title: 'Previous state' }, '◀');
     const next = el('button', { 'aria-label': 'Next state', title: 'Next state' }, '▶');
     prev.onclick = () => this.selectState(this.selected - 1);
@@ -128,15 +140,26 @@ export class EditorPanel {
         { class: 'editor-modes' },
         el('div', { class: 'seg-group', role: 'group', 'aria-label': 'Planning mode' }, this.modeButtons.classical, this.modeButtons.lfd),
         el('span', { class: 'grow' }),
+        this.linkNote,
+        copyLink,
         this.planButton,
         this.cancelButton,
       ),
       el('div', { class: 'editor-tabs', role: 'tablist' }, this.tabs.domain, this.tabs.problem, this.tabs.demo, el('span', { class: 'grow' }), this.search, this.heuristic),
       el('div', { class: 'editor-body' }, this.hosts.domain, this.hosts.problem, this.hosts.demo),
+      this.initNotice.root,
       this.errorList,
       this.planOut,
       this.lfd.root,
     );
+    this.wide();
+  }
+
+  private wide(): void {
+    const toggle = wideToggle(this.root, () => {
+      for (const w of WHICH) this.views[w].requestMeasure();
+    });
+    this.planButton.before(toggle);
   }
 
   show(which: Which): void {
@@ -165,6 +188,8 @@ export class EditorPanel {
   setTexts(domain: string, problem: string, demo?: string): void {
     const texts: [Which, string | undefined][] = [['domain', domain], ['problem', problem], ['demo', demo]];
     for (const [w, text] of texts) if (text !== undefined) setText(this.views[w], text);
+    this.loadedProblem = problem;
+    this.initNotice.show(false);
     this.lastPlan = null;
     this.output.replaceChildren();
     this.stateView.replaceChildren();
@@ -174,6 +199,38 @@ export class EditorPanel {
 
   text(which: Which): string {
     return this.views[which].state.doc.toString();
+  }
+
+  /** An edit: what was said about the old texts goes at once; a check follows when typing stops. */
+  private edited(w: Which): void {
+    this.errorList.replaceChildren();
+    this.output.querySelector('#pddl-no-plan')?.remove();
+    this.lfd.stale();
+    // Inside CodeMirror's update: the inline marks are cleared right after it.
+    queueMicrotask(() => {
+      for (const x of WHICH) lint(this.views[x], []);
+    });
+    if (w === 'problem') this.noteInit();
+    this.scheduleCheck();
+  }
+
+  /** In Logic-LfD mode, whether the (:init …) now differs from the demonstration's start. */
+  private noteInit(): void {
+    const now = initAtoms(this.text('problem'));
+    const was = initAtoms(this.loadedProblem);
+    const differs = this.mode === 'lfd' && now !== null && was !== null && [...now].sort().join() !== [...was].sort().join();
+    this.initNotice.show(differs);
+  }
+
+  /** The edited initial state becomes S_C; the problem's (:init …) goes back to the demonstration's start. */
+  private moveInitToState(): void {
+    const now = initAtoms(this.text('problem'));
+    const was = initAtoms(this.loadedProblem);
+    if (!now || !was) return;
+    const restored = withInit(this.text('problem'), was);
+    if (restored) setText(this.views.problem, restored);
+    this.lfd.useAsState(now);
+    this.initNotice.show(false);
   }
 
   private scheduleCheck(): void {

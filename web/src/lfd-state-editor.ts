@@ -144,7 +144,8 @@ export class StateEditor {
     this.setFacts(facts, `S_C set to L${k}.`);
   }
 
-  private setFacts(facts: string[], note: string): void {
+  /** S_C := `facts`, with `note` saying where they came from. */
+  setFacts(facts: string[], note: string): void {
     this.custom = true;
     this.facts = new Set(facts);
     this.write(facts);

@@ -90,6 +90,17 @@ export class LfdView {
     this.state.followInit();
   }
 
+  /** S_C := the atoms of an edited (:init …), less the static facts (S_C holds only fluents). */
+  useAsState(atoms: string[]): void {
+    const statics = new Set(this.statics);
+    this.state.setFacts(atoms.filter((a) => !statics.has(a)), 'S_C set to the edited (:init …).');
+  }
+
+  /** The inputs changed: a failure shown by the last Run is about texts that are gone. */
+  stale(): void {
+    if (this.results.querySelector('.lfd-fail')) this.results.replaceChildren();
+  }
+
   /** Checks the inputs and S_C soon (after typing stops). */
   schedule(delayMs = 600): void {
     clearTimeout(this.timer);

@@ -42,6 +42,7 @@ session.wire();
 renderer.onFrame = (f) => session.refreshLevels(f);
 installShortcuts({ help: ui.help, session, tabs, controls: ui.controls, stage: ui.stage });
 installTestHooks({ state, view, charts, history, tabs, client });
+if (location.hash.startsWith('#pddl=')) void import('./pddl-link').then((m) => m.restore((d, p, x) => tabs.setPddl(d, p, x)));
 
 // The view follows the timeline: a recorded moment while scrubbed back, the live frame after.
 let shown: number | null = null;

@@ -63,3 +63,30 @@ export function withInit(problem: string, atoms: string[]): string | null {
   const lines = [...atoms, ...numeric].map((a) => `    ${a}`).join('\n');
   return `${problem.slice(0, open)}(:init\n${lines})${problem.slice(close + 1)}`;
 }
+
+/** The atoms of the `(:init …)` section (not the `(= …)` values), spaces normalised; null without one. */
+export function initAtoms(problem: string): string[] | null {
+  const at = initSection(problem);
+  if (!at) return null;
+  const body = problem.slice(at[0] + 1, at[1]).replace(/^\s*:init/i, '');
+  const out: string[] = [];
+  let depth = 0;
+  let open = -1;
+  for (let i = 0; i < body.length; i++) {
+    const ch = body[i];
+    if (ch === ';') {
+      const nl = body.indexOf('\n', i);
+      i = nl < 0 ? body.length : nl;
+    } else if (ch === '(') {
+      if (depth === 0) open = i;
+      depth++;
+    } else if (ch === ')') {
+      depth--;
+      if (depth === 0 && open >= 0) {
+        const atom = body.slice(open, i + 1).replace(/\s+/g, ' ').replace(/\( /g, '(').replace(/ \)/g, ')').toLowerCase();
+        if (!/^\(=/.test(atom)) out.push(atom);
+      }
+    }
+  }
+  return out;
+}

@@ -5,6 +5,7 @@ use super::ast::Name;
 use super::error::Span;
 use super::error::{PddlError, SourceMap};
 use super::lexer::SExpr;
+use super::suggest::did_you_mean;
 
 /// Requirements this front end implements.
 pub(crate) const SUPPORTED_REQUIREMENTS: &[&str] = &[
@@ -169,7 +170,14 @@ pub(crate) fn requirements(src: &SourceMap, items: &[SExpr]) -> Result<Vec<Name>
                 ),
             ));
         } else {
-            return Err(src.error(e.span(), format!("unknown requirement `{a}`")));
+            let near = did_you_mean(
+                a,
+                SUPPORTED_REQUIREMENTS
+                    .iter()
+                    .chain(KNOWN_UNSUPPORTED_REQUIREMENTS)
+                    .copied(),
+            );
+            return Err(src.error(e.span(), format!("unknown requirement `{a}`{near}")));
         }
     }
     Ok(out)

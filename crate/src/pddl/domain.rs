@@ -9,6 +9,7 @@ use super::error::Span;
 use super::error::{PddlError, SourceMap};
 use super::formula::Scope;
 use super::lexer::{read_one, SExpr};
+use super::suggest::did_you_mean;
 
 /// Parses a domain file. `file` is used in error locations only.
 pub fn parse_domain(text: &str, file: &str) -> Result<Domain, PddlError> {
@@ -72,7 +73,20 @@ pub fn parse_domain(text: &str, file: &str) -> Result<Domain, PddlError> {
                     "PDDL3 constraints are not supported",
                 ))
             }
-            _ => return Err(src.error(kspan, format!("unknown domain section `{kw}`"))),
+            _ => {
+                let near = did_you_mean(
+                    kw,
+                    [
+                        ":requirements",
+                        ":types",
+                        ":constants",
+                        ":predicates",
+                        ":functions",
+                        ":action",
+                    ],
+                );
+                return Err(src.error(kspan, format!("unknown domain section `{kw}`{near}")));
+            }
         }
     }
 
@@ -297,9 +311,10 @@ pub(crate) fn resolve_type(
 ) -> Result<usize, PddlError> {
     match ty {
         None => Ok(0),
-        Some(n) => domain
-            .type_index(&n.text)
-            .ok_or_else(|| src.error(n.span, format!("undeclared type `{}`", n.text))),
+        Some(n) => domain.type_index(&n.text).ok_or_else(|| {
+            let near = did_you_mean(&n.text, domain.types.iter().map(|t| t.name.text.as_str()));
+            src.error(n.span, format!("undeclared type `{}`{near}", n.text))
+        }),
     }
 }
 
@@ -415,7 +430,10 @@ fn action(
             _ => {
                 return Err(src.error(
                     key.span(),
-                    format!("unknown action key `{k}` (expected `:parameters`, `:precondition` or `:effect`)"),
+                    format!(
+                        "unknown action key `{k}`{} (expected `:parameters`, `:precondition` or `:effect`)",
+                        did_you_mean(k, [":parameters", ":precondition", ":effect"])
+                    ),
                 ))
             }
         };

@@ -8,6 +8,7 @@ use super::ast::{Atom, CostAmount, CostIncrease, Domain, Effect, Formula, Name, 
 use super::common::{is_name, list, non_negative_integer, refuse};
 use super::error::{PddlError, SourceMap};
 use super::lexer::SExpr;
+use super::suggest::did_you_mean;
 
 /// What names mean where a formula is read.
 pub(crate) struct Scope<'a> {
@@ -50,16 +51,24 @@ impl Scope<'_> {
             }
             return match self.params.iter().position(|p| p.name.text == a) {
                 Some(i) => Ok((Term::Var(i, name), self.params[i].ty)),
-                None => Err(self
-                    .src
-                    .error(e.span(), format!("undeclared variable `{a}`"))),
+                None => Err(self.src.error(
+                    e.span(),
+                    format!(
+                        "undeclared variable `{a}`{}",
+                        did_you_mean(a, self.params.iter().map(|p| p.name.text.as_str()))
+                    ),
+                )),
             };
         }
         match self.objects.get(a) {
             Some(&t) => Ok((Term::Const(name), t)),
-            None if is_name(a) => Err(self
-                .src
-                .error(e.span(), format!("undeclared object or constant `{a}`"))),
+            None if is_name(a) => Err(self.src.error(
+                e.span(),
+                format!(
+                    "undeclared object or constant `{a}`{}",
+                    did_you_mean(a, self.objects.keys().map(String::as_str))
+                ),
+            )),
             None => Err(self.src.error(
                 e.span(),
                 format!("expected an object or a variable, found `{a}`"),
@@ -88,7 +97,13 @@ impl Scope<'_> {
             return Err(self.src.error(
                 head.span(),
                 match head.atom() {
-                    Some(h) => format!("undeclared predicate `{h}`"),
+                    Some(h) => format!(
+                        "undeclared predicate `{h}`{}",
+                        did_you_mean(
+                            h,
+                            self.domain.predicates.iter().map(|p| p.name.text.as_str())
+                        )
+                    ),
                     None => "expected a predicate name, found a list".to_string(),
                 },
             ));

@@ -4,6 +4,7 @@
 //! to the end of the line, anywhere. Nesting is bounded ([`MAX_DEPTH`]) so that no input can
 //! exhaust the stack of the recursive-descent interpreters that read the tree.
 
+use super::brackets;
 use super::error::Span;
 use super::error::{PddlError, SourceMap};
 
@@ -58,11 +59,9 @@ pub(crate) fn read_one(src: &SourceMap) -> Result<SExpr, PddlError> {
                 i += 1;
             }
         } else if done.is_some() {
-            return Err(src.error(
-                Span {
-                    start: i,
-                    end: i + 1,
-                },
+            return Err(brackets::stray(
+                src,
+                i,
                 if b == b')' {
                     "unmatched `)` after the end of `(define …)`"
                 } else {
@@ -83,13 +82,7 @@ pub(crate) fn read_one(src: &SourceMap) -> Result<SExpr, PddlError> {
             i += 1;
         } else if b == b')' {
             let Some((start, items)) = stack.pop() else {
-                return Err(src.error(
-                    Span {
-                        start: i,
-                        end: i + 1,
-                    },
-                    "unmatched `)`",
-                ));
+                return Err(brackets::stray(src, i, "unmatched `)`"));
             };
             let list = SExpr::List(items, Span { start, end: i + 1 });
             match stack.last_mut() {
@@ -114,13 +107,7 @@ pub(crate) fn read_one(src: &SourceMap) -> Result<SExpr, PddlError> {
         }
     }
     if let Some((start, _)) = stack.last() {
-        return Err(src.error(
-            Span {
-                start: *start,
-                end: start + 1,
-            },
-            "unclosed `(`: the file ends before its `)`",
-        ));
+        return Err(brackets::unclosed(src, *start));
     }
     done.ok_or_else(|| {
         src.error(
@@ -251,7 +238,7 @@ mod tests {
     #[test]
     fn unbalanced_parentheses_are_located() {
         let e = read("(a\n (b)").unwrap_err();
-        assert_eq!((e.line, e.col), (1, 1));
+        assert_eq!((e.line, e.col), (2, 5));
         let e = read("(a))").unwrap_err();
         assert_eq!((e.line, e.col), (1, 4));
         let e = read("(a) (b)").unwrap_err();

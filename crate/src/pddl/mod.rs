@@ -24,6 +24,7 @@
 //! ```
 
 mod ast;
+mod brackets;
 mod build;
 mod common;
 mod domain;
@@ -31,6 +32,7 @@ mod error;
 mod formula;
 mod lexer;
 mod problem;
+mod suggest;
 
 pub use ast::{
     Action, Atom, CostAmount, CostIncrease, Domain, Effect, Formula, FunctionValue, Name, Problem,
@@ -43,3 +45,4 @@ pub use problem::{parse_problem, LocatedFact};
 
 pub(crate) use error::SourceMap;
 pub(crate) use lexer::{read_many, SExpr};
+pub(crate) use suggest::did_you_mean;

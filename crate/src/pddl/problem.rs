@@ -10,6 +10,7 @@ use super::error::Span;
 use super::error::{PddlError, SourceMap};
 use super::formula::Scope;
 use super::lexer::{read_one, SExpr};
+use super::suggest::did_you_mean;
 
 /// Parses a problem file against its domain. `file` is used in error locations only.
 pub fn parse_problem(text: &str, file: &str, domain: &Domain) -> Result<Problem, PddlError> {
@@ -55,7 +56,20 @@ pub fn parse_problem(text: &str, file: &str, domain: &Domain) -> Result<Problem,
                     "plan-length bounds are not supported",
                 ))
             }
-            _ => return Err(src.error(kspan, format!("unknown problem section `{kw}`"))),
+            _ => {
+                let near = did_you_mean(
+                    kw,
+                    [
+                        ":domain",
+                        ":requirements",
+                        ":objects",
+                        ":init",
+                        ":goal",
+                        ":metric",
+                    ],
+                );
+                return Err(src.error(kspan, format!("unknown problem section `{kw}`{near}")));
+            }
         };
         if let Some(prev) = seen.insert(kw.to_string(), kspan) {
             let (l, c) = src.line_col(prev.start);
@@ -222,7 +236,11 @@ fn function_value(
         let Some(&ty) = names.get(&n.text) else {
             return Err(src.error(
                 n.span,
-                format!("undeclared object or constant `{}`", n.text),
+                format!(
+                    "undeclared object or constant `{}`{}",
+                    n.text,
+                    did_you_mean(&n.text, names.keys().map(String::as_str))
+                ),
             ));
         };
         if !domain.is_subtype(ty, p.ty) {

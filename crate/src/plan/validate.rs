@@ -12,7 +12,7 @@
 use std::collections::{HashMap, HashSet};
 use std::fmt;
 
-use crate::pddl::{CostAmount, Domain, Formula, PddlError, Problem, Span, Term};
+use crate::pddl::{did_you_mean, CostAmount, Domain, Formula, PddlError, Problem, Span, Term};
 
 /// A token of a plan file, lower case, with its location.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -290,7 +290,14 @@ pub fn validate(domain: &Domain, problem: &Problem, plan: &[PlanStep]) -> Valida
         let Some(ai) = domain.action_index(&step.action.text) else {
             report.outcome = Outcome::Malformed(step.error(
                 Some(&step.action),
-                format!("unknown action `{}`", step.action.text),
+                format!(
+                    "unknown action `{}`{}",
+                    step.action.text,
+                    did_you_mean(
+                        &step.action.text,
+                        domain.actions.iter().map(|a| a.name.text.as_str())
+                    )
+                ),
             ));
             return report;
         };
@@ -310,9 +317,14 @@ pub fn validate(domain: &Domain, problem: &Problem, plan: &[PlanStep]) -> Valida
         let mut b = Vec::with_capacity(step.args.len());
         for (tok, p) in step.args.iter().zip(&act.params) {
             let Some(&(o, ty)) = w.index.get(tok.text.as_str()) else {
-                report.outcome = Outcome::Malformed(
-                    step.error(Some(tok), format!("unknown object `{}`", tok.text)),
-                );
+                report.outcome = Outcome::Malformed(step.error(
+                    Some(tok),
+                    format!(
+                        "unknown object `{}`{}",
+                        tok.text,
+                        did_you_mean(&tok.text, w.index.keys().copied())
+                    ),
+                ));
                 return report;
             };
             if !domain.is_subtype(ty, p.ty) {
