@@ -6,6 +6,7 @@ import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { openApp, screenshots, useBrowser } from './harness.mjs';
+import { scrubTo } from './ux-helpers.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 
@@ -41,20 +42,6 @@ async function watchLive(page) {
 }
 
 const shown = (page) => page.evaluate(SHOWN);
-
-/** Drags the timeline's thumb with the mouse to time `t`. */
-async function scrubTo(page, t) {
-  const r = await page.$eval('#timeline-range', (e) => {
-    const b = e.getBoundingClientRect();
-    return { left: b.left, width: b.width, y: b.top + b.height / 2, max: Number(e.max), value: Number(e.value) };
-  });
-  // The thumb (14 px) travels between the track's ends inset by its half width.
-  const x = (v) => r.left + 7 + ((r.width - 14) * v) / r.max;
-  await page.mouse.move(x(r.value), r.y);
-  await page.mouse.down();
-  await page.mouse.move(x(t), r.y, { steps: 8 });
-  await page.mouse.up();
-}
 
 /** Opens B1 paused, steps it to 0.5 s, injects L3 there and lets the run finish; returns the plan
  * shown just before the disturbance. */

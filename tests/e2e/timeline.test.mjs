@@ -5,7 +5,7 @@ import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { openApp, screenshots, useBrowser } from './harness.mjs';
-import { dragBody, dropPoint } from './ux-helpers.mjs';
+import { dragBody, dropPoint, scrubTo } from './ux-helpers.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 const open = (query, viewport = undefined) => openApp(ctx.browser, ctx.server, query, viewport);
@@ -26,20 +26,6 @@ async function waitL3Replan(page) {
     { timeout: 30000, polling: 50 },
   );
   return page.evaluate(() => window.lfd.marks().find((x) => x.kind === 'l3').t);
-}
-
-/** Drags the timeline's thumb with the mouse to time `t`. */
-async function scrubTo(page, t) {
-  const r = await page.$eval('#timeline-range', (e) => {
-    const b = e.getBoundingClientRect();
-    return { left: b.left, width: b.width, y: b.top + b.height / 2, max: Number(e.max), value: Number(e.value) };
-  });
-  // The thumb (14 px) travels between the track's ends inset by its half width.
-  const x = (v) => r.left + 7 + ((r.width - 14) * v) / r.max;
-  await page.mouse.move(x(r.value), r.y);
-  await page.mouse.down();
-  await page.mouse.move(x(t), r.y, { steps: 8 });
-  await page.mouse.up();
 }
 
 describe('timeline', () => {

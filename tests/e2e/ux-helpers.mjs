@@ -38,3 +38,17 @@ export async function waitStatus(page, kinds, { not = false, timeout = 30000 } =
     { timeout, polling: 50 },
   );
 }
+
+/** Drags the timeline's thumb with the mouse to time `t`. */
+export async function scrubTo(page, t) {
+  const r = await page.$eval('#timeline-range', (e) => {
+    const b = e.getBoundingClientRect();
+    return { left: b.left, width: b.width, y: b.top + b.height / 2, max: Number(e.max), value: Number(e.value) };
+  });
+  // The thumb (14 px) travels between the track's ends inset by its half width.
+  const x = (v) => r.left + 7 + ((r.width - 14) * v) / r.max;
+  await page.mouse.move(x(r.value), r.y);
+  await page.mouse.down();
+  await page.mouse.move(x(t), r.y, { steps: 8 });
+  await page.mouse.up();
+}
