@@ -10,7 +10,7 @@ import { join } from 'node:path';
 // first opens; the help text when help first opens; the docs when a help link is followed; the
 // robot's meshes (their reader's chunk and robots/*) and the timeline's rewind (rewind-*) after
 // the first frame; a gallery task's files (tasks/*) when it is chosen.
-const LAZY = /\/(robot-meshes-[^/]*\.(js|css)|robots\/[^/]*\/[^/]*|tasks\/[^/]*\/[^/]*|editor-[^/]*\.(js|css)|compare-[^/]*\.(js|css)|why-join-[^/]*\.(js|css)|rewind-[^/]*\.(js|css)|help-text-[^/]*\.js|uPlot[^/]*\.(js|css)|teach-[^/]*\.(js|css)|logic_lfd_teach[^/]*\.(js|wasm)|docs\/[^/]*\.md)$/;
+const LAZY = /\/(robot-meshes-[^/]*\.(js|css)|robots\/[^/]*\/[^/]*|tasks\/[^/]*\/[^/]*|editor-[^/]*\.(js|css)|compare-[^/]*\.(js|css)|why-join-[^/]*\.(js|css)|rewind-[^/]*\.(js|css)|help-text-[^/]*\.js|folder-[^/]*\.js|uPlot[^/]*\.(js|css)|teach-[^/]*\.(js|css)|logic_lfd_teach[^/]*\.(js|wasm)|docs\/[^/]*\.md)$/;
 
 /** Sizes of the built page in `dist`: totals (`raw`, `gz`, `lazyGz`) and one row per file. */
 export async function pageSizes(dist) {

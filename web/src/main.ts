@@ -16,7 +16,6 @@ import { installShortcuts } from './shortcuts';
 import { blocksFor, initialState, setBlockRanges, settleChoices } from './state';
 import { StatusBar } from './status-bar';
 import { Tabs } from './tabs';
-import { installTestHooks } from './test-hooks';
 import { View } from './view';
 
 const state = initialState(location.search);
@@ -41,7 +40,8 @@ const tabs = new Tabs({ state, ui, client, view, charts, renderer, status, playb
 session.wire();
 renderer.onFrame = (f) => session.refreshLevels(f);
 installShortcuts({ help: ui.help, session, tabs, controls: ui.controls, stage: ui.stage });
-installTestHooks({ state, view, charts, history, tabs, client });
+/** `window.lfd` for the tests and bench scripts: not needed for the first frame, so fetched after it. */
+const testHooks = () => import('./test-hooks').then(({ installTestHooks }) => installTestHooks({ state, view, charts, history, tabs, client }));
 if (location.hash.startsWith('#pddl=')) void import('./pddl-link').then((m) => m.restore((d, p, x) => tabs.setPddl(d, p, x)));
 
 // The view follows the timeline: a recorded moment while scrubbed back, the live frame after.
@@ -68,7 +68,9 @@ client.ready.then(
     view.start();
     if (state.folderUrl) await session.openFolderAt(state.folderUrl);
     else await session.open();
-    window.lfd.loadedAt = performance.now();
+    const loadedAt = performance.now();
+    await testHooks();
+    window.lfd.loadedAt = loadedAt;
     ui.app.dataset.ready = 'true';
     // The first frame is drawn: the worker now fetches the full-speed module and moves onto it.
     void client.call('speedUp', {});
@@ -81,5 +83,8 @@ client.ready.then(
     );
     void import('./hint').then(({ FirstVisitHint }) => session.setHint(new FirstVisitHint(ui.stage.root)));
   },
-  (e: Error) => status.fail(e.message),
+  (e: Error) => {
+    status.fail(e.message);
+    void testHooks();
+  },
 );

@@ -4,7 +4,8 @@
  * block, save the scene, copy the permalink; and the frames the worker pushes while it plays.
  */
 import type { Benchmark, Frame, Level, Method, Mode } from 'logic-lfd';
-import { folderFromFiles, folderFromUrl, folderOfLog, isEpisodeLog, type OpenFolder } from './folder';
+import type { OpenFolder } from './folder';
+import { goalFacts, goalWords } from './guide';
 import type { DropRequest, View } from './view';
 import type { WorkerClient } from './client';
 import { catalogue, entryOf, levelName, withLevel, withoutLevel } from './catalogue';
@@ -139,7 +140,6 @@ export class SessionControls {
     sel.append(el('option', { value: TAUGHT, title: `The task taught in Teach mode, in ${f.world.name}` }, 'taught task'));
     sel.value = TAUGHT;
     ui.controls.blocksSel.disabled = true;
-    const { goalWords } = await import('./guide');
     ui.run.goal.textContent = goalWords(goal);
     ui.run.goal.title = goal.join(' ');
   }
@@ -221,7 +221,8 @@ export class SessionControls {
   async openFolderAt(url: string): Promise<void> {
     let why: string | null;
     try {
-      why = await this.tryFolder(await folderFromUrl(url));
+      // The folder reader loads on demand: a benchmark's first frame does not need it.
+      why = await this.tryFolder(await (await import('./folder')).folderFromUrl(url));
     } catch (e) {
       why = (e as Error).message;
     }
@@ -309,10 +310,7 @@ export class SessionControls {
   /** States the task's goal in words (a generated tower's from its demonstration's last state). */
   private async showGoal(f: Frame): Promise<void> {
     const { folder } = this.p.state;
-    const [problem, { goalFacts, goalWords }] = await Promise.all([
-      folder ? (folder.files['problem.pddl'] ?? '') : this.p.client.call('benchmark', { id: this.p.state.options.benchmark }).then((b) => b.problem),
-      import('./guide'),
-    ]);
+    const problem = folder ? (folder.files['problem.pddl'] ?? '') : (await this.p.client.call('benchmark', { id: this.p.state.options.benchmark })).problem;
     let facts = goalFacts(problem);
     if (this.p.state.options.blocks != null && !folder) {
       const preds = new Set(facts.map((x) => x.slice(1).split(' ')[0]));
@@ -331,6 +329,7 @@ export class SessionControls {
    * folder.
    */
   async loadFiles(files: File[]): Promise<void> {
+    const { folderFromFiles, folderOfLog, isEpisodeLog } = await import('./folder');
     const one = files.length === 1 ? files[0] : null;
     // One file is a scene or a saved run unless it is a zip or one of a folder's other files.
     if (one && !/\.(zip|pddl|plan|md)$/i.test(one.name) && !/^(motions|expert|demo)\.json$/.test(one.name)) {

@@ -6,6 +6,10 @@
 //! have been closed; a line indented right of `(define`'s body, or an action key outside an
 //! action, marks the text after a stray `)`.
 
+// The page's first-load module reads only its compiled-in PDDL, which is balanced: it keeps the
+// reader's plain messages and leaves this pass out (its size budget has no room for it).
+#![cfg_attr(first_load, allow(dead_code))]
+
 use super::error::{PddlError, SourceMap, Span};
 
 /// Heads of the lists that only stand directly inside `(define …)`.
@@ -233,6 +237,7 @@ fn at(pos: usize) -> Span {
 
 /// The error for a `(` still open at the end of the file (`innermost`: the reader's innermost
 /// unclosed `(`), placed where the list probably should have been closed.
+#[cfg(not(first_load))]
 pub(crate) fn unclosed(src: &SourceMap, innermost: usize) -> PddlError {
     let text = src.text.as_str();
     let (open, next) = match scan(text, false) {
@@ -253,6 +258,7 @@ pub(crate) fn unclosed(src: &SourceMap, innermost: usize) -> PddlError {
 
 /// The error for a `)` too many, found at `found` (text after `(define …)` or a `)` matching
 /// nothing), placed at the `)` that probably is the stray one.
+#[cfg(not(first_load))]
 pub(crate) fn stray(src: &SourceMap, found: usize, fallback: &str) -> PddlError {
     match scan(&src.text, true) {
         Some(Found::Stray { close, open }) if close < found => {
@@ -268,6 +274,18 @@ pub(crate) fn stray(src: &SourceMap, found: usize, fallback: &str) -> PddlError 
         }
         _ => src.error(at(found), fallback),
     }
+}
+
+/// The reader's own message, at the innermost unclosed `(`.
+#[cfg(first_load)]
+pub(crate) fn unclosed(src: &SourceMap, innermost: usize) -> PddlError {
+    src.error(at(innermost), "unclosed `(`: the file ends before its `)`")
+}
+
+/// The reader's own message, at the `)` found.
+#[cfg(first_load)]
+pub(crate) fn stray(src: &SourceMap, found: usize, fallback: &str) -> PddlError {
+    src.error(at(found), fallback)
 }
 
 #[cfg(test)]

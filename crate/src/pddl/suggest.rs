@@ -1,6 +1,8 @@
 //! "Did you mean …?" for an unknown name: the closest known name by edit distance (adjacent
 //! letters swapped count as one edit), when it is close enough to be a likely typo.
 
+#![cfg_attr(first_load, allow(dead_code))]
+
 /// Edits (insert, delete, substitute, swap two adjacent characters) from `a` to `b`.
 fn distance(a: &str, b: &str) -> usize {
     let a: Vec<char> = a.chars().collect();
@@ -39,8 +41,16 @@ pub(crate) fn closest<'a>(name: &str, known: impl IntoIterator<Item = &'a str>) 
 }
 
 /// `; did you mean `x`?` for the closest known name, or nothing.
+#[cfg(not(first_load))]
 pub(crate) fn did_you_mean<'a>(name: &str, known: impl IntoIterator<Item = &'a str>) -> String {
     closest(name, known).map_or_else(String::new, |k| format!("; did you mean `{k}`?"))
+}
+
+/// Nothing: the page's first-load module reads only its compiled-in PDDL, and its size budget
+/// has no room for the search.
+#[cfg(first_load)]
+pub(crate) fn did_you_mean<'a>(_name: &str, _known: impl IntoIterator<Item = &'a str>) -> String {
+    String::new()
 }
 
 #[cfg(test)]
