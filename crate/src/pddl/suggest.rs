@@ -28,9 +28,11 @@ fn distance(a: &str, b: &str) -> usize {
     d[a.len() * w + b.len()]
 }
 
-/// The known name closest to `name`, if within a third of its length (at least one edit).
+/// The known name closest to `name`, if within a third of its length (at least one edit) and
+/// not a rewrite of every character (`x` is no typo of `o`).
 pub(crate) fn closest<'a>(name: &str, known: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
-    let limit = (name.chars().count() / 3).max(1);
+    let len = name.chars().count();
+    let limit = (len / 3).max(1).min(len.saturating_sub(1));
     known
         .into_iter()
         .filter(|k| *k != name)
@@ -66,6 +68,8 @@ mod tests {
         assert_eq!(closest("gripper", known), None);
         assert_eq!(did_you_mean("cler", known), "; did you mean `clear`?");
         assert_eq!(did_you_mean("xyz", known), "");
+        assert_eq!(closest("x", ["o", "a"]), None);
+        assert_eq!(closest("ab", ["ac"]), Some("ac"));
         assert_eq!(distance("kitten", "sitting"), 3);
     }
 }
