@@ -5,6 +5,7 @@
  * method, a click replays one) and the CSV export. Nothing here recomputes Table I: every count
  * comes from the report's cells; only the box plot's quartiles and the medians are drawn here.
  */
+import { catalogue, entryOf, levelName } from './catalogue';
 import { el } from './dom';
 
 /** A cell of `logic-lfd bench table1 --json`. */
@@ -71,6 +72,17 @@ export interface Filter {
 /** Table I's row name of a cell, as `Table1Cell::method_label` writes it. */
 export const labelOf = (c: Pick<Table1Cell, 'method' | 'mode'>): string => (c.method === 'logic-lfd' ? `logic-lfd (${c.mode})` : c.method);
 
+/** A Table I row name as the page's selects write it: `logic-lfd (paper)` → "Logic-LfD (paper)". */
+export function shownMethod(label: string): string {
+  const [, method, mode] = /^(\S+)(?: \((\S+)\))?$/.exec(label) ?? [];
+  const c = catalogue();
+  const m = entryOf(c?.methods ?? [], method)?.label ?? method ?? label;
+  return mode ? `${m} (${entryOf(c?.modes ?? [], mode)?.label ?? mode})` : m;
+}
+
+/** A level's cell: the page's name of the disturbance, the paper's in the tooltip. */
+const levelCell = (level: string) => el('td', { title: `the paper’s ${level.toUpperCase()}` }, levelName(level));
+
 const GROUPS: Group[] = ['logic', 'motion', 'budget'];
 
 function quantile(sorted: number[], q: number): number {
@@ -126,8 +138,8 @@ export function successTable(r: Report, f: Filter): HTMLTableElement {
       'tr',
       { class: level === 'all' ? 'all' : '', 'data-method': method, 'data-level': level },
       el('td', {}, benchmark.toUpperCase()),
-      el('th', {}, method),
-      el('td', {}, level === 'all' ? 'all' : level.toUpperCase()),
+      el('th', {}, shownMethod(method)),
+      level === 'all' ? el('td', {}, 'all') : levelCell(level),
       el('td', { class: 'num' }, `${pct(c.successes / Math.max(1, c.tasks))} (${c.successes}/${c.tasks})`),
       el('td', { class: 'num' }, `${pct(ci[0])} – ${pct(ci[1])}`),
       el('td', { class: 'num' }, c.plan_ms.length ? `${ms(median(c.plan_ms))} (${ms(median(c.search_ms))} / ${ms(median(c.bind_ms))})` : '—'),
@@ -194,7 +206,7 @@ export function boxPlot(r: Report, f: Filter): HTMLElement {
     const g = svg('g', { 'data-method': method });
     g.append(
       svg('title', {}, `${method}: ${s.length} plans; min ${ms(s[0])}, quartiles ${ms(q1)} / ${ms(q2)} / ${ms(q3)}, max ${ms(s[s.length - 1])} ms`),
-      svg('text', { x: left - 8, y: y + 4, 'text-anchor': 'end' }, method),
+      svg('text', { x: left - 8, y: y + 4, 'text-anchor': 'end' }, shownMethod(method)),
       svg('line', { x1: x(s[0]), x2: x(s[s.length - 1]), y1: y, y2: y, class: 'whisker' }),
       svg('rect', { x: x(q1), y: y - 9, width: Math.max(1, x(q3) - x(q1)), height: 18, class: 'box' }),
       svg('line', { x1: x(q2), x2: x(q2), y1: y - 9, y2: y + 9, class: 'median' }),
@@ -233,8 +245,8 @@ export function episodesTable(r: Report, tasks: Task[], levelOf: (index: number)
         { class: ok ? 'ok' : 'fail', tabindex: '0', title: `Replay ${name} on the Run tab`, 'data-index': String(index), 'data-run': String(k) },
         el('td', {}, t.benchmark.toUpperCase()),
         el('td', { class: 'num' }, String(t.task)),
-        el('td', {}, level.toUpperCase()),
-        el('th', {}, method),
+        levelCell(level),
+        el('th', {}, shownMethod(method)),
         el('td', {}, ok ? `✓ ${run.success_actions} actions` : '✗ failed'),
         el('td', { class: 'num' }, run.plan_ms === null ? '—' : `${ms(run.plan_ms)} (${ms(run.plan_ms - (run.bind_ms ?? 0))} / ${ms(run.bind_ms)})`),
         el('td', { class: 'num' }, String(run.replans)),

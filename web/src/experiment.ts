@@ -9,7 +9,7 @@
 import type { Catalogue } from 'logic-lfd';
 import { button, downloadJson, el } from './dom';
 import { ExperimentWorker, Pool, PoolCancelled, poolSize } from './experiment-pool';
-import { boxPlot, csv, episodesTable, type EpisodeRef, type Filter, labelOf, type Report, type Task, successTable } from './experiment-view';
+import { boxPlot, csv, episodesTable, type EpisodeRef, type Filter, labelOf, type Report, type Task, shownMethod, successTable } from './experiment-view';
 import './experiment.css';
 
 /** Table I's rows (`TABLE1_METHODS`, in order): the report's cells are checked against them. */
@@ -72,7 +72,7 @@ export class ExperimentPanel {
     this.benchBoxes = benches.map(([, box], i) => ((box.value = catalogue.benchmarks[i].id), box));
     const levels = catalogue.levels.map((l) => check('experiment-level', l.label, true, l.description));
     this.levelBoxes = levels.map(([, box], i) => ((box.value = catalogue.levels[i].id), box));
-    const methods = TABLE1_ROWS.map((m) => check('experiment-method', m, true));
+    const methods = TABLE1_ROWS.map((m) => check('experiment-method', shownMethod(m), true));
     this.methodBoxes = methods.map(([, box], i) => ((box.value = TABLE1_ROWS[i]), box));
     const [fallbackLabel, fallbackBox] = check('experiment-fallback', 'TAMP fallback', false, 'Let Logic-LfD plan to G from scratch when none of its skeletons binds (bench table1 --tamp-fallback)');
     this.fallbackBox = fallbackBox;
