@@ -120,7 +120,7 @@ describe('teach', () => {
     const replansBefore = await page.evaluate(() => window.lfd.frame().replans);
     await page.keyboard.press('3');
     await page.waitForSelector('#notice:not([hidden])');
-    assert.match(await page.textContent('#notice'), /^L3/);
+    assert.match(await page.textContent('#notice'), /^Scramble: /);
     const f = await finish(page, 60000);
     const info = JSON.stringify({ facts: f.facts, status: f.status, plan: f.plan, last: f.lastReplan, replans: f.replans });
     assert.equal(f.status.kind, 'done', info);

@@ -31,6 +31,11 @@ describe('disturbances and demonstration states have different names', () => {
     assert.doesNotMatch(said, /\bL\d|refused/, `the notice reads "${said}"`);
     assert.ok(said.startsWith(buttons[2].text), `the notice names the button: "${said}"`);
     await page.waitForFunction(() => (window.lfd.frame()?.replans ?? 0) >= 2, null, { timeout: 30000 });
+    // Playing, Play reads Pause: still one row.
+    if ((await page.textContent('#play')).includes('Pause')) {
+      const playing = await page.$eval('.topbar', (e) => e.getBoundingClientRect().height);
+      assert.ok(playing < 50, `the top bar is ${playing} px tall while playing`);
+    }
     // The replan line says which demonstration state it joined, as L with a subscript.
     await page.waitForSelector('#replan-info .replan.last', { timeout: 10000 });
     const joined = await page.$eval('#replan-info .replan.last', (r) => r.innerHTML);
