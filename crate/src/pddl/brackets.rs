@@ -12,26 +12,38 @@
 
 use super::error::{PddlError, SourceMap, Span};
 
-/// Heads of the lists that only stand directly inside `(define …)`.
-const SECTIONS: [&str; 14] = [
+/// The domain sections the reader takes (the reader matches an unknown one against them).
+pub(super) const DOMAIN_SECTIONS: [&str; 6] = [
     ":requirements",
     ":types",
     ":constants",
     ":predicates",
     ":functions",
     ":action",
-    ":durative-action",
-    ":derived",
+];
+
+/// The problem sections the reader takes.
+pub(super) const PROBLEM_SECTIONS: [&str; 6] = [
     ":domain",
+    ":requirements",
     ":objects",
     ":init",
     ":goal",
     ":metric",
-    ":constraints",
 ];
 
-/// Keys that only stand directly inside an `(:action …)`.
-const ACTION_KEYS: [&str; 3] = [":parameters", ":precondition", ":effect"];
+/// Sections the reader knows and refuses (PDDL 2.1+ and PDDL3).
+const REFUSED_SECTIONS: [&str; 3] = [":durative-action", ":derived", ":constraints"];
+
+/// The keys of an `(:action …)`.
+pub(super) const ACTION_KEYS: [&str; 3] = [":parameters", ":precondition", ":effect"];
+
+/// Whether `head` heads a list that only stands directly inside `(define …)`.
+fn is_section(head: &str) -> bool {
+    [&DOMAIN_SECTIONS[..], &PROBLEM_SECTIONS, &REFUSED_SECTIONS]
+        .iter()
+        .any(|list| list.contains(&head))
+}
 
 /// A list still open during the scan.
 struct Open {
@@ -139,7 +151,7 @@ fn scan(text: &str, stray: bool) -> Option<Found> {
             }
             let end = atom_end(bytes, j);
             let head = text[j..end].to_ascii_lowercase();
-            let section = SECTIONS.contains(&head.as_str());
+            let section = is_section(head.as_str());
             if section && !stray && stack.len() >= 2 {
                 return Some(Found::Unclosed {
                     open: stack[1].pos,

@@ -74,17 +74,7 @@ pub fn parse_domain(text: &str, file: &str) -> Result<Domain, PddlError> {
                 ))
             }
             _ => {
-                let near = did_you_mean(
-                    kw,
-                    [
-                        ":requirements",
-                        ":types",
-                        ":constants",
-                        ":predicates",
-                        ":functions",
-                        ":action",
-                    ],
-                );
+                let near = did_you_mean(kw, super::brackets::DOMAIN_SECTIONS);
                 return Err(src.error(kspan, format!("unknown domain section `{kw}`{near}")));
             }
         }
@@ -432,7 +422,7 @@ fn action(
                     key.span(),
                     format!(
                         "unknown action key `{k}`{} (expected `:parameters`, `:precondition` or `:effect`)",
-                        did_you_mean(k, [":parameters", ":precondition", ":effect"])
+                        did_you_mean(k, super::brackets::ACTION_KEYS)
                     ),
                 ))
             }

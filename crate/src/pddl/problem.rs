@@ -57,17 +57,7 @@ pub fn parse_problem(text: &str, file: &str, domain: &Domain) -> Result<Problem,
                 ))
             }
             _ => {
-                let near = did_you_mean(
-                    kw,
-                    [
-                        ":domain",
-                        ":requirements",
-                        ":objects",
-                        ":init",
-                        ":goal",
-                        ":metric",
-                    ],
-                );
+                let near = did_you_mean(kw, super::brackets::PROBLEM_SECTIONS);
                 return Err(src.error(kspan, format!("unknown problem section `{kw}`{near}")));
             }
         };
