@@ -6,7 +6,7 @@ import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { openApp, screenshots, useBrowser } from './harness.mjs';
-import { scrubTo } from './ux-helpers.mjs';
+import { scrubTo, waitL3Replan } from './ux-helpers.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 
@@ -55,15 +55,7 @@ async function runWithL3(page) {
   }
   const before = (await shown(page)).plan.map((p) => p.split('|')[1]);
   await page.click('#inject-l3', { force: true });
-  await page.waitForFunction(
-    () => {
-      const m = window.lfd.marks();
-      const l3 = m.find((x) => x.kind === 'l3');
-      return !!l3 && m.some((x) => x.kind === 'replan' && x.t >= l3.t - 1e-9);
-    },
-    null,
-    { timeout: 30000, polling: 50 },
-  );
+  await waitL3Replan(page);
   await page.waitForFunction(() => ['done', 'failed'].includes(window.lfd.frame().status.kind), null, { timeout: 90000, polling: 100 });
   // The last frame drawn.
   await page.waitForFunction(() => document.querySelector('#hud').textContent.startsWith(`t = ${window.lfd.frame().t.toFixed(2)} s`));

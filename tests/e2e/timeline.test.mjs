@@ -5,7 +5,7 @@ import { describe, test } from 'node:test';
 import assert from 'node:assert/strict';
 import { join } from 'node:path';
 import { openApp, screenshots, useBrowser } from './harness.mjs';
-import { dragBody, dropPoint, scrubTo } from './ux-helpers.mjs';
+import { dragBody, dropPoint, scrubTo, waitL3Replan } from './ux-helpers.mjs';
 
 const ctx = useBrowser({ withScreenshots: true });
 const open = (query, viewport = undefined) => openApp(ctx.browser, ctx.server, query, viewport);
@@ -13,20 +13,6 @@ const open = (query, viewport = undefined) => openApp(ctx.browser, ctx.server, q
 const positions = (page) =>
   page.evaluate(() => Object.fromEntries(window.lfd.frame().world.bodies.filter((b) => b.kind === 'block').map((b) => [b.name, b.pose.position])));
 const dist = (a, b) => Math.hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
-
-/** Waits for the L3 marker and a replan marker at or after it; returns the L3 marker's time. */
-async function waitL3Replan(page) {
-  await page.waitForFunction(
-    () => {
-      const m = window.lfd.marks();
-      const l3 = m.find((x) => x.kind === 'l3');
-      return !!l3 && m.some((x) => x.kind === 'replan' && x.t >= l3.t - 1e-9);
-    },
-    null,
-    { timeout: 30000, polling: 50 },
-  );
-  return page.evaluate(() => window.lfd.marks().find((x) => x.kind === 'l3').t);
-}
 
 describe('timeline', () => {
   test('marks an L3 disturbance and its replan, scrubs back to before it, Play returns to live', async () => {

@@ -52,3 +52,17 @@ export async function scrubTo(page, t) {
   await page.mouse.move(x(t), r.y, { steps: 8 });
   await page.mouse.up();
 }
+
+/** Waits for the L3 marker and a replan marker at or after it; returns the L3 marker's time. */
+export async function waitL3Replan(page) {
+  await page.waitForFunction(
+    () => {
+      const m = window.lfd.marks();
+      const l3 = m.find((x) => x.kind === 'l3');
+      return !!l3 && m.some((x) => x.kind === 'replan' && x.t >= l3.t - 1e-9);
+    },
+    null,
+    { timeout: 30000, polling: 50 },
+  );
+  return page.evaluate(() => window.lfd.marks().find((x) => x.kind === 'l3').t);
+}
