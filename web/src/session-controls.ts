@@ -396,7 +396,7 @@ export class SessionControls {
 
   async reset(): Promise<void> {
     this.setPlaying(false);
-    const fresh = this.reopenable && !this.p.state.taught && (await this.freshWorker());
+    const fresh = this.reopenable && (await this.freshWorker());
     this.p.renderer.restart(await (fresh ? this.openSession() : this.p.client.call('reset', { seed: this.p.state.options.seed })));
     if (this.p.state.autoplay) await this.play();
   }
@@ -408,9 +408,14 @@ export class SessionControls {
     const { client } = this.p;
     const m = await client.call('memory', {});
     if (m.wasmBytes <= Math.max(2 * m.freshBytes, m.freshBytes + (16 << 20))) return false;
-    await client.respawn();
-    void client.call('speedUp', {});
+    await this.restartWorker();
     return true;
+  }
+
+  /** A fresh worker, moving onto the full-speed module as the first one did. */
+  private async restartWorker(): Promise<void> {
+    await this.p.client.respawn();
+    void this.p.client.call('speedUp', {});
   }
 
   step(): Promise<void> {
@@ -457,12 +462,11 @@ export class SessionControls {
   /** Cancel while a search holds the worker: a fresh worker (the only way to stop wasm from
    * outside) reopens the episode at its start, or says what to open when it cannot. */
   private async stopSearch(): Promise<void> {
-    const { client, status, renderer, state } = this.p;
+    const { status, renderer } = this.p;
     this.searching = false;
     this.setPlaying(false);
-    await client.respawn();
-    void client.call('speedUp', {});
-    if (!this.reopenable || state.taught) return status.fail('Search stopped: the planner restarted. Open a task to go on.');
+    await this.restartWorker();
+    if (!this.reopenable) return status.fail('Search stopped: the planner restarted. Open a task to go on.');
     renderer.restart(await this.openSession());
     status.notice('Search stopped: the planner restarted and the episode is back at its start.', 'info', 8000);
   }
