@@ -26,6 +26,7 @@ from ._core import (
     plan,
     validate,
 )
+from .sweep import sweep
 
 __all__ = [
     "DemoError",
@@ -40,5 +41,6 @@ __all__ = [
     "Validation",
     "__version__",
     "plan",
+    "sweep",
     "validate",
 ]

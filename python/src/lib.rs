@@ -11,6 +11,7 @@ mod clock;
 mod errors;
 mod lfd;
 mod pddl;
+mod sweep;
 
 /// The extension module (`logic_lfd._core`).
 #[pymodule]
@@ -19,5 +20,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     pddl::register(m)?;
     lfd::register(m)?;
+    sweep::register(m)?;
     Ok(())
 }

@@ -132,6 +132,28 @@ impl ArmModel {
         .clone()
     }
 
+    /// The arm `spec` names: a shipped robot (`panda`, `ur5`) or a robot file (`robot.json`
+    /// beside its URDF); a path that exists is read as a file even when it reads like a name.
+    /// What `--robot` takes on the command line and `robot=` in Python.
+    ///
+    /// # Errors
+    /// The robot file's error, located.
+    #[cfg(not(first_load))]
+    pub fn load(spec: &std::path::Path) -> Result<Arc<ArmModel>, String> {
+        let shipped = spec
+            .to_str()
+            .and_then(|n| crate::sim::SHIPPED_ROBOTS.into_iter().find(|s| *s == n))
+            .filter(|_| !spec.exists());
+        if let Some(name) = shipped {
+            return ArmModel::shipped(name)
+                .ok_or_else(|| format!("robot `{name}`: the shipped files do not load"));
+        }
+        Robot::load(spec)
+            .and_then(|r| ArmModel::from_robot(&r))
+            .map(Arc::new)
+            .map_err(|e| e.to_string())
+    }
+
     /// The arm's name (`panda`, or the robot file's `name`).
     pub fn name(&self) -> &str {
         &self.name
