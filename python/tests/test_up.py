@@ -421,9 +421,35 @@ def test_replanning_from_a_disturbed_state(blocks_demo: Tuple[Problem, Any]) -> 
 def test_kitchen_replanning_mid_demonstration(kitchen_up: Tuple[Problem, Any]) -> None:
     problem, demo = kitchen_up
     state = states(problem, demo)[10]
-    result = resolve_from(problem, demo, bool_values(problem, state))
+    with Replanner(problem, name="logic-lfd", params={"demonstration": demo}) as replanner:
+        replanner.update_state(state)  # a UP State: every boolean fluent at once
+        result = replanner.resolve()
     assert result.metrics["k"] == "10" and result.metrics["source"] == "logic-in"
     assert names(result.plan.actions) == names(demo.actions[10:])
+    assert valid(with_state(problem, bool_values(problem, state)), result.plan)
+
+
+def test_kitchen_replanning_after_a_disturbance(kitchen_up: Tuple[Problem, Any]) -> None:
+    problem, demo = kitchen_up
+    # Mid-demonstration (both vegetables on the counter, the knife in hand) the knife is
+    # dropped at the counter and the fridge swings open again.
+    values = bool_values(problem, states(problem, demo)[11])
+    holding, item_at = problem.fluent("holding"), problem.fluent("item-at")
+    hand_empty, closed = problem.fluent("hand-empty"), problem.fluent("closed")
+    chef, knife = problem.object("chef"), problem.object("kitchen-knife")
+    counter, fridge = problem.object("counter"), problem.object("fridge")
+    assert values[holding(chef, knife)] and values[closed(fridge)]
+    values.update({holding(chef, knife): False, item_at(knife, counter): True,
+                   hand_empty(chef): True, closed(fridge): False})
+    with Replanner(problem, name="logic-lfd", params={"demonstration": demo}) as replanner:
+        replanner.update_state(values)  # a mapping: only these fluents change
+        result = replanner.resolve()
+    assert result.status in SOLVED and result.metrics["valid"] == "True"
+    k, prefix = int(result.metrics["k"]), int(result.metrics["prefix_length"])
+    assert prefix > 0
+    assert names(result.plan.actions[prefix:]) == names(demo.actions[k:])
+    assert valid(with_state(problem, values), result.plan)
+    assert not valid(with_state(problem, values), SequentialPlan(demo.actions[11:]))
 
 
 def test_replanner_without_a_demonstration_plans(blocks_demo: Tuple[Problem, Any]) -> None:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import time
 import warnings
 from fractions import Fraction
-from typing import IO, Any, Callable, Optional, Tuple, Union
+from typing import IO, Any, Callable, Mapping, Optional, Tuple, Union
 
 from unified_planning.engines import (  # type: ignore[import-untyped]
     Engine,
@@ -342,6 +342,19 @@ class LogicLfdEngine(Engine, OneshotPlannerMixin, ReplannerMixin):  # type: igno
         if not expression.type.is_bool_type():
             demo.set_initial_value(fluent, value)
             self._changed()
+
+    def update_state(self, state: Union[Mapping[Any, bool], Any]) -> None:
+        """Sets the current state at once: a mapping from boolean fluent expressions to
+        values (the others keep theirs), or a UP `State` (e.g. a `SequentialSimulator`'s),
+        which gives every boolean fluent expression of the problem its value."""
+        current = self._current()
+        if isinstance(state, Mapping):
+            for fluent, value in state.items():
+                self._update_initial_value(fluent, value)
+            return
+        for expression in current.initial_values:
+            if expression.type.is_bool_type():
+                self._update_initial_value(expression, state.get_value(expression))
 
     def _add_goal(self, goal: Union[Any, bool]) -> None:
         """Adds a goal to the problem (the demonstration must still reach it)."""
