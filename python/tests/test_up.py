@@ -3,14 +3,20 @@ checked by UP's own validator, and Logic-LfD replanning from a demonstration."""
 
 from __future__ import annotations
 
+import io
 from typing import Any, Dict, List, Tuple
 
 import pytest
 
-up = pytest.importorskip("unified_planning")
+pytest.importorskip("unified_planning")
 
-from unified_planning.engines import PlanGenerationResultStatus as Status  # type: ignore[import-untyped]  # noqa: E402
-from unified_planning.environment import Environment, get_environment  # type: ignore[import-untyped]  # noqa: E402
+from unified_planning.engines import (  # type: ignore[import-untyped]  # noqa: E402
+    PlanGenerationResultStatus as Status,
+)
+from unified_planning.environment import (  # type: ignore[import-untyped]  # noqa: E402
+    Environment,
+    get_environment,
+)
 from unified_planning.exceptions import (  # type: ignore[import-untyped]  # noqa: E402
     UPNoSuitableEngineAvailableException,
     UPUsageError,
@@ -167,7 +173,7 @@ def fuel() -> Problem:
     return problem
 
 
-# ---- helpers ----
+# ---- plans, states and validation ----
 
 
 def valid(problem: Problem, plan: Any) -> bool:
@@ -178,10 +184,11 @@ def valid(problem: Problem, plan: Any) -> bool:
 
 def pddl_actions(plan: Any) -> List[str]:
     """A UP plan as `(name arg …)` strings in the problem's own (lower-case) names."""
-    return [
-        "(" + " ".join([ai.action.name, *(str(p.object().name) for p in ai.actual_parameters)]) + ")"
-        for ai in plan.actions
-    ]
+    out = []
+    for ai in plan.actions:
+        args = [str(p.object().name) for p in ai.actual_parameters]
+        out.append("(" + " ".join([ai.action.name, *args]) + ")")
+    return out
 
 
 def names(actions: Any) -> List[str]:
@@ -311,9 +318,12 @@ def test_blocks_world_is_solved_optimally_and_validated() -> None:
 
 def test_greedy_search_is_satisficing_and_valid() -> None:
     problem = blocks()
-    result = solve(problem, search="gbfs", heuristic="hff")
+    out = io.StringIO()
+    with OneshotPlanner(name="logic-lfd", params={"search": "gbfs", "heuristic": "hff"}) as p:
+        result = p.solve(problem, output_stream=out)
     assert result.status == Status.SOLVED_SATISFICING
     assert valid(problem, result.plan)
+    assert out.getvalue().startswith(f"logic-lfd: Plan({len(result.plan.actions)} actions")
 
 
 def test_kitchen_matches_the_planner_on_the_raw_files(kitchen_up: Tuple[Problem, Any]) -> None:
@@ -490,3 +500,18 @@ def test_replanner_goal_changes(blocks_demo: Tuple[Problem, Any]) -> None:
         replanner.error_on_failed_checks = True
         with pytest.raises(UPUsageError):
             replanner.remove_goal(on(a, c))
+
+
+def test_a_demonstration_as_pddl_text_and_the_modes(kitchen_up: Tuple[Problem, Any]) -> None:
+    problem, demo = kitchen_up
+    text = (DOMAINS / "kitchen" / "demo.plan").read_text()
+    for mode in ("paper", "prioritised"):
+        params = {"demonstration": text, "mode": mode}
+        with Replanner(problem, name="logic-lfd", params=params) as replanner:
+            result = replanner.resolve()
+        assert result.metrics["k"] == "0" and result.metrics["source"] == "logic-in"
+        assert names(result.plan.actions) == names(demo.actions)
+    params = {"demonstration": text, "mode": "fastest"}
+    with Replanner(problem, name="logic-lfd", params=params) as replanner:
+        with pytest.raises(UPUsageError, match="mode"):
+            replanner.resolve()
