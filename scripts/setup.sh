@@ -51,3 +51,20 @@ say "npm packages"
 if [ ! -d node_modules ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
   if [ -n "${CI:-}" ]; then npm ci --no-audit --no-fund; else npm install --no-audit --no-fund; fi
 fi
+
+# ---- Python: a virtual environment of the project's own for the wheel's tests ----
+say "python test environment (target/python-env)"
+if ! command -v python3 >/dev/null 2>&1; then
+  echo "python3 not found: install CPython >= 3.9 (the Python package's tests need it)" >&2
+  exit 1
+fi
+PY_ENV=target/python-env
+if [ ! -x "$PY_ENV/bin/python" ]; then
+  python3 -m venv "$PY_ENV"
+fi
+# Reinstalled only when the requirements change.
+if ! cmp -s python/requirements-test.txt "$PY_ENV/requirements-test.txt"; then
+  "$PY_ENV/bin/pip" install -q --upgrade pip
+  "$PY_ENV/bin/pip" install -q -r python/requirements-test.txt
+  cp python/requirements-test.txt "$PY_ENV/requirements-test.txt"
+fi

@@ -40,3 +40,7 @@ npm run build:web
 
 step "browser tests (Playwright + Chromium)"
 npm run test:e2e
+
+# ---- Python: the wheel built from python/ and installed as a user installs it ----
+step "python: pip install ./python, then pytest (stubs checked by mypy)"
+bash scripts/test-python.sh

@@ -1,14 +1,32 @@
 # Type stubs of the extension module `logic_lfd._core` (checked by mypy in python/tests).
 from __future__ import annotations
 
-from typing import Any, Iterable, Iterator, Optional, Union
+from typing import Any, Iterable, Iterator, Optional, Union, final
 
 __version__: str
+__all__ = [
+    "__version__",
+    "LogicLfdError",
+    "PddlError",
+    "DemoError",
+    "LoadError",
+    "NoPlanError",
+    "OptionError",
+    "Plan",
+    "Validation",
+    "plan",
+    "validate",
+    "LogicLfd",
+    "LfdResult",
+    "_sweep_items",
+    "_sweep_run",
+    "_sweep_report",
+]
 
-Atoms = Union[str, Iterable[str]]
-"""A state: one text of PDDL atoms, or an iterable of atom strings such as "(on a b)"."""
-PlanText = Union[str, Iterable[str]]
-"""A plan: IPC text (one action a line), or an iterable of action strings."""
+# A state: one text of PDDL atoms, or an iterable of atom strings such as "(on a b)".
+_Atoms = Union[str, Iterable[str]]
+# A plan: IPC text (one action a line), or an iterable of action strings.
+_PlanText = Union[str, Iterable[str]]
 
 class LogicLfdError(Exception): ...
 
@@ -35,6 +53,7 @@ class OptionError(LogicLfdError):
 
 # ---- planning ----
 
+@final
 class Plan:
     actions: list[str]
     cost: int
@@ -43,6 +62,7 @@ class Plan:
     def __len__(self) -> int: ...
     def __iter__(self) -> Iterator[str]: ...
 
+@final
 class Validation:
     valid: bool
     message: str
@@ -66,7 +86,7 @@ def plan(
 def validate(
     domain: str,
     problem: str,
-    plan: PlanText,
+    plan: _PlanText,
     *,
     domain_file: str = "domain.pddl",
     problem_file: str = "problem.pddl",
@@ -75,6 +95,7 @@ def validate(
 
 # ---- Logic-LfD ----
 
+@final
 class LfdResult:
     actions: list[str]
     prefix: list[str]
@@ -87,17 +108,18 @@ class LfdResult:
     stats: dict[str, Any]
     def __len__(self) -> int: ...
 
+@final
 class LogicLfd:
-    def __init__(
-        self,
+    def __new__(
+        cls,
         domain: str,
         problem: str,
-        demo: PlanText,
+        demo: _PlanText,
         *,
         domain_file: str = "domain.pddl",
         problem_file: str = "problem.pddl",
         demo_file: str = "demo.plan",
-    ) -> None: ...
+    ) -> LogicLfd: ...
     @property
     def demo_actions(self) -> list[str]: ...
     @property
@@ -108,10 +130,10 @@ class LogicLfd:
     def static_facts(self) -> list[str]: ...
     @property
     def fluents(self) -> list[str]: ...
-    def logic_in(self, state: Optional[Atoms] = None) -> Optional[int]: ...
+    def logic_in(self, state: Optional[_Atoms] = None) -> Optional[int]: ...
     def replan(
         self,
-        state: Optional[Atoms] = None,
+        state: Optional[_Atoms] = None,
         mode: str = "paper",
         *,
         search: str = "astar",
@@ -120,7 +142,7 @@ class LogicLfd:
         time_limit: Optional[float] = 30.0,
         validate: bool = True,
     ) -> LfdResult: ...
-    def validate(self, plan: PlanText, state: Optional[Atoms] = None) -> Validation: ...
+    def validate(self, plan: _PlanText, state: Optional[_Atoms] = None) -> Validation: ...
 
 # ---- sweeps (used by logic_lfd.sweep) ----
 
