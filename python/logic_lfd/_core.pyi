@@ -143,6 +143,9 @@ class LogicLfd:
         validate: bool = True,
     ) -> LfdResult: ...
     def validate(self, plan: _PlanText, state: Optional[_Atoms] = None) -> Validation: ...
+    def _native_replan_seconds(
+        self, state: Optional[_Atoms], repeats: int, mode: str = "paper"
+    ) -> list[float]: ...
 
 # ---- sweeps (used by logic_lfd.sweep) ----
 

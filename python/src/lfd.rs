@@ -258,6 +258,35 @@ impl LogicLfd {
         Validation::of(py, &report)
     }
 
+    /// Seconds each of `repeats` native calls of what `replan(state, mode)` runs takes (read
+    /// the state, search, merge, validate), timed inside Rust: the yardstick of the binding's
+    /// overhead (`python/benches/replan.py`).
+    #[pyo3(signature = (state, repeats, mode = "paper"))]
+    fn _native_replan_seconds(
+        &self,
+        py: Python<'_>,
+        state: Option<&Bound<'_, PyAny>>,
+        repeats: usize,
+        mode: &str,
+    ) -> PyResult<Vec<f64>> {
+        let mode = self::mode(py, mode)?;
+        let config = config(py, "astar", None, None, Some(30.0))?;
+        let text = state_text(state)?;
+        py.detach(|| {
+            (0..repeats)
+                .map(|_| {
+                    let t0 = std::time::Instant::now();
+                    let s = self.observe(text.as_deref())?;
+                    let p = s.replan(mode, &config, &WallClock::start())?;
+                    let valid = s.validate(&p.names).is_ok_and(|r| r.is_valid());
+                    std::hint::black_box((p, valid, s.logic_in()));
+                    Ok(t0.elapsed().as_secs_f64())
+                })
+                .collect::<Result<Vec<f64>, LfdError>>()
+        })
+        .map_err(|e| lfd_error(py, &e, &self.demo_file))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "LogicLfd({} demonstrated actions, {} fluents)",

@@ -25,6 +25,6 @@ def test_the_stubs_match_the_built_module() -> None:
 
 
 def test_the_package_tests_and_examples_type_check_strictly() -> None:
-    paths = ["logic_lfd", "up_logic_lfd", "tests", "examples"]
+    paths = ["logic_lfd", "up_logic_lfd", "tests", "examples", "benches"]
     out = run("mypy", "--strict", *paths, cwd=str(PYTHON))
     assert out.returncode == 0, out.stdout + out.stderr

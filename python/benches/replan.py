@@ -1,0 +1,58 @@
+"""`LogicLfd.replan` from Python against the same native Rust calls, side by side in one run.
+
+For each case, the median of `--repeats` calls of `LogicLfd.replan(state)` (timed in Python,
+so the binding's argument conversion and result building count) and of the same core calls
+timed inside Rust (`LogicLfd._native_replan_seconds`), and their ratio.
+
+    python python/benches/replan.py --repeats 300
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+from pathlib import Path
+
+import logic_lfd
+
+DOMAINS = Path(__file__).resolve().parents[2] / "domains"
+
+
+def cases() -> list[tuple[str, logic_lfd.LogicLfd, list[str]]]:
+    """(name, task, state): a state the demonstration passes through, and disturbed ones."""
+    out = []
+    for name, robot_at in [("kitchen", "(robot-at chef "), ("delivery", None)]:
+        folder = DOMAINS / name
+        lfd = logic_lfd.LogicLfd(
+            (folder / "domain.pddl").read_text(),
+            (folder / "problem.pddl").read_text(),
+            (folder / "demo.plan").read_text(),
+        )
+        out.append((f"{name}: LogicIn matches L_3", lfd, lfd.demo_states[3]))
+        if robot_at:
+            moved = [a for a in lfd.demo_states[6] if not a.startswith(robot_at)]
+            out.append((f"{name}: cook moved, prefix searched", lfd, moved + [robot_at + "sink)"]))
+    return out
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0] if __doc__ else None)
+    ap.add_argument("--repeats", type=int, default=300)
+    a = ap.parse_args()
+    print("| case | Python replan, µs (median) | native, µs (median) | ratio |")
+    print("|---|---|---|---|")
+    for name, lfd, state in cases():
+        lfd.replan(state)  # warm-up
+        py = []
+        for _ in range(a.repeats):
+            t0 = time.perf_counter()
+            lfd.replan(state)
+            py.append(time.perf_counter() - t0)
+        native = lfd._native_replan_seconds(state, a.repeats)
+        p, n = statistics.median(py) * 1e6, statistics.median(native) * 1e6
+        print(f"| {name} | {p:.1f} | {n:.1f} | {p / n:.3f} |")
+
+
+if __name__ == "__main__":
+    main()
