@@ -44,6 +44,7 @@ class LoadError(LogicLfdError):
 
 class NoPlanError(LogicLfdError):
     reason: str
+    budget: Optional[str]
     message: str
     stats: Optional[dict[str, Any]]
 

@@ -7,6 +7,7 @@ use pyo3::prelude::*;
 
 use logic_lfd::lfd::LfdError;
 use logic_lfd::pddl::PddlError as CorePddlError;
+use logic_lfd::plan::Budget;
 
 create_exception!(
     logic_lfd,
@@ -36,7 +37,7 @@ create_exception!(
     logic_lfd,
     NoPlanError,
     LogicLfdError,
-    "No plan: `.reason` is 'unsolvable' (proved) or 'budget' (stopped at a budget); `.stats`."
+    "No plan: `.reason` is 'unsolvable' (proved) or 'budget' (stopped at `.budget`, 'nodes' or 'time'); `.stats`."
 );
 create_exception!(
     logic_lfd,
@@ -122,24 +123,31 @@ pub(crate) fn lfd_error(py: Python<'_>, e: &LfdError, demo_file: &str) -> PyErr 
             let (file, line, col) = split_location(location).unwrap_or_default();
             located::<PddlError>(py, &file, line, col, &e.to_string())
         }
-        LfdError::Budget(_) => no_plan(py, "budget", &e.to_string(), None),
+        LfdError::Budget(which) => no_plan(py, Some(*which), &e.to_string(), None),
         LfdError::NoPlan(_) | LfdError::MergeFailed { .. } => {
-            no_plan(py, "unsolvable", &e.to_string(), None)
+            no_plan(py, None, &e.to_string(), None)
         }
         LfdError::Model(m) => LogicLfdError::new_err(m.clone()),
     }
 }
 
-/// `NoPlanError` with its reason and the search's statistics.
+/// `NoPlanError` with its reason (a budget that ran out, or none: proved unsolvable) and the
+/// search's statistics.
 pub(crate) fn no_plan(
     py: Python<'_>,
-    reason: &str,
+    budget: Option<Budget>,
     message: &str,
     stats: Option<Bound<'_, PyAny>>,
 ) -> PyErr {
     let err = NoPlanError::new_err(message.to_string());
     let stats = stats.unwrap_or_else(|| py.None().into_bound(py));
+    let (reason, budget) = match budget {
+        None => ("unsolvable", None),
+        Some(Budget::Nodes) => ("budget", Some("nodes")),
+        Some(Budget::Time) => ("budget", Some("time")),
+    };
     set(py, &err, "reason", reason);
+    set(py, &err, "budget", budget);
     set(py, &err, "message", message);
     set(py, &err, "stats", stats);
     err

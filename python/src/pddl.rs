@@ -192,7 +192,7 @@ fn plan_py(
         }),
         (SearchOutcome::BudgetExhausted { which }, _) => Err(no_plan(
             py,
-            "budget",
+            Some(which),
             &format!(
                 "no plan within the {which} ({} states expanded)",
                 r.stats.expanded
@@ -201,7 +201,7 @@ fn plan_py(
         )),
         _ => Err(no_plan(
             py,
-            "unsolvable",
+            None,
             &format!(
                 "the problem is unsolvable: no goal state among {} reachable states",
                 r.stats.states

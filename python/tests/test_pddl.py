@@ -76,12 +76,12 @@ def test_options_and_no_plan_are_exceptions_with_fields(kitchen: Task) -> None:
     assert o.value.option == "heuristic"
     with pytest.raises(logic_lfd.NoPlanError) as n:
         logic_lfd.plan(domain, problem, max_nodes=10)
-    assert n.value.reason == "budget" and n.value.stats is not None
+    assert (n.value.reason, n.value.budget) == ("budget", "nodes") and n.value.stats is not None
     assert n.value.stats["expanded"] <= 11
     goal_false = problem.replace("(:goal (and", "(:goal (and (not (robot-at chef counter)) (robot-at chef counter)", 1)
     with pytest.raises(logic_lfd.NoPlanError) as n:
         logic_lfd.plan(domain, goal_false)
-    assert n.value.reason == "unsolvable"
+    assert (n.value.reason, n.value.budget) == ("unsolvable", None)
     with pytest.raises(TypeError):
         logic_lfd.validate(domain, problem, 42)  # type: ignore[arg-type]
 

@@ -51,7 +51,7 @@ def no_plan(error: logic_lfd.NoPlanError, elapsed: float) -> PlanGenerationResul
     or `UNSOLVABLE_INCOMPLETELY` (the node budget ran out)."""
     if error.reason == "unsolvable":
         status = PlanGenerationResultStatus.UNSOLVABLE_PROVEN
-    elif "time limit" in error.message:
+    elif error.budget == "time":
         status = PlanGenerationResultStatus.TIMEOUT
     else:
         status = PlanGenerationResultStatus.UNSOLVABLE_INCOMPLETELY

@@ -63,7 +63,7 @@ pub enum LfdError {
     NoPlan(String),
     /// The search ran out of its node or time budget.
     #[error("no plan: {0} exhausted")]
-    Budget(String),
+    Budget(crate::plan::Budget),
     /// The benchmark's PDDL, scene or demonstration could not be read.
     #[error("{0}")]
     Model(String),

@@ -282,7 +282,7 @@ pub(crate) fn plan_with(
             k,
         ),
         (SearchOutcome::BudgetExhausted { which }, _) => {
-            return (Err(LfdError::Budget(which.to_string())), stats)
+            return (Err(LfdError::Budget(*which)), stats)
         }
         _ => {
             let why = match below {

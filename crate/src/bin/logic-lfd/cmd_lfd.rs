@@ -323,7 +323,7 @@ fn json(run: &Run, mode: Mode, config: &SearchConfig, total: f64) -> serde_json:
         "mode": mode.as_str(),
     });
     match run.result {
-        Err(LfdError::Budget(which)) => j["budget"] = which.clone().into(),
+        Err(LfdError::Budget(which)) => j["budget"] = which.to_string().into(),
         Err(e) => j["message"] = e.to_string().into(),
         Ok(_) => {}
     }
