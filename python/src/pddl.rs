@@ -246,23 +246,16 @@ impl Validation {
 impl Validation {
     /// The verdict of a core report; a malformed step is raised instead (`PddlError`).
     pub(crate) fn of(py: Python<'_>, r: &ValidationReport) -> PyResult<Validation> {
-        let (failed_step, false_literals) = match &r.outcome {
-            Outcome::Valid => (None, vec![]),
-            Outcome::Malformed(e) => return Err(pddl_error(py, e)),
-            Outcome::PreconditionFalse {
-                step,
-                false_literals,
-                ..
-            } => (Some(*step), false_literals.clone()),
-            Outcome::GoalNotReached { false_literals } => (None, false_literals.clone()),
-        };
+        if let Outcome::Malformed(e) = &r.outcome {
+            return Err(pddl_error(py, e));
+        }
         Ok(Validation {
             valid: r.is_valid(),
             message: r.to_string(),
             steps_applied: r.steps_applied,
             cost: r.cost,
-            failed_step,
-            false_literals,
+            failed_step: r.failed_step(),
+            false_literals: r.false_literals().to_vec(),
         })
     }
 }

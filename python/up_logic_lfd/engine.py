@@ -198,14 +198,31 @@ class LogicLfdEngine(Engine, OneshotPlannerMixin, ReplannerMixin):  # type: igno
         limits = [t for t in (self._time_limit, timeout) if t is not None]
         return min(limits) if limits else None
 
-    def _plan(
-        self, problem: Any, timeout: Optional[float], output_stream: Optional[IO[str]]
+    def _guarded(
+        self, problem: Any, work: Callable[[float], PlanGenerationResult]
     ) -> PlanGenerationResult:
-        """Writes `problem` as PDDL, plans it and reads the plan back."""
+        """`work(start)` after UP's kind check, with logic-lfd's and UP's errors as results; a bad
+        engine parameter raises `UPUsageError`."""
         if not self.skip_checks and not self.supports(problem.kind):
             return unsupported(problem.kind, self.supported_kind())
         start = time.perf_counter()
         try:
+            return work(start)
+        except logic_lfd.NoPlanError as e:
+            return no_plan(e, time.perf_counter() - start)
+        except logic_lfd.OptionError as e:
+            raise UPUsageError(f"{ENGINE_NAME}: engine parameter `{e.option}`: {e.message}")
+        except logic_lfd.PddlError as e:
+            return internal_error(pddl_error_text(e))
+        except (logic_lfd.LogicLfdError, UPException) as e:
+            return internal_error(str(e))
+
+    def _plan(
+        self, problem: Any, timeout: Optional[float], output_stream: Optional[IO[str]]
+    ) -> PlanGenerationResult:
+        """Writes `problem` as PDDL, plans it and reads the plan back."""
+
+        def work(start: float) -> PlanGenerationResult:
             pddl = PddlTask.of(problem)
             found = logic_lfd.plan(
                 pddl.domain,
@@ -216,25 +233,21 @@ class LogicLfdEngine(Engine, OneshotPlannerMixin, ReplannerMixin):  # type: igno
                 time_limit=self._limit(timeout),
             )
             plan = pddl.plan_of(found.actions)
-        except logic_lfd.NoPlanError as e:
-            return no_plan(e, time.perf_counter() - start)
-        except logic_lfd.OptionError as e:
-            raise UPUsageError(f"{ENGINE_NAME}: engine parameter `{e.option}`: {e.message}")
-        except logic_lfd.PddlError as e:
-            return internal_error(pddl_error_text(e))
-        except (logic_lfd.LogicLfdError, UPException) as e:
-            return internal_error(str(e))
-        elapsed = time.perf_counter() - start
-        if output_stream is not None:
-            output_stream.write(f"{ENGINE_NAME}: {found!r}, {found.stats['expanded']} expanded\n")
-        metrics = metrics_of(
-            found.stats,
-            cost=found.cost,
-            plan_length=len(found),
-            optimal=found.optimal,
-            engine_internal_time=elapsed,
-        )
-        return solved(plan, found.optimal, metrics)
+            elapsed = time.perf_counter() - start
+            if output_stream is not None:
+                output_stream.write(
+                    f"{ENGINE_NAME}: {found!r}, {found.stats['expanded']} expanded\n"
+                )
+            metrics = metrics_of(
+                found.stats,
+                cost=found.cost,
+                plan_length=len(found),
+                optimal=found.optimal,
+                engine_internal_time=elapsed,
+            )
+            return solved(plan, found.optimal, metrics)
+
+        return self._guarded(problem, work)
 
     # ---- replanning (Logic-LfD) ----
 
@@ -275,10 +288,8 @@ class LogicLfdEngine(Engine, OneshotPlannerMixin, ReplannerMixin):  # type: igno
         problem = self._current()
         if self._demonstration is None:
             return self._plan(problem, timeout, output_stream)
-        if not self.skip_checks and not self.supports(problem.kind):
-            return unsupported(problem.kind, self.supported_kind())
-        start = time.perf_counter()
-        try:
+
+        def work(start: float) -> PlanGenerationResult:
             lfd, pddl = self._logic_lfd()
             state = true_atoms(pddl, problem.initial_values)
             found = lfd.replan(
@@ -291,34 +302,28 @@ class LogicLfdEngine(Engine, OneshotPlannerMixin, ReplannerMixin):  # type: igno
                 validate=self._validate,
             )
             plan = pddl.plan_of(found.actions, problem)
-        except logic_lfd.NoPlanError as e:
-            return no_plan(e, time.perf_counter() - start)
-        except logic_lfd.OptionError as e:
-            raise UPUsageError(f"{ENGINE_NAME}: engine parameter `{e.option}`: {e.message}")
-        except logic_lfd.PddlError as e:
-            return internal_error(pddl_error_text(e))
-        except (logic_lfd.LogicLfdError, UPException) as e:
-            return internal_error(str(e))
-        elapsed = time.perf_counter() - start
-        if output_stream is not None:
-            output_stream.write(f"{ENGINE_NAME}: {found!r}\n")
-        metrics = metrics_of(
-            found.stats,
-            k=found.k,
-            logic_in=found.logic_in,
-            source=found.source,
-            prefix_length=len(found.prefix),
-            suffix_length=len(found.suffix),
-            cost=found.cost,
-            valid=found.valid,
-            engine_internal_time=elapsed,
-        )
-        result = solved(plan, len(found) == 0, metrics)
-        if found.valid is False:
-            result.log_messages = message(
-                LogLevel.WARNING, "the lifted validator rejects the Logic-LfD plan"
+            elapsed = time.perf_counter() - start
+            if output_stream is not None:
+                output_stream.write(f"{ENGINE_NAME}: {found!r}\n")
+            metrics = metrics_of(
+                found.stats,
+                k=found.k,
+                logic_in=found.logic_in,
+                source=found.source,
+                prefix_length=len(found.prefix),
+                suffix_length=len(found.suffix),
+                cost=found.cost,
+                valid=found.valid,
+                engine_internal_time=elapsed,
             )
-        return result
+            result = solved(plan, len(found) == 0, metrics)
+            if found.valid is False:
+                result.log_messages = message(
+                    LogLevel.WARNING, "the lifted validator rejects the Logic-LfD plan"
+                )
+            return result
+
+        return self._guarded(problem, work)
 
     def _problems(self) -> Tuple[Any, Any]:
         """The current problem and the demonstration's problem (both changed by goal and

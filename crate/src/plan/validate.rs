@@ -142,6 +142,23 @@ impl ValidationReport {
     pub fn is_valid(&self) -> bool {
         self.outcome == Outcome::Valid
     }
+
+    /// The 1-based step whose precondition is false, if that is the verdict.
+    pub fn failed_step(&self) -> Option<usize> {
+        match &self.outcome {
+            Outcome::PreconditionFalse { step, .. } => Some(*step),
+            _ => None,
+        }
+    }
+
+    /// The false precondition or goal literals of the verdict (none when valid or malformed).
+    pub fn false_literals(&self) -> &[String] {
+        match &self.outcome {
+            Outcome::PreconditionFalse { false_literals, .. }
+            | Outcome::GoalNotReached { false_literals } => false_literals,
+            Outcome::Valid | Outcome::Malformed(_) => &[],
+        }
+    }
 }
 
 impl fmt::Display for ValidationReport {

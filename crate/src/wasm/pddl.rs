@@ -395,24 +395,17 @@ impl Diagnostic {
 impl Validation {
     /// The verdict of a replay (a malformed step as a `plan` diagnostic).
     pub(crate) fn of(r: &plan::ValidationReport) -> Self {
-        use crate::plan::Outcome;
-        let (failed_step, false_literals, diagnostics) = match &r.outcome {
-            Outcome::Valid => (None, vec![], vec![]),
-            Outcome::Malformed(e) => (None, vec![], vec![Diagnostic::of_plan(e)]),
-            Outcome::PreconditionFalse {
-                step,
-                false_literals,
-                ..
-            } => (Some(*step), false_literals.clone(), vec![]),
-            Outcome::GoalNotReached { false_literals } => (None, false_literals.clone(), vec![]),
+        let diagnostics = match &r.outcome {
+            plan::Outcome::Malformed(e) => vec![Diagnostic::of_plan(e)],
+            _ => vec![],
         };
         Validation {
             valid: r.is_valid(),
             message: r.to_string(),
             steps_applied: r.steps_applied,
             cost: r.cost,
-            failed_step,
-            false_literals,
+            failed_step: r.failed_step(),
+            false_literals: r.false_literals().to_vec(),
             diagnostics,
         }
     }
