@@ -21,9 +21,12 @@ from ._core import (
     OptionError,
     Plan,
     PddlError,
+    Session,
     Validation,
     __version__,
+    lqt,
     plan,
+    run_episode,
     validate,
 )
 
@@ -37,8 +40,11 @@ __all__ = [
     "OptionError",
     "Plan",
     "PddlError",
+    "Session",
     "Validation",
     "__version__",
+    "lqt",
     "plan",
+    "run_episode",
     "validate",
 ]

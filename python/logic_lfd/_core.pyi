@@ -121,3 +121,81 @@ class LogicLfd:
         validate: bool = True,
     ) -> LfdResult: ...
     def validate(self, plan: PlanText, state: Optional[Atoms] = None) -> Validation: ...
+
+# ---- robot ----
+
+import os as _os
+
+_Path = Union[str, "_os.PathLike[str]"]
+"""A file or folder path."""
+_Robot = Union[_Path, Iterable[_Path]]
+"""A shipped robot ('panda', 'ur5'), a robot file, or one of these per arm."""
+
+def lqt(case: Union[dict[str, Any], str, "_os.PathLike[str]"]) -> dict[str, Any]:
+    """Solves one LQT-CP case (docs/formats.md); arrays are float64 numpy arrays.
+
+    With T = n_steps, N = T - 1, D = dim, nx = D * order, K = basis.n_fct: `A` (nx, nx),
+    `B` (nx, D), `phi` (N, K), `w` (K, D), `u` (N, D), `x` (T, nx; x[0] = x0), `pos` (T, D),
+    `cost` (float), `target_errors` (list of dicts) and, with a `feedback` case,
+    `feedback`: `F` (N*D, nx+1), `gains` (N, D, nx+1), `nominal` / `perturbed` rollouts
+    (`x` (T, nx), `u` (N, D), `pos` (T, D), `final_goal_pos_dist`).
+    """
+    ...
+
+class Session:
+    """One closed-loop episode (paper Algorithm 1) in a kinematic workcell.
+
+    Frames are dicts: the core's frame (`t`, `tick`, `status`, `plan`, `executing`, `demo`,
+    `demo_states`, `matched_k`, `facts`, `facts_added`, `facts_removed`, `last_replan`,
+    `replans`, `ee`, `world`) plus float64 numpy arrays `joints` (arm name -> (n_joints,)) and
+    `poses` (body name -> (7,): x, y, z, qx, qy, qz, qw).
+    """
+
+    def __init__(
+        self,
+        benchmark: Optional[str] = None,
+        *,
+        folder: Optional[_Path] = None,
+        method: str = "logic-lfd",
+        mode: str = "paper",
+        seed: int = 0,
+        skill: str = "lqt",
+        blocks: Optional[int] = None,
+        scene: Optional[str] = None,
+        robot: Optional[_Robot] = None,
+    ) -> None: ...
+    def step(self, dt: float) -> dict[str, Any]: ...
+    def run(self) -> dict[str, Any]: ...
+    def frame(self) -> dict[str, Any]: ...
+    def inject(self, level: str) -> Optional[dict[str, Any]]: ...
+    def can_inject(self, level: str) -> Optional[str]: ...
+    def drag(self, body: str, to: Iterable[float]) -> dict[str, Any]: ...
+    def cancel(self) -> None: ...
+    def reset(self, seed: Optional[int] = None) -> None: ...
+    @property
+    def done(self) -> bool: ...
+    @property
+    def success(self) -> bool: ...
+    @property
+    def tick(self) -> int: ...
+    @property
+    def seed(self) -> int: ...
+    def episode_json(self, *, with_files: bool = False) -> str: ...
+    def scene_json(self) -> str: ...
+
+def run_episode(
+    benchmark: Optional[str] = None,
+    *,
+    folder: Optional[_Path] = None,
+    level: Optional[str] = None,
+    method: str = "logic-lfd",
+    mode: str = "paper",
+    seed: int = 0,
+    blocks: Optional[int] = None,
+    scene: Optional[str] = None,
+    robot: Optional[_Robot] = None,
+    canonical: bool = False,
+    with_files: bool = False,
+) -> dict[str, Any]:
+    """One closed-loop episode to its end: the report of `logic-lfd run --json`."""
+    ...

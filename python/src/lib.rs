@@ -8,9 +8,13 @@
 use pyo3::prelude::*;
 
 mod clock;
+mod episode;
 mod errors;
 mod lfd;
+mod lqt;
 mod pddl;
+mod session;
+mod task;
 
 /// The extension module (`logic_lfd._core`).
 #[pymodule]
@@ -19,5 +23,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     pddl::register(m)?;
     lfd::register(m)?;
+    lqt::register(m)?;
+    session::register(m)?;
+    episode::register(m)?;
     Ok(())
 }
