@@ -96,7 +96,7 @@ pub(crate) fn run_episode<'py>(
     });
     // A scene given as an argument is named `scene`, as the CLI names its file.
     let named = folder.as_ref().filter(|_| spec.scene.is_none());
-    let mut report = result.map_err(|e| task::session_error(py, named, e))?;
+    let mut report = result.map_err(|e| task::episode_error(py, named, e))?;
     if let (Some(f), true) = (&folder, with_files) {
         if let Some(record) = report.log.folder.as_mut() {
             record.files = Some(f.files.clone());

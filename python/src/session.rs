@@ -6,7 +6,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use logic_lfd::lfd::{Frame, Listed, Session as Core, SessionOptions, SessionParams};
-use logic_lfd::sim::{Benchmark, TaskFolder};
+use logic_lfd::sim::{Benchmark, BodyKind, TaskFolder};
 
 use crate::clock::WallClock;
 use crate::errors::{load_error, option_error, LogicLfdError};
@@ -129,7 +129,7 @@ impl Session {
                     Some(s) => Core::from_scene(options, s, None),
                     None => Core::new(options),
                 })
-                .map_err(|e| task::session_error(py, None, e))?,
+                .map_err(|e| task::episode_error(py, None, e))?,
             Some(f) => {
                 let sources = f
                     .sources()
@@ -150,12 +150,12 @@ impl Session {
                         SessionParams::default(),
                     )
                 })
-                .map_err(|e| task::session_error(py, Some(f), e))?
+                .map_err(|e| task::episode_error(py, Some(f), e))?
             }
         };
         inner
             .set_robots(&robots)
-            .map_err(|e| task::session_error(py, folder.as_ref(), e))?;
+            .map_err(|e| task::episode_error(py, folder.as_ref(), e))?;
         Ok(Session { inner, folder })
     }
 
@@ -233,8 +233,9 @@ impl Session {
     ///
     /// Returns a dict: `body`, `from`, `to` (the centre after settling), `support`, `also_moved`.
     /// Logged with its tick (the episode replays it); after the end it opens the episode again.
-    /// Raises `OptionError` (`.option` 'body' or 'to') when the world refuses the move (no such
-    /// body, it would float, collide, or lie out of every arm's reach), the world unchanged.
+    /// Raises `OptionError` when the world refuses the move, the world unchanged: `.option`
+    /// 'body' for a body that cannot move now (unknown, fixed, lost, held), 'to' for a place it
+    /// cannot go (it would float, collide, or lie out of every arm's reach).
     fn drag<'py>(
         &mut self,
         py: Python<'py>,
@@ -242,18 +243,16 @@ impl Session {
         to: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let p = position(py, to)?;
-        let known = self
-            .inner
-            .world()
-            .snapshot()
-            .bodies
-            .iter()
-            .any(|b| b.name == body);
+        // Which argument a refusal is about: a body that can move now was refused its place.
+        let snap = self.inner.world().snapshot();
+        let movable = snap.bodies.iter().any(|b| {
+            b.name == body && matches!(b.kind, BodyKind::Block | BodyKind::Hook) && !b.lost
+        }) && !snap.arms.iter().any(|a| a.holding.as_deref() == Some(body));
         match self.inner.perturb(body, p) {
             Ok(out) => to_py(py, &out),
             Err(r) => Err(option_error(
                 py,
-                if known { "to" } else { "body" },
+                if movable { "to" } else { "body" },
                 &format!("cannot move {}: {}", r.body, r.reason),
             )),
         }
@@ -264,7 +263,7 @@ impl Session {
         self.inner.cancel();
     }
 
-    /// Restarts from the initial scene, with `seed` (default: the session's seed).
+    /// Restarts from the initial scene, with `seed` (default: the seed it was made with).
     #[pyo3(signature = (seed = None))]
     fn reset(&mut self, seed: Option<u64>) {
         let seed = seed.unwrap_or(self.inner.options().seed);
@@ -289,7 +288,7 @@ impl Session {
         self.inner.tick()
     }
 
-    /// The session's seed.
+    /// The seed of the episode's random choices.
     #[getter]
     fn seed(&self) -> u64 {
         self.inner.options().seed

@@ -142,12 +142,12 @@ fn one_robot(py: Python<'_>, p: &Path) -> PyResult<Arc<ArmModel>> {
         .map_err(|e| load_error(py, &e.at, &e.message))
 }
 
-/// A session error as an exception: bad PDDL as `PddlError`, an unusable file (a folder's, the
+/// An error setting an episode up as an exception: bad PDDL as `PddlError`, an unusable file (a folder's, the
 /// scene, the motions) as `LoadError` naming it, the rest as `LogicLfdError`.
 ///
 /// On a task folder, a scene or demonstration error names the folder's file, as the CLI's
 /// `--domain` does (`DIR/scene.json: …`, `DIR/demo.json: actions[2]…`).
-pub(crate) fn session_error(py: Python<'_>, folder: Option<&TaskFolder>, e: SessionError) -> PyErr {
+pub(crate) fn episode_error(py: Python<'_>, folder: Option<&TaskFolder>, e: SessionError) -> PyErr {
     let message = e.to_string();
     if let Some(f) = folder {
         let demo = if f.files.contains_key("demo.json") {

@@ -108,8 +108,12 @@ def test_drag_moves_a_block_and_the_frame_shows_it() -> None:
     with pytest.raises(OptionError) as e:
         s.drag("no-such-block", [0.3, 0.0, 0.03])
     assert e.value.option == "body"
-    with pytest.raises(OptionError):
+    with pytest.raises(OptionError) as e:
+        s.drag("table", [0.3, 0.0, 0.03])
+    assert e.value.option == "body" and "fixed" in e.value.message
+    with pytest.raises(OptionError) as e:
         s.drag("b", [0.3, 0.0, 0.03, 1.0])
+    assert e.value.option == "to" and "yaw" in e.value.message
     np.testing.assert_allclose(s.frame()["poses"]["a"], f["poses"]["a"])
     # The drag is in the log, with its tick.
     events = json.loads(s.episode_json())["events"]
@@ -121,6 +125,11 @@ def test_reset_restarts_from_the_initial_scene() -> None:
     start = s.frame()["poses"]
     s.drag("c", (0.3, 0.1, 0.03))
     s.step(2.0)
+    held = [a["holding"] for a in s.frame()["world"]["arms"] if a["holding"]]
+    assert held, "no block held 2 s in"
+    with pytest.raises(OptionError) as e:
+        s.drag(held[0], (0.3, -0.1, 0.03))
+    assert e.value.option == "body" and "held" in e.value.message
     s.reset(seed=5)
     assert s.tick == 0 and s.seed == 5 and not s.done
     for name, pose in start.items():
@@ -158,7 +167,7 @@ def test_bad_options_and_folders_raise_with_fields(tmp_path: Path) -> None:
     assert o.value.option == "dt"
 
 
-def test_a_folder_session_runs_the_folder_task() -> None:
+def test_a_folder_runs_its_own_task() -> None:
     s = Session(folder=DOMAINS / "b1-tower", seed=1)
     bench = Session("b1", seed=1)
     assert s.frame()["demo"] == bench.frame()["demo"]
