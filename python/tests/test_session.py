@@ -217,3 +217,49 @@ def test_run_episode_options() -> None:
     assert o.value.option == "level"
     with pytest.raises(LoadError):
         run_episode(folder="/nonexistent/task")
+
+
+def test_episode_json_replays_exactly_on_the_cli(tmp_path: Path) -> None:
+    s = Session("b1", seed=2)
+    s.step(1.0)
+    s.drag("d", (0.3, 0.2, 0.03))
+    s.step(2.0)
+    # Refused now: `None`, with the reason `can_inject` gives, and nothing logged.
+    reason = s.can_inject("set-back")
+    assert reason is not None and reason.startswith("L2:")
+    assert s.inject("set-back") is None
+    assert s.inject("scramble") is not None
+    s.run()
+    assert s.success
+    path = tmp_path / "episode.json"
+    path.write_text(s.episode_json())
+    log = json.loads(s.episode_json())
+    assert [e["level"] for e in log["events"] if e["event"] == "inject"] == ["l3"]
+    out = cli("run", "--replay", str(path))
+    assert out.startswith("replayed exactly:"), out
+    # The final scene starts another episode in the same facts.
+    again = Session(scene=s.scene_json())
+    assert again.frame()["facts"] == s.frame()["facts"]
+
+
+def test_robots_and_generated_tasks() -> None:
+    s = Session("b1", seed=1, robot="ur5")
+    f = s.run()
+    assert s.success, f["status"]["message"]
+    assert f["world"]["arms"][0]["robot"] == "ur5"
+    assert [j.shape for j in f["joints"].values()] == [(6,)]
+    five = Session("b1", seed=1, blocks=5)
+    f = five.run()
+    assert five.success, f["status"]["message"]
+    assert sum(b["kind"] == "block" for b in f["world"]["bodies"]) == 5
+    with pytest.raises(LoadError) as e:
+        Session(robot="/nonexistent/robot.json")
+    assert e.value.path == "/nonexistent/robot.json"
+
+
+def test_run_episode_on_a_folder_equals_the_cli() -> None:
+    folder = DOMAINS / "b1-tower"
+    got = run_episode(folder=folder, level="l4", seed=5, canonical=True)
+    want = canonical(json.loads(cli("run", "--domain", str(folder), "--level", "l4", "--seed", "5", "--json")))
+    assert got == want
+    assert got["log"]["folder"]["dir"] == str(folder)
