@@ -51,7 +51,15 @@ def test_arrays_have_the_documented_shapes() -> None:
     out = lqt(case)
     t, d, order, k = case["n_steps"], case["dim"], case["order"], case["basis"]["n_fct"]
     n, nx = t - 1, d * order
-    shapes = {"A": (nx, nx), "B": (nx, d), "phi": (n, k), "w": (k, d), "u": (n, d), "x": (t, nx), "pos": (t, d)}
+    shapes = {
+        "A": (nx, nx),
+        "B": (nx, d),
+        "phi": (n, k),
+        "w": (k, d),
+        "u": (n, d),
+        "x": (t, nx),
+        "pos": (t, d),
+    }
     for key, shape in shapes.items():
         assert isinstance(out[key], np.ndarray) and out[key].dtype == np.float64, key
         assert out[key].shape == shape, key
@@ -65,13 +73,17 @@ def test_arrays_have_the_documented_shapes() -> None:
     np.testing.assert_array_equal(out["x"][0], case["x0"])
     np.testing.assert_array_equal(out["pos"], out["x"][:, :d])
     # The states follow the dynamics x_{t+1} = A x_t + B u_t.
-    np.testing.assert_allclose(out["x"][1:], out["x"][:-1] @ out["A"].T + out["u"] @ out["B"].T, atol=1e-9)
+    np.testing.assert_allclose(
+        out["x"][1:], out["x"][:-1] @ out["A"].T + out["u"] @ out["B"].T, atol=1e-9
+    )
     # u = phi w (control primitives).
     np.testing.assert_allclose(out["u"], out["phi"] @ out["w"], atol=1e-9)
     # The targets are reached to the reported distances.
     for tg, err in zip(case["targets"], out["target_errors"]):
         assert err["t"] == tg["t"] and err["role"] == tg["role"]
-        assert np.linalg.norm(out["pos"][tg["t"]] - tg["pos"]) == pytest.approx(err["pos_dist"], abs=1e-12)
+        assert np.linalg.norm(out["pos"][tg["t"]] - tg["pos"]) == pytest.approx(
+            err["pos_dist"], abs=1e-12
+        )
     assert out["target_errors"][-1]["pos_dist"] < 0.05
 
 
@@ -130,7 +142,9 @@ def test_equals_the_cli(tmp_path: Path) -> None:
     got = lqt(DOCS_CASE)
     assert sorted(got) == sorted(want)
     for key in ("A", "B", "phi", "w", "u", "x", "pos"):
-        np.testing.assert_array_equal(got[key], np.asarray(want[key], dtype=np.float64), err_msg=key)
+        np.testing.assert_array_equal(
+            got[key], np.asarray(want[key], dtype=np.float64), err_msg=key
+        )
     assert got["cost"] == want["cost"]
     assert got["target_errors"] == want["target_errors"]
     for key in ("F", "gains"):

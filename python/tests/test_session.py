@@ -201,7 +201,9 @@ def cli(*args: str) -> str:
 
 def test_run_episode_equals_the_cli_report() -> None:
     got = run_episode("b1", level="l3", seed=3, canonical=True)
-    want = canonical(json.loads(cli("run", "--benchmark", "b1", "--level", "l3", "--seed", "3", "--json")))
+    want = canonical(
+        json.loads(cli("run", "--benchmark", "b1", "--level", "l3", "--seed", "3", "--json"))
+    )
     assert sorted(got) == sorted(want)
     for key in want:
         assert got[key] == want[key], key
@@ -260,6 +262,8 @@ def test_robots_and_generated_tasks() -> None:
 def test_run_episode_on_a_folder_equals_the_cli() -> None:
     folder = DOMAINS / "b1-tower"
     got = run_episode(folder=folder, level="l4", seed=5, canonical=True)
-    want = canonical(json.loads(cli("run", "--domain", str(folder), "--level", "l4", "--seed", "5", "--json")))
+    want = canonical(
+        json.loads(cli("run", "--domain", str(folder), "--level", "l4", "--seed", "5", "--json"))
+    )
     assert got == want
     assert got["log"]["folder"]["dir"] == str(folder)
