@@ -8,7 +8,7 @@ use logic_lfd::lfd::SessionParams;
 use logic_lfd::sim::Benchmark;
 
 use crate::clock::WallClock;
-use crate::errors::{load_error, option_error};
+use crate::errors::option_error;
 use crate::task::{self, to_py};
 
 /// Runs one closed-loop episode to its end and returns its report as a dict: the JSON of
@@ -81,10 +81,7 @@ pub(crate) fn run_episode<'py>(
         None => None,
     };
     let sources = match &folder {
-        Some(f) => Some(
-            f.sources()
-                .map_err(|e| load_error(py, &e.path, &e.message))?,
-        ),
+        Some(f) => Some(task::sources(py, f)?),
         None => None,
     };
     let result = py.detach(|| {

@@ -131,9 +131,7 @@ impl Session {
                 })
                 .map_err(|e| task::episode_error(py, None, e))?,
             Some(f) => {
-                let sources = f
-                    .sources()
-                    .map_err(|e| load_error(py, &e.path, &e.message))?;
+                let sources = task::sources(py, f)?;
                 if let Some(s) = &scene {
                     // The folder's own scene is still the demonstration's.
                     logic_lfd::sim::world_from_json(&sources.scene)
@@ -318,6 +316,7 @@ impl Session {
         self.inner.world().to_json()
     }
 
+    /// `Session(b1, logic-lfd, seed 1, tick 0, running)`.
     fn __repr__(&self) -> String {
         let o = self.inner.options();
         let task = match &self.folder {

@@ -8,7 +8,7 @@ use std::sync::Arc;
 use pyo3::prelude::*;
 
 use logic_lfd::lfd::{Level, Listed, SessionError, SkillKind};
-use logic_lfd::sim::{ArmModel, Robot, TaskFolder, SHIPPED_ROBOTS};
+use logic_lfd::sim::{ArmModel, BenchmarkSources, Robot, TaskFolder, SHIPPED_ROBOTS};
 
 use crate::errors::{lfd_error, load_error, option_error, LogicLfdError};
 
@@ -76,6 +76,7 @@ pub(crate) fn path_arg(option: &str, v: &Bound<'_, PyAny>) -> PyResult<PathBuf> 
 
 /// Reads the task folder `dir` with the core's reader (a bare name reads as `./NAME`, as the
 /// CLI's `--domain` does); a missing or unreadable folder or file is `LoadError` naming it.
+/// Its files are checked when its task is read ([`sources`]).
 pub(crate) fn read_folder(py: Python<'_>, dir: &Path) -> PyResult<TaskFolder> {
     let mut parts = dir.components();
     let bare = matches!(
@@ -87,14 +88,16 @@ pub(crate) fn read_folder(py: Python<'_>, dir: &Path) -> PyResult<TaskFolder> {
     } else {
         dir.to_path_buf()
     };
-    let folder = py
-        .detach(|| TaskFolder::read(&dir))
-        .map_err(|e| load_error(py, &e.path, &e.message))?;
-    // Every required file is there and the demonstration can be had (recorded from
-    // `expert.json` when the folder has no `demo.json`).
+    py.detach(|| TaskFolder::read(&dir))
+        .map_err(|e| load_error(py, &e.path, &e.message))
+}
+
+/// The task of `folder`: its files, every required one present, and its demonstration
+/// (recorded from `expert.json` by the scripted expert when the folder has no `demo.json`);
+/// `LoadError` naming the file at fault. Releases the GIL.
+pub(crate) fn sources(py: Python<'_>, folder: &TaskFolder) -> PyResult<BenchmarkSources> {
     py.detach(|| folder.sources())
-        .map_err(|e| load_error(py, &e.path, &e.message))?;
-    Ok(folder)
+        .map_err(|e| load_error(py, &e.path, &e.message))
 }
 
 /// The robots `robot` names: `None`, one robot, or a list (one per arm). A robot is a shipped

@@ -167,6 +167,20 @@ def test_bad_options_and_folders_raise_with_fields(tmp_path: Path) -> None:
     assert o.value.option == "dt"
 
 
+def test_folders_without_a_demonstration_or_a_scene(tmp_path: Path) -> None:
+    # No demo.json: the demonstration is recorded from expert.json.
+    expert = tmp_path / "expert-only"
+    shutil.copytree(DOMAINS / "b1-tower", expert)
+    (expert / "demo.json").unlink()
+    s = Session(folder=expert, seed=1)
+    assert s.frame()["demo"] == Session("b1", seed=1).frame()["demo"]
+    assert s.run()["status"]["kind"] == "done"
+    # A PDDL-only task (no motions, no scene) is no robot task.
+    with pytest.raises(LoadError) as e:
+        Session(folder=DOMAINS / "kitchen")
+    assert e.value.path == f"{DOMAINS / 'kitchen'}/motions.json"
+
+
 def test_a_folder_runs_its_own_task() -> None:
     s = Session(folder=DOMAINS / "b1-tower", seed=1)
     bench = Session("b1", seed=1)
