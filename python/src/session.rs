@@ -25,6 +25,10 @@ use crate::task::{self, array, to_py};
 ///
 /// Raises `OptionError` for a bad option, `LoadError` (with `.path`) for a folder, robot or
 /// scene that cannot be read, `PddlError` for a task whose PDDL is broken.
+///
+/// `step` and `run` release the GIL (the core episode is `Send`); an episode is used by one
+/// thread at a time: a call while another thread steps it raises `RuntimeError` (already
+/// borrowed).
 #[pyclass(module = "logic_lfd")]
 pub(crate) struct Session {
     inner: Core,
