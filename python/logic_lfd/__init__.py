@@ -21,9 +21,12 @@ from ._core import (
     OptionError,
     Plan,
     PddlError,
+    Session,
     Validation,
     __version__,
+    lqt,
     plan,
+    run_episode,
     validate,
 )
 from .sweep import sweep
@@ -38,9 +41,12 @@ __all__ = [
     "OptionError",
     "Plan",
     "PddlError",
+    "Session",
     "Validation",
     "__version__",
+    "lqt",
     "plan",
+    "run_episode",
     "sweep",
     "validate",
 ]

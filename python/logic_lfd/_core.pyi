@@ -1,6 +1,8 @@
 # Type stubs of the extension module `logic_lfd._core` (checked by mypy in python/tests).
 from __future__ import annotations
 
+import os as _os
+
 from typing import Any, Iterable, Iterator, Optional, Union, final
 
 __version__: str
@@ -21,6 +23,9 @@ __all__ = [
     "_sweep_items",
     "_sweep_run",
     "_sweep_report",
+    "lqt",
+    "Session",
+    "run_episode",
 ]
 
 # A state: one text of PDDL atoms, or an iterable of atom strings such as "(on a b)".
@@ -153,3 +158,80 @@ class LogicLfd:
 def _sweep_items(spec: str) -> int: ...
 def _sweep_run(spec: str, indices: list[int]) -> str: ...
 def _sweep_report(spec: str, records: list[str]) -> tuple[str, str]: ...
+
+# ---- robot ----
+
+# A file or folder path.
+_Path = Union[str, "_os.PathLike[str]"]
+# A shipped robot ('panda', 'ur5'), a robot file, or one of these per arm.
+_Robot = Union[_Path, Iterable[_Path]]
+
+def lqt(case: Union[dict[str, Any], str, "_os.PathLike[str]"]) -> dict[str, Any]:
+    """Solves one LQT-CP case (docs/formats.md); arrays are float64 numpy arrays.
+
+    With T = n_steps, N = T - 1, D = dim, nx = D * order, K = basis.n_fct: `A` (nx, nx),
+    `B` (nx, D), `phi` (N, K), `w` (K, D), `u` (N, D), `x` (T, nx; x[0] = x0), `pos` (T, D),
+    `cost` (float), `target_errors` (list of dicts) and, with a `feedback` case,
+    `feedback`: `F` (N*D, nx+1), `gains` (N, D, nx+1), `nominal` / `perturbed` rollouts
+    (`x` (T, nx), `u` (N, D), `pos` (T, D), `final_goal_pos_dist`).
+    """
+    ...
+
+@final
+class Session:
+    """One closed-loop episode (paper Algorithm 1) in a kinematic workcell.
+
+    Frames are dicts: the core's frame (`t`, `tick`, `status`, `plan`, `executing`, `demo`,
+    `demo_states`, `matched_k`, `facts`, `facts_added`, `facts_removed`, `last_replan`,
+    `replans`, `ee`, `world`) plus float64 numpy arrays `joints` (arm name -> (n_joints,)) and
+    `poses` (body name -> (7,): x, y, z, qx, qy, qz, qw).
+    """
+
+    def __new__(
+        cls,
+        benchmark: Optional[str] = None,
+        *,
+        folder: Optional[_Path] = None,
+        method: str = "logic-lfd",
+        mode: str = "paper",
+        seed: int = 0,
+        skill: str = "lqt",
+        blocks: Optional[int] = None,
+        scene: Optional[str] = None,
+        robot: Optional[_Robot] = None,
+    ) -> Session: ...
+    def step(self, dt: float) -> dict[str, Any]: ...
+    def run(self) -> dict[str, Any]: ...
+    def frame(self) -> dict[str, Any]: ...
+    def inject(self, level: str) -> Optional[dict[str, Any]]: ...
+    def can_inject(self, level: str) -> Optional[str]: ...
+    def drag(self, body: str, to: Iterable[float]) -> dict[str, Any]: ...
+    def cancel(self) -> None: ...
+    def reset(self, seed: Optional[int] = None) -> None: ...
+    @property
+    def done(self) -> bool: ...
+    @property
+    def success(self) -> bool: ...
+    @property
+    def tick(self) -> int: ...
+    @property
+    def seed(self) -> int: ...
+    def episode_json(self, *, with_files: bool = False) -> str: ...
+    def scene_json(self) -> str: ...
+
+def run_episode(
+    benchmark: Optional[str] = None,
+    *,
+    folder: Optional[_Path] = None,
+    level: Optional[str] = None,
+    method: str = "logic-lfd",
+    mode: str = "paper",
+    seed: int = 0,
+    blocks: Optional[int] = None,
+    scene: Optional[str] = None,
+    robot: Optional[_Robot] = None,
+    canonical: bool = False,
+    with_files: bool = False,
+) -> dict[str, Any]:
+    """One closed-loop episode to its end: the report of `logic-lfd run --json`."""
+    ...

@@ -8,10 +8,14 @@
 use pyo3::prelude::*;
 
 mod clock;
+mod episode;
 mod errors;
 mod lfd;
+mod lqt;
 mod pddl;
+mod session;
 mod sweep;
+mod task;
 
 /// The extension module (`logic_lfd._core`).
 #[pymodule]
@@ -20,6 +24,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     errors::register(m)?;
     pddl::register(m)?;
     lfd::register(m)?;
+    lqt::register(m)?;
+    session::register(m)?;
+    episode::register(m)?;
     sweep::register(m)?;
     Ok(())
 }

@@ -89,7 +89,7 @@ fn robots(spec: &Map<String, Value>) -> Result<Vec<Arc<ArmModel>>, SpecError> {
     };
     names
         .iter()
-        .map(|n| ArmModel::load(Path::new(n)).map_err(|e| SpecError::Load(n.clone(), e)))
+        .map(|n| ArmModel::load(Path::new(n)).map_err(|e| SpecError::Load(e.at, e.message)))
         .collect()
 }
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import shutil
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -23,3 +25,19 @@ def read_task(name: str) -> tuple[str, str, str]:
 @pytest.fixture
 def kitchen() -> tuple[str, str, str]:
     return read_task("kitchen")
+
+
+def cli(*args: str, ok: tuple[int, ...] = (0,)) -> str:
+    """Stdout of `logic-lfd ARGS`: the command line of this checkout, through cargo's debug
+    build (which `cargo build`, part of `npm test`, has made); fails on another exit code."""
+    if shutil.which("cargo") is None:
+        pytest.skip("cargo is not installed")
+    out = subprocess.run(
+        ["cargo", "run", "-q", "-p", "logic-lfd", "--bin", "logic-lfd", "--", *args],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert out.returncode in ok, f"logic-lfd {' '.join(args)}: exit {out.returncode}\n{out.stderr}"
+    return out.stdout

@@ -3,34 +3,25 @@
 from __future__ import annotations
 
 import json
-import subprocess
 from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from typing import Any
 
 import pytest
 
 import logic_lfd
-from conftest import ROOT
+from conftest import cli
 
 SOAK = {"command": "soak", "episodes": 4, "seed": 5, "check_replay": False}
 
 
-def cli(*args: str) -> Any:
-    """The JSON `logic-lfd ARGS --json` prints (the debug build `cargo build` made)."""
-    out = subprocess.run(
-        ["cargo", "run", "-q", "-p", "logic-lfd", "--bin", "logic-lfd", "--", *args, "--json"],
-        cwd=ROOT,
-        check=False,
-        capture_output=True,
-        text=True,
-    )
-    assert out.returncode in (0, 5), out.stderr
-    return json.loads(out.stdout)
+def cli_json(*args: str) -> Any:
+    """What `logic-lfd ARGS --json` prints (exit 5: a soak with findings still reports)."""
+    return json.loads(cli(*args, "--json", ok=(0, 5)))
 
 
 @pytest.fixture(scope="module")
 def soak_cli() -> Any:
-    return cli("soak", "--episodes", "4", "--seed", "5", "--no-replay")
+    return cli_json("soak", "--episodes", "4", "--seed", "5", "--no-replay")
 
 
 def test_a_soak_on_a_process_pool_is_the_cli_report(soak_cli: Any) -> None:
@@ -71,7 +62,7 @@ def test_table1_rows_are_the_cli_table() -> None:
     report = logic_lfd.sweep([spec])[0]
     markdown = report.pop("markdown")
     assert markdown.startswith("Table I")
-    expected = cli("bench", "table1", "--tasks", "2", "--seed", "3", "--benchmarks", "b1")
+    expected = cli_json("bench", "table1", "--tasks", "2", "--seed", "3", "--benchmarks", "b1")
     assert without_wall_clock(report) == without_wall_clock(expected)
 
 

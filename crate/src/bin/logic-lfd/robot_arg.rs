@@ -17,7 +17,10 @@ pub const HELP: &str = "A shipped robot (panda: the Franka Emika Panda from its 
 /// (unless a file of that name exists) or a robot file; the error names the file and the JSON
 /// path, URDF line or mesh that cannot be used.
 pub fn load(paths: &[PathBuf]) -> Result<Vec<Arc<ArmModel>>, String> {
-    paths.iter().map(|p| ArmModel::load(p)).collect()
+    paths
+        .iter()
+        .map(|p| ArmModel::load(p).map_err(|e| e.to_string()))
+        .collect()
 }
 
 /// `p` as a shipped robot's name: one of [`SHIPPED_ROBOTS`], and no file of that name here.

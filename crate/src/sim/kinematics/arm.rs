@@ -137,21 +137,22 @@ impl ArmModel {
     /// What `--robot` takes on the command line and `robot=` in Python.
     ///
     /// # Errors
-    /// The robot file's error, located.
+    /// The robot file's error, located (`at`: the file, JSON path, URDF line or mesh).
     #[cfg(not(first_load))]
-    pub fn load(spec: &std::path::Path) -> Result<Arc<ArmModel>, String> {
+    pub fn load(spec: &std::path::Path) -> Result<Arc<ArmModel>, RobotError> {
         let shipped = spec
             .to_str()
             .and_then(|n| crate::sim::SHIPPED_ROBOTS.into_iter().find(|s| *s == n))
             .filter(|_| !spec.exists());
         if let Some(name) = shipped {
-            return ArmModel::shipped(name)
-                .ok_or_else(|| format!("robot `{name}`: the shipped files do not load"));
+            return ArmModel::shipped(name).ok_or_else(|| RobotError {
+                at: name.to_string(),
+                message: "the shipped robot's files do not load".into(),
+            });
         }
         Robot::load(spec)
             .and_then(|r| ArmModel::from_robot(&r))
             .map(Arc::new)
-            .map_err(|e| e.to_string())
     }
 
     /// The arm's name (`panda`, or the robot file's `name`).
