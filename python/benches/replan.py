@@ -21,19 +21,24 @@ DOMAINS = Path(__file__).resolve().parents[2] / "domains"
 
 def cases() -> list[tuple[str, logic_lfd.LogicLfd, list[str]]]:
     """(name, task, state): a state the demonstration passes through, and disturbed ones."""
-    out = []
-    for name, robot_at in [("kitchen", "(robot-at chef "), ("delivery", None)]:
+
+    def task(name: str) -> logic_lfd.LogicLfd:
         folder = DOMAINS / name
-        lfd = logic_lfd.LogicLfd(
+        return logic_lfd.LogicLfd(
             (folder / "domain.pddl").read_text(),
             (folder / "problem.pddl").read_text(),
             (folder / "demo.plan").read_text(),
         )
-        out.append((f"{name}: LogicIn matches L_3", lfd, lfd.demo_states[3]))
-        if robot_at:
-            moved = [a for a in lfd.demo_states[6] if not a.startswith(robot_at)]
-            out.append((f"{name}: cook moved, prefix searched", lfd, moved + [robot_at + "sink)"]))
-    return out
+
+    kitchen, delivery = task("kitchen"), task("delivery")
+    moved = [a for a in kitchen.demo_states[6] if not a.startswith("(robot-at chef ")]
+    disturbed = (DOMAINS / "delivery" / "disturbed.facts").read_text()
+    return [
+        ("kitchen: LogicIn matches L_3", kitchen, kitchen.demo_states[3]),
+        ("kitchen: the cook moved, a prefix searched", kitchen, moved + ["(robot-at chef sink)"]),
+        ("delivery: LogicIn matches L_3", delivery, delivery.demo_states[3]),
+        ("delivery: disturbed.facts, a prefix searched", delivery, disturbed.split("\n")),
+    ]
 
 
 def main() -> None:
