@@ -76,3 +76,12 @@ def test_a_bad_spec_raises_with_the_option_named() -> None:
     with pytest.raises(logic_lfd.LoadError) as le:
         logic_lfd.sweep({"command": "soak", "folder": "/no/such/folder"})
     assert le.value.path == "/no/such/folder"
+
+
+def test_table2_rows_are_the_cli_table() -> None:
+    spec = {"command": "table2", "trials": 1, "benchmarks": ["b1"]}
+    with ProcessPoolExecutor(2) as pool:
+        report = logic_lfd.sweep(spec, pool)
+    assert report.pop("markdown").startswith("Table II")
+    expected = cli_json("bench", "table2", "--trials", "1", "--benchmarks", "b1")
+    assert without_wall_clock(report) == without_wall_clock(expected)
