@@ -1,8 +1,8 @@
 """Sweeps of episodes on any `concurrent.futures` executor.
 
 `sweep` runs a soak or the rows of Table I or II as independent items spread over an executor
-(a thread or process pool on one machine, Dask's `Client.get_executor()` or Ray's pool across
-machines) and joins the items' records into the report the CLI prints with `--json`.
+(a thread or process pool on one machine, Dask's `Client.get_executor()` across machines, or
+any other `Executor`) and joins the items' records into the report the CLI prints with `--json`.
 """
 
 from __future__ import annotations
