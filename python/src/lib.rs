@@ -2,7 +2,7 @@
 //!
 //! Thin bindings over the `logic-lfd` crate: texts and plain values in, classes, dicts and
 //! numpy arrays out. Every long call releases the GIL; every bad input raises one of the
-//! exceptions of [`errors`] with its fields, never a panic across the boundary. The Python
+//! exceptions of `errors` with its fields, never a panic across the boundary. The Python
 //! package `logic_lfd` re-exports this module with its docs and type stubs.
 
 use pyo3::prelude::*;
