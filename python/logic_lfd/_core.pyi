@@ -65,6 +65,13 @@ class Plan:
     cost: int
     optimal: bool
     stats: dict[str, Any]
+    def __new__(
+        cls,
+        actions: list[str],
+        cost: int,
+        optimal: bool = False,
+        stats: Optional[dict[str, Any]] = None,
+    ) -> Plan: ...
     def __len__(self) -> int: ...
     def __iter__(self) -> Iterator[str]: ...
 
@@ -76,6 +83,15 @@ class Validation:
     cost: int
     failed_step: Optional[int]
     false_literals: list[str]
+    def __new__(
+        cls,
+        valid: bool,
+        message: str,
+        steps_applied: int,
+        cost: int,
+        failed_step: Optional[int] = None,
+        false_literals: list[str] = ...,
+    ) -> Validation: ...
     def __bool__(self) -> bool: ...
 
 def plan(
@@ -112,6 +128,18 @@ class LfdResult:
     cost: int
     valid: Optional[bool]
     stats: dict[str, Any]
+    def __new__(
+        cls,
+        actions: list[str],
+        prefix: list[str],
+        suffix: list[str],
+        k: Optional[int],
+        logic_in: Optional[int],
+        source: str,
+        cost: int,
+        valid: Optional[bool],
+        stats: dict[str, Any],
+    ) -> LfdResult: ...
     def __len__(self) -> int: ...
 
 @final

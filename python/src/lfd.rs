@@ -19,7 +19,9 @@ use crate::pddl::{config, plan_text, stats_dict, Validation};
 #[pyclass(module = "logic_lfd", frozen)]
 pub(crate) struct LogicLfd {
     core: Core,
-    demo_file: String,
+    /// The texts and file names it was built from, for pickling.
+    texts: [String; 3],
+    files: [String; 3],
 }
 
 /// A Logic-LfD plan: new actions to a demonstration state L_k, then the demonstration's rest.
@@ -36,7 +38,7 @@ pub(crate) struct LfdResult {
     /// LogicIn of the state: the largest k with L_k ⊆ S_C whose rest applies, or `None`.
     logic_in: Option<usize>,
     /// 'goal-holds', 'logic-in' or 'multi-goal'.
-    source: &'static str,
+    source: String,
     /// The cost of the whole plan.
     cost: u64,
     /// The lifted validator replayed the plan from the state to the goal (`None` when
@@ -48,6 +50,55 @@ pub(crate) struct LfdResult {
 
 #[pymethods]
 impl LfdResult {
+    /// A result from its parts; what pickling restores.
+    #[new]
+    #[pyo3(signature = (actions, prefix, suffix, k, logic_in, source, cost, valid, stats))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        actions: Vec<String>,
+        prefix: Vec<String>,
+        suffix: Vec<String>,
+        k: Option<usize>,
+        logic_in: Option<usize>,
+        source: String,
+        cost: u64,
+        valid: Option<bool>,
+        stats: Bound<'_, PyDict>,
+    ) -> Self {
+        LfdResult {
+            actions,
+            prefix,
+            suffix,
+            k,
+            logic_in,
+            source,
+            cost,
+            valid,
+            stats: stats.unbind(),
+        }
+    }
+
+    /// Pickles as `LfdResult(actions, prefix, …)`.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        let py = slf.py();
+        let r = slf.get();
+        let args = (
+            r.actions.clone(),
+            r.prefix.clone(),
+            r.suffix.clone(),
+            r.k,
+            r.logic_in,
+            r.source.clone(),
+            r.cost,
+            r.valid,
+            r.stats.clone_ref(py),
+        );
+        Ok((
+            slf.get_type().into_any(),
+            args.into_pyobject(py)?.into_any(),
+        ))
+    }
+
     fn __len__(&self) -> usize {
         self.actions.len()
     }
@@ -136,8 +187,32 @@ impl LogicLfd {
             .map_err(|e| lfd_error(py, &e, demo_file))?;
         Ok(LogicLfd {
             core,
-            demo_file: demo_file.to_string(),
+            texts: [domain.to_string(), problem.to_string(), demo],
+            files: [domain_file, problem_file, demo_file].map(str::to_string),
         })
+    }
+
+    /// Pickles as the texts it was read from (read again when unpickled), so a `LogicLfd`
+    /// crosses process pools.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        let py = slf.py();
+        let this = slf.get();
+        let kwargs = PyDict::new(py);
+        for (key, file) in ["domain_file", "problem_file", "demo_file"]
+            .iter()
+            .zip(&this.files)
+        {
+            kwargs.set_item(key, file)?;
+        }
+        let partial = py
+            .import("functools")?
+            .getattr("partial")?
+            .call((slf.get_type(),), Some(&kwargs))?;
+        let [domain, problem, demo] = this.texts.clone();
+        Ok((
+            partial,
+            (domain, problem, demo).into_pyobject(py)?.into_any(),
+        ))
     }
 
     /// The demonstration's actions a_1 … a_N.
@@ -191,7 +266,7 @@ impl LogicLfd {
     ) -> PyResult<Option<usize>> {
         let text = state_text(state)?;
         py.detach(|| self.observe(text.as_deref()).map(|s| s.logic_in()))
-            .map_err(|e| lfd_error(py, &e, &self.demo_file))
+            .map_err(|e| lfd_error(py, &e, &self.files[2]))
     }
 
     /// Logic-LfD from `state`: the cheapest way to any demonstration state L_k (or the goal),
@@ -224,13 +299,13 @@ impl LogicLfd {
             let valid = validate.then(|| s.validate(&p.names).is_ok_and(|r| r.is_valid()));
             Ok::<_, LfdError>((p, s.logic_in(), valid))
         });
-        let (p, logic_in, valid) = found.map_err(|e| lfd_error(py, &e, &self.demo_file))?;
+        let (p, logic_in, valid) = found.map_err(|e| lfd_error(py, &e, &self.files[2]))?;
         Ok(LfdResult {
             prefix: p.prefix().to_vec(),
             suffix: p.suffix().to_vec(),
             k: p.k,
             logic_in,
-            source: source_name(p.source),
+            source: source_name(p.source).to_string(),
             cost: p.cost,
             valid,
             stats: stats_dict(py, &p.stats, None)?.unbind(),
@@ -254,7 +329,7 @@ impl LogicLfd {
             .collect();
         let report = py
             .detach(|| self.observe(text.as_deref())?.validate(&steps))
-            .map_err(|e| lfd_error(py, &e, &self.demo_file))?;
+            .map_err(|e| lfd_error(py, &e, &self.files[2]))?;
         Validation::of(py, &report)
     }
 
@@ -284,7 +359,7 @@ impl LogicLfd {
                 })
                 .collect::<Result<Vec<f64>, LfdError>>()
         })
-        .map_err(|e| lfd_error(py, &e, &self.demo_file))
+        .map_err(|e| lfd_error(py, &e, &self.files[2]))
     }
 
     fn __repr__(&self) -> String {

@@ -28,6 +28,35 @@ pub(crate) struct Plan {
 
 #[pymethods]
 impl Plan {
+    /// A plan from its parts; what pickling restores.
+    #[new]
+    #[pyo3(signature = (actions, cost, optimal = false, stats = None))]
+    fn new(
+        py: Python<'_>,
+        actions: Vec<String>,
+        cost: u64,
+        optimal: bool,
+        stats: Option<Bound<'_, PyDict>>,
+    ) -> Self {
+        Plan {
+            actions,
+            cost,
+            optimal,
+            stats: stats.unwrap_or_else(|| PyDict::new(py)).unbind(),
+        }
+    }
+
+    /// Pickles as `Plan(actions, cost, optimal, stats)`, so plans cross process pools.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        let py = slf.py();
+        let p = slf.get();
+        let args = (p.actions.clone(), p.cost, p.optimal, p.stats.clone_ref(py));
+        Ok((
+            slf.get_type().into_any(),
+            args.into_pyobject(py)?.into_any(),
+        ))
+    }
+
     fn __len__(&self) -> usize {
         self.actions.len()
     }
@@ -230,6 +259,46 @@ pub(crate) struct Validation {
 
 #[pymethods]
 impl Validation {
+    /// A verdict from its parts; what pickling restores.
+    #[new]
+    #[pyo3(signature = (valid, message, steps_applied, cost, failed_step = None,
+        false_literals = Vec::new()))]
+    fn new(
+        valid: bool,
+        message: String,
+        steps_applied: usize,
+        cost: u64,
+        failed_step: Option<usize>,
+        false_literals: Vec<String>,
+    ) -> Self {
+        Validation {
+            valid,
+            message,
+            steps_applied,
+            cost,
+            failed_step,
+            false_literals,
+        }
+    }
+
+    /// Pickles as `Validation(valid, message, …)`.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        let py = slf.py();
+        let v = slf.get();
+        let args = (
+            v.valid,
+            v.message.clone(),
+            v.steps_applied,
+            v.cost,
+            v.failed_step,
+            v.false_literals.clone(),
+        );
+        Ok((
+            slf.get_type().into_any(),
+            args.into_pyobject(py)?.into_any(),
+        ))
+    }
+
     fn __bool__(&self) -> bool {
         self.valid
     }

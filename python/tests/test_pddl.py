@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import multiprocessing
+import pickle
 import threading
+from concurrent.futures import ProcessPoolExecutor
 
 import pytest
 
@@ -150,3 +153,27 @@ def test_every_shipped_task_folder_with_a_plan_demonstration_loads() -> None:
         if (folder / "demo.plan").exists():
             lfd = logic_lfd.LogicLfd(*read_task(folder.name))
             assert lfd.replan().actions == lfd.demo_actions
+
+
+def test_tasks_and_results_pickle_across_process_pools(kitchen: Task) -> None:
+    domain, problem, _ = kitchen
+    p = logic_lfd.plan(domain, problem)
+    back = pickle.loads(pickle.dumps(p))
+    assert (back.actions, back.cost, back.optimal, back.stats) == (
+        p.actions,
+        p.cost,
+        p.optimal,
+        p.stats,
+    )
+    v = pickle.loads(pickle.dumps(logic_lfd.validate(domain, problem, p.actions[1:])))
+    assert not v and v.failed_step == 1 and v.false_literals
+    lfd = logic_lfd.LogicLfd(*kitchen, demo_file="kitchen.plan")
+    state = [a for a in lfd.demo_states[6] if not a.startswith("(robot-at chef ")]
+    state.append("(robot-at chef sink)")
+    with ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("spawn")) as pool:
+        remote = list(pool.map(lfd.replan, [state, lfd.demo_states[4]]))
+    assert [r.actions for r in remote] == [lfd.replan(state).actions, lfd.demo_actions[4:]]
+    assert remote[0].k == lfd.replan(state).k and remote[0].source == "multi-goal"
+    copy = pickle.loads(pickle.dumps(lfd))
+    assert copy.demo_states == lfd.demo_states
+    assert copy.replan(state).actions == lfd.replan(state).actions

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import multiprocessing
 from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from typing import Any
 
@@ -12,6 +13,12 @@ import logic_lfd
 from conftest import cli
 
 SOAK = {"command": "soak", "episodes": 4, "seed": 5, "check_replay": False}
+
+
+def process_pool(workers: int) -> ProcessPoolExecutor:
+    """A pool of fresh interpreters: forking a process that runs threads (pytest's, Dask's) is
+    unsafe, and spawn is what Python 3.14 and macOS do by default."""
+    return ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"))
 
 
 def cli_json(*args: str) -> Any:
@@ -25,7 +32,7 @@ def soak_cli() -> Any:
 
 
 def test_a_soak_on_a_process_pool_is_the_cli_report(soak_cli: Any) -> None:
-    with ProcessPoolExecutor(2) as pool:
+    with process_pool(2) as pool:
         report = logic_lfd.sweep(SOAK, pool)
     assert report == soak_cli
     assert report["episodes"] == 4 and report["invariant_checks"] > 0
@@ -80,7 +87,7 @@ def test_a_bad_spec_raises_with_the_option_named() -> None:
 
 def test_table2_rows_are_the_cli_table() -> None:
     spec = {"command": "table2", "trials": 1, "benchmarks": ["b1"]}
-    with ProcessPoolExecutor(2) as pool:
+    with process_pool(2) as pool:
         report = logic_lfd.sweep(spec, pool)
     assert report.pop("markdown").startswith("Table II")
     expected = cli_json("bench", "table2", "--trials", "1", "--benchmarks", "b1")

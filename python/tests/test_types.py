@@ -20,7 +20,7 @@ def run(*args: str, cwd: str) -> subprocess.CompletedProcess[str]:
 def test_the_stubs_match_the_built_module() -> None:
     # From an empty folder, so the installed package is checked, not the source tree.
     with tempfile.TemporaryDirectory() as empty:
-        out = run("mypy.stubtest", "logic_lfd", cwd=empty)
+        out = run("mypy.stubtest", "logic_lfd._core", cwd=empty)
     assert out.returncode == 0, out.stdout + out.stderr
 
 
