@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from ._core import (
     DemoError,
+    DragRefused,
     LfdResult,
     LoadError,
     LogicLfd,
@@ -33,6 +34,7 @@ from .sweep import sweep
 
 __all__ = [
     "DemoError",
+    "DragRefused",
     "LfdResult",
     "LoadError",
     "LogicLfd",

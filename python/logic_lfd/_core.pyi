@@ -14,6 +14,7 @@ __all__ = [
     "LoadError",
     "NoPlanError",
     "OptionError",
+    "DragRefused",
     "Plan",
     "Validation",
     "plan",
@@ -52,6 +53,10 @@ class NoPlanError(LogicLfdError):
     budget: Optional[str]
     message: str
     stats: Optional[dict[str, Any]]
+
+class DragRefused(LogicLfdError):
+    body: str
+    reason: str
 
 class OptionError(LogicLfdError):
     option: str

@@ -41,6 +41,12 @@ create_exception!(
 );
 create_exception!(
     logic_lfd,
+    DragRefused,
+    LogicLfdError,
+    "A drag the world refuses (the world unchanged): `.body`, `.reason`."
+);
+create_exception!(
+    logic_lfd,
     OptionError,
     LogicLfdError,
     "An option the call does not know or whose value is out of range: `.option`, `.message`."
@@ -55,6 +61,7 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("LoadError", py.get_type::<LoadError>())?;
     m.add("NoPlanError", py.get_type::<NoPlanError>())?;
     m.add("OptionError", py.get_type::<OptionError>())?;
+    m.add("DragRefused", py.get_type::<DragRefused>())?;
     Ok(())
 }
 
@@ -166,5 +173,13 @@ pub(crate) fn option_error(py: Python<'_>, option: &str, message: &str) -> PyErr
     let err = OptionError::new_err(format!("{option}: {message}"));
     set(py, &err, "option", option);
     set(py, &err, "message", message);
+    err
+}
+
+/// `DragRefused` for `body`, with the world's reason.
+pub(crate) fn drag_refused(py: Python<'_>, body: &str, reason: &str) -> PyErr {
+    let err = DragRefused::new_err(format!("cannot move {body}: {reason}"));
+    set(py, &err, "body", body);
+    set(py, &err, "reason", reason);
     err
 }

@@ -6,10 +6,10 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use logic_lfd::lfd::{Frame, Listed, Session as Core, SessionOptions, SessionParams};
-use logic_lfd::sim::{Benchmark, BodyKind, TaskFolder};
+use logic_lfd::sim::{Benchmark, TaskFolder};
 
 use crate::clock::WallClock;
-use crate::errors::{load_error, option_error, LogicLfdError};
+use crate::errors::{drag_refused, load_error, option_error, LogicLfdError};
 use crate::task::{self, array, to_py};
 
 /// One closed-loop episode (paper Algorithm 1) in a kinematic workcell: step it, read its
@@ -235,9 +235,9 @@ impl Session {
     ///
     /// Returns a dict: `body`, `from`, `to` (the centre after settling), `support`, `also_moved`.
     /// Logged with its tick (the episode replays it); after the end it opens the episode again.
-    /// Raises `OptionError` when the world refuses the move, the world unchanged: `.option`
-    /// 'body' for a body that cannot move now (unknown, fixed, lost, held), 'to' for a place it
-    /// cannot go (it would float, collide, or lie out of every arm's reach).
+    /// Raises `DragRefused` (`.body`, `.reason`) when the world refuses the move (a body that
+    /// is unknown, fixed, lost or held; a place where it would collide or lie out of every
+    /// arm's reach), the world unchanged; `OptionError` for a `to` that is not (x, y, z).
     fn drag<'py>(
         &mut self,
         py: Python<'py>,
@@ -245,18 +245,9 @@ impl Session {
         to: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let p = position(py, to)?;
-        // Which argument a refusal is about: a body that can move now was refused its place.
-        let snap = self.inner.world().snapshot();
-        let movable = snap.bodies.iter().any(|b| {
-            b.name == body && matches!(b.kind, BodyKind::Block | BodyKind::Hook) && !b.lost
-        }) && !snap.arms.iter().any(|a| a.holding.as_deref() == Some(body));
         match self.inner.perturb(body, p) {
             Ok(out) => to_py(py, &out),
-            Err(r) => Err(option_error(
-                py,
-                if movable { "to" } else { "body" },
-                &format!("cannot move {}: {}", r.body, r.reason),
-            )),
+            Err(r) => Err(drag_refused(py, &r.body, &r.reason)),
         }
     }
 

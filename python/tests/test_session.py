@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import logic_lfd
-from logic_lfd import LoadError, OptionError, Session, run_episode
+from logic_lfd import DragRefused, LoadError, OptionError, Session, run_episode
 
 from conftest import DOMAINS, ROOT, cli
 
@@ -101,15 +101,15 @@ def test_drag_moves_a_block_and_the_frame_shows_it() -> None:
     np.testing.assert_allclose(f["poses"]["a"][:3], out["to"], atol=1e-12)
     assert "(on a d)" in f["facts"]
     # A refused drag raises and leaves the world as it was.
-    with pytest.raises(OptionError) as e:
+    with pytest.raises(DragRefused) as r:
         s.drag("a", [5.0, 5.0, 0.03])
-    assert e.value.option == "to"
-    with pytest.raises(OptionError) as e:
+    assert r.value.body == "a" and "nothing is under it" in r.value.reason
+    with pytest.raises(DragRefused) as r:
         s.drag("no-such-block", [0.3, 0.0, 0.03])
-    assert e.value.option == "body"
-    with pytest.raises(OptionError) as e:
+    assert r.value.body == "no-such-block"
+    with pytest.raises(DragRefused) as r:
         s.drag("table", [0.3, 0.0, 0.03])
-    assert e.value.option == "body" and "fixed" in e.value.message
+    assert r.value.body == "table" and "fixed" in r.value.reason
     with pytest.raises(OptionError) as e:
         s.drag("b", [0.3, 0.0, 0.03, 1.0])
     assert e.value.option == "to" and "yaw" in e.value.message
@@ -126,9 +126,9 @@ def test_reset_restarts_from_the_initial_scene() -> None:
     s.step(2.0)
     held = [a["holding"] for a in s.frame()["world"]["arms"] if a["holding"]]
     assert held, "no block held 2 s in"
-    with pytest.raises(OptionError) as e:
+    with pytest.raises(DragRefused) as r:
         s.drag(held[0], (0.3, -0.1, 0.03))
-    assert e.value.option == "body" and "held" in e.value.message
+    assert r.value.body == held[0] and "held" in r.value.reason
     s.reset(seed=5)
     assert s.tick == 0 and s.seed == 5 and not s.done
     for name, pose in start.items():
