@@ -8,7 +8,6 @@ use logic_lfd::lfd::SessionParams;
 use logic_lfd::sim::Benchmark;
 
 use crate::clock::WallClock;
-use crate::errors::option_error;
 use crate::task::{self, to_py};
 
 /// Runs one closed-loop episode to its end and returns its report as a dict: the JSON of
@@ -45,23 +44,7 @@ pub(crate) fn run_episode<'py>(
     with_files: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let folder = folder.filter(|f| !f.is_none());
-    if let (Some(b), Some(_)) = (benchmark, folder) {
-        return Err(option_error(
-            py,
-            "benchmark",
-            &format!(
-                "benchmark `{b}` and a folder: a task folder's own scene and the disturbances \
-                 drawn in it define the episode; give one of them"
-            ),
-        ));
-    }
-    if let (Some(_), Some(_)) = (blocks, folder) {
-        return Err(option_error(
-            py,
-            "blocks",
-            "blocks are for a benchmark's generated task, not a folder",
-        ));
-    }
+    task::one_task(py, benchmark, folder.is_some(), blocks)?;
     let level = match level {
         None => None,
         Some(l) if l.eq_ignore_ascii_case("none") => None,

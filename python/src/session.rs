@@ -100,20 +100,7 @@ impl Session {
         robot: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let folder = folder.filter(|f| !f.is_none());
-        if let (Some(b), Some(_)) = (benchmark, folder) {
-            return Err(option_error(
-                py,
-                "benchmark",
-                &format!("benchmark `{b}` and a folder: give one of them (a folder is the task)"),
-            ));
-        }
-        if let (Some(_), Some(_)) = (blocks, folder) {
-            return Err(option_error(
-                py,
-                "blocks",
-                "blocks are for a benchmark's generated task, not a folder",
-            ));
-        }
+        task::one_task(py, benchmark, folder.is_some(), blocks)?;
         let options = SessionOptions {
             benchmark: task::listed::<Benchmark>(py, "benchmark", benchmark.unwrap_or("b1"))?,
             method: task::listed(py, "method", method)?,

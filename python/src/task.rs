@@ -62,6 +62,34 @@ pub(crate) fn skill(py: Python<'_>, name: &str) -> PyResult<SkillKind> {
     })
 }
 
+/// Checks the task arguments of `Session` and `run_episode`: a benchmark or a folder, not both,
+/// and `blocks` only with a benchmark; else `OptionError`.
+pub(crate) fn one_task(
+    py: Python<'_>,
+    benchmark: Option<&str>,
+    folder: bool,
+    blocks: Option<usize>,
+) -> PyResult<()> {
+    if let (Some(b), true) = (benchmark, folder) {
+        return Err(option_error(
+            py,
+            "benchmark",
+            &format!(
+                "benchmark `{b}` and a folder: a task folder is the task (its own scene and \
+                 demonstration); give one of them"
+            ),
+        ));
+    }
+    if let (Some(_), true) = (blocks, folder) {
+        return Err(option_error(
+            py,
+            "blocks",
+            "blocks are for a benchmark's generated task, not a folder",
+        ));
+    }
+    Ok(())
+}
+
 /// A filesystem path argument (`str` or `os.PathLike`).
 pub(crate) fn path_arg(option: &str, v: &Bound<'_, PyAny>) -> PyResult<PathBuf> {
     v.extract::<PathBuf>().map_err(|_| {
