@@ -322,13 +322,13 @@ impl LogicLfd {
         state: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Validation> {
         let text = state_text(state)?;
-        let steps: Vec<String> = plan_text(plan)?
-            .lines()
-            .map(|l| l.split(';').next().unwrap_or("").trim().to_string())
-            .filter(|l| !l.is_empty())
-            .collect();
+        // The core reads the plan text itself (comments, one action a line), as `validate` does.
+        let plan = plan_text(plan)?;
         let report = py
-            .detach(|| self.observe(text.as_deref())?.validate(&steps))
+            .detach(|| {
+                self.observe(text.as_deref())?
+                    .validate(std::slice::from_ref(&plan))
+            })
             .map_err(|e| lfd_error(py, &e, &self.files[2]))?;
         Validation::of(py, &report)
     }

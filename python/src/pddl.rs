@@ -208,9 +208,9 @@ fn plan_py(
             )),
             _ => None,
         };
-        Ok::<_, ReadError>((r, names, ground_secs, task.facts.len()))
+        Ok::<_, ReadError>((r, names, ground_secs))
     });
-    let (r, names, ground_secs, _) = outcome.map_err(|e| e.into_py(py))?;
+    let (r, names, ground_secs) = outcome.map_err(|e| e.into_py(py))?;
     let stats = stats_dict(py, &r.stats, Some(ground_secs))?;
     match (r.outcome, names) {
         (SearchOutcome::Plan(_), Some((actions, cost))) => Ok(Plan {
